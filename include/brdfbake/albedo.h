@@ -1,0 +1,49 @@
+// Directional albedo E(wo) = integral of f(wo, wi) cos(theta_i) dwi, computed in a kernel.
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "brdfbake/engine.h"
+#include "brdfbake/spec.h"
+
+namespace brdfbake {
+
+/// One outgoing direction (and, for table sweeps, the model parameters at that cell).
+struct AlbedoCell {
+    double mu = 1.0;   // cos(theta_o), in (0, 1]
+    double phi = 0.0;  // phi_o in radians (matters for anisotropic models only)
+    ParamBlock params{};
+};
+
+struct AlbedoRequest {
+    int model = 0;  // BB_MODEL_*
+    FresnelConfig fresnel;
+    std::vector<AlbedoCell> cells;
+    std::uint64_t samples = 1u << 18;  // per cell, split over the replicas
+    unsigned replicas = 16;            // randomised replicas for the error estimate
+    Precision precision = Precision::Float;
+    std::uint64_t seed = 0x62726466u;  // "brdf": results are reproducible by default
+};
+
+struct AlbedoValue {
+    double value = 0.0;
+    double error = 0.0;  // estimated absolute error: 3 standard errors + floating-point bound
+};
+
+struct AlbedoResult {
+    std::vector<AlbedoValue> values;  // one per cell
+    std::uint64_t samples_per_cell = 0;
+    std::string method;               // what the estimator did, in words
+    double kernel_seconds = 0.0;      // device time of the integration
+};
+
+/// Runs the albedo kernel over every cell. Throws Error if the device produced non-finite
+/// sample weights (the cell and count are named), or for an invalid request.
+AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request);
+
+/// The cells for a list of mu values at one azimuth, all with the same model parameters.
+std::vector<AlbedoCell> cells_for(const std::vector<double>& mus, double phi, const ParamBlock& params);
+
+}  // namespace brdfbake

@@ -1,0 +1,125 @@
+/* brdfbake shared-math compatibility layer.
+ *
+ * Every header in include/brdfbake/brdf/ is written in the subset of C that both C++17 and
+ * OpenCL C 1.2 accept, and includes this file first. It defines:
+ *   BB_FN        the qualifier of every shared function (inlined on both sides; PoCL leaves
+ *                helpers without always_inline as calls)
+ *   real         the working type: double on the host; float, or double with -D BB_REAL_DOUBLE,
+ *                in kernels
+ *   BB_R(x)       a literal of type real
+ *   bb_select(a, b, c)   c ? b : a, branch-free (OpenCL select() semantics)
+ *   bb_clamp, bb_min, bb_max, bb_sqrt ...  math that maps to the OpenCL built-ins
+ *   bb_vec3      a 3-vector of real with bb_v3, bb_dot, bb_normalize, ...
+ * No templates, references, namespaces or overloading in shared code (STYLE.md).
+ */
+#ifndef BRDFBAKE_BRDF_COMPAT_H
+#define BRDFBAKE_BRDF_COMPAT_H
+
+#ifdef __OPENCL_C_VERSION__
+/* ---------------------------------------------------------------- OpenCL C */
+#define BB_FN static inline __attribute__((always_inline))
+#ifdef BB_REAL_DOUBLE
+#pragma OPENCL EXTENSION cl_khr_fp64 : enable
+typedef double real;
+#define BB_EPS_REAL 2.220446049250313e-16
+#define BB_REAL_MAX 1.7976931348623157e308
+#else
+typedef float real;
+#define BB_EPS_REAL 1.1920929e-7f
+#define BB_REAL_MAX 3.4028235e38f
+#endif
+#define BB_R(x) ((real)(x))
+/* The ternary operator: for vector operands OpenCL C applies it per component, like select(). */
+#define bb_select(a, b, c) ((c) ? (b) : (a))
+#define bb_sqrt sqrt
+#define bb_exp exp
+#define bb_log log
+#define bb_erf erf
+#define bb_pow pow
+#define bb_sin sin
+#define bb_cos cos
+#define bb_atan2 atan2
+#define bb_fabs fabs
+#define bb_fma fma
+#define bb_min fmin
+#define bb_max fmax
+#define bb_clamp(x, lo, hi) clamp((x), (lo), (hi))
+#define bb_isfinite(x) isfinite(x)
+
+#else
+/* ---------------------------------------------------------------- host C++ */
+#include <cmath>
+typedef double real;
+#define BB_FN static inline
+#define BB_EPS_REAL 2.220446049250313e-16
+#define BB_REAL_MAX 1.7976931348623157e308
+#define BB_R(x) ((real)(x))
+/* OpenCL's select(a, b, c) for scalars: c ? b : a */
+#define bb_select(a, b, c) ((c) ? (b) : (a))
+#define bb_sqrt std::sqrt
+#define bb_exp std::exp
+#define bb_log std::log
+#define bb_erf std::erf
+#define bb_pow std::pow
+#define bb_sin std::sin
+#define bb_cos std::cos
+#define bb_atan2 std::atan2
+#define bb_fabs std::fabs
+#define bb_fma std::fma
+#define bb_min std::fmin
+#define bb_max std::fmax
+#define bb_clamp(x, lo, hi) std::fmin(std::fmax((x), (lo)), (hi))
+#define bb_isfinite(x) std::isfinite(x)
+#endif
+
+#define BB_PI BB_R(3.14159265358979323846)
+#define BB_INV_PI BB_R(0.31830988618379067154)
+#define BB_2PI BB_R(6.28318530717958647692)
+
+/* ----------------------------------------------------------- 3-vectors
+ * A plain struct rather than OpenCL's real3, so that host and device share the code. */
+typedef struct {
+    real x, y, z;
+} bb_vec3;
+
+BB_FN bb_vec3 bb_v3(real x, real y, real z) {
+    bb_vec3 v;
+    v.x = x;
+    v.y = y;
+    v.z = z;
+    return v;
+}
+BB_FN real bb_dot(bb_vec3 a, bb_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+BB_FN bb_vec3 bb_add(bb_vec3 a, bb_vec3 b) { return bb_v3(a.x + b.x, a.y + b.y, a.z + b.z); }
+BB_FN bb_vec3 bb_scale(bb_vec3 a, real s) { return bb_v3(a.x * s, a.y * s, a.z * s); }
+BB_FN bb_vec3 bb_cross(bb_vec3 a, bb_vec3 b) {
+    return bb_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
+}
+/* Edge-case policy: a zero-length vector normalises to (0,0,0) rather than NaN; callers
+ * treat a zero half vector as "no contribution". */
+BB_FN bb_vec3 bb_normalize(bb_vec3 a) {
+    real len2 = bb_dot(a, a);
+    real inv = bb_select(BB_R(0.0), BB_R(1.0) / bb_sqrt(len2), len2 > BB_R(0.0));
+    return bb_scale(a, inv);
+}
+
+/* ------------------------------------------------------ scalar helpers */
+/* sqrt that never returns NaN for a tiny negative argument produced by rounding. */
+BB_FN real bb_safe_sqrt(real x) { return bb_sqrt(bb_max(x, BB_R(0.0))); }
+BB_FN real bb_sqr(real x) { return x * x; }
+/* Cosines are clamped to [-1, 1] everywhere (edge-case policy). */
+BB_FN real bb_clamp_cos(real c) { return bb_clamp(c, BB_R(-1.0), BB_R(1.0)); }
+/* sin^2 from cos written as (1-c)(1+c): exact near c = 1 where 1 - c*c cancels. */
+BB_FN real bb_sin2_from_cos(real c) { return bb_max((BB_R(1.0) - c) * (BB_R(1.0) + c), BB_R(0.0)); }
+
+/* The direction with cos(theta) = mu and azimuth phi in the local frame (n = +z). */
+BB_FN bb_vec3 bb_dir_from_mu_phi(real mu, real phi) {
+    real s = bb_safe_sqrt(bb_sin2_from_cos(mu));
+    return bb_v3(s * bb_cos(phi), s * bb_sin(phi), mu);
+}
+/* Mirror reflection of w about the unit vector m: 2(w.m)m - w. */
+BB_FN bb_vec3 bb_reflect(bb_vec3 w, bb_vec3 m) {
+    return bb_add(bb_scale(m, BB_R(2.0) * bb_dot(w, m)), bb_scale(w, BB_R(-1.0)));
+}
+
+#endif /* BRDFBAKE_BRDF_COMPAT_H */

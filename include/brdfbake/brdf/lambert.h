@@ -1,0 +1,23 @@
+/* Ideal diffuse reflection (Lambert 1760): f = rho / pi. */
+#ifndef BRDFBAKE_BRDF_LAMBERT_H
+#define BRDFBAKE_BRDF_LAMBERT_H
+
+#include "brdfbake/brdf/params.h"
+
+/* Parameter slots. */
+#define BB_LAMBERT_RHO 0
+
+BB_FN real bb_lambert_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
+    return bb_select(BB_R(0.0), p.v[BB_LAMBERT_RHO] * BB_INV_PI, wo.z > BB_R(0.0) && wi.z > BB_R(0.0));
+}
+
+/* Cosine-weighted hemisphere sampling (Malley's method): pdf = cos(theta_i)/pi, so the weight
+ * f cos / pdf is rho for every sample. */
+BB_FN bb_sample bb_lambert_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
+    real r = bb_sqrt(u1);
+    real phi = BB_2PI * u2;
+    bb_vec3 wi = bb_v3(r * bb_cos(phi), r * bb_sin(phi), bb_safe_sqrt(BB_R(1.0) - u1));
+    return bb_make_sample(wi, bb_select(BB_R(0.0), p.v[BB_LAMBERT_RHO], wo.z > BB_R(0.0)));
+}
+
+#endif /* BRDFBAKE_BRDF_LAMBERT_H */

@@ -1,0 +1,36 @@
+/* Low-discrepancy point sets and warps, shared by host and kernels. */
+#ifndef BRDFBAKE_BRDF_SAMPLING_H
+#define BRDFBAKE_BRDF_SAMPLING_H
+
+#include "brdfbake/brdf/compat.h"
+
+/* Van der Corput radical inverse in base 2 by bit reversal (Hacker's Delight 7-1). */
+BB_FN unsigned int bb_reverse_bits(unsigned int v) {
+    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
+    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
+    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
+    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
+    return (v >> 16) | (v << 16);
+}
+
+/* A 32-bit fraction as a real in [0, 1): float keeps the top 24 bits so that the result can
+ * never round up to 1. */
+BB_FN real bb_unit_from_bits(unsigned int v) {
+#if defined(__OPENCL_C_VERSION__) && !defined(BB_REAL_DOUBLE)
+    return (real)(v >> 8) * BB_R(5.9604644775390625e-8); /* 2^-24 */
+#else
+    return (real)v * BB_R(2.3283064365386963e-10); /* 2^-32 */
+#endif
+}
+
+/* Cranley-Patterson rotation: (x + shift) mod 1, for x and shift in [0, 1). */
+BB_FN real bb_rotate(real x, real shift) {
+    real u = x + shift;
+    return bb_select(u, u - BB_R(1.0), u >= BB_R(1.0));
+}
+
+/* Point i of the n-point Hammersley set: ((i + 1/2)/n, radical_inverse_2(i)). */
+BB_FN real bb_hammersley_u1(unsigned int i, unsigned int n) { return ((real)i + BB_R(0.5)) / (real)n; }
+BB_FN real bb_hammersley_u2(unsigned int i) { return bb_unit_from_bits(bb_reverse_bits(i)); }
+
+#endif /* BRDFBAKE_BRDF_SAMPLING_H */

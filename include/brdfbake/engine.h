@@ -1,0 +1,87 @@
+// The OpenCL engine: device discovery and choice, program builds (options assembled in one
+// place, sources embedded at build time, PoCL's on-disk kernel cache), and the command queue.
+#pragma once
+
+#include <CL/opencl.hpp>
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace brdfbake {
+
+enum class Precision { Float, Double };
+const char* precision_name(Precision p);
+
+/// Facts about one OpenCL device, queried once.
+struct DeviceInfo {
+    int platform_index = 0;
+    int device_index = 0;
+    std::string platform;
+    std::string name;
+    std::string vendor;
+    std::string version;         // CL_DEVICE_VERSION
+    std::string driver;          // CL_DRIVER_VERSION
+    std::string type;            // "cpu", "gpu", "accelerator", "other"
+    unsigned compute_units = 0;
+    unsigned max_clock_mhz = 0;
+    bool fp64 = false;
+    std::uint64_t global_mem = 0;
+    std::uint64_t max_alloc = 0;
+    std::size_t max_work_group = 0;
+    cl::Device device;
+};
+
+/// Every device of every platform; throws Error (with installation advice) if there is none.
+std::vector<DeviceInfo> list_devices();
+
+/// Chooses a device from a selector "P:D" (platform and device index), "N" (flat index into
+/// list_devices()), "cpu" or "gpu"; an empty selector takes $BRDFBAKE_DEVICE, else PoCL's first
+/// device, else the first device. Throws Error for a selector that matches nothing.
+DeviceInfo choose_device(const std::string& selector);
+
+/// What a program build needs besides the source.
+struct BuildRequest {
+    std::string kernel_file;                       // e.g. "albedo.cl"
+    Precision precision = Precision::Float;
+    std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE
+};
+
+class Engine {
+public:
+    explicit Engine(const std::string& device_selector = "", bool verbose = false);
+
+    const DeviceInfo& device() const { return info_; }
+    cl::Context& context() { return context_; }
+    cl::CommandQueue& queue() { return queue_; }
+    bool verbose() const { return verbose_; }
+
+    /// The built program for a request, built once per engine and options; PoCL keeps the
+    /// compiled binary in its own cache (~/.cache/pocl or $POCL_CACHE_DIR) across runs.
+    /// Throws Error with the build log on failure.
+    cl::Program& program(const BuildRequest& request);
+
+    /// The compiler options for a request on this device (the single place they are assembled).
+    std::string build_options(const BuildRequest& request) const;
+
+    /// Seconds spent in program builds so far.
+    double build_seconds() const { return build_seconds_; }
+
+private:
+    DeviceInfo info_;
+    cl::Context context_;
+    cl::CommandQueue queue_;
+    bool verbose_;
+    std::map<std::string, cl::Program> programs_;
+    double build_seconds_ = 0.0;
+};
+
+/// The source of an embedded kernel file with every `#include "brdfbake/..."` expanded from
+/// the embedded headers, so that the binary runs from any directory.
+std::string kernel_source(const std::string& kernel_file);
+
+/// A readable name for an OpenCL error code.
+std::string cl_error_name(int code);
+
+}  // namespace brdfbake

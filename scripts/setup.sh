@@ -1,0 +1,28 @@
+#!/usr/bin/env bash
+# Installs the Debian packages brdfbake needs; quick and silent when they are all present.
+# Usage: scripts/setup.sh        (run as root, or with sudo available)
+set -euo pipefail
+
+packages=(
+  cmake g++ make
+  pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers clinfo
+  libopenexr-dev catch2 libcli11-dev nlohmann-json3-dev librandom123-dev
+  libboost-math-dev libmgl-dev libyaml-cpp-dev libtinygltf-dev
+)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "setup: installing ${missing[*]}"
+SUDO=""
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "setup: need root (or sudo) to install: ${missing[*]}" >&2; exit 1; }
+  SUDO=sudo
+fi
+export DEBIAN_FRONTEND=noninteractive
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}" >/dev/null
+echo "setup: done"
