@@ -20,6 +20,7 @@ namespace {
 struct AlbedoOptions {
     std::string model;
     std::string fresnel = "none";
+    double wavelength_nm = 0.0;
     std::string mu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
     std::string phi = "0";
     std::int64_t samples = 1 << 18;
@@ -81,7 +82,7 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
     // Check every input before touching the device.
     const ModelConfig model = resolve_model(o.model);
-    const FresnelConfig fresnel = resolve_fresnel(o.fresnel);
+    const FresnelConfig fresnel = resolve_fresnel(o.fresnel, o.wavelength_nm);
     parse_format(o.format);
     if (fresnel.kind != 0 && !model.uses_fresnel)
         throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
@@ -117,6 +118,7 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
     CLI::App* cmd = app.add_subcommand("albedo", "directional albedo E(mu_o) = integral of f cos(theta_i) dwi");
     cmd->add_option("--model", o->model, "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8")->required();
     cmd->add_option("--fresnel", o->fresnel, "Fresnel spec: none, schlick:f0=F0")->capture_default_str();
+    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
     cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
     cmd->add_option("--phi", o->phi, "comma-separated phi_o in degrees (anisotropic models)")->capture_default_str();
     cmd->add_option("--samples", o->samples, "samples per direction")->capture_default_str();

@@ -6,7 +6,8 @@
 
 namespace brdfbake {
 
-FresnelConfig resolve_fresnel(const std::string& text) {
+FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
+    (void)wavelength_nm;  // used by measured metals
     const Spec spec = parse_spec(text);
     KeyReader keys(spec, "Fresnel");
     FresnelConfig f;

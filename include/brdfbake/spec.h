@@ -42,8 +42,9 @@ struct FresnelConfig {
 /// range, not a finite number).
 ModelConfig resolve_model(const std::string& text);
 
-/// Resolves a Fresnel spec; throws Error as resolve_model does.
-FresnelConfig resolve_fresnel(const std::string& text);
+/// Resolves a Fresnel spec; throws Error as resolve_model does. `wavelength_nm` is the
+/// --wavelength option (0 when not given), needed by measured metals (metal:Al, nk:FILE).
+FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm = 0.0);
 
 /// Names of the known models, for help texts and error messages.
 std::vector<std::string> model_names();
