@@ -20,5 +20,6 @@ using Action = std::function<int()>;
 
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_devices_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace brdfbake

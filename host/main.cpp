@@ -12,6 +12,7 @@ int main(int argc, char** argv) {
     CLI::App app{"brdfbake " BRDFBAKE_VERSION
                  ": integrate BRDFs in OpenCL kernels (PoCL by default) and write lookup tables and plots"};
     app.require_subcommand(1);
+    app.fallthrough();  // global options may follow the command: `brdfbake albedo ... --device 0:0`
     app.set_version_flag("--version", BRDFBAKE_VERSION);
     GlobalOptions global;
     app.add_option("--device", global.device,
@@ -23,6 +24,21 @@ int main(int argc, char** argv) {
     Action action;
     add_albedo_command(app, global, action);
     add_devices_command(app, global, action);
+    add_fresnel_command(app, global, action);
+
+    // A first word that is neither an option nor a command gets its own message.
+    if (argc > 1 && argv[1][0] != '-') {
+        bool known = false;
+        std::string names;
+        for (const CLI::App* sub : app.get_subcommands({})) {
+            known = known || sub->get_name() == argv[1];
+            names += (names.empty() ? "" : ", ") + sub->get_name();
+        }
+        if (!known) {
+            std::cerr << "brdfbake: error: unknown command '" << argv[1] << "'; commands: " << names << "\n";
+            return kExitError;
+        }
+    }
 
     try {
         app.parse(argc, argv);

@@ -1,7 +1,36 @@
 /* Fresnel reflectance terms, shared by host and kernels.
  *
  * A Fresnel term is a kind (BB_FRESNEL_*) and a parameter block; bb_fresnel_eval dispatches on
- * the kind. Kernels pass a compile-time constant kind, so the switch folds away. */
+ * the kind. Kernels pass a compile-time constant kind, so the switch folds away.
+ *
+ * Conventions. cos_theta is the cosine between the direction and the (micro)surface normal.
+ * eta (and k) is the index of the far side relative to the side the light arrives from:
+ * eta = 1.5 is glass seen from air, eta = 1/1.5 the same interface seen from inside the glass,
+ * eta + ik a metal seen from air. Rs is the reflectance of s-polarised light (electric field
+ * perpendicular to the plane of incidence, "r_perp"), Rp of p-polarised light ("r_par");
+ * the unpolarised reflectance is F = (Rs + Rp)/2.
+ *
+ * Edge-case policy (written once, here):
+ *   - cos_theta is clamped to [-1, 1]. A dielectric seen with cos_theta < 0 is seen from the
+ *     other side (eta -> 1/eta, cos -> |cos|), as in pbrt-v4 FrDielectric. Conductors clamp
+ *     cos_theta to [0, 1] (light does not arrive from inside a metal), as pbrt-v4 FrComplex.
+ *   - Total internal reflection returns Rs = Rp = F = 1.
+ *   - An index of exactly 1 (eta = 1, k = 0) returns 0 at every angle, grazing included, for
+ *     the exact forms.
+ *   - F -> 1 at grazing incidence (cos_theta = 0) for every other index.
+ *   - Every value is finite for eta in [1e-4, 1e4] and k in [0, 1e3] in float and double: the
+ *     exact forms are written with squared magnitudes of moderate size only (|n^2| <= ~1e8).
+ *
+ * References:
+ *   [BW]   Born & Wolf, "Principles of Optics", 7th ed., sec. 1.5.2 eq. 21 (amplitude
+ *          coefficients for dielectrics), sec. 14.2 (absorbing media: the complex index
+ *          n = eta + ik replaces eta, cos_theta_t becomes complex).
+ *   [PBR4] Pharr, Jakob, Humphreys, "Physically Based Rendering", 4th ed., sec. 9.3.5-9.3.6
+ *          (FrDielectric, FrComplex).
+ *   [PBR2] Pharr & Humphreys, "Physically Based Rendering", 2nd ed., sec. 8.2.1 eq. 8.3
+ *          (FrCond: the approximate conductor reflectance of the course notes).
+ *   [S94]  Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering", eq. 24.
+ */
 #ifndef BRDFBAKE_BRDF_FRESNEL_H
 #define BRDFBAKE_BRDF_FRESNEL_H
 
@@ -9,27 +38,212 @@
 
 #define BB_FRESNEL_NONE 0
 #define BB_FRESNEL_SCHLICK 1
+#define BB_FRESNEL_DIELECTRIC 2
+#define BB_FRESNEL_CONDUCTOR 3
+#define BB_FRESNEL_CONDUCTOR_APPROX 4
 
 /* Parameter slots. */
 #define BB_SCHLICK_F0 0
+#define BB_FRESNEL_ETA 0 /* dielectric, conductor, conductor-approx: real part of the index */
+#define BB_FRESNEL_K 1   /* conductor, conductor-approx: extinction coefficient k >= 0 */
 
-/* Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering", eq. 24:
- * F = F0 + (1 - F0)(1 - cos)^5. Relative error against the exact dielectric below 1%
- * for eta in [1.3, 1.7] away from grazing. */
+/* The two polarised reflectances of one evaluation. */
+typedef struct {
+    real rs; /* s-polarised (perpendicular, TE) */
+    real rp; /* p-polarised (parallel, TM) */
+} bb_fresnel_sp;
+
+BB_FN bb_fresnel_sp bb_make_fresnel_sp(real rs, real rp) {
+    bb_fresnel_sp r;
+    r.rs = rs;
+    r.rp = rp;
+    return r;
+}
+
+/* num / den, or `fallback` where den is 0 (a 0/0 that the caller's limit defines). */
+BB_FN real bb_ratio_or(real num, real den, real fallback) {
+    return bb_select(num / bb_select(den, BB_R(1.0), den == BB_R(0.0)), fallback, den == BB_R(0.0));
+}
+
+/* ------------------------------------------------------------------ Schlick */
+
+/* [S94] eq. 24: F = F0 + (1 - F0)(1 - cos)^5. Relative error against the exact dielectric below
+ * 1% for eta in [1.3, 1.7] away from grazing; no polarisation, so Rs = Rp = F. */
 BB_FN real bb_fresnel_schlick(real cos_theta, real f0) {
     real m = bb_clamp(BB_R(1.0) - cos_theta, BB_R(0.0), BB_R(1.0));
     real m2 = m * m;
     return f0 + (BB_R(1.0) - f0) * (m2 * m2 * m);
 }
 
-/* F(cos_theta) for the given kind; cos_theta is the cosine between the direction and the
- * (micro)surface normal. Unknown kinds return 1 (no Fresnel weighting). */
+/* --------------------------------------------------------- exact dielectric */
+
+/* Rs and Rp of a dielectric interface with relative index eta > 0 [BW eq. 21; PBR4 9.3.5]:
+ *   r_s = (cos_i - eta cos_t) / (cos_i + eta cos_t),  r_p = (eta cos_i - cos_t) / (eta cos_i + cos_t),
+ * with Snell's law sin_t = sin_i / eta. cos_t is computed as
+ *   eta cos_t = sqrt(eta^2 - sin_i^2) = sqrt((eta - 1)(eta + 1) + cos_i^2),
+ * which keeps full relative accuracy near eta = 1 and near grazing, where 1 - sin_t^2 cancels.
+ * Total internal reflection (eta^2 - sin_i^2 <= 0) gives 1, eta = 1 gives 0. */
+BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(real cos_theta, real eta) {
+    real c = bb_clamp_cos(cos_theta);
+    /* Seen from the other side: invert the relative index [PBR4 FrDielectric]. */
+    real e = bb_select(eta, BB_R(1.0) / eta, c < BB_R(0.0));
+    c = bb_fabs(c);
+    real q = (e - BB_R(1.0)) * (e + BB_R(1.0)) + c * c; /* eta^2 - sin_i^2 = (eta cos_t)^2 */
+    real w = bb_safe_sqrt(q);                          /* eta cos_t */
+    real e2c = e * e * c;                              /* eta^2 cos_i */
+    /* r_s as above; r_p multiplied through by eta: (eta^2 cos_i - eta cos_t) / (eta^2 cos_i + eta cos_t). */
+    real rs = bb_ratio_or(c - w, c + w, BB_R(0.0));
+    real rp = bb_ratio_or(e2c - w, e2c + w, BB_R(0.0));
+    int tir = q <= BB_R(0.0);
+    int unit = e == BB_R(1.0);
+    real Rs = bb_select(bb_select(rs * rs, BB_R(1.0), tir), BB_R(0.0), unit);
+    real Rp = bb_select(bb_select(rp * rp, BB_R(1.0), tir), BB_R(0.0), unit);
+    return bb_make_fresnel_sp(Rs, Rp);
+}
+
+BB_FN real bb_fresnel_dielectric_rs(real cos_theta, real eta) {
+    return bb_fresnel_dielectric_sp(cos_theta, eta).rs;
+}
+BB_FN real bb_fresnel_dielectric_rp(real cos_theta, real eta) {
+    return bb_fresnel_dielectric_sp(cos_theta, eta).rp;
+}
+/* Unpolarised: F = (Rs + Rp) / 2. */
+BB_FN real bb_fresnel_dielectric(real cos_theta, real eta) {
+    bb_fresnel_sp r = bb_fresnel_dielectric_sp(cos_theta, eta);
+    return BB_R(0.5) * (r.rs + r.rp);
+}
+
+/* ---------------------------------------------------------- exact conductor */
+
+/* A complex number, for the conductor only. */
+typedef struct {
+    real re, im;
+} bb_complex;
+
+BB_FN bb_complex bb_make_complex(real re, real im) {
+    bb_complex z;
+    z.re = re;
+    z.im = im;
+    return z;
+}
+
+/* The square root of z = a + ib on the branch with Im >= 0 (and Re >= 0), the physical one for
+ * the transmitted wave n cos_t in an absorbing medium (it decays into the metal) [BW 14.2].
+ * For Im(z) >= 0 this is the principal root; taking |b| makes a signed zero in b (a negative
+ * real z, total internal reflection of a k = 0 "conductor") land on +i sqrt(-a) instead of
+ * depending on the sign of zero. Written without a branch on the sign of a:
+ *   t = sqrt((|z| + |a|)/2),  sqrt(z) = (t, |b|/(2t)) for a >= 0, (|b|/(2t), t) for a < 0,
+ * which avoids the cancellation of |z| - |a| (Kahan, "Branch cuts for complex elementary
+ * functions", 1987). z = 0 gives 0. */
+BB_FN bb_complex bb_complex_sqrt_upper(real a, real b) {
+    real ab = bb_fabs(b);
+    real mag = bb_sqrt(a * a + ab * ab);
+    real t = bb_sqrt(BB_R(0.5) * (mag + bb_fabs(a)));
+    real other = bb_ratio_or(ab, BB_R(2.0) * t, BB_R(0.0));
+    int pos = a >= BB_R(0.0);
+    return bb_make_complex(bb_select(other, t, pos), bb_select(t, other, pos));
+}
+
+/* Rs and Rp of a conductor with complex relative index n = eta + ik (eta > 0, k >= 0)
+ * [BW 14.2; PBR4 9.3.6 FrComplex]: the dielectric formulas with complex n,
+ *   r_s = (cos_i - n cos_t) / (cos_i + n cos_t),
+ *   r_p = (n cos_i - cos_t) / (n cos_i + cos_t) = (n^2 cos_i - n cos_t) / (n^2 cos_i + n cos_t),
+ * where w = n cos_t = sqrt(n^2 - sin_i^2) on the branch of bb_complex_sqrt_upper, and
+ *   n^2 - sin_i^2 = ((eta - 1)(eta + 1) - k^2 + cos_i^2) + i 2 eta k,
+ * the real part written with (eta - 1)(eta + 1) to keep eta near 1 accurate. Then
+ *   Rs = |cos_i - w|^2 / |cos_i + w|^2,  Rp = |n^2 cos_i - w|^2 / |n^2 cos_i + w|^2.
+ * For k = 0 this is the exact dielectric, total internal reflection included. */
+BB_FN bb_fresnel_sp bb_fresnel_conductor_sp(real cos_theta, real eta, real k) {
+    real c = bb_clamp(cos_theta, BB_R(0.0), BB_R(1.0));
+    real n2_re = (eta - k) * (eta + k); /* Re n^2 = eta^2 - k^2 */
+    real n2_im = BB_R(2.0) * eta * k;   /* Im n^2 */
+    bb_complex w = bb_complex_sqrt_upper((eta - BB_R(1.0)) * (eta + BB_R(1.0)) - k * k + c * c, n2_im);
+    /* Rs */
+    real dm = c - w.re, dp = c + w.re, w_im2 = w.im * w.im;
+    real Rs = bb_ratio_or(dm * dm + w_im2, dp * dp + w_im2, BB_R(0.0));
+    /* Rp */
+    real a_re = n2_re * c, a_im = n2_im * c; /* n^2 cos_i */
+    real pm_re = a_re - w.re, pm_im = a_im - w.im;
+    real pp_re = a_re + w.re, pp_im = a_im + w.im;
+    real Rp = bb_ratio_or(pm_re * pm_re + pm_im * pm_im, pp_re * pp_re + pp_im * pp_im, BB_R(0.0));
+    return bb_make_fresnel_sp(Rs, Rp);
+}
+
+BB_FN real bb_fresnel_conductor_rs(real cos_theta, real eta, real k) {
+    return bb_fresnel_conductor_sp(cos_theta, eta, k).rs;
+}
+BB_FN real bb_fresnel_conductor_rp(real cos_theta, real eta, real k) {
+    return bb_fresnel_conductor_sp(cos_theta, eta, k).rp;
+}
+BB_FN real bb_fresnel_conductor(real cos_theta, real eta, real k) {
+    bb_fresnel_sp r = bb_fresnel_conductor_sp(cos_theta, eta, k);
+    return BB_R(0.5) * (r.rs + r.rp);
+}
+
+/* ---------------------------------------------------- approximate conductor */
+
+/* The closed form of the course notes [PBR2 eq. 8.3, FrCond], which drops the sin^2 terms
+ * of the exact expressions (so it is exact at normal incidence and at grazing):
+ *   r_perp = ((eta^2 + k^2) - 2 eta cos + cos^2) / ((eta^2 + k^2) + 2 eta cos + cos^2),
+ *   r_par  = ((eta^2 + k^2) cos^2 - 2 eta cos + 1) / ((eta^2 + k^2) cos^2 + 2 eta cos + 1),
+ *   F = (r_perp + r_par) / 2.
+ * Error: good for metals (eta^2 + k^2 >> 1; for aluminium at 550 nm within 4e-3 of the exact
+ * F, see docs/fresnel.md); poor for dielectrics (it does not reach 0 for eta = 1 and has no
+ * total internal reflection). cos is clamped to [0, 1]; every denominator is >= 1. */
+BB_FN bb_fresnel_sp bb_fresnel_conductor_approx_sp(real cos_theta, real eta, real k) {
+    real c = bb_clamp(cos_theta, BB_R(0.0), BB_R(1.0));
+    real t = eta * eta + k * k;
+    real two_eta_c = BB_R(2.0) * eta * c;
+    real c2 = c * c;
+    real r_perp = (t - two_eta_c + c2) / (t + two_eta_c + c2);
+    real r_par = (t * c2 - two_eta_c + BB_R(1.0)) / (t * c2 + two_eta_c + BB_R(1.0));
+    return bb_make_fresnel_sp(r_perp, r_par);
+}
+
+BB_FN real bb_fresnel_conductor_approx(real cos_theta, real eta, real k) {
+    bb_fresnel_sp r = bb_fresnel_conductor_approx_sp(cos_theta, eta, k);
+    return BB_R(0.5) * (r.rs + r.rp);
+}
+
+/* ---------------------------------------------------------------- dispatch */
+
+/* Rs and Rp for the given kind. The unpolarised kinds (none, Schlick) return Rs = Rp = F.
+ * Unknown kinds behave as none (1). */
+BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, real cos_theta) {
+    switch (kind) {
+    case BB_FRESNEL_SCHLICK: {
+        real f = bb_fresnel_schlick(cos_theta, fp.v[BB_SCHLICK_F0]);
+        return bb_make_fresnel_sp(f, f);
+    }
+    case BB_FRESNEL_DIELECTRIC:
+        return bb_fresnel_dielectric_sp(cos_theta, fp.v[BB_FRESNEL_ETA]);
+    case BB_FRESNEL_CONDUCTOR:
+        return bb_fresnel_conductor_sp(cos_theta, fp.v[BB_FRESNEL_ETA], fp.v[BB_FRESNEL_K]);
+    case BB_FRESNEL_CONDUCTOR_APPROX:
+        return bb_fresnel_conductor_approx_sp(cos_theta, fp.v[BB_FRESNEL_ETA], fp.v[BB_FRESNEL_K]);
+    default:
+        return bb_make_fresnel_sp(BB_R(1.0), BB_R(1.0));
+    }
+}
+
+BB_FN real bb_fresnel_eval_rs(int kind, bb_params fp, real cos_theta) {
+    return bb_fresnel_eval_sp(kind, fp, cos_theta).rs;
+}
+BB_FN real bb_fresnel_eval_rp(int kind, bb_params fp, real cos_theta) {
+    return bb_fresnel_eval_sp(kind, fp, cos_theta).rp;
+}
+
+/* F(cos_theta) for the given kind: (Rs + Rp)/2, or F itself for the unpolarised kinds. */
 BB_FN real bb_fresnel_eval(int kind, bb_params fp, real cos_theta) {
     switch (kind) {
+    case BB_FRESNEL_NONE:
+        return BB_R(1.0);
     case BB_FRESNEL_SCHLICK:
         return bb_fresnel_schlick(cos_theta, fp.v[BB_SCHLICK_F0]);
-    default:
-        return BB_R(1.0);
+    default: {
+        bb_fresnel_sp r = bb_fresnel_eval_sp(kind, fp, cos_theta);
+        return BB_R(0.5) * (r.rs + r.rp);
+    }
     }
 }
 

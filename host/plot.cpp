@@ -1,0 +1,204 @@
+#include "plot.h"
+
+#include <mgl2/mgl.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "brdfbake/error.h"
+
+namespace brdfbake {
+
+namespace {
+
+enum class Kind { Png, Svg, Unknown };
+
+Kind kind_of(const std::string& path) {
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos) return Kind::Unknown;
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == "png") return Kind::Png;
+    if (ext == "svg") return Kind::Svg;
+    return Kind::Unknown;
+}
+
+// Colours that stay distinct in print and for the common colour-vision deficiencies:
+// blue, red, green, orange, magenta, cyan, black, grey.
+const char* const kPalette[] = {"b", "r", "g", "q", "m", "c", "k", "h"};
+
+struct Bounds {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -std::numeric_limits<double>::infinity();
+    void add(double v) {
+        if (!std::isfinite(v)) return;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+    bool empty() const { return !(lo <= hi); }
+};
+
+/// The axis range: the given bounds, or the data's with a 4% margin (and a unit span if flat).
+void resolve_range(const PlotAxis& axis, Bounds data, double& lo, double& hi) {
+    double dlo = data.lo, dhi = data.hi;
+    if (dhi - dlo <= 0.0) {
+        const double pad = std::max(1.0, std::fabs(dlo)) * 0.5;
+        dlo -= pad;
+        dhi += pad;
+    } else {
+        const double pad = 0.04 * (dhi - dlo);
+        dlo -= pad;
+        dhi += pad;
+    }
+    lo = std::isfinite(axis.lo) ? axis.lo : dlo;
+    hi = std::isfinite(axis.hi) ? axis.hi : dhi;
+    if (!(hi > lo)) hi = lo + 1.0;
+}
+
+/// The data of a curve with non-finite points replaced by NaN, which MathGL draws as gaps.
+mglData to_mgl(const std::vector<double>& v) {
+    mglData d(long(v.size()));
+    for (size_t i = 0; i < v.size(); ++i) d.a[i] = std::isfinite(v[i]) ? v[i] : NAN;
+    return d;
+}
+
+void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
+    Bounds bx, by;
+    for (const Curve& c : p.curves) {
+        if (c.x.size() != c.y.size())
+            throw Error("plot '" + p.title + "': curve '" + c.label + "' has " + std::to_string(c.x.size()) +
+                        " x values but " + std::to_string(c.y.size()) + " y values");
+        for (size_t i = 0; i < c.x.size(); ++i)
+            if (std::isfinite(c.x[i]) && std::isfinite(c.y[i])) {
+                bx.add(c.x[i]);
+                by.add(c.y[i]);
+            }
+    }
+    if (bx.empty()) throw Error("plot '" + p.title + "' (panel " + std::to_string(panel_index + 1) + ") has no finite data");
+    double x0, x1, y0, y1;
+    resolve_range(p.x, bx, x0, x1);
+    resolve_range(p.y, by, y0, y1);
+
+    gr.SetRanges(x0, x1, y0, y1);
+    gr.SetOrigin(x0, y0);
+    if (!p.title.empty()) {
+        gr.SetCut(false);  // the title sits above the axes box, outside the data range
+        gr.Puts(mglPoint(0.5 * (x0 + x1), y1 + 0.05 * (y1 - y0)), p.title.c_str(), ":C", -1.15);
+        gr.SetCut(true);
+    }
+    // Ticks counted from 0 (not from the range's lower end), so that they fall on round values.
+    gr.SetTicks('x', p.x.tick, 0, 0.0);
+    gr.SetTicks('y', p.y.tick, 0, 0.0);
+    gr.Grid("xy", "{h9}");
+    gr.Box("k", false);
+    gr.Axis("xy");
+    // Axis labels placed by hand, clear of the tick labels (MathGL's Label() overlaps them at
+    // this font size).
+    gr.SetCut(false);
+    const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1), dx = x1 - x0, dy = y1 - y0;
+    if (!p.x.label.empty()) gr.Puts(mglPoint(xm, y0 - 0.13 * dy), p.x.label.c_str(), ":C", -1.0);
+    if (!p.y.label.empty())
+        gr.Puts(mglPoint(x0 - 0.085 * dx, ym), mglPoint(x0 - 0.085 * dx, ym + dy), p.y.label.c_str(), ":C", -1.0);
+    gr.SetCut(true);
+
+    for (const RefLine& l : p.lines) {
+        mglPoint a = l.axis == 'x' ? mglPoint(l.value, y0) : mglPoint(x0, l.value);
+        mglPoint b = l.axis == 'x' ? mglPoint(l.value, y1) : mglPoint(x1, l.value);
+        gr.Line(a, b, "H=1");
+        if (!l.label.empty()) {
+            // Labels of successive lines at staggered heights so that close lines stay legible.
+            const double f = 0.04 + 0.07 * double(&l - p.lines.data());
+            mglPoint at = l.axis == 'x' ? mglPoint(l.value + 0.01 * (x1 - x0), y0 + f * (y1 - y0))
+                                        : mglPoint(x0 + 0.02 * (x1 - x0), l.value + 0.015 * (y1 - y0));
+            gr.Puts(at, l.label.c_str(), ":LH", -0.8);
+        }
+    }
+
+    gr.ClearLegend();
+    size_t auto_colour = 0;
+    for (const Curve& c : p.curves) {
+        std::string style = c.style;
+        if (style.empty()) style = std::string(kPalette[auto_colour++ % (sizeof kPalette / sizeof kPalette[0])]) + "-2";
+        const mglData x = to_mgl(c.x), y = to_mgl(c.y);
+        gr.Plot(x, y, style.c_str());
+        if (!c.label.empty()) gr.AddLegend(c.label.c_str(), style.c_str());
+    }
+    if (p.legend != LegendPlace::None && !p.curves.empty()) {
+        // MathGL corners: 0 bottom left, 1 bottom right, 2 top left, 3 top right.
+        int where = 3;
+        if (p.legend == LegendPlace::TopLeft) where = 2;
+        if (p.legend == LegendPlace::BottomRight) where = 1;
+        if (p.legend == LegendPlace::BottomLeft) where = 0;
+        if (std::isfinite(p.legend_x) && std::isfinite(p.legend_y))
+            gr.Legend(p.legend_x, p.legend_y, "#");
+        else
+            gr.Legend(where, "#");
+    }
+}
+
+}  // namespace
+
+bool is_plot_path(const std::string& path) { return kind_of(path) != Kind::Unknown; }
+
+void write_figure(const std::string& path, const Figure& figure) {
+    const Kind kind = kind_of(path);
+    if (kind == Kind::Unknown) throw Error("--plot '" + path + "': expected a file name ending in .png or .svg");
+    if (figure.panels.empty()) throw Error("internal error: a figure without panels");
+    const int n = int(figure.panels.size());
+    const int cols = figure.columns > 0 ? std::min(figure.columns, n) : n;
+    const int rows = (n + cols - 1) / cols;
+
+    mglGraph gr(0, figure.panel_width * cols, figure.panel_height * rows);
+    gr.Clf('w');
+    gr.SetQuality(MGL_DRAW_NORM);
+    for (int i = 0; i < n; ++i) {
+        // Each panel is a cell of the grid (fractions of the canvas, y upwards); the axes box
+        // leaves room for the y label on the left, the x label below and the title above.
+        const double cw = 1.0 / cols, ch = 1.0 / rows;
+        const double cx = cw * (i % cols), cy = 1.0 - ch * (i / cols + 1);
+        gr.InPlot(cx + 0.12 * cw, cx + 0.96 * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
+        gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
+        gr.SetFontSize(3.0);
+        const PlotSpec& p = figure.panels[size_t(i)];
+        draw_panel(gr, p, size_t(i));
+    }
+    if (gr.Message() && *gr.Message()) {
+        // MathGL reports problems as messages rather than failures; they are not fatal for a plot
+        // but would hide a wrong call, so they reach the user.
+        std::fprintf(stderr, "brdfbake: MathGL: %s\n", gr.Message());
+    }
+
+    // Atomic write: render into a temporary file beside the target, then rename.
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + (kind == Kind::Png ? ".png" : ".svg");
+    errno = 0;
+    if (kind == Kind::Png)
+        gr.WritePNG(tmp.c_str(), "brdfbake", false);
+    else
+        gr.WriteSVG(tmp.c_str(), "brdfbake");
+    struct stat st {};
+    if (::stat(tmp.c_str(), &st) != 0 || st.st_size == 0) {
+        const std::string why = errno ? std::strerror(errno) : "MathGL wrote nothing";
+        std::remove(tmp.c_str());
+        throw Error("cannot write plot '" + path + "': " + why);
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const std::string why = std::strerror(errno);
+        std::remove(tmp.c_str());
+        throw Error("cannot write plot '" + path + "': " + why);
+    }
+}
+
+void write_plot(const std::string& path, const PlotSpec& panel, int width, int height) {
+    Figure f;
+    f.panels.push_back(panel);
+    f.panel_width = width;
+    f.panel_height = height;
+    write_figure(path, f);
+}
+
+}  // namespace brdfbake

@@ -1,0 +1,39 @@
+/* Point evaluations of the shared BRDF functions on the device: f(wo, wi) for lists of direction
+ * pairs, and the model's importance sample for lists of (wo, u1, u2). Used by the reciprocity
+ * and non-finite scans and by the host-vs-device parity tests.
+ *
+ * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE]. */
+#include "brdfbake/brdf/models.h"
+
+BB_FN bb_params load_params(__global const real* src) {
+    bb_params p;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = src[k];
+    return p;
+}
+
+BB_FN bb_vec3 load_vec3(__global const real* src, unsigned int i) {
+    return bb_v3(src[3 * i], src[3 * i + 1], src[3 * i + 2]);
+}
+
+__kernel void model_eval(__global const real* wo, __global const real* wi, __global const real* model_p,
+                         __global const real* fresnel_p, const unsigned int n, __global real* out) {
+    const unsigned int i = (unsigned int)get_global_id(0);
+    if (i >= n)
+        return;
+    out[i] = bb_model_eval(BB_MODEL, load_params(model_p), BB_FRESNEL, load_params(fresnel_p),
+                           load_vec3(wo, i), load_vec3(wi, i));
+}
+
+__kernel void model_sample(__global const real* wo, __global const real* u, __global const real* model_p,
+                           __global const real* fresnel_p, const unsigned int n, __global real* out_wi,
+                           __global real* out_weight) {
+    const unsigned int i = (unsigned int)get_global_id(0);
+    if (i >= n)
+        return;
+    const bb_sample s = bb_model_sample(BB_MODEL, load_params(model_p), BB_FRESNEL, load_params(fresnel_p),
+                                        load_vec3(wo, i), u[2 * i], u[2 * i + 1]);
+    out_wi[3 * i] = s.wi.x;
+    out_wi[3 * i + 1] = s.wi.y;
+    out_wi[3 * i + 2] = s.wi.z;
+    out_weight[i] = s.weight;
+}

@@ -1,0 +1,26 @@
+/* Fresnel curves: F, Rs and Rp of one Fresnel term at a list of incidence cosines.
+ *
+ * The host passes cos(theta) rather than theta: it computes the cosine in double (as
+ * sin(90 deg - theta), exact at grazing), so that a float kernel sees cos(89.999 deg) with full
+ * relative precision instead of the rounding error of a float angle.
+ *
+ * Build options: -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE]. */
+#include "brdfbake/brdf/fresnel.h"
+
+__kernel void fresnel_curve(__global const real* cos_theta, /* n values in [-1, 1] */
+                            __global const real* fresnel_p, /* BB_MAX_PARAMS */
+                            const unsigned int n,
+                            __global real* out)             /* 3 per value: F, Rs, Rp */
+{
+    const unsigned int i = (unsigned int)get_global_id(0);
+    if (i >= n)
+        return;
+    bb_params fp;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k)
+        fp.v[k] = fresnel_p[k];
+    const real c = cos_theta[i];
+    const bb_fresnel_sp r = bb_fresnel_eval_sp(BB_FRESNEL, fp, c);
+    out[3 * i + 0] = bb_fresnel_eval(BB_FRESNEL, fp, c);
+    out[3 * i + 1] = r.rs;
+    out[3 * i + 2] = r.rp;
+}

@@ -1,0 +1,57 @@
+// Test support: one shared OpenCL engine, and running the brdfbake executable.
+#pragma once
+
+#include <cstdio>
+#include <cstdlib>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include "brdfbake/engine.h"
+
+namespace testing {
+
+/// The engine every device test shares (PoCL, or $BRDFBAKE_DEVICE).
+inline brdfbake::Engine& engine() {
+    static brdfbake::Engine e;
+    return e;
+}
+
+struct CliResult {
+    int status = -1;
+    std::string out;
+    std::string err;
+};
+
+inline std::string slurp(const std::string& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::stringstream s;
+    s << in.rdbuf();
+    return s.str();
+}
+
+/// Runs `brdfbake ARGS` through the shell; returns its exit status, stdout and stderr.
+inline CliResult run_cli(const std::string& args) {
+    static int counter = 0;
+    const std::string base = "/tmp/brdfbake-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
+    const std::string cmd = std::string(BRDFBAKE_EXE) + " " + args + " >" + base + ".out 2>" + base + ".err";
+    const int raw = std::system(cmd.c_str());
+    CliResult r;
+    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
+    r.out = slurp(base + ".out");
+    r.err = slurp(base + ".err");
+    std::remove((base + ".out").c_str());
+    std::remove((base + ".err").c_str());
+    return r;
+}
+
+/// Number of lines in a string (for "one clear message").
+inline int count_lines(const std::string& s) {
+    int n = 0;
+    for (char c : s) n += c == '\n';
+    return n;
+}
+
+}  // namespace testing

@@ -1,0 +1,109 @@
+// The command line as a user meets it: JSON output parsed and checked, bad input rejected with
+// one clear message and exit status 2, nothing half-written left behind.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+#include <unistd.h>
+
+#include "reference.h"
+#include "support.h"
+
+using testing::run_cli;
+
+TEST_CASE("albedo --format json: ggx alpha=0.5 at mu=0.5 against quadrature", "[cli]") {
+    const auto r = run_cli("albedo --model ggx:alpha=0.5 --mu 0.5 --format json");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j.at("results").size() == 1);
+    const auto& e = j["results"][0];
+    const double expect = ref::albedo_halfvector(
+        [](ref::Dir wo, ref::Dir wi) { return ref::ggx_f(wo, wi, 0.5, 0.5, true); }, 0.5, 0.0);
+    const double got = e.at("albedo").get<double>(), err = e.at("error").get<double>();
+    INFO("got " << got << " +- " << err << ", expected " << expect);
+    CHECK(e.at("mu").get<double>() == 0.5);
+    CHECK(std::fabs(got - expect) <= 1e-4);
+    CHECK(std::fabs(got - expect) <= err);
+    CHECK(j.at("model").get<std::string>() == "ggx:alpha=0.5,shadowing=correlated");
+}
+
+TEST_CASE("albedo --format json: lambert rho=0.8 gives 0.8 at every default mu", "[cli]") {
+    const auto r = run_cli("albedo --model lambert:rho=0.8 --format json");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j.at("results").size() >= 5);
+    for (const auto& e : j["results"]) CHECK(std::fabs(e.at("albedo").get<double>() - 0.8) <= 1e-6);
+}
+
+TEST_CASE("albedo csv and table formats carry every value with its error", "[cli]") {
+    const auto csv = run_cli("albedo --model lambert:rho=0.5 --mu 0.25,1 --format csv");
+    REQUIRE(csv.status == 0);
+    CHECK(csv.out.rfind("mu,phi_deg,albedo,error\n", 0) == 0);
+    CHECK(testing::count_lines(csv.out) == 3);
+    const auto table = run_cli("albedo --model lambert:rho=0.5 --mu 0.25,1");
+    REQUIRE(table.status == 0);
+    CHECK(table.out.find("0.50000000") != std::string::npos);
+}
+
+TEST_CASE("albedo -o writes the file atomically", "[cli]") {
+    const std::string path = "/tmp/brdfbake-test-albedo-" + std::to_string(::getpid()) + ".json";
+    const auto r = run_cli("albedo --model lambert:rho=0.5 --mu 1 --format json -o " + path);
+    REQUIRE(r.status == 0);
+    CHECK(r.out.empty());
+    CHECK(nlohmann::json::parse(testing::slurp(path)).at("results").size() == 1);
+    std::remove(path.c_str());
+}
+
+TEST_CASE("bad input gives one clear message and exit status 2", "[cli]") {
+    struct Case {
+        const char* args;
+        const char* must_mention;
+    };
+    const Case cases[] = {
+        {"albedo --model blinn-phongg:n=10", "unknown model 'blinn-phongg'"},
+        {"albedo --model ggx:alpha=0", "alpha"},
+        {"albedo --model ggx:alpha=-0.5", "out of range"},
+        {"albedo --model ggx:alpha=nan", "not a finite number"},
+        {"albedo --model ggx:alpha=inf", "not a finite number"},
+        {"albedo --model ggx:alpha=abc", "not a number"},
+        {"albedo --model ggx", "needs alpha"},
+        {"albedo --model ggx:alpha=0.5,beta=2", "no key 'beta'"},
+        {"albedo --model ggx:alpha=0.5,shadowing=weird", "shadowing"},
+        {"albedo --model ggx:alpha=0.5 --mu 0", "mu"},
+        {"albedo --model ggx:alpha=0.5 --mu nan", "--mu"},
+        {"albedo --model ggx:alpha=0.5 --mu 1.5", "out of range"},
+        {"albedo --model ggx:alpha=0.5 --samples -5", "samples"},
+        {"albedo --model ggx:alpha=0.5 --format xml", "format"},
+        {"albedo --model lambert:rho=0.5 --fresnel schlick:f0=0.04", "no Fresnel term"},
+        {"albedo --model ggx:alpha=0.5 --device 7:7", "no OpenCL device"},
+        {"albedo", "model"},
+        {"frobnicate", "frobnicate"},
+    };
+    for (const auto& c : cases) {
+        INFO(c.args);
+        const auto r = run_cli(c.args);
+        CHECK(r.status == 2);
+        CHECK(r.out.empty());
+        CHECK(r.err.find(c.must_mention) != std::string::npos);
+        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
+        CHECK(testing::count_lines(r.err) <= 2);  // the message, and at most a hint where to look
+    }
+}
+
+TEST_CASE("a failed run leaves no output file behind", "[cli]") {
+    const std::string path = "/tmp/brdfbake-test-bad-" + std::to_string(::getpid()) + ".json";
+    std::remove(path.c_str());
+    const auto r = run_cli("albedo --model ggx:alpha=-1 --format json -o " + path);
+    CHECK(r.status == 2);
+    CHECK(::access(path.c_str(), F_OK) != 0);
+}
+
+TEST_CASE("devices lists PoCL with its facts", "[cli]") {
+    const auto r = run_cli("devices --format json");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(!j.at("devices").empty());
+    const auto& d = j["devices"][0];
+    CHECK(d.at("compute_units").get<int>() >= 1);
+    CHECK(d.contains("fp64"));
+    CHECK(d.at("global_mem_bytes").get<double>() > 0);
+}
