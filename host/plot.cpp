@@ -67,6 +67,55 @@ mglData to_mgl(const std::vector<double>& v) {
     return d;
 }
 
+/// The legend, drawn by hand in data coordinates: MathGL's Legend() scales its text with the
+/// data ranges of an InPlot and comes out unreadably small or not at all.
+void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<std::string, std::string>>& entries,
+                 double x0, double x1, double y0, double y1) {
+    const double dx = x1 - x0, dy = y1 - y0;
+    size_t chars = 0;
+    for (const auto& e : entries) {
+        size_t visible = 0;  // rough: TeX commands and braces take little room
+        for (size_t i = 0; i < e.first.size(); ++i) {
+            if (e.first[i] == '\\') {
+                while (i + 1 < e.first.size() && std::isalpha((unsigned char)e.first[i + 1])) ++i;
+                ++visible;
+            } else if (e.first[i] != '{' && e.first[i] != '}' && e.first[i] != '_' && e.first[i] != '^') {
+                ++visible;
+            }
+        }
+        chars = std::max(chars, visible);
+    }
+    const double row = 0.058 * dy, sample = 0.08 * dx, pad = 0.015 * dx;
+    const double w = pad + sample + pad + 0.0125 * dx * double(chars) + pad;
+    const double h = row * double(entries.size()) + 0.6 * row;
+    const double m = 0.025;  // distance from the axes box, as a fraction of the range
+    double left = x0 + m * dx, top = y1 - m * dy;
+    if (p.legend == LegendPlace::TopRight || p.legend == LegendPlace::BottomRight) left = x1 - m * dx - w;
+    if (p.legend == LegendPlace::BottomLeft || p.legend == LegendPlace::BottomRight) top = y0 + m * dy + h;
+    if (std::isfinite(p.legend_x) && std::isfinite(p.legend_y)) {
+        left = x0 + p.legend_x * dx;
+        top = y0 + p.legend_y * dy;
+    }
+    const double right = left + w, bottom = top - h;
+    gr.Face(mglPoint(left, bottom, 0.5), mglPoint(right, bottom, 0.5), mglPoint(left, top, 0.5),
+            mglPoint(right, top, 0.5), "w");
+    const char* frame = "k-1";
+    gr.Line(mglPoint(left, bottom, 0.6), mglPoint(right, bottom, 0.6), frame);
+    gr.Line(mglPoint(right, bottom, 0.6), mglPoint(right, top, 0.6), frame);
+    gr.Line(mglPoint(right, top, 0.6), mglPoint(left, top, 0.6), frame);
+    gr.Line(mglPoint(left, top, 0.6), mglPoint(left, bottom, 0.6), frame);
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const double y = top - 0.8 * row - row * double(i);
+        mglData sx(2), sy(2), sz(2);
+        sx.a[0] = left + pad;
+        sx.a[1] = left + pad + sample;
+        sy.a[0] = sy.a[1] = y;
+        sz.a[0] = sz.a[1] = 0.7;
+        gr.Plot(sx, sy, sz, entries[i].second.c_str());
+        gr.Puts(mglPoint(left + 2 * pad + sample, y, 0.7), entries[i].first.c_str(), ":L", -0.85);
+    }
+}
+
 void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     Bounds bx, by;
     for (const Curve& c : p.curves) {
@@ -119,26 +168,16 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
         }
     }
 
-    gr.ClearLegend();
     size_t auto_colour = 0;
+    std::vector<std::pair<std::string, std::string>> entries;  // label, pen
     for (const Curve& c : p.curves) {
         std::string style = c.style;
         if (style.empty()) style = std::string(kPalette[auto_colour++ % (sizeof kPalette / sizeof kPalette[0])]) + "-2";
         const mglData x = to_mgl(c.x), y = to_mgl(c.y);
         gr.Plot(x, y, style.c_str());
-        if (!c.label.empty()) gr.AddLegend(c.label.c_str(), style.c_str());
+        if (!c.label.empty()) entries.emplace_back(c.label, style);
     }
-    if (p.legend != LegendPlace::None && !p.curves.empty()) {
-        // MathGL corners: 0 bottom left, 1 bottom right, 2 top left, 3 top right.
-        int where = 3;
-        if (p.legend == LegendPlace::TopLeft) where = 2;
-        if (p.legend == LegendPlace::BottomRight) where = 1;
-        if (p.legend == LegendPlace::BottomLeft) where = 0;
-        if (std::isfinite(p.legend_x) && std::isfinite(p.legend_y))
-            gr.Legend(p.legend_x, p.legend_y, "#");
-        else
-            gr.Legend(where, "#");
-    }
+    if (p.legend != LegendPlace::None && !entries.empty()) draw_legend(gr, p, entries, x0, x1, y0, y1);
 }
 
 }  // namespace
