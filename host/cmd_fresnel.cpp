@@ -362,8 +362,7 @@ Figure comparison_figure(const FresnelConfig& metal) {
     b.lines.push_back({'x', std::atan(1.5) / kDeg, text});
     std::snprintf(text, sizeof text, "critical %.1f\\degree", std::asin(1.0 / 1.5) / kDeg);
     b.lines.push_back({'x', std::asin(1.0 / 1.5) / kDeg, text});
-    b.legend_x = 0.5;  // the empty region right of the critical angle, above the outside curves
-    b.legend_y = 0.82;
+    b.legend = LegendPlace::TopLeft;
     fig.panels.push_back(b);
     return fig;
 }
