@@ -192,6 +192,7 @@ void write_figure(const std::string& path, const Figure& figure) {
     const int cols = figure.columns > 0 ? std::min(figure.columns, n) : n;
     const int rows = (n + cols - 1) / cols;
 
+    mglGraph::SuppressWarn(true);  // problems are checked below and reported as errors
     mglGraph gr(0, figure.panel_width * cols, figure.panel_height * rows);
     gr.Clf('w');
     gr.SetQuality(MGL_DRAW_NORM);
@@ -214,6 +215,12 @@ void write_figure(const std::string& path, const Figure& figure) {
 
     // Atomic write: render into a temporary file beside the target, then rename.
     const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + (kind == Kind::Png ? ".png" : ".svg");
+    // MathGL reports an unwritable file on stderr only; find out first, with the reason.
+    if (FILE* probe = std::fopen(tmp.c_str(), "wb")) {
+        std::fclose(probe);
+    } else {
+        throw Error("cannot write plot '" + path + "': " + std::strerror(errno));
+    }
     errno = 0;
     if (kind == Kind::Png)
         gr.WritePNG(tmp.c_str(), "brdfbake", false);
