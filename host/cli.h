@@ -21,5 +21,6 @@ using Action = std::function<int()>;
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_devices_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace brdfbake

@@ -1,0 +1,99 @@
+// `brdfbake lut KIND`: lookup tables (albedo, eavg, dfg, dfg-ms) as OpenEXR, CSV or a C header.
+#include <chrono>
+#include <cstdio>
+#include <iostream>
+#include <memory>
+
+#include "brdfbake/error.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/output.h"
+#include "cli.h"
+
+namespace brdfbake {
+namespace {
+
+struct LutOptions {
+    LutRequest request;
+    std::string size = "32x32";
+    std::string alpha_range = "0,1";
+    std::int64_t samples = 1 << 18;
+    std::string precision = "float";
+    std::string method = "auto";
+    bool half = false;
+    std::string output;
+};
+
+void parse_size(const std::string& text, LutRequest& r) {
+    const size_t x = text.find('x');
+    auto dim = [&](const std::string& s) {
+        if (s.empty() || s.size() > 5 || s.find_first_not_of("0123456789") != std::string::npos)
+            throw Error("--size: '" + text + "' is not WIDTHxHEIGHT (e.g. 32x32) or N");
+        return std::stoi(s);
+    };
+    if (x == std::string::npos) {
+        r.width = dim(text);
+        r.height = r.kind == "eavg" ? 1 : r.width;
+    } else {
+        r.width = dim(text.substr(0, x));
+        r.height = dim(text.substr(x + 1));
+    }
+    if (r.kind == "eavg" && r.height != 1) throw Error("--size: an eavg table is 1D; give N or Nx1");
+}
+
+int run_lut(LutOptions& o, const GlobalOptions& g) {
+    const auto t0 = std::chrono::steady_clock::now();
+    LutRequest& r = o.request;
+    parse_size(o.size, r);
+    const std::vector<double> range = parse_number_list(o.alpha_range, "--alpha-range");
+    if (range.size() != 2) throw Error("--alpha-range needs two numbers: LO,HI");
+    r.alpha_lo = range[0];
+    r.alpha_hi = range[1];
+    if (o.samples <= 0) throw Error("--samples must be positive");
+    r.samples = std::uint64_t(o.samples);
+    r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
+    check_table_path(o.output);
+    validate_lut(r);  // every input checked before the device is touched
+
+    Engine engine(g.device, g.verbose);
+    const Table table = compute_lut(engine, r);
+    write_table(table, o.output, o.half);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    std::fprintf(stderr, "brdfbake: wrote %s: %s table %dx%d (%s), max error %.2e, %.2f s\n", o.output.c_str(),
+                 table.kind.c_str(), table.width(), table.height(), table.attributes.at("model").c_str(),
+                 table.max_error(), seconds);
+    return kExitOk;
+}
+
+}  // namespace
+
+void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action) {
+    auto o = std::make_shared<LutOptions>();
+    std::string kinds;
+    for (const auto& k : lut_kinds()) kinds += "\n  " + k.first + ": " + k.second;
+    CLI::App* cmd = app.add_subcommand("lut", "write a lookup table (OpenEXR, CSV or C header by the -o extension)");
+    cmd->add_option("kind", o->request.kind, "table kind:" + kinds)->required();
+    cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable")
+        ->required();
+    cmd->add_option("--fresnel", o->request.fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();
+    cmd->add_option("--wavelength", o->request.wavelength_nm, "wavelength in nm for measured metals");
+    cmd->add_option("--size", o->size, "WIDTHxHEIGHT (mu x alpha), or N for eavg")->capture_default_str();
+    cmd->add_option("--mu-map", o->request.mu_map, "mu axis: linear (mu = u) or sqrt (u = sqrt(mu))")
+        ->check(CLI::IsMember({"linear", "sqrt"}))
+        ->capture_default_str();
+    cmd->add_option("--alpha-map", o->request.alpha_map, "roughness axis: alpha (v = alpha) or roughness (v = sqrt(alpha))")
+        ->check(CLI::IsMember({"alpha", "roughness"}))
+        ->capture_default_str();
+    cmd->add_option("--alpha-range", o->alpha_range, "LO,HI of the roughness axis coordinate")->capture_default_str();
+    cmd->add_option("--samples", o->samples, "samples per texel")->capture_default_str();
+    cmd->add_option("--method", o->method, "integration method")
+        ->check(CLI::IsMember({"auto", "importance"}))
+        ->capture_default_str();
+    cmd->add_option("--precision", o->precision, "kernel arithmetic")
+        ->check(CLI::IsMember({"float", "double"}))
+        ->capture_default_str();
+    cmd->add_flag("--half", o->half, "store half-float EXR channels instead of float32");
+    cmd->add_option("-o,--output", o->output, "output file: .exr, .csv or .h")->required();
+    cmd->callback([o, &global, &action] { action = [o, &global] { return run_lut(*o, global); }; });
+}
+
+}  // namespace brdfbake

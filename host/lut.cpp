@@ -1,0 +1,237 @@
+#include "brdfbake/lut.h"
+
+#include <boost/math/quadrature/gauss.hpp>
+
+#include <cmath>
+#include <sstream>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/error.h"
+#include "brdfbake/spec.h"
+#include "key_reader.h"
+
+namespace brdfbake {
+
+std::vector<std::pair<std::string, std::string>> lut_kinds() {
+    return {
+        {"albedo", "directional albedo E(mu_o, alpha) = integral of f cos(theta_i) dwi (2D)"},
+        {"eavg", "average albedo Eavg(alpha) = 2 integral of E(mu) mu dmu (1D)"},
+        {"dfg", "split-sum terms A, B over (mu_o, alpha): f/F weighted by 1 - (1 - wo.wh)^5 and (1 - wo.wh)^5 (Karis 2013)"},
+        {"dfg-ms", "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
+                   "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)"},
+    };
+}
+
+namespace {
+
+constexpr int kMaxTexels = 1 << 22;
+
+/// The parameter slots that hold alpha_x and alpha_y for a model whose roughness is swept.
+std::vector<int> alpha_slots(const ModelConfig& m) {
+    switch (m.id) {
+    case BB_MODEL_GGX:
+        return {BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y};
+    default:
+        throw Error("model '" + m.name + "' has no roughness alpha to sweep; tables need a microfacet model");
+    }
+}
+
+/// The model with a placeholder alpha (the table overwrites it per texel).
+ModelConfig sweep_model(const std::string& spec_text) {
+    const Spec spec = parse_spec(spec_text);
+    for (const auto& kv : spec.keys)
+        if (kv.first == "alpha" || kv.first == "roughness" || kv.first == "alpha_x" || kv.first == "alpha_y")
+            throw Error("leave " + kv.first + " out of --model: the table sweeps alpha (see --alpha-map, --alpha-range)");
+    ModelConfig m = resolve_model(spec_text + (spec.keys.empty() && spec_text.find(':') == std::string::npos ? ":" : ",") +
+                                  "alpha=0.5");
+    alpha_slots(m);
+    // Canonical spec without the placeholder.
+    const size_t p = m.canonical.find("alpha=0.5");
+    if (p != std::string::npos) {
+        std::string c = m.canonical;
+        c.erase(p, 9);
+        while (c.find(":,") != std::string::npos) c.replace(c.find(":,"), 2, ":");
+        while (c.find(",,") != std::string::npos) c.replace(c.find(",,"), 2, ",");
+        if (!c.empty() && (c.back() == ',' || c.back() == ':')) c.pop_back();
+        m.canonical = c;
+    }
+    return m;
+}
+
+Axis mu_axis(const LutRequest& r, int size) {
+    Axis a = make_axis("mu", r.mu_map == "sqrt" ? "mu = u^2 (u = sqrt(mu))" : "mu = u", 0.0, 1.0, size);
+    for (double u : a.coordinate) a.parameter.push_back(r.mu_map == "sqrt" ? u * u : u);
+    return a;
+}
+
+Axis alpha_axis(const LutRequest& r, int size, bool& clamped) {
+    const bool rough = r.alpha_map == "roughness";
+    Axis a = make_axis(rough ? "roughness" : "alpha", rough ? "alpha = r^2 (r = sqrt(alpha))" : "alpha = v",
+                       r.alpha_lo, r.alpha_hi, size);
+    clamped = false;
+    for (double v : a.coordinate) {
+        double alpha = rough ? v * v : v;
+        if (alpha < BB_ALPHA_MIN) {
+            alpha = BB_ALPHA_MIN;
+            clamped = true;
+        }
+        a.parameter.push_back(alpha);
+    }
+    return a;
+}
+
+ParamBlock with_alpha(ParamBlock p, const std::vector<int>& slots, double alpha) {
+    for (int s : slots) p[s] = alpha;
+    return p;
+}
+
+AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
+                       std::vector<AlbedoCell> cells) {
+    AlbedoRequest req;
+    req.model = m.id;
+    req.fresnel = f;
+    req.cells = std::move(cells);
+    req.samples = r.samples;
+    req.precision = r.precision;
+    return compute_albedo(engine, req);
+}
+
+void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::string& fresnel,
+              const AlbedoResult& res, bool clamped) {
+    t.attributes["model"] = m.canonical;
+    t.attributes["fresnel"] = fresnel;
+    t.attributes["method"] = res.method;
+    t.attributes["samples"] = std::to_string(res.samples_per_cell);
+    t.attributes["precision"] = precision_name(r.precision);
+    if (clamped) {
+        std::ostringstream s;
+        s << "alpha below " << BB_ALPHA_MIN << " was computed at " << BB_ALPHA_MIN;
+        t.attributes["alpha_floor"] = s.str();
+    }
+}
+
+}  // namespace
+
+void validate_lut(const LutRequest& r) {
+    bool known = false;
+    for (const auto& k : lut_kinds()) known = known || k.first == r.kind;
+    if (!known) {
+        std::string list;
+        for (const auto& k : lut_kinds()) list += (list.empty() ? "" : ", ") + k.first;
+        throw Error("unknown table kind '" + r.kind + "'; known: " + list);
+    }
+    const ModelConfig m = sweep_model(r.model);
+    const FresnelConfig f = resolve_fresnel(r.fresnel, r.wavelength_nm);
+    if ((r.kind == "dfg" || r.kind == "dfg-ms") && f.kind != BB_FRESNEL_NONE)
+        throw Error("the split-sum table factors the Fresnel term out; drop --fresnel");
+    if (f.kind != BB_FRESNEL_NONE && !m.uses_fresnel)
+        throw Error("model '" + m.name + "' has no Fresnel term; drop --fresnel");
+    if (r.width < 1 || r.height < 1 || r.width > 4096 || r.height > 4096 ||
+        double(r.width) * r.height > kMaxTexels)
+        throw Error("table size " + std::to_string(r.width) + "x" + std::to_string(r.height) +
+                    " is out of range (1 to 4096 per side, at most 4M texels)");
+    if (r.mu_map != "linear" && r.mu_map != "sqrt") throw Error("--mu-map must be linear or sqrt");
+    if (r.alpha_map != "alpha" && r.alpha_map != "roughness") throw Error("--alpha-map must be alpha or roughness");
+    if (!(r.alpha_lo >= 0.0 && r.alpha_hi > r.alpha_lo && r.alpha_hi <= 3.0))
+        throw Error("--alpha-range must satisfy 0 <= lo < hi <= 3");
+    if (r.samples < 16) throw Error("--samples must be at least 16");
+}
+
+Table compute_lut(Engine& engine, const LutRequest& r) {
+    validate_lut(r);
+    const ModelConfig m = sweep_model(r.model);
+    const std::vector<int> slots = alpha_slots(m);
+    const FresnelConfig f = resolve_fresnel(r.fresnel, r.wavelength_nm);
+    Table t;
+    t.kind = r.kind;
+    bool clamped = false;
+
+    if (r.kind == "eavg") {
+        // Eavg = 2 int_0^1 E(mu) mu dmu by Gauss-Legendre in mu with 32 nodes; the 16-node rule
+        // on the same data's integrand gives the quadrature error estimate.
+        t.quantity = "average albedo Eavg(alpha) = 2 integral_0^1 E(mu) mu dmu";
+        t.x = alpha_axis(r, r.width, clamped);
+        t.y = make_axis("-", "-", 0.0, 1.0, 1);
+        t.y.parameter = {0.5};
+        using G32 = boost::math::quadrature::gauss<double, 32>;
+        using G16 = boost::math::quadrature::gauss<double, 16>;
+        std::vector<double> nodes, weights32, weights16;  // on [0, 1]
+        auto add_rule = [&](const auto& x, const auto& w, bool is32) {
+            for (size_t i = 0; i < x.size(); ++i)
+                for (int s : {-1, 1}) {
+                    if (x[i] == 0.0 && s == 1) continue;
+                    nodes.push_back(0.5 + 0.5 * s * x[i]);
+                    weights32.push_back(is32 ? 0.5 * w[i] : 0.0);
+                    weights16.push_back(is32 ? 0.0 : 0.5 * w[i]);
+                }
+        };
+        add_rule(G32::abscissa(), G32::weights(), true);
+        add_rule(G16::abscissa(), G16::weights(), false);
+        std::vector<AlbedoCell> cells;
+        for (double alpha : t.x.parameter)
+            for (double mu : nodes) cells.push_back({mu, 0.0, with_alpha(m.params, slots, alpha)});
+        const AlbedoResult res = integrate(engine, r, m, f, cells);
+        t.channels = {"Eavg"};
+        t.values.assign(1, {});
+        for (size_t a = 0; a < t.x.parameter.size(); ++a) {
+            double e32 = 0, e16 = 0, err = 0;
+            for (size_t k = 0; k < nodes.size(); ++k) {
+                const AlbedoValue& v = res.values[a * nodes.size() + k];
+                e32 += 2 * weights32[k] * nodes[k] * v.value;
+                e16 += 2 * weights16[k] * nodes[k] * v.value;
+                err += 2 * weights32[k] * nodes[k] * v.error;  // errors add linearly: shared point sets
+            }
+            t.values[0].push_back(e32);
+            t.error.push_back(err + std::fabs(e32 - e16));
+        }
+        describe(t, r, m, f.canonical, res, clamped);
+        t.attributes["mu_quadrature"] = "Gauss-Legendre, 32 nodes (16-node rule for the error estimate)";
+        return t;
+    }
+
+    t.x = mu_axis(r, r.width);
+    t.y = alpha_axis(r, r.height, clamped);
+    std::vector<AlbedoCell> cells;
+    for (double alpha : t.y.parameter)
+        for (double mu : t.x.parameter) cells.push_back({mu, 0.0, with_alpha(m.params, slots, alpha)});
+
+    if (r.kind == "albedo") {
+        t.quantity = "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi";
+        const AlbedoResult res = integrate(engine, r, m, f, cells);
+        t.channels = {"E"};
+        t.values.assign(1, {});
+        for (const auto& v : res.values) {
+            t.values[0].push_back(v.value);
+            t.error.push_back(v.error);
+        }
+        describe(t, r, m, f.canonical, res, clamped);
+        return t;
+    }
+
+    // Split-sum terms: E with F = 1 and B with F = (1 - wo.wh)^5 (Schlick with f0 = 0); A = E - B.
+    const AlbedoResult e = integrate(engine, r, m, resolve_fresnel("none"), cells);
+    const AlbedoResult b = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), cells);
+    std::vector<double> va, vb, ve;
+    for (size_t i = 0; i < cells.size(); ++i) {
+        ve.push_back(e.values[i].value);
+        vb.push_back(b.values[i].value);
+        va.push_back(e.values[i].value - b.values[i].value);
+        t.error.push_back(e.values[i].error + b.values[i].error);
+    }
+    if (r.kind == "dfg") {
+        t.quantity = "split-sum terms: A = integral of (f/F)(1 - (1 - wo.wh)^5) cos, B = integral of (f/F)(1 - wo.wh)^5 cos; "
+                     "specular = F0 A + B";
+        t.channels = {"A", "B"};
+        t.values = {va, vb};
+    } else {
+        t.quantity = "split-sum terms, multiple-scattering layout: B = integral of (f/F)(1 - wo.wh)^5 cos and "
+                     "E = A + B; F_ss = mix(B, E, f0), energy compensation 1 + f0 (1/E - 1)";
+        t.channels = {"B", "E"};
+        t.values = {vb, ve};
+    }
+    describe(t, r, m, "factored out (split sum)", e, clamped);
+    return t;
+}
+
+}  // namespace brdfbake

@@ -1,0 +1,37 @@
+// Lookup tables computed on the device: directional albedo, average albedo and the split-sum
+// terms, over (mu_o, alpha).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "brdfbake/engine.h"
+#include "brdfbake/table.h"
+
+namespace brdfbake {
+
+struct LutRequest {
+    std::string kind;             // albedo | eavg | dfg | dfg-ms
+    std::string model;            // model spec without the swept alpha, e.g. "ggx:shadowing=correlated"
+    std::string fresnel = "none"; // albedo and eavg only
+    double wavelength_nm = 0.0;
+    int width = 32;               // mu texels (albedo, dfg) or alpha texels (eavg)
+    int height = 32;              // alpha texels (albedo, dfg); 1 for eavg
+    std::string mu_map = "linear";      // linear: mu = u; sqrt: u = sqrt(mu), mu = u^2
+    std::string alpha_map = "alpha";    // alpha: alpha = v; roughness: v = sqrt(alpha), alpha = v^2
+    double alpha_lo = 0.0, alpha_hi = 1.0;  // range of the roughness-axis coordinate
+    std::uint64_t samples = 1u << 18;   // per texel (per mu node for eavg)
+    Precision precision = Precision::Float;
+};
+
+/// The table kinds and what they hold, for help texts.
+std::vector<std::pair<std::string, std::string>> lut_kinds();
+
+/// Checks a request without touching the device (kind, model, ranges, sizes); throws Error.
+void validate_lut(const LutRequest& request);
+
+/// Computes the table. Throws Error for bad input or non-finite results.
+Table compute_lut(Engine& engine, const LutRequest& request);
+
+}  // namespace brdfbake
