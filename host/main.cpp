@@ -26,6 +26,8 @@ int main(int argc, char** argv) {
     add_devices_command(app, global, action);
     add_fresnel_command(app, global, action);
     add_lut_command(app, global, action);
+    add_plan_command(app, global, action);
+    add_bake_command(app, global, action);
 
     // A first word that is neither an option nor a command gets its own message.
     if (argc > 1 && argv[1][0] != '-') {

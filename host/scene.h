@@ -1,0 +1,131 @@
+// Scenes and the table plan: what a scene's materials need, merged into the fewest tables.
+//
+// A scene is either a brdfbake scene file (JSON) or a glTF 2.0 file (.gltf / .glb); both become
+// the same list of materials, each a list of lobes with the model, Fresnel and parameter ranges
+// that decide its tables. make_plan() turns that into the minimal set of LutRequests: one per
+// (kind, model, Fresnel-in-the-table), with the roughness (and eta) ranges of every lobe that
+// shares it merged. docs/scenes.md documents the schema, the glTF mapping and the rules.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "brdfbake/engine.h"
+#include "brdfbake/lut.h"
+
+namespace brdfbake {
+
+/// A closed interval of a parameter; lo == hi for a single value.
+struct Interval {
+    double lo = 0.0;
+    double hi = 0.0;
+};
+
+/// One lobe of a material whose energy needs tables (a metal's specular, a glass interface,
+/// a clear coat).
+struct Lobe {
+    std::string role;                // "metal", "specular", "dielectric", "transmission", "clearcoat", ...
+    std::string model;               // canonical model spec without alpha: "ggx:shadowing=correlated"
+    std::string model_name;          // "ggx"
+    std::string fresnel = "none";    // the lobe's Fresnel (canonical spec, or a glTF description)
+    double wavelength_nm = 0.0;      // for measured metals (metal:Au, nk:FILE)
+    Interval alpha;                  // alpha (= roughness^2) range the material uses
+    std::optional<Interval> eta;     // relative index of refraction range (dielectric lobes)
+    std::vector<std::string> kinds;  // table kinds the lobe needs
+};
+
+struct SceneMaterial {
+    std::string name;
+    std::vector<Lobe> lobes;         // empty: the material needs no table
+    std::vector<std::string> notes;  // why no table, or what approximation was made
+};
+
+/// How tables are sized and computed; defaults chosen so that the example scene bakes in a few
+/// seconds on two cores (docs/scenes.md). The scene file's "settings" and the command line
+/// override them.
+struct SceneSettings {
+    std::uint64_t samples = 1u << 14;  // per texel
+    int mu_texels = 32;                // mu axis (always the full [0, 1])
+    int alpha_texels = 32;             // texels over the full roughness-axis coordinate [0, 1]
+    double eta_step = 0.05;            // eta-axis spacing for a range of indices
+    std::string mu_map = "linear";     // see LutRequest
+    std::string alpha_map = "roughness";
+    Precision precision = Precision::Float;
+    std::string table_format = "exr";  // exr, csv or h
+    bool half = false;                 // half-float EXR channels
+};
+
+struct Scene {
+    std::string path;
+    std::string source;                 // "brdfbake scene" or "glTF 2.0"
+    std::vector<SceneMaterial> materials;
+    std::vector<std::string> warnings;  // what was not modelled, each naming the feature and where
+    SceneSettings settings;
+};
+
+/// Reads a scene by its extension: .json (brdfbake scene), .gltf or .glb (glTF 2.0).
+/// Throws Error naming the file and the problem.
+Scene load_scene(const std::string& path);
+
+/// A brdfbake scene file's text; `path` names it in messages. Throws Error.
+Scene parse_scene_json(const std::string& text, const std::string& path);
+
+/// A glTF 2.0 file (.gltf or .glb) mapped to brdfbake materials (docs/scenes.md). Throws Error.
+Scene load_gltf_scene(const std::string& path);
+
+/// The canonical spec of a model with its roughness left out ("ggx" -> "ggx:shadowing=correlated"),
+/// the form tables are keyed by. Throws Error for an unknown model or key.
+std::string model_without_alpha(const std::string& spec);
+
+/// Checks every setting's range (after the scene file and the command line set them); throws Error.
+void check_settings(const SceneSettings& s);
+
+/// One table of the plan.
+struct PlannedTable {
+    std::string file;                    // file name inside the bake folder
+    LutRequest request;                  // without the eta axis (see eta_lo, eta_hi, depth)
+    double eta_lo = 0.0, eta_hi = 0.0;   // eta axis of 3D kinds (dielectric)
+    int depth = 1;
+    Interval alpha;                      // the scene's merged alpha range (before texel padding)
+    std::optional<Interval> eta;         // the scene's merged eta range
+    std::vector<std::string> serves;     // "material (role)"
+    std::vector<std::string> materials;  // material names
+    std::uint64_t cells = 0;             // integration cells (texels, or texels x quadrature nodes)
+    std::uint64_t samples_total = 0;     // samples x cells (x integrations)
+    double est_seconds = 0.0;
+    std::uint64_t est_memory = 0;        // bytes, host and device, while computing
+    std::uint64_t file_bytes = 0;        // estimated size on disk
+    std::string key;                     // canonical request text (hashed)
+    std::string hash;                    // 16 hex digits of FNV-1a over key
+    std::string unavailable;             // why this build cannot compute it (empty: it can)
+};
+
+struct Plan {
+    std::string scene;
+    std::string source;
+    std::vector<PlannedTable> tables;
+    std::vector<std::string> models;          // models whose kernels the bake builds
+    std::vector<std::string> no_table;        // materials that need no table
+    std::vector<std::string> warnings;
+    double samples_per_second = 0.0;          // throughput the estimates assume
+    std::string throughput_basis;             // where that number comes from
+    SceneSettings settings;
+};
+
+/// The minimal set of tables for a scene. Throws Error for a lobe that cannot be tabulated.
+Plan make_plan(const Scene& scene);
+
+/// The plan as text (--format table) or as one JSON object (--format json).
+std::string plan_text(const Plan& plan);
+std::string plan_json(const Plan& plan);
+
+/// Copies the eta axis of a planned table into the request where LutRequest has one; throws
+/// Error when this build's tables have no eta axis (the kind is not available).
+void apply_eta_axis(const PlannedTable& t, LutRequest& request);
+
+/// Whether this build's compute_lut knows `kind`.
+bool lut_kind_available(const std::string& kind);
+
+}  // namespace brdfbake

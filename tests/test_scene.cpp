@@ -1,0 +1,376 @@
+// Scenes: the plan of tables a scene needs (which kinds, over which ranges, merged where they can
+// be shared), the glTF mapping, bad scene files, and `bake` (tables written, index, second bake
+// does no work).
+#include <catch2/catch.hpp>
+
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <nlohmann/json.hpp>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cmath>
+#include <functional>
+#include <map>
+#include <set>
+
+#include "brdfbake/error.h"
+#include "brdfbake/lut.h"
+#include "scene.h"
+#include "support.h"
+
+using namespace brdfbake;
+using testing::run_cli;
+
+namespace {
+
+std::string data(const std::string& name) {
+    const std::string here = __FILE__;
+    return here.substr(0, here.find_last_of('/')) + "/data/" + name;
+}
+
+const PlannedTable* find_kind(const Plan& p, const std::string& kind, const std::string& model = "") {
+    for (const auto& t : p.tables)
+        if (t.request.kind == kind && (model.empty() || t.request.model == model)) return &t;
+    return nullptr;
+}
+
+/// Texel-centre coordinate i of an axis of n texels over [lo, hi].
+double centre(double lo, double hi, int n, int i) { return lo + (hi - lo) * (i + 0.5) / n; }
+
+std::string tmp_dir(const std::string& name) {
+    return "/tmp/brdfbake-scene-" + std::to_string(::getpid()) + "-" + name;
+}
+
+double mtime(const std::string& path) {
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) return -1;
+    return double(st.st_mtim.tv_sec) + 1e-9 * double(st.st_mtim.tv_nsec);
+}
+
+bool contains(const std::vector<std::string>& v, const std::string& part) {
+    return std::any_of(v.begin(), v.end(), [&](const std::string& s) { return s.find(part) != std::string::npos; });
+}
+
+std::string error_of(const std::function<void()>& f) {
+    try {
+        f();
+    } catch (const Error& e) {
+        return e.what();
+    }
+    return "";
+}
+
+}  // namespace
+
+TEST_CASE("two GGX metals and a rough glass plan exactly albedo and eavg over the metals' range plus one dielectric "
+          "table", "[scene][quick]") {
+    const Scene scene = load_scene(data("metals_glass.json"));
+    const Plan plan = make_plan(scene);
+    REQUIRE(plan.tables.size() == 3);
+    std::multiset<std::string> kinds;
+    for (const auto& t : plan.tables) kinds.insert(t.request.kind);
+    CHECK(kinds == std::multiset<std::string>{"albedo", "eavg", "dielectric"});
+    CHECK(plan.models == std::vector<std::string>{"ggx"});  // kernels for nothing else
+
+    // albedo and eavg: the metals' alpha range, gold roughness [0.3, 0.5] and steel alpha 0.16
+    // (roughness 0.4), i.e. roughness 0.3..0.5, with the first and last texel centres on it.
+    for (const char* kind : {"albedo", "eavg"}) {
+        INFO(kind);
+        const PlannedTable* t = find_kind(plan, kind);
+        REQUIRE(t);
+        CHECK(t->request.model == "ggx:shadowing=correlated");
+        CHECK(t->request.fresnel == "none");
+        CHECK(t->alpha.lo == Approx(0.09));
+        CHECK(t->alpha.hi == Approx(0.25));
+        CHECK(t->request.alpha_map == "roughness");
+        const int n = std::string(kind) == "eavg" ? t->request.width : t->request.height;
+        CHECK(n >= 2);
+        CHECK(n < 32);  // a share of the full range, not all of it
+        CHECK(centre(t->request.alpha_lo, t->request.alpha_hi, n, 0) == Approx(0.3));
+        CHECK(centre(t->request.alpha_lo, t->request.alpha_hi, n, n - 1) == Approx(0.5));
+        CHECK(t->materials == std::vector<std::string>{"gold", "steel"});
+        CHECK(t->unavailable.empty());
+    }
+    CHECK(find_kind(plan, "eavg")->request.height == 1);
+    // The same alpha axis in both, so that a renderer reads them at the same coordinate.
+    CHECK(find_kind(plan, "eavg")->request.alpha_lo == find_kind(plan, "albedo")->request.alpha_lo);
+    CHECK(find_kind(plan, "eavg")->request.alpha_hi == find_kind(plan, "albedo")->request.alpha_hi);
+
+    // One dielectric table at the glass's eta and roughness: one texel centred on each.
+    const PlannedTable* d = find_kind(plan, "dielectric");
+    REQUIRE(d);
+    CHECK(d->materials == std::vector<std::string>{"glass"});
+    CHECK(d->depth == 1);
+    CHECK(centre(d->eta_lo, d->eta_hi, 1, 0) == Approx(1.5));
+    CHECK(d->request.height == 1);
+    CHECK(centre(d->request.alpha_lo, d->request.alpha_hi, 1, 0) == Approx(std::sqrt(0.05)));
+
+    // The diffuse material needs none; estimates are there and positive.
+    REQUIRE(plan.no_table.size() == 1);
+    CHECK(plan.no_table[0].find("plaster") == 0);
+    for (const auto& t : plan.tables) {
+        CHECK(t.est_seconds > 0);
+        CHECK(t.est_memory > 0);
+        CHECK(t.samples_total == t.cells * t.request.samples);
+        CHECK(t.hash.size() == 16);
+    }
+    if (lut_kind_available("dielectric")) CHECK(plan.warnings.empty());
+}
+
+TEST_CASE("materials that can share a table share it; model, shadowing and kind split them", "[scene][quick]") {
+    const Plan plan = make_plan(load_scene(data("merge.json")));
+    // correlated GGX: albedo + eavg shared by two metals and a Schlick plastic, ranges merged
+    const PlannedTable* a = find_kind(plan, "albedo", "ggx:shadowing=correlated");
+    REQUIRE(a);
+    CHECK(a->materials == std::vector<std::string>{"rough iron", "shiny chrome", "plastic coat"});
+    CHECK(a->alpha.lo == Approx(0.02));
+    CHECK(a->alpha.hi == Approx(0.5));
+    CHECK(a->file == "albedo-ggx.exr");
+    // separable shadowing is another table
+    const PlannedTable* s = find_kind(plan, "albedo", "ggx:shadowing=separable");
+    REQUIRE(s);
+    CHECK(s->materials == std::vector<std::string>{"old paint"});
+    CHECK(s->file != a->file);
+    // two glasses: one dielectric table over eta 1.33..1.7, texel centres on both ends
+    const PlannedTable* d = find_kind(plan, "dielectric");
+    REQUIRE(d);
+    CHECK(d->materials == std::vector<std::string>{"water", "crystal"});
+    REQUIRE(d->depth >= 2);
+    CHECK(centre(d->eta_lo, d->eta_hi, d->depth, 0) == Approx(1.33));
+    CHECK(centre(d->eta_lo, d->eta_hi, d->depth, d->depth - 1) == Approx(1.7));
+    CHECK(d->alpha.lo == Approx(0.01));
+    CHECK(d->alpha.hi == Approx(0.04));
+    // an explicit "tables" list asks for the split-sum table only
+    const PlannedTable* ms = find_kind(plan, "dfg-ms");
+    REQUIRE(ms);
+    CHECK(ms->materials == std::vector<std::string>{"ibl probe"});
+    CHECK(plan.tables.size() == 6);
+    std::set<std::string> files;
+    for (const auto& t : plan.tables) files.insert(t.file);
+    CHECK(files.size() == plan.tables.size());
+    // a delta lobe and a model without roughness need none; the latter is named in a warning
+    CHECK(plan.no_table.size() == 2);
+    CHECK(contains(plan.warnings, "material 'skin': model 'oren-nayar' is not modelled"));
+}
+
+TEST_CASE("glTF: metals, glass with ior and volume, clear coat, specular colour and anisotropy map to tables; "
+          "the rest is named", "[scene][quick]") {
+    const Scene scene = load_gltf_scene(data("materials.gltf"));
+    const Plan plan = make_plan(scene);
+    CHECK(plan.models == std::vector<std::string>{"ggx"});
+    const PlannedTable* a = find_kind(plan, "albedo");
+    REQUIRE(a);
+    // metals: aluminium (roughness 0.4), brushed steel (textured: roughness 0..0.3, metallic 0..1,
+    // anisotropy 0.5 widens alpha to mix(alpha, 1, 0.25)) and the default material (roughness 1)
+    CHECK(a->materials == std::vector<std::string>{"aluminium", "brushed steel", "(glTF default material)"});
+    CHECK(a->alpha.lo == 0.0);
+    CHECK(a->alpha.hi == Approx(1.0));
+    const PlannedTable* d = find_kind(plan, "dielectric");
+    REQUIRE(d);
+    // glass at ior 1.45 and the clear coat at 1.5 share one dielectric table
+    CHECK(d->eta->lo == Approx(1.45));
+    CHECK(d->eta->hi == Approx(1.5));
+    CHECK(contains(d->serves, "bottle glass (transmission)"));
+    CHECK(contains(d->serves, "car paint (clearcoat)"));
+    CHECK(contains(d->serves, "car paint (dielectric)"));
+    CHECK(contains(d->serves, "brushed steel (dielectric)"));  // the texture makes it partly non-metal
+    // a tinted specular colour makes F0 Schlick per channel: the split-sum table at its roughness
+    const PlannedTable* dfg = find_kind(plan, "dfg");
+    REQUIRE(dfg);
+    CHECK(dfg->materials == std::vector<std::string>{"tinted plastic"});
+    CHECK(dfg->alpha.lo == Approx(0.36));
+    CHECK(plan.tables.size() == 4);
+    // not modelled: named, never silent
+    CHECK(contains(plan.warnings, "material 'velvet': KHR_materials_sheen is not modelled"));
+    CHECK(contains(plan.warnings, "material 'velvet': VENDOR_materials_glitter is not modelled"));
+    CHECK(contains(plan.warnings, "KHR_texture_transform is not modelled"));
+    CHECK(contains(plan.warnings, "material 'brushed steel': KHR_materials_anisotropy is approximated"));
+    CHECK(contains(plan.no_table, "unused (not used by any mesh primitive"));
+    // notes say how each extension was read
+    for (const auto& m : scene.materials)
+        if (m.name == "bottle glass") CHECK(contains(m.notes, "KHR_materials_volume"));
+}
+
+TEST_CASE("the example scene plans in well under a second and bakes in a few seconds by estimate", "[scene][quick]") {
+    const std::string here = __FILE__;
+    const std::string root = here.substr(0, here.find_last_of('/', here.find_last_of('/') - 1));
+    const Plan plan = make_plan(load_scene(root + "/examples/scene.json"));
+    REQUIRE(plan.tables.size() == 3);
+    double seconds = 0;
+    for (const auto& t : plan.tables) seconds += t.est_seconds;
+    CHECK(seconds < 5.0);
+    const Plan gltf = make_plan(load_scene(root + "/examples/scene.gltf"));
+    CHECK(gltf.tables.size() >= 2);
+    CHECK(gltf.models == std::vector<std::string>{"ggx"});
+}
+
+TEST_CASE("malformed scene files and unknown material features give clear errors", "[scene][quick]") {
+    struct Case {
+        const char* file;
+        const char* must_mention;
+    };
+    const Case cases[] = {
+        {"bad_syntax.json", "is not valid JSON"},
+        {"unknown_model.json", "unknown model 'ggxx'"},
+        {"missing_model.json", "material 'velvet' has no 'model'"},
+        {"missing_roughness.json", "material 'gold': needs its roughness"},
+        {"unknown_feature.json", "unknown key 'sheen'"},
+        {"bad.gltf", "cannot be read"},
+        {"truncated.glb", "cannot be read"},
+        {"does-not-exist.json", "cannot read scene"},
+    };
+    for (const auto& c : cases) {
+        INFO(c.file);
+        const std::string msg = error_of([&] { load_scene(data(c.file)); });
+        CHECK(msg.find(c.must_mention) != std::string::npos);
+        CHECK(msg.find('\n') == std::string::npos);
+    }
+    // inline cases: values out of range and contradictions
+    const std::pair<const char*, const char*> inline_cases[] = {
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": -0.1}]})", "must be positive"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": [0.5, 0.1]}]})", "lo > hi"},
+        {R"({"materials": [{"name": "a", "model": "ggx:alpha=0.2", "alpha": 0.3}]})", "roughness once"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": 0.2, "eta": 0.8, "transmission": true}]})", "1 < eta"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": 0.2, "transmission": true}]})", "needs an index of refraction"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": 0.2, "tables": ["sheen"]}]})", "unknown table kind 'sheen'"},
+        {R"({"materials": [{"name": "a", "model": "lambert", "fresnel": "schlick:f0=0.04"}]})", "no Fresnel term"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": 0.2}, {"name": "a", "model": "ggx", "alpha": 0.3}]})", "two materials are named 'a'"},
+        {R"({"materials": []})", "is empty"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": 0.2}], "settings": {"samples": 4}})", "samples"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": 0.2}], "settings": {"colour": 1}})", "not a setting"},
+        {R"({"materials": [{"name": "a", "model": "ggx", "alpha": 0.2}], "lights": []})", "unknown top-level key 'lights'"},
+    };
+    for (const auto& c : inline_cases) {
+        INFO(c.first);
+        const std::string msg = error_of([&] { parse_scene_json(c.first, "inline.json"); });
+        CHECK(msg.find(c.second) != std::string::npos);
+    }
+}
+
+TEST_CASE("plan and bake reject bad scenes with one line and exit status 2, writing nothing", "[scene][cli]") {
+    const std::string out = tmp_dir("bad");
+    for (const char* f : {"bad_syntax.json", "unknown_model.json", "missing_model.json", "unknown_feature.json", "bad.gltf",
+                          "truncated.glb"}) {
+        INFO(f);
+        for (const char* cmd : {"plan ", "bake "}) {
+            const auto r = run_cli(std::string(cmd) + data(f) + (cmd[0] == 'b' ? " -o " + out : ""));
+            CHECK(r.status == 2);
+            CHECK(r.out.empty());
+            CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
+            CHECK(testing::count_lines(r.err) == 1);
+        }
+    }
+    CHECK(::access(out.c_str(), F_OK) != 0);  // the bake never created its folder
+    const auto r = run_cli("plan " + data("metals_glass.json") + " --format xml");
+    CHECK(r.status == 2);
+}
+
+TEST_CASE("plan --format json lists the tables with their ranges, sizes, materials and estimates", "[scene][cli]") {
+    const auto r = run_cli("plan " + data("metals_glass.json") + " --format json");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j.at("tables").size() == 3);
+    for (const auto& t : j["tables"]) {
+        CHECK(t.at("estimated_seconds").get<double>() > 0);
+        CHECK(t.at("estimated_memory_bytes").get<double>() > 0);
+        CHECK(!t.at("materials").empty());
+        CHECK(!t.at("axes").empty());
+    }
+    CHECK(j.at("models") == nlohmann::json::array({"ggx"}));
+    const auto text = run_cli("plan " + data("materials.gltf"));
+    REQUIRE(text.status == 0);
+    CHECK(text.out.find("warning: material 'velvet': KHR_materials_sheen is not modelled") != std::string::npos);
+    CHECK(text.out.find("albedo-ggx.exr") != std::string::npos);
+}
+
+TEST_CASE("bake writes the tables and an index; a second bake does no work", "[scene][device]") {
+    const std::string out = tmp_dir("bake");
+    std::system(("rm -rf " + out).c_str());
+    const auto first = run_cli("bake " + data("small_bake.json") + " -o " + out);
+    INFO(first.err);
+    REQUIRE(first.status == 0);
+    const auto index = nlohmann::json::parse(testing::slurp(out + "/index.json"));
+    REQUIRE(index.at("tables").size() == 2);
+    std::map<std::string, double> times;
+    for (const auto& t : index["tables"]) {
+        const std::string file = t.at("file");
+        CHECK(t.at("materials") == nlohmann::json::array({"iron", "brass"}));
+        CHECK(t.at("max_error").get<double>() > 0);
+        CHECK(t.at("max_error").get<double>() < 0.05);
+        CHECK(t.at("request_hash").get<std::string>().size() == 16);
+        times[file] = mtime(out + "/" + file);
+        CHECK(times[file] > 0);
+    }
+    const double index_time = mtime(out + "/index.json");
+    const auto ms = index.at("materials");
+    REQUIRE(ms.size() == 2);
+    CHECK(ms[0].at("tables").size() == 2);
+
+    const auto second = run_cli("bake " + data("small_bake.json") + " -o " + out);
+    REQUIRE(second.status == 0);
+    CHECK(second.err.find("up to date") != std::string::npos);
+    CHECK(second.err.find("nothing to compute") != std::string::npos);
+    for (const auto& kv : times) CHECK(mtime(out + "/" + kv.first) == kv.second);
+    CHECK(mtime(out + "/index.json") == index_time);
+
+    // A removed file is recomputed, the other one is not.
+    std::remove((out + "/eavg-ggx.exr").c_str());
+    const auto third = run_cli("bake " + data("small_bake.json") + " -o " + out);
+    REQUIRE(third.status == 0);
+    CHECK(third.err.find("baked 1 table (1 up to date)") != std::string::npos);
+    CHECK(mtime(out + "/albedo-ggx.exr") == times["albedo-ggx.exr"]);
+    // Another sample count is another request: both recomputed.
+    const auto fourth = run_cli("bake " + data("small_bake.json") + " -o " + out + " --samples 512");
+    REQUIRE(fourth.status == 0);
+    CHECK(fourth.err.find("baked 2 tables") != std::string::npos);
+    std::system(("rm -rf " + out).c_str());
+}
+
+TEST_CASE("a baked table, computed in tiles, holds what compute_lut gives for the whole request", "[scene][device]") {
+    const std::string out = tmp_dir("tiles");
+    std::system(("rm -rf " + out).c_str());
+    REQUIRE(run_cli("bake " + data("small_bake.json") + " -o " + out).status == 0);
+    const Plan plan = make_plan(load_scene(data("small_bake.json")));
+    const PlannedTable* a = find_kind(plan, "albedo");
+    REQUIRE(a);
+    const Table whole = compute_lut(testing::engine(), a->request);
+
+    Imf::InputFile in((out + "/" + a->file).c_str());
+    const Imath::Box2i dw = in.header().dataWindow();
+    const int w = dw.max.x - dw.min.x + 1, h = dw.max.y - dw.min.y + 1;
+    REQUIRE(w == whole.width());
+    REQUIRE(h == whole.height());
+    std::vector<float> e(size_t(w) * h);
+    Imf::FrameBuffer fb;
+    fb.insert("E", Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(e.data()), sizeof(float), sizeof(float) * w));
+    in.setFrameBuffer(fb);
+    in.readPixels(dw.min.y, dw.max.y);
+    for (size_t k = 0; k < e.size(); ++k) {
+        INFO("texel " << k);
+        CHECK(e[k] == Approx(whole.values[0][k]).margin(1e-6));
+    }
+    std::system(("rm -rf " + out).c_str());
+}
+
+TEST_CASE("bake a rough glass: the dielectric table over the scene's eta", "[scene][device]") {
+    if (!lut_kind_available("dielectric")) {
+        WARN("this build has no dielectric table kind; plan-only coverage");
+        return;
+    }
+    const std::string out = tmp_dir("glass");
+    std::system(("rm -rf " + out).c_str());
+    const auto r = run_cli("bake " + data("small_glass.json") + " -o " + out);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto index = nlohmann::json::parse(testing::slurp(out + "/index.json"));
+    REQUIRE(index.at("tables").size() == 1);
+    const auto& t = index["tables"][0];
+    CHECK(t.at("kind") == "dielectric");
+    CHECK(t.at("eta_axis").at("size") == 1);
+    CHECK(t.at("max_error").get<double>() < 0.1);
+    std::system(("rm -rf " + out).c_str());
+}
