@@ -6,6 +6,7 @@
 #include <cmath>
 #include <sstream>
 
+#include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "device_buffer.h"
@@ -39,18 +40,57 @@ std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed) {
     return shifts;
 }
 
+std::string method_text(unsigned replicas, std::uint64_t points) {
+    std::ostringstream m;
+    m << "importance sampling, randomised Hammersley (" << replicas << " replicas x " << points << " points)";
+    return m.str();
+}
+
+// Mean and error estimate of each cell from its replica means. The error is 3 standard errors of
+// the replicas plus a floating-point bound: the per-sample weight carries a few ulps of rounding
+// error that averaging does not remove (compensated summation keeps the sums exact to ~1 ulp).
+// Throws Error if any sample of a cell was non-finite (`where(cell)` names the cell).
+template <typename Where>
+std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::vector<cl_uint>& bad,
+                                   unsigned replicas, Precision precision, Where where) {
+    const double eps = precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7;
+    const size_t n_cells = means.size() / replicas;
+    std::vector<AlbedoValue> out;
+    for (size_t c = 0; c < n_cells; ++c) {
+        std::uint64_t n_bad = 0;
+        double sum = 0.0;
+        for (unsigned r = 0; r < replicas; ++r) {
+            n_bad += bad[c * replicas + r];
+            sum += means[c * replicas + r];
+        }
+        if (n_bad > 0)
+            throw Error(where(c) + " (" + std::to_string(n_bad) + " samples); refusing to report a result");
+        const double mean = sum / replicas;
+        double ss = 0.0;
+        for (unsigned r = 0; r < replicas; ++r) ss += std::pow(means[c * replicas + r] - mean, 2);
+        const double std_error = std::sqrt(ss / (replicas - 1) / replicas);
+        out.push_back({mean, 3.0 * std_error + 8.0 * eps * std::max(std::fabs(mean), 1e-3)});
+    }
+    return out;
+}
+
+void check_sampling(std::uint64_t samples, unsigned replicas) {
+    if (replicas < 2) throw Error("at least 2 replicas are needed for an error estimate");
+    if (samples < replicas) throw Error("--samples must be at least " + std::to_string(replicas));
+    if (samples / replicas > 0xffffffffu) throw Error("--samples is too large (at most 2^32 per replica)");
+}
+
+cl::NDRange global_range(size_t items, size_t local) { return cl::NDRange((items + local - 1) / local * local); }
+
 }  // namespace
 
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     if (req.cells.empty()) throw Error("no directions to integrate");
-    if (req.replicas < 2) throw Error("at least 2 replicas are needed for an error estimate");
-    if (req.samples < req.replicas)
-        throw Error("--samples must be at least " + std::to_string(req.replicas));
+    check_sampling(req.samples, req.replicas);
     for (const auto& c : req.cells)
         if (!(c.mu > 0.0 && c.mu <= 1.0) || !std::isfinite(c.phi))
             throw Error("mu must lie in (0, 1]; got " + std::to_string(c.mu));
     const std::uint64_t points = req.samples / req.replicas;
-    if (points > 0xffffffffu) throw Error("--samples is too large (at most 2^32 per replica)");
 
     const size_t n_cells = req.cells.size();
     const size_t n_items = n_cells * req.replicas;
@@ -90,11 +130,9 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     kernel.setArg(a++, b_mean);
     kernel.setArg(a++, b_bad);
 
-    const size_t local = 8;
-    const size_t global = (n_items + local - 1) / local * local;
     cl::Event done;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(local),
-                                        nullptr, &done);
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, 8), cl::NDRange(8), nullptr,
+                                        &done);
     const std::vector<double> means = bufs.read(b_mean, n_items);
     std::vector<cl_uint> bad(n_items);
     engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
@@ -102,35 +140,72 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     AlbedoResult result;
     result.samples_per_cell = points * req.replicas;
     result.kernel_seconds = event_seconds(done);
-    {
+    result.method = method_text(req.replicas, points);
+    result.values = summarize(means, bad, req.replicas, req.precision, [&](size_t c) {
         std::ostringstream m;
-        m << "importance sampling, randomised Hammersley (" << req.replicas << " replicas x " << points
-          << " points)";
-        result.method = m.str();
+        m << "the BRDF produced NaN or Inf at mu = " << req.cells[c].mu;
+        return m.str();
+    });
+    return result;
+}
+
+DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req) {
+    if (req.cells.empty()) throw Error("no cells to integrate");
+    check_sampling(req.samples, req.replicas);
+    for (const auto& c : req.cells)
+        if (!(c.mu > 0.0 && c.mu <= 1.0) || !(c.alpha >= BB_ALPHA_MIN) || !(c.eta > 0.0) || !std::isfinite(c.eta))
+            throw Error("dielectric cell out of range (mu in (0, 1], alpha >= 1e-4, eta > 0)");
+    const std::uint64_t points = req.samples / req.replicas;
+    const size_t n_cells = req.cells.size(), n_items = n_cells * req.replicas;
+
+    BuildRequest build;
+    build.kernel_file = "dielectric.cl";
+    build.precision = req.precision;
+    cl::Program& program = engine.program(build);
+
+    std::vector<double> mus, alphas, etas;
+    for (const auto& c : req.cells) {
+        mus.push_back(c.mu);
+        alphas.push_back(c.alpha);
+        etas.push_back(c.eta);
     }
-    // Floating-point bound: the per-sample weight carries a few ulps of rounding error that
-    // averaging does not remove; compensated summation keeps the sum itself exact to ~1 ulp.
-    const double eps = req.precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7;
-    for (size_t c = 0; c < n_cells; ++c) {
-        std::uint64_t n_bad = 0;
-        double sum = 0.0;
-        for (unsigned r = 0; r < req.replicas; ++r) {
-            n_bad += bad[c * req.replicas + r];
-            sum += means[c * req.replicas + r];
-        }
-        if (n_bad > 0) {
-            std::ostringstream m;
-            m << "the BRDF produced " << n_bad << " non-finite values (NaN or Inf) at mu = "
-              << req.cells[c].mu << "; refusing to report a result";
-            throw Error(m.str());
-        }
-        const double mean = sum / req.replicas;
-        double ss = 0.0;
-        for (unsigned r = 0; r < req.replicas; ++r) ss += std::pow(means[c * req.replicas + r] - mean, 2);
-        const double std_error = std::sqrt(ss / (req.replicas - 1) / req.replicas);
-        const double fp_bound = 8.0 * eps * std::max(std::fabs(mean), 1e-3);
-        result.values.push_back({mean, 3.0 * std_error + fp_bound});
-    }
+    RealBuffers bufs(engine, req.precision);
+    cl::Buffer b_mu = bufs.input(mus), b_alpha = bufs.input(alphas), b_eta = bufs.input(etas),
+               b_shift = bufs.input(replica_shifts(req.replicas, req.seed));
+    cl::Buffer b_r = bufs.output(n_items), b_t = bufs.output(n_items);
+    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+    cl::Kernel kernel(program, "dielectric_replicas");
+    int a = 0;
+    kernel.setArg(a++, b_mu);
+    kernel.setArg(a++, b_alpha);
+    kernel.setArg(a++, b_eta);
+    kernel.setArg(a++, b_shift);
+    kernel.setArg(a++, cl_uint(points));
+    kernel.setArg(a++, cl_uint(req.replicas));
+    kernel.setArg(a++, cl_uint(n_cells));
+    kernel.setArg(a++, cl_int(req.correlated ? 1 : 0));
+    kernel.setArg(a++, b_r);
+    kernel.setArg(a++, b_t);
+    kernel.setArg(a++, b_bad);
+    cl::Event done;
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, 8), cl::NDRange(8), nullptr,
+                                        &done);
+    const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
+    std::vector<cl_uint> bad(n_items);
+    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+
+    DielectricResult result;
+    result.samples_per_cell = points * req.replicas;
+    result.kernel_seconds = event_seconds(done);
+    result.method = method_text(req.replicas, points);
+    auto where = [&](size_t c) {
+        std::ostringstream m;
+        m << "the rough dielectric produced NaN or Inf at mu = " << req.cells[c].mu << ", alpha = " << req.cells[c].alpha
+          << ", eta = " << req.cells[c].eta;
+        return m.str();
+    };
+    result.reflected = summarize(r, bad, req.replicas, req.precision, where);
+    result.transmitted = summarize(t, bad, req.replicas, req.precision, where);
     return result;
 }
 

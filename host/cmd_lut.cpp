@@ -16,6 +16,7 @@ struct LutOptions {
     LutRequest request;
     std::string size = "32x32";
     std::string alpha_range = "0,1";
+    std::string eta_range = "1,3";
     std::int64_t samples = 1 << 18;
     std::string precision = "float";
     std::string method = "auto";
@@ -24,19 +25,23 @@ struct LutOptions {
 };
 
 void parse_size(const std::string& text, LutRequest& r) {
-    const size_t x = text.find('x');
-    auto dim = [&](const std::string& s) {
+    std::vector<int> dims;
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t x = text.find('x', start);
+        if (x == std::string::npos) x = text.size();
+        const std::string s = text.substr(start, x - start);
         if (s.empty() || s.size() > 5 || s.find_first_not_of("0123456789") != std::string::npos)
-            throw Error("--size: '" + text + "' is not WIDTHxHEIGHT (e.g. 32x32) or N");
-        return std::stoi(s);
-    };
-    if (x == std::string::npos) {
-        r.width = dim(text);
-        r.height = r.kind == "eavg" ? 1 : r.width;
-    } else {
-        r.width = dim(text.substr(0, x));
-        r.height = dim(text.substr(x + 1));
+            throw Error("--size: '" + text + "' is not N, WIDTHxHEIGHT or WIDTHxHEIGHTxDEPTH (e.g. 32x32)");
+        dims.push_back(std::stoi(s));
+        start = x + 1;
     }
+    const bool three = r.kind == "dielectric";
+    if (dims.size() > (three ? 3u : 2u))
+        throw Error("--size: '" + text + "' has too many dimensions for a " + r.kind + " table");
+    r.width = dims[0];
+    r.height = dims.size() > 1 ? dims[1] : (r.kind == "eavg" ? 1 : dims[0]);
+    if (three) r.depth = dims.size() > 2 ? dims[2] : r.height;
     if (r.kind == "eavg" && r.height != 1) throw Error("--size: an eavg table is 1D; give N or Nx1");
 }
 
@@ -48,6 +53,10 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     if (range.size() != 2) throw Error("--alpha-range needs two numbers: LO,HI");
     r.alpha_lo = range[0];
     r.alpha_hi = range[1];
+    const std::vector<double> eta = parse_number_list(o.eta_range, "--eta-range");
+    if (eta.size() != 2) throw Error("--eta-range needs two numbers: LO,HI");
+    r.eta_lo = eta[0];
+    r.eta_hi = eta[1];
     if (o.samples <= 0) throw Error("--samples must be positive");
     r.samples = std::uint64_t(o.samples);
     r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
@@ -58,8 +67,8 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     const Table table = compute_lut(engine, r);
     write_table(table, o.output, o.half);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    std::fprintf(stderr, "brdfbake: wrote %s: %s table %dx%d (%s), max error %.2e, %.2f s\n", o.output.c_str(),
-                 table.kind.c_str(), table.width(), table.height(), table.attributes.at("model").c_str(),
+    std::fprintf(stderr, "brdfbake: wrote %s: %s table %dx%dx%d (%s), max error %.2e, %.2f s\n", o.output.c_str(),
+                 table.kind.c_str(), table.width(), table.height(), table.depth(), table.attributes.at("model").c_str(),
                  table.max_error(), seconds);
     return kExitOk;
 }
@@ -76,7 +85,7 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->required();
     cmd->add_option("--fresnel", o->request.fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();
     cmd->add_option("--wavelength", o->request.wavelength_nm, "wavelength in nm for measured metals");
-    cmd->add_option("--size", o->size, "WIDTHxHEIGHT (mu x alpha), or N for eavg")->capture_default_str();
+    cmd->add_option("--size", o->size, "WIDTHxHEIGHT (mu x alpha), WIDTHxHEIGHTxDEPTH (x eta) for dielectric, N for eavg")->capture_default_str();
     cmd->add_option("--mu-map", o->request.mu_map, "mu axis: linear (mu = u) or sqrt (u = sqrt(mu))")
         ->check(CLI::IsMember({"linear", "sqrt"}))
         ->capture_default_str();
@@ -84,6 +93,7 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->check(CLI::IsMember({"alpha", "roughness"}))
         ->capture_default_str();
     cmd->add_option("--alpha-range", o->alpha_range, "LO,HI of the roughness axis coordinate")->capture_default_str();
+    cmd->add_option("--eta-range", o->eta_range, "LO,HI of the eta axis (dielectric)")->capture_default_str();
     cmd->add_option("--samples", o->samples, "samples per texel")->capture_default_str();
     cmd->add_option("--method", o->method, "integration method")
         ->check(CLI::IsMember({"auto", "importance"}))

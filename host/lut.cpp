@@ -2,6 +2,7 @@
 
 #include <boost/math/quadrature/gauss.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -18,6 +19,10 @@ std::vector<std::pair<std::string, std::string>> lut_kinds() {
         {"albedo", "directional albedo E(mu_o, alpha) = integral of f cos(theta_i) dwi (2D)"},
         {"eavg", "average albedo Eavg(alpha) = 2 integral of E(mu) mu dmu (1D)"},
         {"dfg", "split-sum terms A, B over (mu_o, alpha): f/F weighted by 1 - (1 - wo.wh)^5 and (1 - wo.wh)^5 (Karis 2013)"},
+        {"dielectric", "rough dielectric (GGX) reflected and transmitted energy R, T from outside (eta) and "
+                       "R_inside, T_inside from inside (1/eta) over (mu_o, alpha, eta) (3D, slices stacked along y)"},
+        {"conductor", "Fresnel-weighted albedo E(mu_o, alpha) of a conductor: --fresnel conductor:eta=,k= (channel E) or "
+                      "metal:X / nk:FILE (channels R, G, B at 650, 550, 450 nm, or E at --wavelength)"},
         {"dfg-ms", "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
                    "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)"},
     };
@@ -26,6 +31,15 @@ std::vector<std::pair<std::string, std::string>> lut_kinds() {
 namespace {
 
 constexpr int kMaxTexels = 1 << 22;
+constexpr double kRgbNm[3] = {650.0, 550.0, 450.0};
+const char* const kRgbNames[3] = {"R", "G", "B"};
+
+/// A conductor table of a measured metal without --wavelength: one channel per RGB wavelength.
+bool rgb_default(const LutRequest& r) {
+    if (r.kind != "conductor" || r.wavelength_nm != 0.0) return false;
+    const std::string name = parse_spec(r.fresnel).name;
+    return name == "metal" || name == "nk";
+}
 
 /// The parameter slots that hold alpha_x and alpha_y for a model whose roughness is swept.
 std::vector<int> alpha_slots(const ModelConfig& m) {
@@ -122,7 +136,7 @@ void validate_lut(const LutRequest& r) {
         throw Error("unknown table kind '" + r.kind + "'; known: " + list);
     }
     const ModelConfig m = sweep_model(r.model);
-    const FresnelConfig f = resolve_fresnel(r.fresnel, r.wavelength_nm);
+    const FresnelConfig f = resolve_fresnel(r.fresnel, rgb_default(r) ? kRgbNm[0] : r.wavelength_nm);
     if ((r.kind == "dfg" || r.kind == "dfg-ms") && f.kind != BB_FRESNEL_NONE)
         throw Error("the split-sum table factors the Fresnel term out; drop --fresnel");
     if (f.kind != BB_FRESNEL_NONE && !m.uses_fresnel)
@@ -136,13 +150,27 @@ void validate_lut(const LutRequest& r) {
     if (!(r.alpha_lo >= 0.0 && r.alpha_hi > r.alpha_lo && r.alpha_hi <= 3.0))
         throw Error("--alpha-range must satisfy 0 <= lo < hi <= 3");
     if (r.samples < 16) throw Error("--samples must be at least 16");
+    if (r.kind == "dielectric") {
+        if (m.id != BB_MODEL_GGX) throw Error("the dielectric table is computed for GGX microfacets; use --model ggx");
+        if (f.kind != BB_FRESNEL_NONE) throw Error("the dielectric table uses the exact dielectric Fresnel term; drop --fresnel");
+        if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
+            throw Error("dielectric table depth must be 1 to 1024 and the table at most 4M texels");
+        if (!(r.eta_lo >= 1.0 && r.eta_hi > r.eta_lo && r.eta_hi <= 10.0))
+            throw Error("--eta-range must satisfy 1 <= lo < hi <= 10 (the inside view uses 1/eta)");
+    }
+    if (r.kind == "conductor") {
+        const Spec fs = parse_spec(r.fresnel);
+        const bool measured = fs.name == "metal" || fs.name == "nk";
+        if (!(f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX || measured))
+            throw Error("the conductor table needs a conductor Fresnel term: --fresnel conductor:eta=E,k=K, metal:Al or nk:FILE");
+    }
 }
 
 Table compute_lut(Engine& engine, const LutRequest& r) {
     validate_lut(r);
     const ModelConfig m = sweep_model(r.model);
     const std::vector<int> slots = alpha_slots(m);
-    const FresnelConfig f = resolve_fresnel(r.fresnel, r.wavelength_nm);
+    const FresnelConfig f = resolve_fresnel(r.fresnel, rgb_default(r) ? kRgbNm[0] : r.wavelength_nm);
     Table t;
     t.kind = r.kind;
     bool clamped = false;
@@ -196,8 +224,65 @@ Table compute_lut(Engine& engine, const LutRequest& r) {
     for (double alpha : t.y.parameter)
         for (double mu : t.x.parameter) cells.push_back({mu, 0.0, with_alpha(m.params, slots, alpha)});
 
-    if (r.kind == "albedo") {
-        t.quantity = "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi";
+    if (r.kind == "dielectric") {
+        t.quantity = "rough dielectric interface: energy fractions reflected (R) and transmitted (T) for light "
+                     "from outside (relative index eta), and R_inside, T_inside from inside (relative index 1/eta); "
+                     "transmitted radiance is T times (eta_t/eta_i)^2";
+        t.z = make_axis("eta", "eta = w", r.eta_lo, r.eta_hi, r.depth);
+        t.z.parameter = t.z.coordinate;
+        DielectricRequest dr;
+        dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
+        dr.samples = r.samples;
+        dr.precision = r.precision;
+        for (int side = 0; side < 2; ++side)
+            for (double eta : t.z.parameter)
+                for (double alpha : t.y.parameter)
+                    for (double mu : t.x.parameter) dr.cells.push_back({mu, alpha, side == 0 ? eta : 1.0 / eta});
+        const DielectricResult res = compute_dielectric(engine, dr);
+        const size_t n = dr.cells.size() / 2;
+        t.channels = {"R", "T", "R_inside", "T_inside"};
+        t.values.assign(4, std::vector<double>(n));
+        t.error.assign(n, 0.0);
+        for (size_t k = 0; k < n; ++k) {
+            t.values[0][k] = res.reflected[k].value;
+            t.values[1][k] = res.transmitted[k].value;
+            t.values[2][k] = res.reflected[n + k].value;
+            t.values[3][k] = res.transmitted[n + k].value;
+            t.error[k] = std::max({res.reflected[k].error, res.transmitted[k].error, res.reflected[n + k].error,
+                                   res.transmitted[n + k].error});
+        }
+        t.attributes["model"] = m.canonical;
+        t.attributes["fresnel"] = "dielectric (exact, unpolarised) at each texel's eta";
+        t.attributes["method"] = res.method;
+        t.attributes["samples"] = std::to_string(res.samples_per_cell);
+        t.attributes["precision"] = precision_name(r.precision);
+        return t;
+    }
+
+    if (r.kind == "conductor" && rgb_default(r)) {
+        t.quantity = "Fresnel-weighted directional albedo E(mu_o, alpha) of a measured conductor at 650, 550 and 450 nm";
+        t.channels = {"R", "G", "B"};
+        t.error.assign(cells.size(), 0.0);
+        std::string fresnel_text;
+        AlbedoResult last;
+        for (int c = 0; c < 3; ++c) {
+            const FresnelConfig fc = resolve_fresnel(r.fresnel, kRgbNm[c]);
+            last = integrate(engine, r, m, fc, cells);
+            std::vector<double> v;
+            for (size_t k = 0; k < cells.size(); ++k) {
+                v.push_back(last.values[k].value);
+                t.error[k] = std::max(t.error[k], last.values[k].error);
+            }
+            t.values.push_back(v);
+            fresnel_text += std::string(c ? "; " : "") + kRgbNames[c] + ": " + fc.canonical;
+        }
+        describe(t, r, m, fresnel_text, last, clamped);
+        return t;
+    }
+
+    if (r.kind == "albedo" || r.kind == "conductor") {
+        t.quantity = r.kind == "albedo" ? "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi"
+                                        : "Fresnel-weighted directional albedo E(mu_o, alpha) of a conductor";
         const AlbedoResult res = integrate(engine, r, m, f, cells);
         t.channels = {"E"};
         t.values.assign(1, {});

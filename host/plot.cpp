@@ -116,8 +116,48 @@ void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<st
     }
 }
 
+/// Draws the panel's heatmap (if any) and its colour bar; the ranges are already set.
+void draw_heatmap(mglGraph& gr, const Heatmap& h) {
+    if (h.nx <= 0) return;
+    const double below = -std::numeric_limits<double>::infinity();  // log of z <= 0
+    mglData z(h.nx, h.ny), x(h.nx), y(h.ny);
+    Bounds bz;
+    for (long k = 0; k < long(h.nx) * h.ny; ++k) {
+        const double raw = h.z[size_t(k)];
+        double v = raw;
+        if (!std::isfinite(raw)) v = NAN;  // a gap
+        else if (h.log_scale) v = raw > 0 ? std::log10(raw) : below;
+        bz.add(v);
+        z.a[k] = v;
+    }
+    auto scaled = [&](double v) { return h.log_scale && std::isfinite(v) ? (v > 0 ? std::log10(v) : below) : v; };
+    double zlo = scaled(h.z_lo), zhi = scaled(h.z_hi);
+    if (!std::isfinite(zlo)) zlo = bz.empty() ? 0.0 : bz.lo;
+    if (!std::isfinite(zhi)) zhi = bz.empty() ? 1.0 : bz.hi;
+    if (!(zhi > zlo)) zhi = zlo + 1.0;
+    for (long k = 0; k < long(h.nx) * h.ny; ++k)
+        if (z.a[k] == below) z.a[k] = zlo;  // drawn at the lower end rather than vanishing
+    for (int i = 0; i < h.nx; ++i) x.a[i] = h.x_lo + (i + 0.5) * (h.x_hi - h.x_lo) / h.nx;
+    for (int j = 0; j < h.ny; ++j) y.a[j] = h.y_lo + (j + 0.5) * (h.y_hi - h.y_lo) / h.ny;
+    gr.SetRange('c', zlo, zhi);
+    gr.Dens(x, y, z, h.scheme.c_str());
+    if (!h.colorbar_label.empty()) {
+        gr.Colorbar((h.scheme + ">").c_str());
+        const std::string label = h.log_scale ? "log_{10} " + h.colorbar_label : h.colorbar_label;
+        gr.Puts(mglPoint(1.17, 1.05, 0), label.c_str(), ":CA", -0.9);
+    }
+}
+
 void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     Bounds bx, by;
+    if (p.heatmap.nx > 0) {
+        if (p.heatmap.z.size() != size_t(p.heatmap.nx) * p.heatmap.ny)
+            throw Error("plot '" + p.title + "': heatmap data does not fill its grid");
+        bx.add(p.heatmap.x_lo);
+        bx.add(p.heatmap.x_hi);
+        by.add(p.heatmap.y_lo);
+        by.add(p.heatmap.y_hi);
+    }
     for (const Curve& c : p.curves) {
         if (c.x.size() != c.y.size())
             throw Error("plot '" + p.title + "': curve '" + c.label + "' has " + std::to_string(c.x.size()) +
@@ -130,8 +170,15 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     }
     if (bx.empty()) throw Error("plot '" + p.title + "' (panel " + std::to_string(panel_index + 1) + ") has no finite data");
     double x0, x1, y0, y1;
-    resolve_range(p.x, bx, x0, x1);
-    resolve_range(p.y, by, y0, y1);
+    PlotAxis ax = p.x, ay = p.y;
+    if (p.heatmap.nx > 0) {  // a heatmap fills its box exactly
+        if (!std::isfinite(ax.lo)) ax.lo = p.heatmap.x_lo;
+        if (!std::isfinite(ax.hi)) ax.hi = p.heatmap.x_hi;
+        if (!std::isfinite(ay.lo)) ay.lo = p.heatmap.y_lo;
+        if (!std::isfinite(ay.hi)) ay.hi = p.heatmap.y_hi;
+    }
+    resolve_range(ax, bx, x0, x1);
+    resolve_range(ay, by, y0, y1);
 
     gr.SetRanges(x0, x1, y0, y1);
     gr.SetOrigin(x0, y0);
@@ -141,9 +188,14 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
         gr.SetCut(true);
     }
     // Ticks counted from 0 (not from the range's lower end), so that they fall on round values.
+    draw_heatmap(gr, p.heatmap);
+    if (!p.axes) {
+        for (const Curve& c : p.curves) gr.Plot(to_mgl(c.x), to_mgl(c.y), c.style.empty() ? "k-2" : c.style.c_str());
+        return;
+    }
     gr.SetTicks('x', p.x.tick, 0, 0.0);
     gr.SetTicks('y', p.y.tick, 0, 0.0);
-    gr.Grid("xy", "{h9}");
+    if (p.heatmap.nx == 0) gr.Grid("xy", "{h9}");
     gr.Box("k", false);
     gr.Axis("xy");
     // Axis labels placed by hand, clear of the tick labels (MathGL's Label() overlaps them at

@@ -40,12 +40,28 @@ struct RefLine {
     std::string label;  // drawn next to the line; may be empty
 };
 
+/// A colour map of z over a regular grid, drawn under the curves: z[j * nx + i] belongs to the
+/// cell centred at x = x_lo + (i + 0.5)(x_hi - x_lo)/nx, y = y_lo + (j + 0.5)(y_hi - y_lo)/ny.
+/// Non-finite z values are drawn as gaps.
+struct Heatmap {
+    int nx = 0, ny = 0;  // nx = 0: no heatmap
+    std::vector<double> z;
+    double x_lo = 0.0, x_hi = 1.0, y_lo = 0.0, y_hi = 1.0;
+    double z_lo = std::numeric_limits<double>::quiet_NaN();  // NaN: from the data
+    double z_hi = std::numeric_limits<double>::quiet_NaN();
+    bool log_scale = false;      // colour by log10(z) (z <= 0 drawn at the lower end)
+    std::string colorbar_label;  // empty: no colour bar
+    std::string scheme = "BbcyrR";  // MathGL colour scheme; "kw" for grey levels
+};
+
 /// One panel of a figure.
 struct PlotSpec {
     std::string title;
     PlotAxis x, y;
     std::vector<Curve> curves;
     std::vector<RefLine> lines;
+    Heatmap heatmap;
+    bool axes = true;  // false: no box, ticks, grid or axis labels (a picture)
     LegendPlace legend = LegendPlace::TopRight;
     /// Legend position inside the axes box as fractions (0,0 bottom left .. 1,1 top right),
     /// overriding `legend` where both are finite.

@@ -43,6 +43,34 @@ struct AlbedoResult {
 /// sample weights (the cell and count are named), or for an invalid request.
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request);
 
+/// One cell of a rough dielectric interface (GGX, isotropic): wo at cos(theta) = mu on the
+/// near side, eta the far side's index relative to the near side (eta < 1: seen from inside).
+struct DielectricCell {
+    double mu = 1.0;
+    double alpha = 0.5;
+    double eta = 1.5;
+};
+
+struct DielectricRequest {
+    std::vector<DielectricCell> cells;
+    bool correlated = true;  // height-correlated G2 (reflection and transmission); else separable
+    std::uint64_t samples = 1u << 18;
+    unsigned replicas = 16;
+    Precision precision = Precision::Float;
+    std::uint64_t seed = 0x62726466u;
+};
+
+struct DielectricResult {
+    std::vector<AlbedoValue> reflected;    // energy fraction reflected, per cell
+    std::vector<AlbedoValue> transmitted;  // energy fraction transmitted, per cell
+    std::uint64_t samples_per_cell = 0;
+    std::string method;
+    double kernel_seconds = 0.0;
+};
+
+/// Reflected and transmitted energy fractions of a rough dielectric (kernels/dielectric.cl).
+DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& request);
+
 /// The cells for a list of mu values at one azimuth, all with the same model parameters.
 std::vector<AlbedoCell> cells_for(const std::vector<double>& mus, double phi, const ParamBlock& params);
 

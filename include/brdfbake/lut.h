@@ -12,15 +12,17 @@
 namespace brdfbake {
 
 struct LutRequest {
-    std::string kind;             // albedo | eavg | dfg | dfg-ms
+    std::string kind;             // albedo | eavg | dfg | dfg-ms | dielectric | conductor
     std::string model;            // model spec without the swept alpha, e.g. "ggx:shadowing=correlated"
     std::string fresnel = "none"; // albedo and eavg only
-    double wavelength_nm = 0.0;
+    double wavelength_nm = 0.0;   // conductor with a measured metal: 0 gives R, G, B at 650, 550, 450 nm
     int width = 32;               // mu texels (albedo, dfg) or alpha texels (eavg)
     int height = 32;              // alpha texels (albedo, dfg); 1 for eavg
     std::string mu_map = "linear";      // linear: mu = u; sqrt: u = sqrt(mu), mu = u^2
     std::string alpha_map = "alpha";    // alpha: alpha = v; roughness: v = sqrt(alpha), alpha = v^2
     double alpha_lo = 0.0, alpha_hi = 1.0;  // range of the roughness-axis coordinate
+    int depth = 16;               // eta texels (dielectric)
+    double eta_lo = 1.0, eta_hi = 3.0;  // eta axis range (dielectric); texel centres inside
     std::uint64_t samples = 1u << 18;   // per texel (per mu node for eavg)
     Precision precision = Precision::Float;
 };

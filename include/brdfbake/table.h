@@ -27,13 +27,17 @@ struct Table {
     std::string quantity;  // what a texel holds, in words
     Axis x;                // width
     Axis y;                // height (size 1 for a 1D table)
+    Axis z;                // depth (size 1 for a 2D table); 3D tables stack z-slices along y
     std::vector<std::string> channels;
-    std::vector<std::vector<double>> values;  // [channel][y * width + x]
-    std::vector<double> error;                // [y * width + x]: estimated absolute error (max over channels)
+    std::vector<std::vector<double>> values;  // [channel][(z * height + y) * width + x]
+    std::vector<double> error;                // same layout: estimated absolute error (max over channels)
     std::map<std::string, std::string> attributes;  // model, fresnel, method, samples, precision, ...
 
     int width() const { return x.size; }
     int height() const { return y.size; }
+    int depth() const { return z.size; }
+    /// Rows of the stored image: the z-slices stacked along y.
+    int image_height() const { return y.size * z.size; }
     double max_error() const;
 };
 

@@ -1,0 +1,71 @@
+/* Rough dielectric interface (GGX microfacets, Walter et al. 2007): the fractions of the energy
+ * arriving from wo that the interface reflects and transmits.
+ *
+ * wo lies on the upper side (wo.z > 0); eta is the index of the far side relative to the near
+ * side (eta > 1: glass seen from air; eta < 1: the same interface seen from inside the glass,
+ * with total internal reflection). Directions below the surface are transmitted directions.
+ *
+ * Estimator: a visible normal wh of GGX seen from wo [H18]. At that microfacet the energy splits
+ * into F(wo.wh) reflected and 1 - F transmitted [WMLT07 eq. 22]; both branches are scored (no
+ * random choice between them), each weighted by G2 / G1(wo) as in microfacet.h:
+ *   R += F G2_R(wo, wr) / G1(wo),        wr = reflect(wo, wh), counted if wr.z > 0
+ *   T += (1 - F) G2_T(wo, wt) / G1(wo),  wt = refract(wo, wh, eta), counted if wt.z < 0
+ * These are energy (flux) fractions: R + T <= 1, and transmitted radiance is scaled by eta^2
+ * on top of T [WMLT07 eq. 21 and Veach 1997 ch. 5]. G2 is separable G1(wo) G1(wi), or
+ * height-correlated: 1/(1 + L(wo) + L(wi)) for reflection [H14 eq. 99] and the Beta function
+ * B(1 + L(wo), 1 + L(wt)) for transmission [H14 eq. 100], which follows from integrating
+ * u^L(wo) (1 - u)^L(wt) over the height CDF u. */
+#ifndef BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H
+#define BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H
+
+#include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/brdf/microfacet.h"
+
+typedef struct {
+    real r; /* reflected energy fraction of this sample */
+    real t; /* transmitted energy fraction of this sample */
+} bb_rt;
+
+/* Refraction of wo through the microfacet wh (wo.wh = c > 0) into the far side; the direction
+ * points away from the surface on the far side. cos_t from sin^2_t = (1 - c^2)/eta^2. Returns
+ * the zero vector under total internal reflection. */
+BB_FN bb_vec3 bb_refract(bb_vec3 wo, bb_vec3 wh, real c, real eta) {
+    real sin2_t = bb_sin2_from_cos(c) / (eta * eta);
+    real cos_t = bb_safe_sqrt(BB_R(1.0) - sin2_t);
+    bb_vec3 wt = bb_add(bb_scale(wo, BB_R(-1.0) / eta), bb_scale(wh, c / eta - cos_t));
+    return bb_scale(wt, bb_select(BB_R(1.0), BB_R(0.0), sin2_t >= BB_R(1.0)));
+}
+
+/* B(a, b) = Gamma(a) Gamma(b) / Gamma(a + b) for a, b >= 1, through log-gamma. */
+BB_FN real bb_beta(real a, real b) {
+#ifdef __OPENCL_C_VERSION__
+    return exp(lgamma(a) + lgamma(b) - lgamma(a + b));
+#else
+    return std::exp(std::lgamma(a) + std::lgamma(b) - std::lgamma(a + b));
+#endif
+}
+
+/* One sample of the reflected and transmitted fractions; u1, u2 in [0, 1). */
+BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, real ax, real ay, real eta, int correlated, real u1, real u2) {
+    bb_rt out;
+    bb_vec3 wh = bb_ggx_sample_vndf(wo, ax, ay, u1, u2);
+    real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
+    real f = bb_fresnel_dielectric(c, eta);
+    real g1o = bb_ggx_g1(wo, ax, ay);
+    real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
+
+    bb_vec3 wr = bb_reflect(wo, wh);
+    real g2r = bb_select(bb_ggx_g2_separable(wo, wr, ax, ay), bb_ggx_g2_correlated(wo, wr, ax, ay), correlated != 0);
+    out.r = bb_select(BB_R(0.0), f * g2r * inv_g1o, wr.z > BB_R(0.0) && g1o > BB_R(0.0));
+
+    bb_vec3 wt = bb_refract(wo, wh, c, eta);
+    bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
+    real g1t = bb_ggx_g1(wt_up, ax, ay);
+    real lo = bb_ggx_lambda(wo, ax, ay), lt = bb_ggx_lambda(wt_up, ax, ay);
+    real corr_t = bb_select(BB_R(0.0), bb_beta(BB_R(1.0) + lo, BB_R(1.0) + lt), g1o > BB_R(0.0) && g1t > BB_R(0.0));
+    real g2t = bb_select(g1o * g1t, corr_t, correlated != 0);
+    out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t * inv_g1o, wt.z < BB_R(0.0) && g1o > BB_R(0.0));
+    return out;
+}
+
+#endif /* BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H */

@@ -1,0 +1,140 @@
+// Rough dielectric interface: smooth limit against the Fresnel equations, energy bounds,
+// reciprocity between the two sides, and independent quadrature of R and T.
+#include <catch2/catch.hpp>
+
+#include <boost/math/quadrature/gauss.hpp>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/lut.h"
+#include "reference.h"
+#include "support.h"
+
+using namespace brdfbake;
+
+namespace {
+
+// Unpolarised Fresnel reflectance of a dielectric (Born & Wolf 1.5.2), textbook form.
+double fresnel(double cos_i, double eta) {
+    const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1) return 1.0;
+    const double cos_t = std::sqrt(1 - sin2_t);
+    const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
+DielectricResult run(const std::vector<DielectricCell>& cells, std::uint64_t samples = 1 << 18) {
+    DielectricRequest r;
+    r.cells = cells;
+    r.samples = samples;
+    return compute_dielectric(testing::engine(), r);
+}
+
+// Reference R and T from Walter et al. 2007 written in half-vector space: the visible-normal
+// density G1(wo) D(h) (wo.h) / cos_o times the energy split F / 1 - F at each microfacet, times
+// the height-correlated G2 / G1(wo) of the outgoing direction (Heitz 2014 eq. 99, 100).
+void reference_rt(double mu, double alpha, double eta, double& r, double& t) {
+    const ref::Dir wo = ref::dir_mu(mu, 0.0);
+    auto split = [&](bool transmit) {
+        return ref::integrate_facing(
+            [&](double th, double ph) -> double {
+                const ref::Dir h = ref::dir(th, ph);
+                const double c = double(ref::dot(wo, h));
+                const double F = fresnel(c, eta);
+                const double lo = double(ref::ggx_lambda(wo, alpha, alpha));
+                const double vis = double(ref::ggx_d(h, alpha, alpha)) * c / mu;  // D (wo.h) / cos_o
+                if (!transmit) {
+                    const ref::Dir wi = ref::reflect(wo, h);
+                    if (wi.z <= 0) return 0.0;
+                    return vis * F / (1 + lo + double(ref::ggx_lambda(wi, alpha, alpha)));
+                }
+                const double sin2_t = (1 - c * c) / (eta * eta);
+                if (sin2_t >= 1) return 0.0;
+                const double cos_t = std::sqrt(1 - sin2_t);
+                const ref::Dir wt = {-wo.x / eta + (c / eta - cos_t) * h.x, -wo.y / eta + (c / eta - cos_t) * h.y,
+                                     -wo.z / eta + (c / eta - cos_t) * h.z};
+                if (wt.z >= 0) return 0.0;
+                const double lt = double(ref::ggx_lambda({wt.x, wt.y, -wt.z}, alpha, alpha));
+                return vis * (1 - F) * std::tgamma(1 + lo) * std::tgamma(1 + lt) / std::tgamma(2 + lo + lt);
+            },
+            mu, 0.0, M_PI / 2, 1e-7);
+    };
+    r = split(false);
+    t = split(true);
+}
+
+}  // namespace
+
+TEST_CASE("a nearly smooth dielectric reflects F and transmits 1 - F from both sides", "[dielectric][device]") {
+    std::vector<DielectricCell> cells;
+    const std::vector<double> mus = {0.2, 0.5, 0.8, 1.0};
+    for (double eta : {1.5, 1 / 1.5, 1.0001, 3.0})
+        for (double mu : mus) cells.push_back({mu, 1e-3, eta});
+    const DielectricResult res = run(cells, 1 << 16);
+    for (size_t k = 0; k < cells.size(); ++k) {
+        const double F = fresnel(cells[k].mu, cells[k].eta);
+        INFO("mu " << cells[k].mu << " eta " << cells[k].eta << " R " << res.reflected[k].value << " T "
+                   << res.transmitted[k].value << " F " << F);
+        // Roughness 1e-3 changes the result by far less than 1e-3.
+        CHECK(std::fabs(res.reflected[k].value - F) <= 1e-3 + res.reflected[k].error);
+        CHECK(std::fabs(res.transmitted[k].value - (1 - F)) <= 1e-3 + res.transmitted[k].error);
+    }
+}
+
+TEST_CASE("rough dielectric R and T match independent quadrature", "[dielectric][device]") {
+    const std::vector<DielectricCell> cells = {{0.5, 0.3, 1.5}, {0.9, 0.6, 1 / 1.5}, {0.3, 0.1, 1.33}};
+    const DielectricResult res = run(cells);
+    for (size_t k = 0; k < cells.size(); ++k) {
+        double r, t;
+        reference_rt(cells[k].mu, cells[k].alpha, cells[k].eta, r, t);
+        INFO("cell " << k << ": R " << res.reflected[k].value << " vs " << r << ", T " << res.transmitted[k].value
+                     << " vs " << t);
+        CHECK(std::fabs(res.reflected[k].value - r) <= res.reflected[k].error);
+        CHECK(std::fabs(res.transmitted[k].value - t) <= res.transmitted[k].error);
+        CHECK(std::fabs(res.transmitted[k].value - t) <= 1e-4);
+    }
+}
+
+TEST_CASE("dielectric table: R + T <= 1, and the two sides are reciprocal", "[dielectric][device]") {
+    LutRequest lr;
+    lr.kind = "dielectric";
+    lr.model = "ggx";
+    lr.width = 6;
+    lr.height = 3;
+    lr.depth = 3;
+    lr.samples = 1 << 14;
+    const Table t = compute_lut(testing::engine(), lr);
+    REQUIRE(t.channels == std::vector<std::string>{"R", "T", "R_inside", "T_inside"});
+    REQUIRE(t.image_height() == 9);
+    for (size_t k = 0; k < t.error.size(); ++k) {
+        CHECK(t.values[0][k] + t.values[1][k] <= 1 + 2 * t.error[k]);
+        CHECK(t.values[2][k] + t.values[3][k] <= 1 + 2 * t.error[k]);
+        for (int c = 0; c < 4; ++c) CHECK(t.values[c][k] >= 0.0);
+    }
+    // Reciprocity of the BTDF, f_t(i, o) / eta_o^2 = f_t(o, i) / eta_i^2, integrated over both
+    // hemispheres: the hemispherical transmittance seen from outside equals eta^2 times that seen
+    // from inside.
+    using G = boost::math::quadrature::gauss<double, 20>;
+    for (double alpha : {0.2, 0.7}) {
+        const double eta = 1.5;
+        std::vector<DielectricCell> cells;
+        std::vector<double> w;
+        for (size_t i = 0; i < G::abscissa().size(); ++i)
+            for (int s : {-1, 1}) {
+                const double mu = 0.5 + 0.5 * s * G::abscissa()[i];
+                cells.push_back({mu, alpha, eta});
+                cells.push_back({mu, alpha, 1 / eta});
+                w.push_back(G::weights()[i]);  // 0.5 (interval) x 2 (definition of the average)
+            }
+        const DielectricResult res = run(cells, 1 << 16);
+        double out = 0, in = 0, err = 0;
+        for (size_t i = 0; i < w.size(); ++i) {
+            const double mu = cells[2 * i].mu;
+            out += w[i] * mu * res.transmitted[2 * i].value;
+            in += w[i] * mu * res.transmitted[2 * i + 1].value;
+            err += w[i] * mu * (res.transmitted[2 * i].error + eta * eta * res.transmitted[2 * i + 1].error);
+        }
+        INFO("alpha " << alpha << ": outside " << out << ", eta^2 inside " << eta * eta * in << " +- " << err);
+        CHECK(std::fabs(out - eta * eta * in) <= err + 1e-4);
+    }
+}
