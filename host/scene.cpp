@@ -499,7 +499,10 @@ int integrations(const std::string& kind, const std::string& fresnel, double wav
 
 /// Samples per second the estimates assume: PoCL on one core of the development machine (AMD
 /// EPYC, float, GGX importance sampling; docs/scenes.md) times the hardware threads.
-constexpr double kSamplesPerSecondPerCore = 1.2e7;
+constexpr double kSamplesPerSecondPerCore = 1.0e7;
+
+/// A cold kernel build and first launch on PoCL (docs/scenes.md: 0.35 to 0.55 s for GGX).
+constexpr double kSecondsPerProgram = 0.5;
 
 }  // namespace
 
@@ -517,14 +520,10 @@ Plan make_plan(const Scene& scene) {
     plan.source = scene.source;
     plan.warnings = scene.warnings;
     plan.settings = s;
+    plan.materials = scene.materials;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     plan.samples_per_second = kSamplesPerSecondPerCore * cores;
-    {
-        std::ostringstream b;
-        b << cores << " hardware threads x " << kSamplesPerSecondPerCore
-          << " samples/s (PoCL, one core, float, GGX importance sampling; measured, docs/scenes.md)";
-        plan.throughput_basis = b.str();
-    }
+    plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.0e7 (PoCL, float, measured; docs/scenes.md)";
 
     // Group the needs: one table per (kind, model, Fresnel in the table).
     struct Group {
@@ -682,6 +681,20 @@ Plan make_plan(const Scene& scene) {
             plan.models.push_back(g.model_name);
         plan.tables.push_back(std::move(t));
     }
+    // Programs: one albedo kernel per (model, Fresnel kind) and one dielectric kernel per model.
+    std::set<std::string> programs;
+    for (const auto& t : plan.tables) {
+        const std::string& k = t.request.kind;
+        const std::string m = t.request.model;
+        if (k == "albedo" || k == "eavg") programs.insert("albedo|" + m + "|none");
+        else if (k == "dfg" || k == "dfg-ms") {
+            programs.insert("albedo|" + m + "|none");
+            programs.insert("albedo|" + m + "|schlick");
+        } else if (k == "conductor") programs.insert("albedo|" + m + "|" + fresnel_name(t.request.fresnel));
+        else programs.insert(k + "|" + m);
+    }
+    plan.programs = int(programs.size());
+    plan.build_seconds = kSecondsPerProgram * plan.programs;
     return plan;
 }
 
@@ -780,6 +793,20 @@ std::string plan_text(const Plan& p) {
         peak_mem = std::max(peak_mem, double(t.est_memory));
         disk += double(t.file_bytes);
     }
+    o << "\nmaterials:\n";
+    for (const auto& m : p.materials) {
+        if (m.lobes.empty()) continue;
+        o << "  " << m.name << ":";
+        for (const auto& l : m.lobes) {
+            o << " " << l.role << " (" << l.model_name << ", alpha " << short_num(l.alpha.lo)
+              << (l.alpha.lo == l.alpha.hi ? "" : ".." + short_num(l.alpha.hi));
+            if (l.eta) o << ", eta " << short_num(l.eta->lo) << (l.eta->lo == l.eta->hi ? "" : ".." + short_num(l.eta->hi));
+            o << ", Fresnel " << l.fresnel << ")";
+            if (&l != &m.lobes.back()) o << ";";
+        }
+        o << "\n";
+        for (const auto& n : m.notes) o << "      " << n << "\n";
+    }
     if (!p.no_table.empty()) {
         o << "\nno table needed:\n";
         for (const auto& m : p.no_table) o << "  " << m << "\n";
@@ -789,8 +816,11 @@ std::string plan_text(const Plan& p) {
         for (const auto& w : p.warnings) o << "  warning: " << w << "\n";
     }
     o << "\ntotal: " << p.tables.size() << " tables, " << human_count(total_samples) << " samples, about "
-      << human_seconds(total_s) << " at " << human_count(p.samples_per_second) << " samples/s (" << p.throughput_basis
-      << "), peak memory " << human_bytes(peak_mem) << ", " << human_bytes(disk) << " on disk\n";
+      << human_seconds(total_s + p.build_seconds) << " (" << human_seconds(total_s) << " integrating at "
+      << human_count(p.samples_per_second) << " samples/s: " << p.throughput_basis << "; "
+      << human_seconds(p.build_seconds) << " for " << p.programs << " kernel build" << (p.programs == 1 ? "" : "s")
+      << ", cached by PoCL after the first run), peak memory " << human_bytes(peak_mem) << ", " << human_bytes(disk)
+      << " on disk\n";
     return o.str();
 }
 
@@ -839,9 +869,23 @@ std::string plan_json(const Plan& p) {
         total_s += t.est_seconds;
         total_samples += double(t.samples_total);
     }
+    j["materials"] = nlohmann::ordered_json::array();
+    for (const auto& m : p.materials) {
+        nlohmann::ordered_json lobes = nlohmann::ordered_json::array();
+        for (const auto& l : m.lobes) {
+            nlohmann::ordered_json x = {{"role", l.role}, {"model", l.model}, {"fresnel", l.fresnel},
+                                        {"alpha_range", {l.alpha.lo, l.alpha.hi}}, {"kinds", l.kinds}};
+            if (l.eta) x["eta_range"] = {l.eta->lo, l.eta->hi};
+            lobes.push_back(x);
+        }
+        j["materials"].push_back({{"name", m.name}, {"lobes", lobes}, {"notes", m.notes}});
+    }
     j["no_table"] = p.no_table;
     j["warnings"] = p.warnings;
-    j["estimate"] = {{"seconds", total_s},
+    j["estimate"] = {{"seconds", total_s + p.build_seconds},
+                     {"integration_seconds", total_s},
+                     {"kernel_programs", p.programs},
+                     {"kernel_build_seconds", p.build_seconds},
                      {"samples", total_samples},
                      {"samples_per_second", p.samples_per_second},
                      {"basis", p.throughput_basis}};

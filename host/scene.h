@@ -107,8 +107,11 @@ struct Plan {
     std::string source;
     std::vector<PlannedTable> tables;
     std::vector<std::string> models;          // models whose kernels the bake builds
+    std::vector<SceneMaterial> materials;     // the scene's materials, as mapped
     std::vector<std::string> no_table;        // materials that need no table
     std::vector<std::string> warnings;
+    int programs = 0;                         // kernel programs the bake builds (model x Fresnel kind)
+    double build_seconds = 0.0;               // estimated kernel build time (first run; PoCL caches)
     double samples_per_second = 0.0;          // throughput the estimates assume
     std::string throughput_basis;             // where that number comes from
     SceneSettings settings;

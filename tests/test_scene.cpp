@@ -19,6 +19,7 @@
 
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
+#include "brdfbake/spec.h"
 #include "scene.h"
 #include "support.h"
 
@@ -152,8 +153,27 @@ TEST_CASE("materials that can share a table share it; model, shadowing and kind 
     std::set<std::string> files;
     for (const auto& t : plan.tables) files.insert(t.file);
     CHECK(files.size() == plan.tables.size());
-    // a delta lobe and a model without roughness need none; the latter is named in a warning
+    CHECK(plan.no_table.size() == 1);
+    CHECK(plan.warnings.size() == (lut_kind_available("dielectric") ? 0u : 1u));
+}
+
+TEST_CASE("delta lobes need no table; models without a roughness axis are named in a warning", "[scene][quick]") {
+    const auto names = model_names();
+    for (const char* needed : {"mirror", "oren-nayar"})
+        if (std::find(names.begin(), names.end(), needed) == names.end()) {
+            WARN("this build has no model '" << needed << "'");
+            return;
+        }
+    const Scene scene = parse_scene_json(R"({"materials": [
+        {"name": "mirror", "model": "mirror", "fresnel": "schlick:f0=0.9"},
+        {"name": "skin", "model": "oren-nayar:sigma=0.3"},
+        {"name": "gold", "model": "ggx", "fresnel": "metal:Au", "alpha": 0.2}]})",
+                                         "inline.json");
+    const Plan plan = make_plan(scene);
+    CHECK(plan.tables.size() == 2);
+    CHECK(plan.models == std::vector<std::string>{"ggx"});
     CHECK(plan.no_table.size() == 2);
+    CHECK(contains(plan.no_table, "mirror (mirror: delta lobe"));
     CHECK(contains(plan.warnings, "material 'skin': model 'oren-nayar' is not modelled"));
 }
 
