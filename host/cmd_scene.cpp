@@ -455,12 +455,15 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
 
         json axes = json::array({axis_json(table.x)});
         if (table.height() > 1 || r.kind != "eavg") axes.push_back(axis_json(table.y));
+        if (table.depth() > 1 || r.kind == "dielectric") axes.push_back(axis_json(table.z));
         json e = {{"file", t.file},
                   {"kind", r.kind},
                   {"quantity", table.quantity},
                   {"model", r.model},
                   {"fresnel", r.fresnel},
-                  {"size", std::to_string(table.width()) + "x" + std::to_string(table.height())},
+                  {"size", std::to_string(table.width()) + "x" + std::to_string(table.height()) +
+                               (r.kind == "dielectric" ? "x" + std::to_string(table.depth()) : "")},
+                  {"layout", table.depth() > 1 ? "z-slices stacked along y" : "2D"},
                   {"axes", axes},
                   {"channels", table.channels},
                   {"error_channel", "estimated absolute error per texel"},
@@ -474,8 +477,6 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                   {"request_hash", t.hash},
                   {"request", t.key},
                   {"seconds", std::round(seconds * 1000) / 1000}};
-        if (r.kind == "dielectric")
-            e["eta_axis"] = {{"lo", t.eta_lo}, {"hi", t.eta_hi}, {"size", t.depth}, {"stacked", "along y"}};
         if (t.eta) e["eta_range"] = {t.eta->lo, t.eta->hi};
         if (r.wavelength_nm > 0) e["wavelength_nm"] = r.wavelength_nm;
         // Keep the index in plan order, and written after every table: an interrupted bake

@@ -420,20 +420,6 @@ bool lut_kind_available(const std::string& kind) {
 
 namespace {
 
-// LutRequest gains an eta axis (eta_lo, eta_hi, depth) with the dielectric kind; until then a
-// request cannot carry one. Detected at compile time so that this file builds either way.
-template <typename R>
-auto set_eta(R& r, double lo, double hi, int depth, int) -> decltype(r.eta_lo = lo, r.eta_hi = hi, r.depth = depth, bool()) {
-    r.eta_lo = lo;
-    r.eta_hi = hi;
-    r.depth = depth;
-    return true;
-}
-template <typename R>
-bool set_eta(R&, double, double, int, long) {
-    return false;
-}
-
 /// Axis of `n` texels whose first and last texel centres fall on c_lo and c_hi (a single value
 /// gets one texel centred on it). Returns {lo, hi, n} of the coordinate range.
 struct AxisPlan {
@@ -508,8 +494,9 @@ constexpr double kSecondsPerProgram = 0.5;
 
 void apply_eta_axis(const PlannedTable& t, LutRequest& request) {
     if (t.request.kind != "dielectric") return;
-    if (!set_eta(request, t.eta_lo, t.eta_hi, t.depth, 0))
-        throw Error("table kind 'dielectric' needs an eta axis, which this build's tables do not have");
+    request.eta_lo = t.eta_lo;
+    request.eta_hi = t.eta_hi;
+    request.depth = t.depth;
 }
 
 Plan make_plan(const Scene& scene) {
@@ -634,10 +621,14 @@ Plan make_plan(const Scene& scene) {
             t.eta_lo = e.lo;
             t.eta_hi = e.hi;
             t.depth = e.n;
+            apply_eta_axis(t, r);
             t.cells *= std::uint64_t(t.depth) * 2;  // both sides of the interface
         }
         t.samples_total = t.cells * s.samples * integrations(g.kind, g.fresnel, g.wavelength);
-        t.est_seconds = double(t.samples_total) / plan.samples_per_second;
+        // A dielectric sample (microfacet normal, exact Fresnel, reflect or refract) costs about
+        // 3.5 albedo samples (measured: 22 M samples of examples/scene.gltf in 8.8 s against
+        // 4.7 M albedo samples in 0.7 s on the same machine).
+        t.est_seconds = double(t.samples_total) * (g.kind == "dielectric" ? 3.5 : 1.0) / plan.samples_per_second;
         const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
         const int channels = channel_count(g.kind, g.fresnel, g.wavelength) + 1;  // values + error
         // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while

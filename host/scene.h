@@ -85,7 +85,7 @@ void check_settings(const SceneSettings& s);
 /// One table of the plan.
 struct PlannedTable {
     std::string file;                    // file name inside the bake folder
-    LutRequest request;                  // without the eta axis (see eta_lo, eta_hi, depth)
+    LutRequest request;                  // eta axis: see eta_lo, eta_hi, depth and apply_eta_axis
     double eta_lo = 0.0, eta_hi = 0.0;   // eta axis of 3D kinds (dielectric)
     int depth = 1;
     Interval alpha;                      // the scene's merged alpha range (before texel padding)
@@ -124,8 +124,7 @@ Plan make_plan(const Scene& scene);
 std::string plan_text(const Plan& plan);
 std::string plan_json(const Plan& plan);
 
-/// Copies the eta axis of a planned table into the request where LutRequest has one; throws
-/// Error when this build's tables have no eta axis (the kind is not available).
+/// Copies the eta axis of a planned dielectric table into its request.
 void apply_eta_axis(const PlannedTable& t, LutRequest& request);
 
 /// Whether this build's compute_lut knows `kind`.

@@ -390,7 +390,10 @@ TEST_CASE("bake a rough glass: the dielectric table over the scene's eta", "[sce
     REQUIRE(index.at("tables").size() == 1);
     const auto& t = index["tables"][0];
     CHECK(t.at("kind") == "dielectric");
-    CHECK(t.at("eta_axis").at("size") == 1);
+    REQUIRE(t.at("axes").size() == 3);
+    CHECK(t.at("axes")[2].at("name") == "eta");
+    CHECK(t.at("axes")[2].at("size") == 1);
+    CHECK(t.at("channels").size() == 4);
     CHECK(t.at("max_error").get<double>() < 0.1);
     std::system(("rm -rf " + out).c_str());
 }
