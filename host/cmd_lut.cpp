@@ -8,6 +8,7 @@
 #include "brdfbake/lut.h"
 #include "brdfbake/output.h"
 #include "cli.h"
+#include "plot.h"
 
 namespace brdfbake {
 namespace {
@@ -21,6 +22,8 @@ struct LutOptions {
     std::string precision = "float";
     std::string method = "auto";
     bool half = false;
+    std::string preview;  // default: the output's name with .png
+    bool no_preview = false;
     std::string output;
 };
 
@@ -61,11 +64,17 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     r.samples = std::uint64_t(o.samples);
     r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
     check_table_path(o.output);
+    if (!o.preview.empty() && !is_plot_path(o.preview)) throw Error("--preview must end in .png or .svg");
     validate_lut(r);  // every input checked before the device is touched
 
     Engine engine(g.device, g.verbose);
     const Table table = compute_lut(engine, r);
     write_table(table, o.output, o.half);
+    if (!o.no_preview) {
+        std::string preview = o.preview;
+        if (preview.empty()) preview = o.output.substr(0, o.output.find_last_of('.')) + ".png";
+        write_table_preview(table, preview);
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "brdfbake: wrote %s: %s table %dx%dx%d (%s), max error %.2e, %.2f s\n", o.output.c_str(),
                  table.kind.c_str(), table.width(), table.height(), table.depth(), table.attributes.at("model").c_str(),
@@ -103,6 +112,8 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->capture_default_str();
     cmd->add_flag("--half", o->half, "store half-float EXR channels instead of float32");
     cmd->add_option("-o,--output", o->output, "output file: .exr, .csv or .h")->required();
+    cmd->add_option("--preview", o->preview, "preview picture (.png or .svg); default: the output name with .png");
+    cmd->add_flag("--no-preview", o->no_preview, "write no preview picture");
     cmd->callback([o, &global, &action] { action = [o, &global] { return run_lut(*o, global); }; });
 }
 

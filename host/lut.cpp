@@ -37,7 +37,7 @@ const char* const kRgbNames[3] = {"R", "G", "B"};
 /// A conductor table of a measured metal without --wavelength: one channel per RGB wavelength.
 bool rgb_default(const LutRequest& r) {
     if (r.kind != "conductor" || r.wavelength_nm != 0.0) return false;
-    const std::string name = parse_spec(r.fresnel).name;
+    const std::string name = r.fresnel.substr(0, r.fresnel.find(':'));
     return name == "metal" || name == "nk";
 }
 
@@ -159,8 +159,8 @@ void validate_lut(const LutRequest& r) {
             throw Error("--eta-range must satisfy 1 <= lo < hi <= 10 (the inside view uses 1/eta)");
     }
     if (r.kind == "conductor") {
-        const Spec fs = parse_spec(r.fresnel);
-        const bool measured = fs.name == "metal" || fs.name == "nk";
+        const std::string name = r.fresnel.substr(0, r.fresnel.find(':'));  // metal:Al is not key=value
+        const bool measured = name == "metal" || name == "nk";
         if (!(f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX || measured))
             throw Error("the conductor table needs a conductor Fresnel term: --fresnel conductor:eta=E,k=K, metal:Al or nk:FILE");
     }

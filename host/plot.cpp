@@ -142,9 +142,10 @@ void draw_heatmap(mglGraph& gr, const Heatmap& h) {
     gr.SetRange('c', zlo, zhi);
     gr.Dens(x, y, z, h.scheme.c_str());
     if (!h.colorbar_label.empty()) {
-        gr.Colorbar((h.scheme + ">").c_str());
+        // Outside the axes box, on the right (write_figure leaves room for it).
+        gr.Colorbar((h.scheme + "I>").c_str(), 1.06, 0.0, 1.0, 1.0);
         const std::string label = h.log_scale ? "log_{10} " + h.colorbar_label : h.colorbar_label;
-        gr.Puts(mglPoint(1.17, 1.05, 0), label.c_str(), ":CA", -0.9);
+        gr.Puts(mglPoint(1.1, 1.05, 0), label.c_str(), ":CA", -0.9);
     }
 }
 
@@ -171,11 +172,13 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     if (bx.empty()) throw Error("plot '" + p.title + "' (panel " + std::to_string(panel_index + 1) + ") has no finite data");
     double x0, x1, y0, y1;
     PlotAxis ax = p.x, ay = p.y;
-    if (p.heatmap.nx > 0) {  // a heatmap fills its box exactly
-        if (!std::isfinite(ax.lo)) ax.lo = p.heatmap.x_lo;
-        if (!std::isfinite(ax.hi)) ax.hi = p.heatmap.x_hi;
-        if (!std::isfinite(ay.lo)) ay.lo = p.heatmap.y_lo;
-        if (!std::isfinite(ay.hi)) ay.hi = p.heatmap.y_hi;
+    if (p.heatmap.nx > 0) {  // a heatmap fills its box: from the first to the last cell centre
+        const Heatmap& h = p.heatmap;
+        const double hx = 0.5 * (h.x_hi - h.x_lo) / h.nx, hy = 0.5 * (h.y_hi - h.y_lo) / h.ny;
+        if (!std::isfinite(ax.lo)) ax.lo = h.x_lo + (h.nx > 1 ? hx : 0.0);
+        if (!std::isfinite(ax.hi)) ax.hi = h.x_hi - (h.nx > 1 ? hx : 0.0);
+        if (!std::isfinite(ay.lo)) ay.lo = h.y_lo + (h.ny > 1 ? hy : 0.0);
+        if (!std::isfinite(ay.hi)) ay.hi = h.y_hi - (h.ny > 1 ? hy : 0.0);
     }
     resolve_range(ax, bx, x0, x1);
     resolve_range(ay, by, y0, y1);
@@ -253,7 +256,9 @@ void write_figure(const std::string& path, const Figure& figure) {
         // leaves room for the y label on the left, the x label below and the title above.
         const double cw = 1.0 / cols, ch = 1.0 / rows;
         const double cx = cw * (i % cols), cy = 1.0 - ch * (i / cols + 1);
-        gr.InPlot(cx + 0.12 * cw, cx + 0.96 * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
+        const PlotSpec& panel = figure.panels[size_t(i)];
+        const double right = panel.heatmap.nx > 0 && !panel.heatmap.colorbar_label.empty() ? 0.82 : 0.96;
+        gr.InPlot(cx + 0.12 * cw, cx + right * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
         gr.SetFontSize(3.0);
         const PlotSpec& p = figure.panels[size_t(i)];
