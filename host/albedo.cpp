@@ -64,7 +64,8 @@ std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::
             sum += means[c * replicas + r];
         }
         if (n_bad > 0)
-            throw Error(where(c) + " (" + std::to_string(n_bad) + " samples); refusing to report a result");
+            throw NonFiniteError(where(c) + " (" + std::to_string(n_bad) + " samples); refusing to report a result", c,
+                                 n_bad);
         const double mean = sum / replicas;
         double ss = 0.0;
         for (unsigned r = 0; r < replicas; ++r) ss += std::pow(means[c * replicas + r] - mean, 2);

@@ -22,6 +22,9 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
 void add_devices_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_check_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_reciprocity_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_furnace_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_plan_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action);
 

@@ -26,6 +26,9 @@ int main(int argc, char** argv) {
     add_devices_command(app, global, action);
     add_fresnel_command(app, global, action);
     add_lut_command(app, global, action);
+    add_check_command(app, global, action);
+    add_reciprocity_command(app, global, action);
+    add_furnace_command(app, global, action);
     add_plan_command(app, global, action);
     add_bake_command(app, global, action);
 

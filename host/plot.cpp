@@ -117,7 +117,7 @@ void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<st
 }
 
 /// Draws the panel's heatmap (if any) and its colour bar; the ranges are already set.
-void draw_heatmap(mglGraph& gr, const Heatmap& h) {
+void draw_heatmap(mglGraph& gr, const Heatmap& h, double x0, double x1, double y0, double y1) {
     if (h.nx <= 0) return;
     const double below = -std::numeric_limits<double>::infinity();  // log of z <= 0
     mglData z(h.nx, h.ny), x(h.nx), y(h.ny);
@@ -145,7 +145,11 @@ void draw_heatmap(mglGraph& gr, const Heatmap& h) {
         // Outside the axes box, on the right (write_figure leaves room for it).
         gr.Colorbar((h.scheme + "I>").c_str(), 1.06, 0.0, 1.0, 1.0);
         const std::string label = h.log_scale ? "log_{10} " + h.colorbar_label : h.colorbar_label;
-        gr.Puts(mglPoint(1.1, 1.05, 0), label.c_str(), ":CA", -0.9);
+        gr.SetCut(false);
+        // Along the bar, right of its tick labels, reading upwards.
+        const double xl = x1 + 0.24 * (x1 - x0), ym = 0.5 * (y0 + y1);
+        gr.Puts(mglPoint(xl, ym), mglPoint(xl, ym + (y1 - y0)), label.c_str(), ":C", -0.9);
+        gr.SetCut(true);
     }
 }
 
@@ -191,7 +195,7 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
         gr.SetCut(true);
     }
     // Ticks counted from 0 (not from the range's lower end), so that they fall on round values.
-    draw_heatmap(gr, p.heatmap);
+    draw_heatmap(gr, p.heatmap, x0, x1, y0, y1);
     if (!p.axes) {
         for (const Curve& c : p.curves) gr.Plot(to_mgl(c.x), to_mgl(c.y), c.style.empty() ? "k-2" : c.style.c_str());
         return;
@@ -257,7 +261,7 @@ void write_figure(const std::string& path, const Figure& figure) {
         const double cw = 1.0 / cols, ch = 1.0 / rows;
         const double cx = cw * (i % cols), cy = 1.0 - ch * (i / cols + 1);
         const PlotSpec& panel = figure.panels[size_t(i)];
-        const double right = panel.heatmap.nx > 0 && !panel.heatmap.colorbar_label.empty() ? 0.82 : 0.96;
+        const double right = panel.heatmap.nx > 0 && !panel.heatmap.colorbar_label.empty() ? 0.78 : 0.96;
         gr.InPlot(cx + 0.12 * cw, cx + right * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
         gr.SetFontSize(3.0);

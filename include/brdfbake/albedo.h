@@ -6,6 +6,7 @@
 #include <vector>
 
 #include "brdfbake/engine.h"
+#include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 
 namespace brdfbake {
@@ -30,6 +31,15 @@ struct AlbedoRequest {
 struct AlbedoValue {
     double value = 0.0;
     double error = 0.0;  // estimated absolute error: 3 standard errors + floating-point bound
+};
+
+/// Thrown when a kernel produced NaN or Inf sample weights: nothing is reported for such a run.
+class NonFiniteError : public Error {
+public:
+    NonFiniteError(const std::string& message, size_t cell, std::uint64_t count)
+        : Error(message), cell(cell), count(count) {}
+    size_t cell;          // the first cell with non-finite samples
+    std::uint64_t count;  // how many of its samples were non-finite
 };
 
 struct AlbedoResult {
