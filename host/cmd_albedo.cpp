@@ -1,8 +1,10 @@
-// `brdfbake albedo`: directional albedo E(mu) of a model, each value with its error estimate.
+// `brdfbake albedo`: directional albedo E(mu) of one or more models, each value with its error
+// estimate, as a table, JSON or CSV, and optionally as a plot of E(mu) curves.
 #include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <map>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -13,12 +15,15 @@
 #include "brdfbake/spec.h"
 #include "cli.h"
 #include "key_reader.h"
+#include "plot.h"
 
 namespace brdfbake {
 namespace {
 
+constexpr double kDeg = 180.0 / M_PI;
+
 struct AlbedoOptions {
-    std::string model;
+    std::vector<std::string> models;
     std::string fresnel = "none";
     double wavelength_nm = 0.0;
     std::string mu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
@@ -28,86 +33,140 @@ struct AlbedoOptions {
     std::string precision = "float";
     std::string format = "table";
     std::string output;
+    std::string plot;
     std::uint64_t seed = 0x62726466u;
 };
 
-std::string render(const AlbedoOptions& o, const ModelConfig& model, const FresnelConfig& fresnel,
-                   const AlbedoRequest& req, const AlbedoResult& res, const Engine& engine, double seconds) {
-    const Format format = parse_format(o.format);
+/// One model's request and result.
+struct Run {
+    ModelConfig model;
+    AlbedoRequest request;
+    AlbedoResult result;
+};
+
+const char* kErrorMeaning = "3 standard errors of the replicas plus a floating-point bound";
+
+std::string render(Format format, const FresnelConfig& fresnel, const std::vector<Run>& runs, const Engine& engine,
+                   double seconds) {
     std::ostringstream out;
+    const Run& first = runs.front();
     if (format == Format::Json) {
         nlohmann::json j;
         j["command"] = "albedo";
-        j["model"] = model.canonical;
+        if (runs.size() == 1) j["model"] = first.model.canonical;
+        j["models"] = nlohmann::json::array();
+        for (const Run& r : runs) j["models"].push_back(r.model.canonical);
         j["fresnel"] = fresnel.canonical;
         j["method"] = "importance";
-        j["estimator"] = res.method;
-        j["precision"] = precision_name(req.precision);
-        j["samples"] = res.samples_per_cell;
-        j["error_meaning"] = "3 standard errors of the replicas plus a floating-point bound";
+        j["estimator"] = first.result.method;
+        j["precision"] = precision_name(first.request.precision);
+        j["samples"] = first.result.samples_per_cell;
+        j["error_meaning"] = kErrorMeaning;
         j["device"] = engine.device().name;
         j["seconds"] = seconds;
         j["results"] = nlohmann::json::array();
-        for (size_t i = 0; i < req.cells.size(); ++i)
-            j["results"].push_back({{"mu", req.cells[i].mu},
-                                    {"phi_deg", req.cells[i].phi * 180.0 / M_PI},
-                                    {"albedo", res.values[i].value},
-                                    {"error", res.values[i].error}});
+        for (const Run& r : runs)
+            for (size_t i = 0; i < r.request.cells.size(); ++i)
+                j["results"].push_back({{"model", r.model.canonical},
+                                        {"mu", r.request.cells[i].mu},
+                                        {"phi_deg", r.request.cells[i].phi * kDeg},
+                                        {"albedo", r.result.values[i].value},
+                                        {"error", r.result.values[i].error}});
         out << j.dump(2) << "\n";
-    } else if (format == Format::Csv) {
-        out << "mu,phi_deg,albedo,error\n";
-        char line[160];
-        for (size_t i = 0; i < req.cells.size(); ++i) {
-            std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.3e\n", req.cells[i].mu,
-                          req.cells[i].phi * 180.0 / M_PI, res.values[i].value, res.values[i].error);
-            out << line;
-        }
-    } else {
-        out << "# albedo of " << model.canonical << ", Fresnel " << fresnel.canonical << "\n"
-            << "# " << res.method << ", " << precision_name(req.precision) << ", " << res.samples_per_cell
-            << " samples per direction, " << engine.device().name << "\n"
-            << "# error: 3 standard errors + floating-point bound\n";
+        return out.str();
+    }
+    char line[256];
+    if (format == Format::Csv) {
+        out << (runs.size() > 1 ? "model," : "") << "mu,phi_deg,albedo,error\n";
+        for (const Run& r : runs)
+            for (size_t i = 0; i < r.request.cells.size(); ++i) {
+                std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.3e\n", r.request.cells[i].mu,
+                              r.request.cells[i].phi * kDeg, r.result.values[i].value, r.result.values[i].error);
+                out << (runs.size() > 1 ? "\"" + r.model.canonical + "\"," : "") << line;
+            }
+        return out.str();
+    }
+    for (const Run& r : runs) {
+        out << "# albedo of " << r.model.canonical << ", Fresnel " << fresnel.canonical << "\n"
+            << "# " << r.result.method << ", " << precision_name(r.request.precision) << ", "
+            << r.result.samples_per_cell << " samples per direction, " << engine.device().name << "\n"
+            << "# error: " << kErrorMeaning << "\n";
         out << "        mu   phi_deg       albedo      error\n";
-        char line[160];
-        for (size_t i = 0; i < req.cells.size(); ++i) {
-            std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e\n", req.cells[i].mu,
-                          req.cells[i].phi * 180.0 / M_PI, res.values[i].value, res.values[i].error);
+        for (size_t i = 0; i < r.request.cells.size(); ++i) {
+            std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e\n", r.request.cells[i].mu,
+                          r.request.cells[i].phi * kDeg, r.result.values[i].value, r.result.values[i].error);
             out << line;
         }
+        if (&r != &runs.back()) out << "\n";
     }
     return out.str();
+}
+
+void plot_runs(const std::string& path, const FresnelConfig& fresnel, const std::vector<Run>& runs) {
+    PlotSpec p;
+    p.title = "directional albedo E(\\mu)" + (fresnel.kind ? ", Fresnel " + fresnel.canonical : std::string());
+    p.x.label = "\\mu = cos \\theta_o";
+    p.y.label = "E(\\mu)";
+    p.x.lo = 0.0;
+    p.x.hi = 1.0;
+    p.legend = LegendPlace::BottomLeft;
+    for (const Run& r : runs) {
+        // One curve per model and azimuth.
+        std::map<double, Curve> by_phi;
+        for (size_t i = 0; i < r.request.cells.size(); ++i) {
+            Curve& c = by_phi[r.request.cells[i].phi];
+            c.x.push_back(r.request.cells[i].mu);
+            c.y.push_back(r.result.values[i].value);
+        }
+        for (auto& kv : by_phi) {
+            std::string label = r.model.canonical;
+            for (char& ch : label)
+                if (ch == '_') ch = ' ';  // MathGL reads _ as a subscript
+            if (by_phi.size() > 1) label += ", \\phi = " + format_number(std::round(kv.first * kDeg * 10) / 10);
+            kv.second.label = label;
+            p.curves.push_back(kv.second);
+        }
+    }
+    write_plot(path, p);
 }
 
 int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
     // Check every input before touching the device.
-    const ModelConfig model = resolve_model(o.model);
     const FresnelConfig fresnel = resolve_fresnel(o.fresnel, o.wavelength_nm);
-    parse_format(o.format);
-    if (fresnel.kind != 0 && !model.uses_fresnel)
-        throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
+    const Format format = parse_format(o.format);
+    if (!o.plot.empty() && !is_plot_path(o.plot)) throw Error("--plot must end in .png or .svg");
     const std::vector<double> mus = parse_number_list(o.mu, "--mu");
     for (double mu : mus)
         if (!(mu > 0.0 && mu <= 1.0))
             throw Error("--mu: " + format_number(mu) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
     const std::vector<double> phis = parse_number_list(o.phi, "--phi");
     if (o.samples <= 0) throw Error("--samples must be positive");
-
-    AlbedoRequest req;
-    req.model = model.id;
-    req.fresnel = fresnel;
-    req.samples = std::uint64_t(o.samples);
-    req.precision = o.precision == "double" ? Precision::Double : Precision::Float;
-    req.seed = o.seed;
-    for (double phi_deg : phis)
-        for (const auto& c : cells_for(mus, phi_deg * M_PI / 180.0, model.params)) req.cells.push_back(c);
+    std::vector<Run> runs;
+    for (const std::string& spec : o.models) {
+        Run r;
+        r.model = resolve_model(spec);
+        if (fresnel.kind != 0 && !r.model.uses_fresnel)
+            throw Error("model '" + r.model.name + "' has no Fresnel term; drop --fresnel");
+        r.request.model = r.model.id;
+        r.request.fresnel = fresnel;
+        r.request.samples = std::uint64_t(o.samples);
+        r.request.precision = o.precision == "double" ? Precision::Double : Precision::Float;
+        r.request.seed = o.seed;
+        for (double phi_deg : phis)
+            for (const auto& c : cells_for(mus, phi_deg / kDeg, r.model.params)) r.request.cells.push_back(c);
+        runs.push_back(std::move(r));
+    }
 
     Engine engine(g.device, g.verbose);
-    const AlbedoResult res = compute_albedo(engine, req);
+    for (Run& r : runs) {
+        r.result = compute_albedo(engine, r.request);
+        if (g.verbose)
+            std::cerr << "brdfbake: " << r.model.canonical << ": kernel " << r.result.kernel_seconds * 1e3 << " ms\n";
+    }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
-    if (g.verbose)
-        std::cerr << "brdfbake: kernel " << res.kernel_seconds * 1e3 << " ms, total " << seconds * 1e3 << " ms\n";
-    emit(o.output, render(o, model, fresnel, req, res, engine, seconds));
+    if (!o.plot.empty()) plot_runs(o.plot, fresnel, runs);
+    emit(o.output, render(format, fresnel, runs, engine, seconds));
     return kExitOk;
 }
 
@@ -116,19 +175,28 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     auto o = std::make_shared<AlbedoOptions>();
     CLI::App* cmd = app.add_subcommand("albedo", "directional albedo E(mu_o) = integral of f cos(theta_i) dwi");
-    cmd->add_option("--model", o->model, "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8")->required();
-    cmd->add_option("--fresnel", o->fresnel, "Fresnel spec: none, schlick:f0=F0")->capture_default_str();
+    cmd->add_option("--model", o->models,
+                    "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8; repeat it to compare models")
+        ->required();
+    cmd->add_option("--fresnel", o->fresnel,
+                    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
+                    "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml")
+        ->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
     cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
     cmd->add_option("--phi", o->phi, "comma-separated phi_o in degrees (anisotropic models)")->capture_default_str();
     cmd->add_option("--samples", o->samples, "samples per direction")->capture_default_str();
-    cmd->add_option("--method", o->method, "integration method")->capture_default_str()
-        ->check(CLI::IsMember({"auto", "importance"}));
-    cmd->add_option("--precision", o->precision, "kernel arithmetic")->capture_default_str()
-        ->check(CLI::IsMember({"float", "double"}));
-    cmd->add_option("--format", o->format, "output format")->capture_default_str()
-        ->check(CLI::IsMember({"table", "json", "csv"}));
+    cmd->add_option("--method", o->method, "integration method")
+        ->check(CLI::IsMember({"auto", "importance"}))
+        ->capture_default_str();
+    cmd->add_option("--precision", o->precision, "kernel arithmetic")
+        ->check(CLI::IsMember({"float", "double"}))
+        ->capture_default_str();
+    cmd->add_option("--format", o->format, "output format")
+        ->check(CLI::IsMember({"table", "json", "csv"}))
+        ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
+    cmd->add_option("--plot", o->plot, "draw E(mu) curves, one per model (and phi), into FILE.png or .svg");
     cmd->add_option("--seed", o->seed, "seed of the randomised point sets")->capture_default_str();
     cmd->callback([o, &global, &action] { action = [o, &global] { return run_albedo(*o, global); }; });
 }

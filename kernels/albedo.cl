@@ -27,9 +27,13 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
     const unsigned int rep = gid - cell * n_replicas;
 
     bb_params p, fp;
+    /* A non-finite parameter would hide behind the models' guards (x > 0 is false for NaN) and
+     * turn into zero weights: count every sample of such a cell as non-finite instead. */
+    unsigned int params_ok = 1;
     for (int k = 0; k < BB_MAX_PARAMS; ++k) {
         p.v[k] = model_p[cell * BB_MAX_PARAMS + k];
         fp.v[k] = fresnel_p[k];
+        params_ok &= (unsigned int)(isfinite(p.v[k]) && isfinite(fp.v[k]));
     }
     const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], cell_phi[cell]);
     const real s1 = shifts[2 * rep], s2 = shifts[2 * rep + 1];
@@ -49,5 +53,5 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
         sum = t;
     }
     replica_mean[gid] = sum / (real)n_points;
-    bad_count[gid] = bad;
+    bad_count[gid] = params_ok ? bad : n_points;
 }

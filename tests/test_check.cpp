@@ -1,0 +1,123 @@
+// Validation: the white furnace, reciprocity and value scans, their verdicts and exit codes,
+// and the pictures they draw.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/brdf/ggx.h"
+#include "brdfbake/check.h"
+#include "support.h"
+
+using namespace brdfbake;
+
+namespace {
+
+CheckReport check(const std::string& spec, const std::string& fresnel = "none") {
+    CheckOptions o;
+    o.directions = 16;
+    o.samples = 1 << 14;
+    o.resolution = 16;
+    o.phi_resolution = 16;
+    return run_check(testing::engine(), resolve_model(spec), resolve_fresnel(fresnel), o);
+}
+
+bool non_empty_file(const std::string& path) {
+    struct stat st {};
+    return ::stat(path.c_str(), &st) == 0 && st.st_size > 0;
+}
+
+std::string tmp(const std::string& name) { return "/tmp/brdfbake-check-" + std::to_string(::getpid()) + "-" + name; }
+
+}  // namespace
+
+TEST_CASE("energy-conserving reciprocal models pass the check", "[check][device]") {
+    for (const char* spec : {"lambert:rho=1", "ggx:alpha=0.3", "ggx:alpha=0.3,shadowing=separable",
+                             "ggx:alpha_x=0.05,alpha_y=0.7", "ggx:alpha=1"}) {
+        const CheckReport r = check(spec);
+        INFO(spec << ": max E " << r.max_albedo << " +- " << r.max_albedo_error << ", reciprocity " << r.max_rel);
+        CHECK(r.passed());
+        CHECK(r.max_albedo <= 1.0 + r.max_albedo_error);
+        CHECK(r.max_rel <= 1e-12);
+        CHECK(r.nonfinite == 0);
+        CHECK(r.min_value >= 0.0);
+    }
+    // With a conductor's Fresnel term the albedo only drops.
+    CHECK(check("ggx:alpha=0.3", "schlick:f0=0.9").passed());
+}
+
+TEST_CASE("a Lambertian surface with rho > 1 is found to create energy", "[check][device]") {
+    const CheckReport r = check("lambert:rho=1.01");
+    CHECK(r.energy_violation);
+    CHECK_FALSE(r.passed());
+    CHECK(r.max_albedo == Approx(1.01).margin(1e-5));
+}
+
+TEST_CASE("a NaN reaching a kernel is caught, not reported as a value", "[check][device]") {
+    // Bypass the spec checks: an alpha of NaN reaches the kernel.
+    ModelConfig m = resolve_model("ggx:alpha=0.5");
+    m.params[BB_GGX_ALPHA_X] = m.params[BB_GGX_ALPHA_Y] = std::nan("");
+    const FresnelConfig f = resolve_fresnel("none");
+    AlbedoRequest req;
+    req.model = m.id;
+    req.fresnel = f;
+    req.cells = cells_for({0.5}, 0.0, m.params);
+    req.samples = 1 << 10;
+    CHECK_THROWS_AS(compute_albedo(testing::engine(), req), NonFiniteError);
+    CheckOptions o;
+    o.directions = 4;
+    o.samples = 1 << 10;
+    o.resolution = 8;
+    o.phi_resolution = 8;
+    const CheckReport r = run_check(testing::engine(), m, f, o);
+    CHECK(r.value_violation);
+    CHECK(r.nonfinite > 0);
+    CHECK_FALSE(r.passed());
+    // alpha = 0 is a mirror: its importance samples stay finite, but f itself is 1/0 off the
+    // specular direction, which the value scan catches.
+    m.params[BB_GGX_ALPHA_X] = m.params[BB_GGX_ALPHA_Y] = 0.0;
+    const CheckReport z = run_check(testing::engine(), m, f, o);
+    CHECK(z.value_violation);
+    CHECK(z.nonfinite > 0);
+}
+
+TEST_CASE("check exits 0 on a pass, 1 on a violation, 2 on bad input", "[check][cli]") {
+    const auto pass = testing::run_cli("check --model ggx:alpha=0.5 --directions 8 --samples 4096 --format json");
+    CHECK(pass.status == 0);
+    const auto j = nlohmann::json::parse(pass.out);
+    CHECK(j.at("passed").get<bool>());
+    CHECK(j.at("reciprocity").at("max_relative_error").get<double>() == 0.0);
+    CHECK(j.at("energy").at("max_albedo").get<double>() < 1.0);
+
+    const auto gain = testing::run_cli("check --model lambert:rho=1.2 --directions 8 --samples 4096");
+    CHECK(gain.status == 1);
+    CHECK(gain.out.find("energy       FAIL") != std::string::npos);
+    CHECK(gain.out.find("verdict: VIOLATION") != std::string::npos);
+
+    const auto bad = testing::run_cli("check --model ggx:alpha=-1");
+    CHECK(bad.status == 2);
+    CHECK(bad.err.rfind("brdfbake: error: ", 0) == 0);
+}
+
+TEST_CASE("reciprocity writes its map as EXR and heatmap; furnace and albedo draw their pictures",
+          "[check][cli]") {
+    const std::string exr = tmp("recip.exr"), png = tmp("recip.png"), furnace = tmp("furnace.png"),
+                      curves = tmp("albedo.png");
+    auto r = testing::run_cli("reciprocity --model ggx:alpha=0.4 --resolution 16 --phi-resolution 8 -o " + exr +
+                              " --plot " + png);
+    CHECK(r.status == 0);
+    CHECK(non_empty_file(exr));
+    CHECK(non_empty_file(png));
+    r = testing::run_cli("furnace --model ggx --roughness 0.2,0.8 --pixels 32 --nodes 8 --samples 1024 -o " + furnace);
+    CHECK(r.status == 0);
+    CHECK(non_empty_file(furnace));
+    r = testing::run_cli("albedo --model ggx:alpha=0.2 --model ggx:alpha=0.8 --samples 1024 --plot " + curves);
+    CHECK(r.status == 0);
+    CHECK(non_empty_file(curves));
+    for (const auto& p : {exr, png, furnace, curves}) std::remove(p.c_str());
+    CHECK(testing::run_cli("albedo --model ggx:alpha=0.2 --plot out.gif").status == 2);
+    CHECK(testing::run_cli("reciprocity --model ggx:alpha=0.2").status == 2);
+    CHECK(testing::run_cli("furnace --model ggx --roughness 0.1 --model lambert -o x.png").status == 2);
+}
