@@ -66,7 +66,7 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
     Engine engine(g.device, g.verbose);
     Figure fig;
     fig.panel_width = a.pixels * 2;
-    fig.panel_height = a.pixels * 2 + 40;
+    fig.panel_height = int(std::lround(fig.panel_width * 0.94 / 0.86));  // square spheres (see write_figure)
     std::vector<double> mus;
     for (int k = 0; k < a.nodes; ++k) mus.push_back(std::pow((k + 0.5) / a.nodes, 2));
     for (size_t mi = 0; mi < models.size(); ++mi) {

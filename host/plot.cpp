@@ -176,7 +176,12 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     if (bx.empty()) throw Error("plot '" + p.title + "' (panel " + std::to_string(panel_index + 1) + ") has no finite data");
     double x0, x1, y0, y1;
     PlotAxis ax = p.x, ay = p.y;
-    if (p.heatmap.nx > 0) {  // a heatmap fills its box: from the first to the last cell centre
+    if (p.heatmap.nx > 0 && !p.axes) {  // a picture: the whole grid
+        ax.lo = p.heatmap.x_lo;
+        ax.hi = p.heatmap.x_hi;
+        ay.lo = p.heatmap.y_lo;
+        ay.hi = p.heatmap.y_hi;
+    } else if (p.heatmap.nx > 0) {  // a heatmap fills its box: from the first to the last cell centre
         const Heatmap& h = p.heatmap;
         const double hx = 0.5 * (h.x_hi - h.x_lo) / h.nx, hy = 0.5 * (h.y_hi - h.y_lo) / h.ny;
         if (!std::isfinite(ax.lo)) ax.lo = h.x_lo + (h.nx > 1 ? hx : 0.0);
@@ -262,7 +267,10 @@ void write_figure(const std::string& path, const Figure& figure) {
         const double cx = cw * (i % cols), cy = 1.0 - ch * (i / cols + 1);
         const PlotSpec& panel = figure.panels[size_t(i)];
         const double right = panel.heatmap.nx > 0 && !panel.heatmap.colorbar_label.empty() ? 0.78 : 0.96;
-        gr.InPlot(cx + 0.12 * cw, cx + right * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
+        if (panel.axes)
+            gr.InPlot(cx + 0.12 * cw, cx + right * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
+        else  // a picture: only the title needs room
+            gr.InPlot(cx + 0.03 * cw, cx + 0.97 * cw, cy + 0.02 * ch, cy + 0.88 * ch, false);
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
         gr.SetFontSize(3.0);
         const PlotSpec& p = figure.panels[size_t(i)];
