@@ -27,5 +27,6 @@ void add_reciprocity_command(CLI::App& app, const GlobalOptions& global, Action&
 void add_furnace_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_plan_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace brdfbake

@@ -31,6 +31,7 @@ int main(int argc, char** argv) {
     add_furnace_command(app, global, action);
     add_plan_command(app, global, action);
     add_bake_command(app, global, action);
+    add_bench_command(app, global, action);
 
     // A first word that is neither an option nor a command gets its own message.
     if (argc > 1 && argv[1][0] != '-') {
