@@ -4,6 +4,7 @@
 
 #include <cerrno>
 #include <cmath>
+#include <cstdio>
 #include <cstdlib>
 #include <functional>
 
@@ -55,6 +56,33 @@ constexpr Range kPositive{0.0, 1e300, true};
 constexpr Range kAlpha{BB_ALPHA_MIN, 10.0};
 constexpr Range kRoughness{0.01, 3.1622776601683795};  // roughness^2 within kAlpha
 
+constexpr Range kExponent{0.0, 1e4};         // Phong/Blinn exponents: finite in float up to 1e4
+constexpr Range kSpecular{0.0, 1e4};         // ks (phong-original needs (n+1)/2pi for n = 1e4)
+constexpr Range kSigma{0.0, 1.5707963267948966};  // Oren-Nayar slope-angle deviation, radians
+constexpr Range kEta{0.0, 1e3, true};        // relative index of refraction
+
+/// The separator before the next key of a canonical spec: ':' after the bare name, ',' later.
+std::string sep(const std::string& canonical) {
+    return canonical.find(':') == std::string::npos ? ":" : ",";
+}
+
+/// A key value for a canonical spec: integers as integers ("20", not "2e+01").
+std::string fmt(double v) {
+    if (v == std::floor(v) && std::fabs(v) < 1e15) {
+        char buf[32];
+        std::snprintf(buf, sizeof buf, "%.0f", v);
+        return buf;
+    }
+    return format_number(v);
+}
+
+/// Reads normalized=0|1 of the Phong-type lobes.
+double read_normalized(KeyReader& keys, std::string& canonical) {
+    const std::string s = keys.choice("normalized", "0", {"0", "1"});
+    canonical += ",normalized=" + s;
+    return s == "1" ? 1.0 : 0.0;
+}
+
 /// Reads the Smith shadowing choice shared by the microfacet models.
 double read_shadowing(KeyReader& keys, std::string& canonical) {
     const std::string s = keys.choice("shadowing", "correlated", {"correlated", "separable"});
@@ -74,7 +102,7 @@ void read_alpha(KeyReader& keys, ModelConfig& m, int slot_x, int slot_y) {
     if (aniso) {
         ax = keys.required_number("alpha_x", kAlpha, "anisotropic roughness along x");
         ay = keys.required_number("alpha_y", kAlpha, "anisotropic roughness along y");
-        m.canonical += ":alpha_x=" + format_number(ax) + ",alpha_y=" + format_number(ay);
+        m.canonical += sep(m.canonical) + "alpha_x=" + format_number(ax) + ",alpha_y=" + format_number(ay);
         m.anisotropic = ax != ay;
     } else {
         if (auto r = keys.optional_number("roughness", kRoughness)) {
@@ -83,7 +111,7 @@ void read_alpha(KeyReader& keys, ModelConfig& m, int slot_x, int slot_y) {
             ax = keys.required_number("alpha", kAlpha, "or roughness=R with alpha = R^2");
         }
         ay = ax;
-        m.canonical += ":alpha=" + format_number(ax);
+        m.canonical += sep(m.canonical) + "alpha=" + format_number(ax);
     }
     m.params[slot_x] = ax;
     m.params[slot_y] = ay;
@@ -108,6 +136,100 @@ ModelConfig resolve_ggx(KeyReader& keys) {
     return m;
 }
 
+ModelConfig resolve_oren_nayar(KeyReader& keys) {
+    ModelConfig m;
+    m.id = BB_MODEL_OREN_NAYAR;
+    const double sigma = keys.required_number("sigma", kSigma, "facet slope deviation in radians");
+    const double rho = keys.number("rho", 1.0, {0.0, 1e6});
+    m.params[BB_OREN_NAYAR_SIGMA] = sigma;
+    m.params[BB_OREN_NAYAR_RHO] = rho;
+    m.canonical = "oren-nayar:sigma=" + format_number(sigma) + ",rho=" + format_number(rho);
+    return m;
+}
+
+ModelConfig resolve_phong(KeyReader& keys) {
+    ModelConfig m;
+    m.id = BB_MODEL_PHONG;
+    const double n = keys.required_number("n", kExponent, "the lobe exponent");
+    const double ks = keys.number("ks", 1.0, kSpecular);
+    m.params[BB_PHONG_N] = n;
+    m.params[BB_PHONG_KS] = ks;
+    m.canonical = "phong:n=" + fmt(n) + ",ks=" + format_number(ks);
+    m.params[BB_PHONG_NORMALIZED] = read_normalized(keys, m.canonical);
+    return m;
+}
+
+ModelConfig resolve_phong_original(KeyReader& keys) {
+    ModelConfig m;
+    m.id = BB_MODEL_PHONG_ORIGINAL;
+    const double n = keys.required_number("n", kExponent, "the lobe exponent");
+    const double ks = keys.number("ks", 1.0, kSpecular);
+    m.params[BB_PHONG_N] = n;
+    m.params[BB_PHONG_KS] = ks;
+    m.canonical = "phong-original:n=" + fmt(n) + ",ks=" + format_number(ks);
+    return m;
+}
+
+ModelConfig resolve_blinn_phong(KeyReader& keys) {
+    ModelConfig m;
+    m.id = BB_MODEL_BLINN_PHONG;
+    const double n = keys.required_number("n", kExponent, "the lobe exponent");
+    const double ks = keys.number("ks", 1.0, kSpecular);
+    m.params[BB_BLINN_PHONG_N] = n;
+    m.params[BB_BLINN_PHONG_KS] = ks;
+    m.canonical = "blinn-phong:n=" + fmt(n) + ",ks=" + format_number(ks);
+    m.params[BB_BLINN_PHONG_NORMALIZED] = read_normalized(keys, m.canonical);
+    return m;
+}
+
+ModelConfig resolve_torrance_sparrow(KeyReader& keys) {
+    ModelConfig m;
+    m.id = BB_MODEL_TORRANCE_SPARROW;
+    m.uses_fresnel = true;
+    const std::string d = keys.choice("d", "beckmann", {"blinn", "beckmann", "ggx"});
+    m.canonical = "torrance-sparrow:d=" + d;
+    if (d == "blinn") {
+        if (keys.has("alpha") || keys.has("roughness") || keys.has("alpha_x") || keys.has("alpha_y"))
+            throw Error("model 'torrance-sparrow': d=blinn takes the exponent n=N, not alpha");
+        const double n = keys.required_number("n", kExponent, "the Blinn exponent of d=blinn");
+        m.params[BB_TORRANCE_SPARROW_DIST] = BB_TS_D_BLINN;
+        m.params[BB_TORRANCE_SPARROW_N] = n;
+        m.canonical += ",n=" + fmt(n);
+    } else {
+        if (keys.has("n")) throw Error("model 'torrance-sparrow': d=" + d + " takes alpha=A, not the exponent n");
+        m.params[BB_TORRANCE_SPARROW_DIST] = d == "beckmann" ? BB_TS_D_BECKMANN : BB_TS_D_GGX;
+        read_alpha(keys, m, BB_TORRANCE_SPARROW_ALPHA_X, BB_TORRANCE_SPARROW_ALPHA_Y);
+    }
+    return m;
+}
+
+ModelConfig resolve_beckmann(KeyReader& keys) {
+    ModelConfig m;
+    m.id = BB_MODEL_BECKMANN;
+    m.uses_fresnel = true;
+    m.canonical = "beckmann";
+    read_alpha(keys, m, BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y);
+    m.params[BB_BECKMANN_SHADOWING] = read_shadowing(keys, m.canonical);
+    return m;
+}
+
+ModelConfig resolve_mirror(KeyReader&) {
+    ModelConfig m;
+    m.id = BB_MODEL_MIRROR;
+    m.uses_fresnel = true;  // albedo = F(mu) of --fresnel
+    m.canonical = "mirror";
+    return m;
+}
+
+ModelConfig resolve_dielectric_specular(KeyReader& keys) {
+    ModelConfig m;
+    m.id = BB_MODEL_DIELECTRIC_SPECULAR;
+    const double eta = keys.required_number("eta", kEta, "relative index of refraction, e.g. 1.5");
+    m.params[BB_DIELECTRIC_SPECULAR_ETA] = eta;
+    m.canonical = "dielectric-specular:eta=" + format_number(eta);
+    return m;
+}
+
 struct ModelEntry {
     const char* name;
     std::function<ModelConfig(KeyReader&)> resolve;
@@ -117,6 +239,14 @@ const std::vector<ModelEntry>& registry() {
     static const std::vector<ModelEntry> entries = {
         {"lambert", resolve_lambert},
         {"ggx", resolve_ggx},
+        {"beckmann", resolve_beckmann},
+        {"oren-nayar", resolve_oren_nayar},
+        {"phong", resolve_phong},
+        {"phong-original", resolve_phong_original},
+        {"blinn-phong", resolve_blinn_phong},
+        {"torrance-sparrow", resolve_torrance_sparrow},
+        {"mirror", resolve_mirror},
+        {"dielectric-specular", resolve_dielectric_specular},
     };
     return entries;
 }

@@ -4,8 +4,9 @@
  * functions switch on a model id; the host calls them with any id, a kernel is built with
  * -D BB_MODEL=<id> and only that model's code is compiled in (BB_HAS_MODEL).
  *
- * Adding a model: write its header, give it an id below, add a case to each dispatch function,
- * and register its spec (name, keys, ranges) in host/model_spec.cpp. */
+ * Adding a model (docs/models.md has the full checklist): write its header, give it an id
+ * below, include the header under BB_HAS_MODEL, add a case to each dispatch function, and
+ * register its spec (name, keys, ranges, defaults) in host/spec.cpp. */
 #ifndef BRDFBAKE_BRDF_MODELS_H
 #define BRDFBAKE_BRDF_MODELS_H
 
@@ -13,6 +14,14 @@
 
 #define BB_MODEL_LAMBERT 1
 #define BB_MODEL_GGX 2
+#define BB_MODEL_OREN_NAYAR 3
+#define BB_MODEL_PHONG 4
+#define BB_MODEL_PHONG_ORIGINAL 5
+#define BB_MODEL_BLINN_PHONG 6
+#define BB_MODEL_TORRANCE_SPARROW 7
+#define BB_MODEL_BECKMANN 8
+#define BB_MODEL_MIRROR 9
+#define BB_MODEL_DIELECTRIC_SPECULAR 10
 
 #if defined(__OPENCL_C_VERSION__) && defined(BB_MODEL)
 #define BB_HAS_MODEL(id) ((id) == BB_MODEL)
@@ -26,6 +35,29 @@
 #if BB_HAS_MODEL(BB_MODEL_GGX)
 #include "brdfbake/brdf/ggx.h"
 #endif
+#if BB_HAS_MODEL(BB_MODEL_OREN_NAYAR)
+#include "brdfbake/brdf/oren_nayar.h"
+#endif
+#if BB_HAS_MODEL(BB_MODEL_PHONG) || BB_HAS_MODEL(BB_MODEL_PHONG_ORIGINAL)
+#include "brdfbake/brdf/phong.h"
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BLINN_PHONG)
+#include "brdfbake/brdf/blinn_phong.h"
+#endif
+#if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
+#include "brdfbake/brdf/torrance_sparrow.h"
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BECKMANN)
+#include "brdfbake/brdf/beckmann.h"
+#endif
+#if BB_HAS_MODEL(BB_MODEL_MIRROR) || BB_HAS_MODEL(BB_MODEL_DIELECTRIC_SPECULAR)
+#include "brdfbake/brdf/specular.h"
+#endif
+
+/* True for the delta lobes (mirror, dielectric-specular): eval is 0, the albedo is analytic. */
+BB_FN int bb_model_is_delta(int model) {
+    return model == BB_MODEL_MIRROR || model == BB_MODEL_DIELECTRIC_SPECULAR;
+}
 
 /* f(wo, wi) without the cosine. */
 BB_FN real bb_model_eval(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
@@ -37,6 +69,38 @@ BB_FN real bb_model_eval(int model, bb_params p, int fkind, bb_params fp, bb_vec
 #if BB_HAS_MODEL(BB_MODEL_GGX)
     case BB_MODEL_GGX:
         return bb_ggx_eval(p, fkind, fp, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_OREN_NAYAR)
+    case BB_MODEL_OREN_NAYAR:
+        return bb_oren_nayar_eval(p, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_PHONG)
+    case BB_MODEL_PHONG:
+        return bb_phong_eval(p, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_PHONG_ORIGINAL)
+    case BB_MODEL_PHONG_ORIGINAL:
+        return bb_phong_original_eval(p, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BLINN_PHONG)
+    case BB_MODEL_BLINN_PHONG:
+        return bb_blinn_phong_eval(p, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
+    case BB_MODEL_TORRANCE_SPARROW:
+        return bb_torrance_sparrow_eval(p, fkind, fp, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BECKMANN)
+    case BB_MODEL_BECKMANN:
+        return bb_beckmann_eval(p, fkind, fp, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_MIRROR)
+    case BB_MODEL_MIRROR:
+        return bb_mirror_eval(p, fkind, fp, wo, wi);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_DIELECTRIC_SPECULAR)
+    case BB_MODEL_DIELECTRIC_SPECULAR:
+        return bb_dielectric_specular_eval(p, wo, wi);
 #endif
     default:
         return BB_R(0.0);
@@ -54,6 +118,38 @@ BB_FN bb_sample bb_model_sample(int model, bb_params p, int fkind, bb_params fp,
 #if BB_HAS_MODEL(BB_MODEL_GGX)
     case BB_MODEL_GGX:
         return bb_ggx_sample(p, fkind, fp, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_OREN_NAYAR)
+    case BB_MODEL_OREN_NAYAR:
+        return bb_oren_nayar_sample(p, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_PHONG)
+    case BB_MODEL_PHONG:
+        return bb_phong_sample(p, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_PHONG_ORIGINAL)
+    case BB_MODEL_PHONG_ORIGINAL:
+        return bb_phong_original_sample(p, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BLINN_PHONG)
+    case BB_MODEL_BLINN_PHONG:
+        return bb_blinn_phong_sample(p, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
+    case BB_MODEL_TORRANCE_SPARROW:
+        return bb_torrance_sparrow_sample(p, fkind, fp, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BECKMANN)
+    case BB_MODEL_BECKMANN:
+        return bb_beckmann_sample(p, fkind, fp, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_MIRROR)
+    case BB_MODEL_MIRROR:
+        return bb_mirror_sample(p, fkind, fp, wo, u1, u2);
+#endif
+#if BB_HAS_MODEL(BB_MODEL_DIELECTRIC_SPECULAR)
+    case BB_MODEL_DIELECTRIC_SPECULAR:
+        return bb_dielectric_specular_sample(p, wo, u1, u2);
 #endif
     default:
         return bb_make_sample(bb_v3(BB_R(0.0), BB_R(0.0), BB_R(1.0)), BB_R(0.0));
