@@ -6,7 +6,9 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include <cmath>
+#include <algorithm>
 #include <functional>
+#include <vector>
 
 namespace ref {
 
@@ -17,6 +19,18 @@ constexpr ld kPi = 3.141592653589793238462643383279502884L;
 inline double integrate(const std::function<double(double)>& f, double a, double b, double tol = 1e-11) {
     double err = 0.0;
     return boost::math::quadrature::gauss_kronrod<double, 31>::integrate(f, a, b, 18, tol, &err);
+}
+
+/// Adaptive 31-point Gauss-Kronrod with an absolute error target per unit length (`density`):
+/// an interval is accepted when its error estimate is below density * (b - a). Unlike the
+/// relative criterion it does not refine pieces where the integrand is negligibly small.
+inline double integrate_abs(const std::function<double(double)>& f, double a, double b, double density,
+                            int depth = 0) {
+    double err = 0.0;
+    const double v = boost::math::quadrature::gauss_kronrod<double, 31>::integrate(f, a, b, 0, 0.0, &err);
+    if (err <= density * (b - a) || depth >= 30) return v;
+    const double m = 0.5 * (a + b);
+    return integrate_abs(f, a, m, density, depth + 1) + integrate_abs(f, m, b, density, depth + 1);
 }
 
 /// Tensor-product adaptive quadrature of f(x, y) over [ax, bx] x [ay, by].
@@ -98,7 +112,8 @@ inline double integrate_facing(const std::function<double(double, double)>& g, l
 /// Resolves lobes as narrow as alpha ~ 0.01 because the integrand is smooth in wh. For each
 /// theta_h the azimuths where wi is above the horizon (and wo.wh > 0) form one interval
 /// |phi_h - phi_o| < dmax, found in closed form, so the inner integrand has no cut.
-inline double albedo_halfvector(const std::function<ld(Dir, Dir)>& f, ld mu_o, ld phi_o, double tol = 1e-9) {
+inline double albedo_halfvector(const std::function<ld(Dir, Dir)>& f, ld mu_o, ld phi_o, double tol = 1e-9,
+                                const std::function<std::vector<ld>(ld)>& breaks = nullptr) {
     const Dir wo = dir_mu(mu_o, phi_o);
     const ld sin_o = std::sqrt(std::max<ld>(0, 1 - mu_o * mu_o));
     auto dmax = [&](ld th) -> ld {
@@ -119,9 +134,182 @@ inline double albedo_halfvector(const std::function<ld(Dir, Dir)>& f, ld mu_o, l
             if (c <= 0 || wi.z <= 0) return 0.0;
             return double(f(wo, wi) * wi.z * 4 * c);
         };
-        return integrate(g, double(phi_o - d), double(phi_o + d), tol) * std::sin(th);
+        // Split the azimuth range where the integrand has kinks (|phi_h - phi_o| in `breaks`).
+        std::vector<ld> cuts = {0};
+        if (breaks)
+            for (ld b : breaks(th))
+                if (b > 0 && b < d) cuts.push_back(b);
+        cuts.push_back(d);
+        std::sort(cuts.begin(), cuts.end());
+        double sum = 0;
+        if (!breaks) return integrate(g, double(phi_o - d), double(phi_o + d), tol) * std::sin(th);
+        for (size_t k = 0; k + 1 < cuts.size(); ++k) {
+            sum += integrate_abs(g, double(phi_o + cuts[k]), double(phi_o + cuts[k + 1]), tol);
+            sum += integrate_abs(g, double(phi_o - cuts[k + 1]), double(phi_o - cuts[k]), tol);
+        }
+        return sum * std::sin(th);
     };
+    // With `breaks`, `tol` is an absolute error density (integrate_abs).
+    if (breaks) return integrate_abs(inner, 0.0, double(kPi / 2), tol);
     return integrate(inner, 0.0, double(kPi / 2), tol);
+}
+
+/// The azimuths |phi_h - phi_o| at which the V-groove G switches branch, for a half vector at
+/// theta_h and wo at mu_o: 2 (n.h)(n.o) = o.h, n.i = n.o (o.h = n.o / n.h), and
+/// 2 (n.h)(n.i) = o.h with n.i = 2 (o.h)(n.h) - n.o,
+/// i.e. o.h = 2 (n.h)(n.o) / (4 (n.h)^2 - 1); o.h = sin_o sin_h cos(dphi) + mu_o cos_h.
+inline std::vector<ld> vgroove_kinks(ld mu_o, ld th) {
+    std::vector<ld> out;
+    const ld sin_o = std::sqrt(std::max<ld>(0, 1 - mu_o * mu_o)), hz = std::cos(th);
+    const ld b = sin_o * std::sin(th);
+    if (b <= 1e-300L) return out;
+    auto add = [&](ld oh) {
+        const ld c = (oh - mu_o * hz) / b;
+        if (c > -1 && c < 1) out.push_back(std::acos(c));
+    };
+    add(2 * hz * mu_o);
+    add(mu_o / hz);  // the two V-groove terms are equal: n.i = n.o
+    const ld q = 4 * hz * hz - 1;
+    if (std::fabs(q) > 1e-300L) add(2 * hz * mu_o / q);
+    return out;
+}
+
+// ------------------------------------------------------------------------------------------
+// The other models of the course notes (issue 3), again in the textbook angle form.
+
+/// Beckmann D, Walter et al. 2007 eq. 25, anisotropic as in Heitz 2014 eq. 71:
+/// exp(-tan^2 (cos^2 phi / ax^2 + sin^2 phi / ay^2)) / (pi ax ay cos^4).
+inline ld beckmann_d(Dir m, ld ax, ld ay) {
+    if (m.z <= 0) return 0;
+    ld cos2 = m.z * m.z, sin2 = 1 - cos2;
+    ld tan2 = sin2 / cos2;
+    ld cphi2 = sin2 > 0 ? m.x * m.x / sin2 : 1, sphi2 = sin2 > 0 ? m.y * m.y / sin2 : 0;
+    return std::exp(-tan2 * (cphi2 / (ax * ax) + sphi2 / (ay * ay))) / (kPi * ax * ay * cos2 * cos2);
+}
+
+/// Beckmann Smith Lambda, Walter et al. 2007 eq. 27 / Heitz 2014 eq. 72:
+/// a = 1/(alpha_o tan theta), Lambda = (erf(a) - 1)/2 + exp(-a^2)/(2 a sqrt(pi)).
+inline ld beckmann_lambda(Dir w, ld ax, ld ay) {
+    ld cos2 = w.z * w.z, sin2 = 1 - cos2;
+    if (sin2 <= 0) return 0;
+    ld alpha = std::sqrt((w.x * w.x * ax * ax + w.y * w.y * ay * ay) / sin2);
+    ld a = 1 / (alpha * std::sqrt(sin2 / cos2));
+    return (std::erf(a) - 1) / 2 + std::exp(-a * a) / (2 * a * std::sqrt(kPi));
+}
+inline ld beckmann_g1(Dir w, ld ax, ld ay) { return w.z <= 0 ? 0 : 1 / (1 + beckmann_lambda(w, ax, ay)); }
+
+/// The Beckmann BRDF without Fresnel: D G2 / (4 cos_o cos_i).
+inline ld beckmann_f(Dir wo, Dir wi, ld ax, ld ay, bool correlated) {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    Dir wh = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
+    ld g2 = correlated ? 1 / (1 + beckmann_lambda(wo, ax, ay) + beckmann_lambda(wi, ax, ay))
+                       : beckmann_g1(wo, ax, ay) * beckmann_g1(wi, ax, ay);
+    return beckmann_d(wh, ax, ay) * g2 / (4 * wo.z * wi.z);
+}
+
+/// Normalised Blinn distribution (Blinn 1977; Walter et al. 2007 eq. 30): (n+2)/(2 pi) cos^n.
+inline ld blinn_d(Dir m, ld n) { return m.z <= 0 ? 0 : (n + 2) / (2 * kPi) * std::pow(m.z, n); }
+
+/// The V-groove G of Torrance-Sparrow 1967 in Cook-Torrance 1982 eq. 7.
+inline ld vgroove_g(Dir wo, Dir wi) {
+    Dir h = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
+    ld oh = dot(wo, h);
+    return std::min<ld>(1, std::min(2 * h.z * wo.z / oh, 2 * h.z * wi.z / oh));
+}
+
+enum class Dist { Blinn, Beckmann, Ggx };
+
+/// Torrance-Sparrow with F = 1: D(h) G / (4 cos_o cos_i); `a` is n for Blinn, alpha otherwise.
+inline ld torrance_sparrow_f(Dir wo, Dir wi, Dist d, ld a, ld ay = -1) {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    if (ay < 0) ay = a;
+    Dir h = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
+    ld D = d == Dist::Blinn ? blinn_d(h, a) : d == Dist::Beckmann ? beckmann_d(h, a, ay) : ggx_d(h, a, ay);
+    return D * vgroove_g(wo, wi) / (4 * wo.z * wi.z);
+}
+
+/// Phong (Lewis 1994): K cos^n(angle between wo and the mirror of wi); `original` divides by cos_i.
+inline ld phong_f(Dir wo, Dir wi, ld n, ld k, bool original) {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    Dir r = {-wi.x, -wi.y, wi.z};
+    ld c = dot(wo, r);
+    if (c <= 0) return 0;
+    return k * std::pow(c, n) / (original ? wi.z : 1);
+}
+
+/// Blinn-Phong: K cos^n(theta_h).
+inline ld blinn_phong_f(Dir wo, Dir wi, ld n, ld k) {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    Dir h = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
+    return k * std::pow(h.z, n);
+}
+
+/// Oren-Nayar 1994 eq. 30, qualitative model, with the angles themselves.
+inline ld oren_nayar_f(Dir wo, Dir wi, ld sigma, ld rho) {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    ld s2 = sigma * sigma;
+    ld A = 1 - 0.5L * s2 / (s2 + 0.33L), B = 0.45L * s2 / (s2 + 0.09L);
+    ld ti = std::acos(std::min<ld>(1, wi.z)), to = std::acos(std::min<ld>(1, wo.z));
+    ld alpha = std::max(ti, to), beta = std::min(ti, to);
+    ld cdphi = 0;
+    if (ti > 0 && to > 0) cdphi = std::cos(std::atan2(wi.y, wi.x) - std::atan2(wo.y, wo.x));
+    return rho / kPi * (A + B * std::max<ld>(0, cdphi) * std::sin(alpha) * std::tan(beta));
+}
+
+/// Directional albedo of Oren-Nayar by 2D quadrature over (theta_i, phi_i - phi_o), split where
+/// the integrand has kinks (theta_i = theta_o, |phi_i - phi_o| = pi/2).
+inline double albedo_oren_nayar(ld sigma, ld rho, ld mu_o, double tol = 1e-10) {
+    const Dir wo = dir_mu(mu_o, 0);
+    const double to = double(std::acos(mu_o));
+    auto g = [&](double th, double ph) {
+        return double(oren_nayar_f(wo, dir(th, ph), sigma, rho) * std::cos((ld)th) * std::sin((ld)th));
+    };
+    double sum = 0;
+    const double hp = double(kPi / 2);
+    for (auto t : {std::pair<double, double>{0.0, to}, {to, hp}}) {
+        if (t.second <= t.first) continue;
+        sum += integrate2(g, t.first, t.second, -hp, hp, tol);
+        sum += 2 * integrate2(g, t.first, t.second, hp, double(kPi), tol);
+    }
+    return sum;
+}
+
+/// Directional albedo of a lobe about the mirror direction r = R(wo) (Phong): wi = cos(a) r +
+/// sin(a)(cos(b) t1 + sin(b) t2) with t1 in the plane of r and n, pointing to the normal, so
+/// that wi.z = cos(a) mu_o + sin(a) cos(b) sin_o > 0 is the interval |b| < bmax(a) in closed form.
+/// `width` is the lobe's angular width: the a-range is split there so that narrow lobes
+/// (exponent 1e4) are resolved.
+inline double albedo_about_mirror(const std::function<ld(Dir, Dir)>& f, ld mu_o, double width, double tol = 1e-10) {
+    const Dir wo = dir_mu(mu_o, 0);
+    const ld sin_o = std::sqrt(std::max<ld>(0, 1 - mu_o * mu_o));
+    const Dir r = {-wo.x, -wo.y, wo.z};
+    const Dir t1 = {mu_o, 0, sin_o};  // perpendicular to r, towards the normal
+    auto inner = [&](double a) -> double {
+        const ld ca = std::cos((ld)a), sa = std::sin((ld)a);
+        ld bmax = kPi;
+        if (sa * sin_o > 1e-300L) {
+            const ld c = -ca * mu_o / (sa * sin_o);
+            bmax = c >= 1 ? 0 : c <= -1 ? kPi : std::acos(c);
+        } else if (ca * mu_o <= 0) {
+            bmax = 0;
+        }
+        if (bmax <= 0) return 0.0;
+        auto g = [&](double b) -> double {
+            const ld cb = std::cos((ld)b), sb = std::sin((ld)b);
+            Dir wi = {ca * r.x + sa * cb * t1.x, ca * r.y + sa * sb, ca * r.z + sa * cb * t1.z};
+            if (wi.z <= 0) return 0.0;
+            return double(f(wo, wi) * wi.z);
+        };
+        return 2 * integrate(g, 0.0, double(bmax), tol) * double(sa);
+    };
+    double sum = 0, lo = 0;
+    for (double k : {1.0, 3.0, 8.0}) {
+        const double hi = std::min(double(kPi / 2), k * width);
+        if (hi > lo) sum += integrate(inner, lo, hi, tol);
+        lo = std::max(lo, hi);
+    }
+    if (lo < double(kPi / 2)) sum += integrate(inner, lo, double(kPi / 2), tol);
+    return sum;
 }
 
 }  // namespace ref
