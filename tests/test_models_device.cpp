@@ -109,3 +109,41 @@ TEST_CASE("grid: oren-nayar albedo within 2e-4 of quadrature", "[models][device]
     for (double s : {0.0, 0.25, 0.5, 1.0}) cases.push_back(modelref::oren_nayar(s, 1.0));
     check_grid(cases);
 }
+
+TEST_CASE("every model is finite and non-negative down to mu = 1e-5 on the device", "[models][device]") {
+    std::vector<double> mus = {1.0, 0.5, 0.1};
+    for (double mu = 1e-2; mu >= 1e-5; mu /= 3) mus.push_back(mu);
+    mus.push_back(1e-5);
+    for (const char* spec :
+         {"oren-nayar:sigma=1.5", "phong:n=10000,normalized=1", "phong-original:n=10000", "phong:n=0",
+          "blinn-phong:n=10000,normalized=1", "torrance-sparrow:d=blinn,n=10000", "torrance-sparrow:d=beckmann,alpha=0.0001",
+          "torrance-sparrow:d=ggx,alpha=10", "beckmann:alpha=0.0001", "beckmann:alpha=10,shadowing=separable",
+          "beckmann:alpha_x=0.02,alpha_y=0.9", "mirror", "dielectric-specular:eta=1.5"}) {
+        const ModelConfig m = resolve_model(spec);
+        std::vector<Vec3> wo, wi, swo;
+        std::vector<std::array<double, 2>> u;
+        for (double mo : mus)
+            for (double mi : mus)
+                for (int k = 0; k < 12; ++k) {
+                    const double so = std::sqrt(1 - mo * mo), si = std::sqrt(1 - mi * mi), ph = k * M_PI / 6;
+                    wo.push_back({so, 0, mo});
+                    wi.push_back({si * std::cos(ph), si * std::sin(ph), mi});
+                }
+        for (double mo : mus)
+            for (double u1 : {0.0, 1e-7, 0.3, 0.7, 0.9999999})
+                for (double u2 : {0.0, 0.4, 0.9999999}) {
+                    swo.push_back({std::sqrt(1 - mo * mo), 0, mo});
+                    u.push_back({u1, u2});
+                }
+        for (Precision p : {Precision::Float, Precision::Double}) {
+            const auto f = evaluate_on_device(testing::engine(), m, resolve_fresnel("none"), p, wo, wi);
+            const auto s = sample_on_device(testing::engine(), m, resolve_fresnel("none"), p, swo, u);
+            int bad = 0, bad_sample = 0;
+            for (double v : f) bad += !(std::isfinite(v) && v >= 0);
+            for (const auto& d : s) bad_sample += !(std::isfinite(d.weight) && d.weight >= 0);
+            INFO(spec << " " << precision_name(p));
+            CHECK(bad == 0);
+            CHECK(bad_sample == 0);
+        }
+    }
+}
