@@ -8,6 +8,7 @@
 
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/sampling.h"
 #include "brdfbake/error.h"
 #include "device_buffer.h"
 
@@ -83,6 +84,34 @@ void check_sampling(std::uint64_t samples, unsigned replicas) {
 
 cl::NDRange global_range(size_t items, size_t local) { return cl::NDRange((items + local - 1) / local * local); }
 
+constexpr size_t kLocalSize = 8;
+
+// The cell-independent half of the vector path: the disk point bb_disk_polar(u1, u2) of every
+// point of every replica (the rotated Hammersley point, as the scalar kernel forms it), laid out
+// for vector loads: per replica, per step of `lanes` points, the lanes' x then their y. Computed
+// here once in double with the shared functions and rounded to the kernel's real; the float
+// kernel sees its shifts rounded to float, as the scalar kernel does.
+std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
+                               unsigned lanes, Precision precision) {
+    std::vector<double> table(size_t(replicas) * points * 2);
+    const unsigned n = unsigned(points);
+    for (unsigned r = 0; r < replicas; ++r) {
+        double s1 = shifts[2 * r], s2 = shifts[2 * r + 1];
+        if (precision == Precision::Float) {
+            s1 = double(float(s1));
+            s2 = double(float(s2));
+        }
+        double* out = table.data() + size_t(r) * points * 2;
+        for (unsigned i = 0; i < n; ++i) {
+            const bb_vec2 d = bb_disk_polar(bb_rotate(bb_hammersley_u1(i, n), s1), bb_rotate(bb_hammersley_u2(i), s2));
+            const size_t base = size_t(i / lanes) * 2 * lanes + i % lanes;
+            out[base] = d.x;
+            out[base + lanes] = d.y;
+        }
+    }
+    return table;
+}
+
 }  // namespace
 
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
@@ -101,6 +130,14 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     build.precision = req.precision;
     build.defines = {{"BB_MODEL", std::to_string(req.model)},
                      {"BB_FRESNEL", std::to_string(req.fresnel.kind)}};
+    // The vector path: W samples per step, their disk points from a table shared by all cells.
+    build.has_vector_path = bb_model_samples_disk(req.model) != 0;
+    build.vector_width = req.vector_width;
+    unsigned lanes = engine.vector_width(build);
+    if (lanes > 1 && points % lanes != 0) {
+        build.vector_width = 1;  // a ragged last step: the scalar kernel
+        lanes = 1;
+    }
     cl::Program& program = engine.program(build);
 
     std::vector<double> mus(n_cells), phis(n_cells), params(n_cells * BB_MAX_PARAMS);
@@ -114,26 +151,29 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
 
     RealBuffers bufs(engine, req.precision);
     cl::Buffer b_mu = bufs.input(mus), b_phi = bufs.input(phis), b_p = bufs.input(params),
-               b_fp = bufs.input(fparams), b_shift = bufs.input(shifts);
+               b_fp = bufs.input(fparams);
+    cl::Buffer b_points = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
     cl::Buffer b_mean = bufs.output(n_items);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
 
-    cl::Kernel kernel(program, "albedo_replicas");
+    cl::Kernel kernel(program, lanes > 1 ? "albedo_replicas_disk" : "albedo_replicas");
     int a = 0;
     kernel.setArg(a++, b_mu);
     kernel.setArg(a++, b_phi);
     kernel.setArg(a++, b_p);
     kernel.setArg(a++, b_fp);
-    kernel.setArg(a++, b_shift);
+    kernel.setArg(a++, b_points);
     kernel.setArg(a++, cl_uint(points));
     kernel.setArg(a++, cl_uint(req.replicas));
     kernel.setArg(a++, cl_uint(n_cells));
     kernel.setArg(a++, b_mean);
     kernel.setArg(a++, b_bad);
 
+    // An explicit small work-group: the default could give PoCL two groups for two cores, or
+    // one, whatever the table size (issue 9).
     cl::Event done;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, 8), cl::NDRange(8), nullptr,
-                                        &done);
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize),
+                                        cl::NDRange(kLocalSize), nullptr, &done);
     const std::vector<double> means = bufs.read(b_mean, n_items);
     std::vector<cl_uint> bad(n_items);
     engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
@@ -141,6 +181,7 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     AlbedoResult result;
     result.samples_per_cell = points * req.replicas;
     result.kernel_seconds = event_seconds(done);
+    result.vector_width = lanes;
     result.method = method_text(req.replicas, points);
     result.values = summarize(means, bad, req.replicas, req.precision, [&](size_t c) {
         std::ostringstream m;

@@ -72,6 +72,10 @@ DeviceInfo query(const cl::Platform& platform, const cl::Device& d, int pi, int 
     info.global_mem = d.getInfo<CL_DEVICE_GLOBAL_MEM_SIZE>();
     info.max_alloc = d.getInfo<CL_DEVICE_MAX_MEM_ALLOC_SIZE>();
     info.max_work_group = d.getInfo<CL_DEVICE_MAX_WORK_GROUP_SIZE>();
+    if (info.type == "cpu") {
+        info.vector_lanes_float = 16;
+        info.vector_lanes_double = info.fp64 ? 8 : 1;
+    }
     info.device = d;
     return info;
 }
@@ -150,6 +154,12 @@ Engine::Engine(const std::string& device_selector, bool verbose)
                   << info_.name << " (" << info_.platform << ")\n";
 }
 
+unsigned Engine::vector_width(const BuildRequest& request) const {
+    if (!request.has_vector_path) return 1;
+    if (request.vector_width > 0) return request.vector_width;
+    return request.precision == Precision::Double ? info_.vector_lanes_double : info_.vector_lanes_float;
+}
+
 std::string Engine::build_options(const BuildRequest& request) const {
     std::ostringstream o;
     // OpenCL C 1.2 is what PoCL and NVIDIA both accept. No -cl-fast-relaxed-math: it lets the
@@ -159,6 +169,13 @@ std::string Engine::build_options(const BuildRequest& request) const {
         if (!info_.fp64)
             throw Error("device '" + info_.name + "' has no double precision (cl_khr_fp64); use --precision float");
         o << " -D BB_REAL_DOUBLE=1";
+    }
+    // The vector path (real = floatN/doubleN) where the kernel has one and the device profits.
+    const unsigned lanes = vector_width(request);
+    if (lanes > 1) {
+        if (lanes != 2 && lanes != 4 && lanes != 8 && lanes != 16)
+            throw Error("vector width " + std::to_string(lanes) + " is not an OpenCL vector size (2, 4, 8, 16)");
+        o << " -D BB_VECTOR_WIDTH=" << lanes;
     }
     for (const auto& d : request.defines) o << " -D " << d.first << "=" << d.second;
     return o.str();

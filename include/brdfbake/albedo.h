@@ -26,6 +26,10 @@ struct AlbedoRequest {
     unsigned replicas = 16;            // randomised replicas for the error estimate
     Precision precision = Precision::Float;
     std::uint64_t seed = 0x62726466u;  // "brdf": results are reproducible by default
+    /// Lanes of the kernel's vector path: 0 the device's choice (Engine::vector_width), 1 the
+    /// scalar kernel. The vector path needs a model whose sample is tabulated (GGX) and points
+    /// per replica (samples / replicas) divisible by the lanes; otherwise the scalar kernel runs.
+    unsigned vector_width = 0;
 };
 
 struct AlbedoValue {
@@ -47,6 +51,7 @@ struct AlbedoResult {
     std::uint64_t samples_per_cell = 0;
     std::string method;               // what the estimator did, in words
     double kernel_seconds = 0.0;      // device time of the integration
+    unsigned vector_width = 1;        // lanes of the kernel that ran (1: scalar)
 };
 
 /// Runs the albedo kernel over every cell. Throws Error if the device produced non-finite

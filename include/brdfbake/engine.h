@@ -30,6 +30,13 @@ struct DeviceInfo {
     std::uint64_t global_mem = 0;
     std::uint64_t max_alloc = 0;
     std::size_t max_work_group = 0;
+    /// Lanes of the explicit vector type that kernels with a vector path use (real = floatN /
+    /// doubleN, -D BB_VECTOR_WIDTH=N); 1: scalar work-items. CPUs (PoCL) get 16 floats and 8
+    /// doubles: PoCL vectorises explicit vector types, not scalar work-items that call
+    /// built-ins (issue 9), and two AVX2 registers per value hide the FMA latency. GPUs get 1:
+    /// their SIMT hardware already runs work-items in lanes.
+    unsigned vector_lanes_float = 1;
+    unsigned vector_lanes_double = 1;
     cl::Device device;
 };
 
@@ -46,6 +53,8 @@ struct BuildRequest {
     std::string kernel_file;                       // e.g. "albedo.cl"
     Precision precision = Precision::Float;
     std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE
+    bool has_vector_path = false;  // the kernel file has a vector path for this request
+    unsigned vector_width = 0;     // 0: the device's choice; 1: scalar; N: N lanes
 };
 
 class Engine {
@@ -64,6 +73,10 @@ public:
 
     /// The compiler options for a request on this device (the single place they are assembled).
     std::string build_options(const BuildRequest& request) const;
+
+    /// The lanes of `real` a build of `request` uses (1: the scalar kernels). Decided here and
+    /// in build_options only.
+    unsigned vector_width(const BuildRequest& request) const;
 
     /// Seconds spent in program builds so far.
     double build_seconds() const { return build_seconds_; }

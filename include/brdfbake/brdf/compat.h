@@ -4,8 +4,10 @@
  * OpenCL C 1.2 accept, and includes this file first. It defines:
  *   BB_FN        the qualifier of every shared function (inlined on both sides; PoCL leaves
  *                helpers without always_inline as calls)
- *   real         the working type: double on the host; float, or double with -D BB_REAL_DOUBLE,
- *                in kernels
+ *   real         the working type: double on the host (float with -D BB_HOST_REAL_FLOAT); float,
+ *                or double with -D BB_REAL_DOUBLE, in kernels; with -D BB_VECTOR_WIDTH=W a vector
+ *                of W lanes (float16, double8): one source for scalar and vector kernels
+ *   bb_scalar    the element type of real; bb_mask the type of a comparison of reals
  *   BB_R(x)       a literal of type real
  *   bb_select(a, b, c)   c ? b : a, branch-free (OpenCL select() semantics)
  *   bb_clamp, bb_min, bb_max, bb_sqrt ...  math that maps to the OpenCL built-ins
@@ -18,15 +20,36 @@
 #ifdef __OPENCL_C_VERSION__
 /* ---------------------------------------------------------------- OpenCL C */
 #define BB_FN static inline __attribute__((always_inline))
+#define BB_CAT_(a, b) a##b
+#define BB_CAT(a, b) BB_CAT_(a, b)
 #ifdef BB_REAL_DOUBLE
 #pragma OPENCL EXTENSION cl_khr_fp64 : enable
-typedef double real;
+typedef double bb_scalar;
 #define BB_EPS_REAL 2.220446049250313e-16
 #define BB_REAL_MAX 1.7976931348623157e308
 #else
-typedef float real;
+typedef float bb_scalar;
+#define BB_REAL_IS_FLOAT 1
 #define BB_EPS_REAL 1.1920929e-7f
 #define BB_REAL_MAX 3.4028235e38f
+#endif
+/* -D BB_VECTOR_WIDTH=W makes `real` an OpenCL vector of W lanes (float16, double8, ...): every
+ * shared function then evaluates W samples at once, which PoCL turns into SIMD code (it does not
+ * vectorise across scalar work-items whose code calls built-ins). bb_mask is the type of a
+ * comparison of reals: int for scalars (0/1), the signed integer vector of the lane size for
+ * vectors (0/-1); bb_select treats both alike. */
+#ifdef BB_VECTOR_WIDTH
+#ifdef BB_REAL_DOUBLE
+typedef BB_CAT(double, BB_VECTOR_WIDTH) real;
+typedef BB_CAT(long, BB_VECTOR_WIDTH) bb_mask;
+#else
+typedef BB_CAT(float, BB_VECTOR_WIDTH) real;
+typedef BB_CAT(int, BB_VECTOR_WIDTH) bb_mask;
+#endif
+#define bb_vload(p) BB_CAT(vload, BB_VECTOR_WIDTH)(0, (p))
+#else
+typedef bb_scalar real;
+typedef int bb_mask;
 #endif
 #define BB_R(x) ((real)(x))
 /* The ternary operator: for vector operands OpenCL C applies it per component, like select(). */
@@ -49,10 +72,21 @@ typedef float real;
 #else
 /* ---------------------------------------------------------------- host C++ */
 #include <cmath>
+/* double on the host; -D BB_HOST_REAL_FLOAT (the float flavour of benchmarks/' baseline)
+ * gives float, as a --precision float kernel computes. */
+#ifdef BB_HOST_REAL_FLOAT
+typedef float real;
+#define BB_REAL_IS_FLOAT 1
+#define BB_EPS_REAL 1.1920929e-7f
+#define BB_REAL_MAX 3.4028235e38f
+#else
 typedef double real;
-#define BB_FN static inline
 #define BB_EPS_REAL 2.220446049250313e-16
 #define BB_REAL_MAX 1.7976931348623157e308
+#endif
+typedef real bb_scalar;
+typedef int bb_mask;
+#define BB_FN static inline
 #define BB_R(x) ((real)(x))
 /* OpenCL's select(a, b, c) for scalars: c ? b : a */
 #define bb_select(a, b, c) ((c) ? (b) : (a))
@@ -75,6 +109,18 @@ typedef double real;
 #define BB_PI BB_R(3.14159265358979323846)
 #define BB_INV_PI BB_R(0.31830988618379067154)
 #define BB_2PI BB_R(6.28318530717958647692)
+
+/* A point in the plane (e.g. on the unit disk). */
+typedef struct {
+    real x, y;
+} bb_vec2;
+
+BB_FN bb_vec2 bb_v2(real x, real y) {
+    bb_vec2 v;
+    v.x = x;
+    v.y = y;
+    return v;
+}
 
 /* ----------------------------------------------------------- 3-vectors
  * A plain struct rather than OpenCL's real3, so that host and device share the code. */

@@ -99,8 +99,8 @@ BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(real cos_theta, real eta) {
     real ds = c + w, dp = e2 * c + w;
     real rs = bb_ratio_or(-d, ds * ds, BB_R(0.0));
     real rp = bb_ratio_or(d * ((e2 + BB_R(1.0)) * c * c - BB_R(1.0)), dp * dp, BB_R(0.0));
-    int tir = q <= BB_R(0.0);
-    int unit = e == BB_R(1.0);
+    bb_mask tir = q <= BB_R(0.0);
+    bb_mask unit = e == BB_R(1.0);
     real Rs = bb_select(bb_select(rs * rs, BB_R(1.0), tir), BB_R(0.0), unit);
     real Rp = bb_select(bb_select(rp * rp, BB_R(1.0), tir), BB_R(0.0), unit);
     return bb_make_fresnel_sp(Rs, Rp);
@@ -145,7 +145,7 @@ BB_FN bb_complex bb_complex_sqrt_upper(real a, real b) {
     real mag = bb_sqrt(a * a + ab * ab);
     real t = bb_sqrt(BB_R(0.5) * (mag + bb_fabs(a)));
     real other = bb_ratio_or(ab, BB_R(2.0) * t, BB_R(0.0));
-    int pos = a >= BB_R(0.0);
+    bb_mask pos = a >= BB_R(0.0);
     return bb_make_complex(bb_select(other, t, pos), bb_select(t, other, pos));
 }
 

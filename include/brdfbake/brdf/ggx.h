@@ -28,16 +28,21 @@ BB_FN real bb_ggx_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3
 }
 
 /* Importance sampling of the visible normals [H18]: with pdf(wi) = D_wo(wh) / (4 wo.wh) the
- * estimator weight f cos_theta_i / pdf reduces to F(wo.wh) G2(wo, wi) / G1(wo) [H18 eq. 19]. */
-BB_FN bb_sample bb_ggx_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
+ * estimator weight f cos_theta_i / pdf reduces to F(wo.wh) G2(wo, wi) / G1(wo) [H18 eq. 19].
+ * d is the disk point bb_disk_polar(u1, u2) (cell-independent: the fast kernels tabulate it). */
+BB_FN bb_sample bb_ggx_sample_disk(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec2 d) {
     real ax = p.v[BB_GGX_ALPHA_X], ay = p.v[BB_GGX_ALPHA_Y];
-    bb_vec3 wh = bb_ggx_sample_vndf(wo, ax, ay, u1, u2);
+    bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
     real cos_oh = bb_clamp_cos(bb_dot(wo, wh));
     bb_vec3 wi = bb_reflect(wo, wh);
     real g1o = bb_ggx_g1(wo, ax, ay);
     real w = bb_fresnel_eval(fkind, fp, cos_oh) * bb_ggx_g2(p, wo, wi) /
              bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wi.z > BB_R(0.0) && g1o > BB_R(0.0)));
+}
+
+BB_FN bb_sample bb_ggx_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
+    return bb_ggx_sample_disk(p, fkind, fp, wo, bb_disk_polar(u1, u2));
 }
 
 #endif /* BRDFBAKE_BRDF_GGX_H */

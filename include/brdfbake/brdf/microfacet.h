@@ -44,6 +44,7 @@
 #define BRDFBAKE_BRDF_MICROFACET_H
 
 #include "brdfbake/brdf/params.h"
+#include "brdfbake/brdf/sampling.h"
 
 /* Built-ins that compat.h does not (yet) name; both OpenCL C and <cmath> have them. */
 #ifdef __OPENCL_C_VERSION__
@@ -159,9 +160,11 @@ BB_FN real bb_ggx_g2_correlated(bb_vec3 wo, bb_vec3 wi, real ax, real ay) {
     return bb_select(BB_R(0.0), g, p > BB_R(0.0));
 }
 
-/* Sample a visible normal of GGX seen from wo (wo.z > 0) [H18, listing 1].
- * u1, u2 in [0, 1). The density of the result is D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo.z. */
-BB_FN bb_vec3 bb_ggx_sample_vndf(bb_vec3 wo, real ax, real ay, real u1, real u2) {
+/* Sample a visible normal of GGX seen from wo (wo.z > 0) [H18, listing 1], from the point d of
+ * the unit disk that bb_disk_polar(u1, u2) gives (sec. 4.2: d = sqrt(u1) (cos 2 pi u2,
+ * sin 2 pi u2); it does not depend on wo, so the fast kernels tabulate it). The density of the
+ * result is D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo.z. */
+BB_FN bb_vec3 bb_ggx_sample_vndf_disk(bb_vec3 wo, real ax, real ay, bb_vec2 d) {
     /* Section 3.2: stretch the view vector to the hemisphere configuration. */
     bb_vec3 vh = bb_normalize(bb_v3(ax * wo.x, ay * wo.y, wo.z));
     /* Section 4.1: orthonormal basis (with the special case at normal incidence). */
@@ -171,10 +174,8 @@ BB_FN bb_vec3 bb_ggx_sample_vndf(bb_vec3 wo, real ax, real ay, real u1, real u2)
                        bb_select(BB_R(0.0), vh.x * inv_len, lensq > BB_R(0.0)), BB_R(0.0));
     bb_vec3 t2 = bb_cross(vh, t1);
     /* Section 4.2: parameterisation of the projected area. */
-    real r = bb_sqrt(u1);
-    real phi = BB_2PI * u2;
-    real p1 = r * bb_cos(phi);
-    real p2 = r * bb_sin(phi);
+    real p1 = d.x;
+    real p2 = d.y;
     real s = BB_R(0.5) * (BB_R(1.0) + vh.z);
     p2 = (BB_R(1.0) - s) * bb_safe_sqrt(BB_R(1.0) - p1 * p1) + s * p2;
     /* Section 4.3: reprojection onto the hemisphere. */
@@ -182,6 +183,12 @@ BB_FN bb_vec3 bb_ggx_sample_vndf(bb_vec3 wo, real ax, real ay, real u1, real u2)
     bb_vec3 nh = bb_add(bb_add(bb_scale(t1, p1), bb_scale(t2, p2)), bb_scale(vh, p3));
     /* Section 3.4: unstretch back to the ellipsoid configuration. */
     return bb_normalize(bb_v3(ax * nh.x, ay * nh.y, bb_max(BB_R(0.0), nh.z)));
+}
+
+/* Sample a visible normal of GGX seen from wo (wo.z > 0) [H18, listing 1].
+ * u1, u2 in [0, 1). The density of the result is D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo.z. */
+BB_FN bb_vec3 bb_ggx_sample_vndf(bb_vec3 wo, real ax, real ay, real u1, real u2) {
+    return bb_ggx_sample_vndf_disk(wo, ax, ay, bb_disk_polar(u1, u2));
 }
 
 /* Sample a GGX microfacet normal with density D(m) cos(theta_m) [WMLT07 eq. 35-36], through the
@@ -328,7 +335,7 @@ BB_FN bb_vec3 bb_beckmann_sample_slope11(real cos_t, real sin_t, real u1, real u
         real x = bb_erfinv(b);
         real value = norm * (BB_R(1.0) + b + k * bb_exp(-x * x)) - u;
         real deriv = norm * (BB_R(1.0) - x * tan_t);
-        int above = value > BB_R(0.0);
+        bb_mask above = value > BB_R(0.0);
         c = bb_select(c, b, above);
         a = bb_select(b, a, above);
         b = b - value / deriv;

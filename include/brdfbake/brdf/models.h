@@ -156,4 +156,20 @@ BB_FN bb_sample bb_model_sample(int model, bb_params p, int fkind, bb_params fp,
     }
 }
 
+/* Models whose importance sample is a function of the disk point bb_disk_polar(u1, u2) alone
+ * (no other use of u1, u2), so that a kernel can tabulate that point once for all cells: the
+ * vector path of kernels/albedo.cl. The host asks before choosing that path. */
+BB_FN int bb_model_samples_disk(int model) { return model == BB_MODEL_GGX; }
+
+BB_FN bb_sample bb_model_sample_disk(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec2 d) {
+    switch (model) {
+#if BB_HAS_MODEL(BB_MODEL_GGX)
+    case BB_MODEL_GGX:
+        return bb_ggx_sample_disk(p, fkind, fp, wo, d);
+#endif
+    default:
+        return bb_make_sample(bb_v3(BB_R(0.0), BB_R(0.0), BB_R(1.0)), BB_R(0.0));
+    }
+}
+
 #endif /* BRDFBAKE_BRDF_MODELS_H */

@@ -16,7 +16,7 @@ BB_FN unsigned int bb_reverse_bits(unsigned int v) {
 /* A 32-bit fraction as a real in [0, 1): float keeps the top 24 bits so that the result can
  * never round up to 1. */
 BB_FN real bb_unit_from_bits(unsigned int v) {
-#if defined(__OPENCL_C_VERSION__) && !defined(BB_REAL_DOUBLE)
+#ifdef BB_REAL_IS_FLOAT
     return (real)(v >> 8) * BB_R(5.9604644775390625e-8); /* 2^-24 */
 #else
     return (real)v * BB_R(2.3283064365386963e-10); /* 2^-32 */
@@ -32,5 +32,14 @@ BB_FN real bb_rotate(real x, real shift) {
 /* Point i of the n-point Hammersley set: ((i + 1/2)/n, radical_inverse_2(i)). */
 BB_FN real bb_hammersley_u1(unsigned int i, unsigned int n) { return ((real)i + BB_R(0.5)) / (real)n; }
 BB_FN real bb_hammersley_u2(unsigned int i) { return bb_unit_from_bits(bb_reverse_bits(i)); }
+
+/* The polar map of the unit square onto the unit disk: radius sqrt(u1), angle 2 pi u2 (uniform
+ * density; the warp of Malley's method and of the visible-normal sampling [H18 sec. 4.2]).
+ * It does not depend on the cell of a table, so the fast kernels take it from a table. */
+BB_FN bb_vec2 bb_disk_polar(real u1, real u2) {
+    real r = bb_sqrt(u1);
+    real phi = BB_2PI * u2;
+    return bb_v2(r * bb_cos(phi), r * bb_sin(phi));
+}
 
 #endif /* BRDFBAKE_BRDF_SAMPLING_H */
