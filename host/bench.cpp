@@ -86,11 +86,12 @@ double median(std::vector<double> v) {
 }
 
 /// Repeats `run` (returning seconds): one warm-up, then until min_seconds have passed (at
-/// least once, at most max_runs). Returns the median.
+/// least once, at most max_runs). Returns the median; a first run longer than min_seconds
+/// is taken as it is.
 template <typename Run>
 double time_median(Run run, const BenchOptions& o) {
     const double first = run();
-    if (o.quick) return first;
+    if (o.quick || first >= o.min_seconds) return first;  // a long run is its own warm-up
     std::vector<double> t;
     double total = 0.0;
     while (t.empty() || (total < o.min_seconds && int(t.size()) < o.max_runs)) {
