@@ -52,4 +52,17 @@ bool analytic_transmission(const ModelConfig& model, double mu, SpecularTransmis
     return true;
 }
 
+AlbedoResult analytic_albedo_result(const ModelConfig& model, const FresnelConfig& fresnel,
+                                    const std::vector<AlbedoCell>& cells) {
+    AlbedoResult r;
+    r.method = "analytic (delta lobe: albedo = F(mu))";
+    for (const AlbedoCell& c : cells) {
+        double v = 0.0;
+        if (!analytic_albedo(model, fresnel, c.mu, v))
+            throw Error("internal error: model '" + model.name + "' has no analytic albedo");
+        r.values.push_back({v, analytic_albedo_error(v)});
+    }
+    return r;
+}
+
 }  // namespace brdfbake

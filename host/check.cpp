@@ -4,6 +4,7 @@
 #include <sstream>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/analytic.h"
 #include "brdfbake/brdf/params.h"
 #include "brdfbake/error.h"
 #include "device_buffer.h"
@@ -99,8 +100,10 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
             req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
     r.furnace_directions = int(req.cells.size());
     try {
-        const AlbedoResult res = compute_albedo(engine, req);
+        const AlbedoResult res = has_analytic_albedo(model) ? analytic_albedo_result(model, fresnel, req.cells)
+                                                            : compute_albedo(engine, req);
         r.furnace_samples = res.samples_per_cell;
+        r.furnace_analytic = res.samples_per_cell == 0;
         for (size_t c = 0; c < res.values.size(); ++c) {
             const AlbedoValue& v = res.values[c];
             if (c == 0 || v.value - v.error > r.max_albedo - r.max_albedo_error) {

@@ -10,6 +10,7 @@
 #include <sstream>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/analytic.h"
 #include "brdfbake/error.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
@@ -57,7 +58,7 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         j["models"] = nlohmann::json::array();
         for (const Run& r : runs) j["models"].push_back(r.model.canonical);
         j["fresnel"] = fresnel.canonical;
-        j["method"] = "importance";
+        j["method"] = has_analytic_albedo(first.model) ? "analytic" : "importance";
         j["estimator"] = first.result.method;
         j["precision"] = precision_name(first.request.precision);
         j["samples"] = first.result.samples_per_cell;
@@ -67,11 +68,19 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         j["results"] = nlohmann::json::array();
         for (const Run& r : runs)
             for (size_t i = 0; i < r.request.cells.size(); ++i)
-                j["results"].push_back({{"model", r.model.canonical},
-                                        {"mu", r.request.cells[i].mu},
-                                        {"phi_deg", r.request.cells[i].phi * kDeg},
-                                        {"albedo", r.result.values[i].value},
-                                        {"error", r.result.values[i].error}});
+            {
+                nlohmann::json e = {{"model", r.model.canonical},
+                                    {"mu", r.request.cells[i].mu},
+                                    {"phi_deg", r.request.cells[i].phi * kDeg},
+                                    {"albedo", r.result.values[i].value},
+                                    {"error", r.result.values[i].error}};
+                SpecularTransmission t;
+                if (analytic_transmission(r.model, r.request.cells[i].mu, t)) {
+                    e["transmission"] = t.energy;
+                    e["radiance_factor"] = t.radiance_factor;
+                }
+                j["results"].push_back(e);
+            }
         out << j.dump(2) << "\n";
         return out.str();
     }
@@ -87,10 +96,14 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         return out.str();
     }
     for (const Run& r : runs) {
-        out << "# albedo of " << r.model.canonical << ", Fresnel " << fresnel.canonical << "\n"
-            << "# " << r.result.method << ", " << precision_name(r.request.precision) << ", "
-            << r.result.samples_per_cell << " samples per direction, " << engine.device().name << "\n"
-            << "# error: " << kErrorMeaning << "\n";
+        out << "# albedo of " << r.model.canonical << ", Fresnel " << fresnel.canonical << "\n";
+        if (r.result.samples_per_cell == 0)
+            out << "# " << r.result.method << ", computed on the host in double\n"
+                << "# error: a rounding bound\n";
+        else
+            out << "# " << r.result.method << ", " << precision_name(r.request.precision) << ", "
+                << r.result.samples_per_cell << " samples per direction, " << engine.device().name << "\n"
+                << "# error: " << kErrorMeaning << "\n";
         out << "        mu   phi_deg       albedo      error\n";
         for (size_t i = 0; i < r.request.cells.size(); ++i) {
             std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e\n", r.request.cells[i].mu,
@@ -160,7 +173,8 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
 
     Engine engine(g.device, g.verbose);
     for (Run& r : runs) {
-        r.result = compute_albedo(engine, r.request);
+        r.result = has_analytic_albedo(r.model) ? analytic_albedo_result(r.model, fresnel, r.request.cells)
+                                                : compute_albedo(engine, r.request);
         if (g.verbose)
             std::cerr << "brdfbake: " << r.model.canonical << ": kernel " << r.result.kernel_seconds * 1e3 << " ms\n";
     }

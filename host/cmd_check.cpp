@@ -61,7 +61,10 @@ std::string render(const CheckReport& r, Format format) {
     }
     char line[512];
     out << "check " << r.model << " (Fresnel " << r.fresnel << ")\n";
-    if (r.furnace_samples == 0)
+    if (r.furnace_analytic)
+        std::snprintf(line, sizeof line, "  energy       %s  max E = %.6f (analytic) at mu = %.4f (%d directions)\n",
+                      r.energy_violation ? "FAIL" : "pass", r.max_albedo, r.max_albedo_mu, r.furnace_directions);
+    else if (r.furnace_samples == 0)
         std::snprintf(line, sizeof line, "  energy       n/a   the furnace met NaN or Inf (%s)\n", r.nonfinite_where.c_str());
     else
         std::snprintf(line, sizeof line,

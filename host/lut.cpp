@@ -46,6 +46,12 @@ std::vector<int> alpha_slots(const ModelConfig& m) {
     switch (m.id) {
     case BB_MODEL_GGX:
         return {BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y};
+    case BB_MODEL_BECKMANN:
+        return {BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y};
+    case BB_MODEL_TORRANCE_SPARROW:
+        if (m.params[BB_TORRANCE_SPARROW_DIST] != BB_TS_D_BLINN)
+            return {BB_TORRANCE_SPARROW_ALPHA_X, BB_TORRANCE_SPARROW_ALPHA_Y};
+        throw Error("torrance-sparrow with d=blinn has an exponent, not alpha, to sweep; use d=beckmann or d=ggx");
     default:
         throw Error("model '" + m.name + "' has no roughness alpha to sweep; tables need a microfacet model");
     }

@@ -9,6 +9,7 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/ggx.h"
 #include "brdfbake/check.h"
+#include "model_refs.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -120,4 +121,43 @@ TEST_CASE("reciprocity writes its map as EXR and heatmap; furnace and albedo dra
     CHECK(testing::run_cli("albedo --model ggx:alpha=0.2 --plot out.gif").status == 2);
     CHECK(testing::run_cli("reciprocity --model ggx:alpha=0.2").status == 2);
     CHECK(testing::run_cli("furnace --model ggx --roughness 0.1 --model lambert -o x.png").status == 2);
+}
+
+TEST_CASE("check: phong-original is not reciprocal, unnormalised Blinn-Phong gains energy", "[check][cli]") {
+    const auto po = testing::run_cli("check --model phong-original:n=10,ks=0.5 --directions 8 --samples 4096 --format json");
+    CHECK(po.status == 1);
+    const auto j = nlohmann::json::parse(po.out);
+    CHECK(j.at("reciprocity").at("violation").get<bool>());
+    CHECK(j.at("reciprocity").at("max_relative_error").get<double>() > 0.1);
+
+    const auto bp = testing::run_cli("check --model blinn-phong:n=10,ks=5 --directions 8 --samples 4096 --format json");
+    CHECK(bp.status == 1);
+    const auto k = nlohmann::json::parse(bp.out);
+    CHECK(k.at("energy").at("violation").get<bool>());
+    CHECK_FALSE(k.at("reciprocity").at("violation").get<bool>());
+
+    for (const char* spec : {"beckmann:alpha=0.3", "beckmann:alpha=0.3,shadowing=separable", "torrance-sparrow:d=blinn,n=20",
+                             "torrance-sparrow:d=ggx,alpha=0.4", "oren-nayar:sigma=0.5,rho=0.9", "mirror",
+                             "dielectric-specular:eta=1.5"}) {
+        INFO(spec);
+        CHECK(testing::run_cli(std::string("check --model ") + spec + " --directions 8 --samples 4096").status == 0);
+    }
+}
+
+TEST_CASE("check's energy verdict agrees with independent host integrals", "[check][device]") {
+    // Each case: the check's verdict against the reference albedo's maximum over a few mu.
+    const std::vector<modelref::Case> cases = {
+        modelref::blinn_phong(10),              // (n+2)/2pi normalises D, not the BRDF: E > 1
+        modelref::phong(10),                    // normalised Phong: E <= 1
+        modelref::oren_nayar(0.8, 1.0),         // E <= rho
+        modelref::beckmann(0.5, true),          // single scattering loses energy
+        modelref::torrance_sparrow(ref::Dist::Ggx, 0.4),
+    };
+    for (const auto& c : cases) {
+        double ref_max = 0;
+        for (double mu : {0.3, 1.0}) ref_max = std::max(ref_max, c.albedo(mu));
+        const CheckReport r = check(c.spec);
+        INFO(c.spec << ": reference max E " << ref_max << ", check max E " << r.max_albedo << " +- " << r.max_albedo_error);
+        CHECK(r.energy_violation == (ref_max > 1.0 + 1e-4));
+    }
 }

@@ -3,6 +3,7 @@
 // evaluated on the host in double.
 #pragma once
 
+#include "brdfbake/albedo.h"
 #include "brdfbake/spec.h"
 
 namespace brdfbake {
@@ -19,6 +20,11 @@ bool analytic_albedo(const ModelConfig& model, const FresnelConfig& fresnel, dou
 
 /// The rounding bound to report with an analytic albedo (a few ulps of the value).
 double analytic_albedo_error(double value);
+
+/// The albedo of a delta lobe at every cell, in the form compute_albedo returns (method
+/// "analytic", no samples). Throws Error for a model without an analytic albedo.
+AlbedoResult analytic_albedo_result(const ModelConfig& model, const FresnelConfig& fresnel,
+                                    const std::vector<AlbedoCell>& cells);
 
 /// Specular transmission of `dielectric-specular` at mu: the transmitted energy fraction
 /// 1 - F(mu, eta) and the factor eta^2 by which the transmitted radiance is scaled (L/n^2 is

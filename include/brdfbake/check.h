@@ -47,7 +47,8 @@ struct CheckReport {
     // white furnace
     double max_albedo = 0.0, max_albedo_error = 0.0, max_albedo_mu = 0.0, max_albedo_phi = 0.0;
     bool energy_violation = false;
-    std::uint64_t furnace_samples = 0;
+    std::uint64_t furnace_samples = 0;  // 0 with furnace_analytic (delta lobes)
+    bool furnace_analytic = false;
     int furnace_directions = 0;
     // reciprocity
     double max_rel = 0.0, max_rel_theta_i = 0.0, max_rel_theta_o = 0.0, max_rel_dphi = 0.0;
