@@ -101,8 +101,10 @@ BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(real cos_theta, real eta) {
     real rp = bb_ratio_or(d * ((e2 + BB_R(1.0)) * c * c - BB_R(1.0)), dp * dp, BB_R(0.0));
     bb_mask tir = q <= BB_R(0.0);
     bb_mask unit = e == BB_R(1.0);
-    real Rs = bb_select(bb_select(rs * rs, BB_R(1.0), tir), BB_R(0.0), unit);
-    real Rp = bb_select(bb_select(rp * rp, BB_R(1.0), tir), BB_R(0.0), unit);
+    /* |r| <= 1 exactly, but near grazing (cos_i -> 0) (cos_i + w)^2 -> w^2 = d only up to the
+     * rounding of w = sqrt(d + cos_i^2): |r| may round to 1 + 2 ulp. Clamp to 1. */
+    real Rs = bb_select(bb_select(bb_min(rs * rs, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
+    real Rp = bb_select(bb_select(bb_min(rp * rp, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
     return bb_make_fresnel_sp(Rs, Rp);
 }
 
@@ -164,13 +166,16 @@ BB_FN bb_fresnel_sp bb_fresnel_conductor_sp(real cos_theta, real eta, real k) {
     real n2_im = BB_R(2.0) * eta * k;   /* Im n^2 */
     bb_complex w = bb_complex_sqrt_upper((eta - BB_R(1.0)) * (eta + BB_R(1.0)) - k * k + c * c, n2_im);
     /* Rs */
+    /* Both ratios are <= 1 exactly (Re w >= 0, and Re(n^2 cos_i conj(w)) >= 0 for a passive
+     * medium), but at grazing numerator and denominator agree to rounding and the ratio may be
+     * 1 + 2 ulp: clamp to 1. */
     real dm = c - w.re, dp = c + w.re, w_im2 = w.im * w.im;
-    real Rs = bb_ratio_or(dm * dm + w_im2, dp * dp + w_im2, BB_R(0.0));
+    real Rs = bb_min(bb_ratio_or(dm * dm + w_im2, dp * dp + w_im2, BB_R(0.0)), BB_R(1.0));
     /* Rp */
     real a_re = n2_re * c, a_im = n2_im * c; /* n^2 cos_i */
     real pm_re = a_re - w.re, pm_im = a_im - w.im;
     real pp_re = a_re + w.re, pp_im = a_im + w.im;
-    real Rp = bb_ratio_or(pm_re * pm_re + pm_im * pm_im, pp_re * pp_re + pp_im * pp_im, BB_R(0.0));
+    real Rp = bb_min(bb_ratio_or(pm_re * pm_re + pm_im * pm_im, pp_re * pp_re + pp_im * pp_im, BB_R(0.0)), BB_R(1.0));
     return bb_make_fresnel_sp(Rs, Rp);
 }
 
@@ -195,14 +200,18 @@ BB_FN real bb_fresnel_conductor(real cos_theta, real eta, real k) {
  * Error: good for metals (eta^2 + k^2 >> 1): for aluminium at 550 nm (Rakic 1995) the largest
  * |F - F_exact| is 2.3e-3, at 78 deg; gold, silver, copper at 550 nm 5.9e-3, 0.8e-3, 7.1e-3
  * (docs/fresnel.md). Poor for dielectrics: 0.099 off for eta = 1.5, not 0 for eta = 1, and
- * no total internal reflection. cos is clamped to [0, 1]; every denominator is >= 1. */
+ * no total internal reflection. cos is clamped to [0, 1].
+ * The numerators are evaluated as sums of squares, (eta^2 + k^2) - 2 eta cos + cos^2 =
+ * (eta - cos)^2 + k^2 and (eta^2 + k^2) cos^2 - 2 eta cos + 1 = (eta cos - 1)^2 + (k cos)^2 (the
+ * denominators likewise with +): the expanded forms cancel where a numerator vanishes (k = 0 and
+ * cos = eta, or cos = 1/eta) and there rounded to small negative values (-1e-16 in double,
+ * -6e-8 in float). The sums of squares are >= 0 and each numerator <= its denominator in
+ * floating point, so both values lie in [0, 1]. */
 BB_FN bb_fresnel_sp bb_fresnel_conductor_approx_sp(real cos_theta, real eta, real k) {
     real c = bb_clamp(cos_theta, BB_R(0.0), BB_R(1.0));
-    real t = eta * eta + k * k;
-    real two_eta_c = BB_R(2.0) * eta * c;
-    real c2 = c * c;
-    real r_perp = (t - two_eta_c + c2) / (t + two_eta_c + c2);
-    real r_par = (t * c2 - two_eta_c + BB_R(1.0)) / (t * c2 + two_eta_c + BB_R(1.0));
+    real k2 = k * k, kc2 = bb_sqr(k * c);
+    real r_perp = (bb_sqr(eta - c) + k2) / (bb_sqr(eta + c) + k2);
+    real r_par = (bb_sqr(eta * c - BB_R(1.0)) + kc2) / (bb_sqr(eta * c + BB_R(1.0)) + kc2);
     return bb_make_fresnel_sp(r_perp, r_par);
 }
 
