@@ -2,17 +2,46 @@
 
 #include <Random123/philox.h>
 #include <Random123/uniform.hpp>
+#include <boost/math/special_functions/legendre.hpp>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/integrands.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
 #include "brdfbake/error.h"
 #include "device_buffer.h"
 
 namespace brdfbake {
+
+const char* method_name(Method m) {
+    switch (m) {
+    case Method::Importance:
+        return "importance";
+    case Method::QuasiMonteCarlo:
+        return "qmc";
+    case Method::MonteCarlo:
+        return "mc";
+    case Method::Quadrature:
+        return "quadrature";
+    }
+    return "?";
+}
+
+Method parse_method(const std::string& name) {
+    for (Method m : {Method::Importance, Method::QuasiMonteCarlo, Method::MonteCarlo, Method::Quadrature})
+        if (name == method_name(m)) return m;
+    throw Error("unknown method '" + name + "'; methods: auto, importance, qmc, mc, quadrature");
+}
+
+double tolerance_floor(Precision precision) {
+    return 8.0 * (precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7);
+}
 
 std::vector<AlbedoCell> cells_for(const std::vector<double>& mus, double phi, const ParamBlock& params) {
     std::vector<AlbedoCell> cells;
@@ -41,9 +70,27 @@ std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed) {
     return shifts;
 }
 
-std::string method_text(unsigned replicas, std::uint64_t points) {
+std::string method_text(Method method, unsigned replicas, std::uint64_t points) {
     std::ostringstream m;
-    m << "importance sampling, randomised Hammersley (" << replicas << " replicas x " << points << " points)";
+    switch (method) {
+    case Method::Importance:
+        m << "importance sampling, randomised Hammersley";
+        break;
+    case Method::QuasiMonteCarlo:
+        m << "uniform hemisphere sampling, randomised Hammersley";
+        break;
+    default:
+        m << "uniform hemisphere sampling, Philox4x32-10";
+        break;
+    }
+    m << " (" << replicas << " replicas x " << points << " points)";
+    return m.str();
+}
+
+std::string quadrature_text(int model, unsigned n) {
+    std::ostringstream m;
+    m << "Gauss-Legendre product rule in " << (bb_model_quad_dist(model, bb_params{}).kind == BB_QUAD_SAMPLER ? "the sampler's unit square" : "half-vector space")
+      << ", " << n << " x 4x" << n << " nodes, error from the " << n / 2 << "-node rule";
     return m.str();
 }
 
@@ -54,7 +101,7 @@ std::string method_text(unsigned replicas, std::uint64_t points) {
 template <typename Where>
 std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::vector<cl_uint>& bad,
                                    unsigned replicas, Precision precision, Where where) {
-    const double eps = precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7;
+    const double fp_bound = tolerance_floor(precision);
     const size_t n_cells = means.size() / replicas;
     std::vector<AlbedoValue> out;
     for (size_t c = 0; c < n_cells; ++c) {
@@ -71,7 +118,10 @@ std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::
         double ss = 0.0;
         for (unsigned r = 0; r < replicas; ++r) ss += std::pow(means[c * replicas + r] - mean, 2);
         const double std_error = std::sqrt(ss / (replicas - 1) / replicas);
-        out.push_back({mean, 3.0 * std_error + 8.0 * eps * std::max(std::fabs(mean), 1e-3)});
+        AlbedoValue v;
+        v.value = mean;
+        v.error = 3.0 * std_error + fp_bound * std::max(std::fabs(mean), 1e-3);
+        out.push_back(v);
     }
     return out;
 }
@@ -114,14 +164,31 @@ std::vector<double> disk_table(const std::vector<double>& shifts, unsigned repli
 
 }  // namespace
 
-AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
-    if (req.cells.empty()) throw Error("no directions to integrate");
-    check_sampling(req.samples, req.replicas);
-    for (const auto& c : req.cells)
-        if (!(c.mu > 0.0 && c.mu <= 1.0) || !std::isfinite(c.phi))
-            throw Error("mu must lie in (0, 1]; got " + std::to_string(c.mu));
-    const std::uint64_t points = req.samples / req.replicas;
+namespace {
 
+struct CellArrays {
+    std::vector<double> mus, phis, params;
+};
+
+CellArrays cell_arrays(const std::vector<AlbedoCell>& cells) {
+    CellArrays a;
+    for (const auto& c : cells) {
+        a.mus.push_back(c.mu);
+        a.phis.push_back(c.phi);
+        for (int k = 0; k < BB_MAX_PARAMS; ++k) a.params.push_back(c.params[k]);
+    }
+    return a;
+}
+
+std::string nonfinite_where(const AlbedoRequest& req, size_t c) {
+    std::ostringstream m;
+    m << "the BRDF produced NaN or Inf at mu = " << req.cells[c].mu;
+    return m.str();
+}
+
+AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
+    check_sampling(req.samples, req.replicas);
+    const std::uint64_t points = req.samples / req.replicas;
     const size_t n_cells = req.cells.size();
     const size_t n_items = n_cells * req.replicas;
 
@@ -130,8 +197,10 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     build.precision = req.precision;
     build.defines = {{"BB_MODEL", std::to_string(req.model)},
                      {"BB_FRESNEL", std::to_string(req.fresnel.kind)}};
-    // The vector path: W samples per step, their disk points from a table shared by all cells.
-    build.has_vector_path = bb_model_samples_disk(req.model) != 0;
+    build.random123 = req.method == Method::MonteCarlo;
+    // The vector path: importance sampling with W samples per step, their disk points from a
+    // table shared by all cells.
+    build.has_vector_path = req.method == Method::Importance && bb_model_samples_disk(req.model) != 0;
     build.vector_width = req.vector_width;
     unsigned lanes = engine.vector_width(build);
     if (lanes > 1 && points % lanes != 0) {
@@ -140,17 +209,12 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     }
     cl::Program& program = engine.program(build);
 
-    std::vector<double> mus(n_cells), phis(n_cells), params(n_cells * BB_MAX_PARAMS);
-    for (size_t c = 0; c < n_cells; ++c) {
-        mus[c] = req.cells[c].mu;
-        phis[c] = req.cells[c].phi;
-        for (int k = 0; k < BB_MAX_PARAMS; ++k) params[c * BB_MAX_PARAMS + k] = req.cells[c].params[k];
-    }
+    const CellArrays cells = cell_arrays(req.cells);
     const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
     const std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
 
     RealBuffers bufs(engine, req.precision);
-    cl::Buffer b_mu = bufs.input(mus), b_phi = bufs.input(phis), b_p = bufs.input(params),
+    cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
                b_fp = bufs.input(fparams);
     cl::Buffer b_points = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
     cl::Buffer b_mean = bufs.output(n_items);
@@ -166,6 +230,12 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
     kernel.setArg(a++, cl_uint(points));
     kernel.setArg(a++, cl_uint(req.replicas));
     kernel.setArg(a++, cl_uint(n_cells));
+    if (lanes == 1) {
+        const int method = req.method == Method::Importance ? 0 : (req.method == Method::QuasiMonteCarlo ? 1 : 2);
+        kernel.setArg(a++, cl_int(method));
+        kernel.setArg(a++, cl_uint(req.seed));
+        kernel.setArg(a++, cl_uint(req.seed >> 32));
+    }
     kernel.setArg(a++, b_mean);
     kernel.setArg(a++, b_bad);
 
@@ -180,14 +250,211 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
 
     AlbedoResult result;
     result.samples_per_cell = points * req.replicas;
+    result.total_samples = result.samples_per_cell * n_cells;
     result.kernel_seconds = event_seconds(done);
     result.vector_width = lanes;
-    result.method = method_text(req.replicas, points);
-    result.values = summarize(means, bad, req.replicas, req.precision, [&](size_t c) {
-        std::ostringstream m;
-        m << "the BRDF produced NaN or Inf at mu = " << req.cells[c].mu;
-        return m.str();
-    });
+    result.method = method_text(req.method, req.replicas, points);
+    result.values = summarize(means, bad, req.replicas, req.precision, [&](size_t c) { return nonfinite_where(req, c); });
+    for (auto& v : result.values) {
+        v.samples = result.samples_per_cell;
+        v.method = req.method;
+    }
+    return result;
+}
+
+// Gauss-Legendre nodes and weights of the n-point rule on [0, 1] (weights summing to 1):
+// the zeros of P_n and 2/((1 - x^2) P_n'(x)^2) from Boost.Math, mapped from [-1, 1].
+void append_gauss_legendre(unsigned n, std::vector<double>& out) {
+    const std::vector<double> zeros = boost::math::legendre_p_zeros<double>(int(n));  // the zeros >= 0
+    std::vector<std::pair<double, double>> rule;
+    for (double z : zeros) {
+        const double d = boost::math::legendre_p_prime(int(n), z);
+        const double w = 1.0 / ((1.0 - z * z) * d * d);  // half the weight on [-1, 1]
+        rule.push_back({0.5 * (1.0 + z), w});
+        if (z != 0.0) rule.push_back({0.5 * (1.0 - z), w});
+    }
+    std::sort(rule.begin(), rule.end());
+    for (const auto& r : rule) out.push_back(r.first);
+    for (const auto& r : rule) out.push_back(r.second);
+}
+
+// The fine rule's order for a sample budget: the even n nearest sqrt(samples / 4), at least 4.
+unsigned quadrature_order(std::uint64_t samples) {
+    const double n = std::sqrt(double(samples) / 4.0);
+    unsigned order = 2 * unsigned(std::lround(n / 2.0));
+    return std::clamp(order, 4u, 4096u);
+}
+
+AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
+    if (req.samples == 0) throw Error("--samples must be positive");
+    const unsigned n = quadrature_order(req.samples), m = n / 2;
+    const size_t n_cells = req.cells.size(), n_items = n_cells * 8;
+
+    BuildRequest build;
+    build.kernel_file = "albedo.cl";
+    build.precision = req.precision;
+    build.defines = {{"BB_MODEL", std::to_string(req.model)}, {"BB_FRESNEL", std::to_string(req.fresnel.kind)}};
+    build.vector_width = 1;
+    cl::Program& program = engine.program(build);
+
+    std::vector<double> nodes;
+    append_gauss_legendre(n, nodes);
+    append_gauss_legendre(m, nodes);
+    const CellArrays cells = cell_arrays(req.cells);
+    const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
+    RealBuffers bufs(engine, req.precision);
+    cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
+               b_fp = bufs.input(fparams), b_nodes = bufs.input(nodes);
+    cl::Buffer b_sum = bufs.output(n_items);
+    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+
+    cl::Kernel kernel(program, "albedo_quadrature");
+    int a = 0;
+    kernel.setArg(a++, b_mu);
+    kernel.setArg(a++, b_phi);
+    kernel.setArg(a++, b_p);
+    kernel.setArg(a++, b_fp);
+    kernel.setArg(a++, b_nodes);
+    kernel.setArg(a++, cl_uint(n));
+    kernel.setArg(a++, cl_uint(m));
+    kernel.setArg(a++, cl_uint(n_cells));
+    kernel.setArg(a++, b_sum);
+    kernel.setArg(a++, b_bad);
+    cl::Event done;
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize),
+                                        cl::NDRange(kLocalSize), nullptr, &done);
+    const std::vector<double> sums = bufs.read(b_sum, n_items);
+    std::vector<cl_uint> bad(n_items);
+    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+
+    AlbedoResult result;
+    const std::uint64_t per_cell = 4ull * n * n + 4ull * m * m;
+    result.samples_per_cell = per_cell;
+    result.total_samples = per_cell * n_cells;
+    result.kernel_seconds = event_seconds(done);
+    result.method = quadrature_text(req.model, n);
+    const double fp_bound = tolerance_floor(req.precision);
+    for (size_t c = 0; c < n_cells; ++c) {
+        double fine = 0.0, coarse = 0.0;
+        std::uint64_t n_bad = 0;
+        for (int q = 0; q < 4; ++q) {
+            fine += sums[c * 8 + q];
+            coarse += sums[c * 8 + 4 + q];
+            n_bad += bad[c * 8 + q] + bad[c * 8 + 4 + q];
+        }
+        if (n_bad > 0)
+            throw NonFiniteError(nonfinite_where(req, c) + " (" + std::to_string(n_bad) +
+                                     " quadrature nodes); refusing to report a result",
+                                 c, n_bad);
+        AlbedoValue v;
+        v.value = fine;
+        v.error = std::fabs(fine - coarse) + fp_bound * std::max(std::fabs(fine), 1e-3);
+        v.samples = per_cell;
+        v.method = Method::Quadrature;
+        result.values.push_back(v);
+    }
+    return result;
+}
+
+}  // namespace
+
+AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
+    if (req.cells.empty()) throw Error("no directions to integrate");
+    for (const auto& c : req.cells)
+        if (!(c.mu > 0.0 && c.mu <= 1.0) || !std::isfinite(c.phi))
+            throw Error("mu must lie in (0, 1]; got " + std::to_string(c.mu));
+    return req.method == Method::Quadrature ? compute_quadrature(engine, req) : compute_sampled(engine, req);
+}
+
+AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
+    if (!(tol.tolerance > 0.0) || !std::isfinite(tol.tolerance))
+        throw Error("--tolerance must be a positive number");
+    const double floor = tolerance_floor(req.precision);
+    if (tol.tolerance < 2.0 * floor)
+        throw Error("--tolerance " + std::to_string(tol.tolerance) + " is below what " + precision_name(req.precision) +
+                    " arithmetic can certify (about " + std::to_string(2.0 * floor) + ")" +
+                    (req.precision == Precision::Float ? "; use --precision double" : ""));
+    if (req.cells.empty()) throw Error("no directions to integrate");
+
+    // The plan: (method, samples) steps, each a round over the cells still above the tolerance.
+    // Quadrature first (auto): its error falls exponentially for smooth lobes; importance
+    // sampling, whose error falls like N^-0.9 with randomised QMC, takes the cells where the
+    // rule stalls (kinks such as Torrance-Sparrow's V-groove min()). Work grows 4x per step.
+    std::vector<std::pair<Method, std::uint64_t>> steps;
+    const bool quad_first = tol.auto_method || req.method == Method::Quadrature;
+    if (quad_first)
+        for (std::uint64_t s = 4 * 16 * 16; s <= std::min<std::uint64_t>(tol.max_samples, 4ull * 512 * 512); s *= 4)
+            steps.push_back({Method::Quadrature, s});
+    if (tol.auto_method || req.method != Method::Quadrature) {
+        const Method sampler = tol.auto_method ? Method::Importance : req.method;
+        for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples; s *= 4) steps.push_back({sampler, s});
+    }
+    if (steps.empty()) throw Error("--max-samples is too small for a first round");
+
+    AlbedoResult result;
+    result.tolerance = tol.tolerance;
+    result.rounds = 0;
+    result.values.assign(req.cells.size(), AlbedoValue{});
+    std::vector<bool> done(req.cells.size(), false);
+    std::vector<double> best_error(req.cells.size(), INFINITY);
+    std::map<std::string, size_t> met_by;  // "quadrature n=32" -> cells
+    for (const auto& step : steps) {
+        std::vector<size_t> todo;
+        for (size_t c = 0; c < done.size(); ++c)
+            if (!done[c]) todo.push_back(c);
+        if (todo.empty()) break;
+        AlbedoRequest r = req;
+        r.method = step.first;
+        r.samples = step.second;
+        r.cells.clear();
+        for (size_t c : todo) r.cells.push_back(req.cells[c]);
+        const AlbedoResult part = compute_albedo(engine, r);
+        result.rounds++;
+        result.kernel_seconds += part.kernel_seconds;
+        result.vector_width = std::max(result.vector_width, part.vector_width);
+        for (size_t i = 0; i < todo.size(); ++i) {
+            const size_t c = todo[i];
+            const std::uint64_t spent = result.values[c].samples + part.values[i].samples;
+            result.total_samples += part.values[i].samples;
+            // Keep the better estimate so far; a cell is done when it meets the tolerance.
+            if (part.values[i].error < best_error[c]) {
+                best_error[c] = part.values[i].error;
+                result.values[c] = part.values[i];
+            }
+            result.values[c].samples = spent;
+            result.samples_per_cell = std::max(result.samples_per_cell, spent);
+            if (part.values[i].error <= tol.tolerance) {
+                done[c] = true;
+                std::ostringstream key;
+                key << method_name(step.first) << " (" << part.values[i].samples << " points)";
+                met_by[key.str()]++;
+            }
+        }
+    }
+    std::ostringstream m;
+    m << "tolerance " << tol.tolerance << ": ";
+    bool first = true;
+    for (const auto& kv : met_by) {
+        m << (first ? "" : ", ") << kv.second << (kv.second == 1 ? " cell" : " cells") << " by " << kv.first;
+        first = false;
+    }
+    m << "; " << result.rounds << (result.rounds == 1 ? " round" : " rounds");
+    result.method = m.str();
+
+    size_t missed = 0, worst = 0;
+    for (size_t c = 0; c < done.size(); ++c)
+        if (!done[c]) {
+            if (missed == 0 || result.values[c].error > result.values[worst].error) worst = c;
+            ++missed;
+        }
+    if (missed > 0) {
+        std::ostringstream e;
+        e << "--tolerance " << tol.tolerance << " not met at " << missed << " of " << done.size()
+          << " cells within " << tol.max_samples << " samples per cell; worst: mu = " << req.cells[worst].mu
+          << ", error estimate " << result.values[worst].error << " (" << method_name(result.values[worst].method)
+          << "). Raise --max-samples, use --precision double, or loosen the tolerance";
+        throw Error(e.str(), kExitViolation);
+    }
     return result;
 }
 
@@ -239,7 +506,7 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     DielectricResult result;
     result.samples_per_cell = points * req.replicas;
     result.kernel_seconds = event_seconds(done);
-    result.method = method_text(req.replicas, points);
+    result.method = method_text(Method::Importance, req.replicas, points);
     auto where = [&](size_t c) {
         std::ostringstream m;
         m << "the rough dielectric produced NaN or Inf at mu = " << req.cells[c].mu << ", alpha = " << req.cells[c].alpha

@@ -4,8 +4,11 @@
 
 #include <CLI/CLI.hpp>
 
+#include <cstdint>
 #include <functional>
 #include <string>
+
+#include "brdfbake/albedo.h"
 
 namespace brdfbake {
 
@@ -14,6 +17,18 @@ struct GlobalOptions {
     std::string device;  // device selector (see choose_device); empty: $BRDFBAKE_DEVICE or PoCL
     bool verbose = false;
 };
+
+/// --samples, --method, --tolerance and --max-samples, shared by the integrating commands.
+void add_method_options(CLI::App* cmd, std::int64_t& samples, std::string& method, double& tolerance,
+                        std::int64_t& max_samples, const std::string& per);
+
+/// The method and tolerance the options ask for: "auto" with a sample count is the default
+/// method (importance sampling); with a tolerance, auto lets the engine choose per cell.
+struct MethodChoice {
+    Method method = Method::Importance;
+    ToleranceRequest tolerance;  // tolerance.tolerance == 0: a fixed sample count
+};
+MethodChoice resolve_method_choice(const std::string& method, double tolerance, std::int64_t max_samples);
 
 /// What main() runs once the command line is parsed; returns the exit status.
 using Action = std::function<int()>;

@@ -30,6 +30,8 @@ struct AlbedoOptions {
     std::string mu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
     std::string phi = "0";
     std::int64_t samples = 1 << 18;
+    double tolerance = 0.0;
+    std::int64_t max_samples = std::int64_t(1) << 24;
     std::string method = "auto";
     std::string precision = "float";
     std::string format = "table";
@@ -45,7 +47,9 @@ struct Run {
     AlbedoResult result;
 };
 
-const char* kErrorMeaning = "3 standard errors of the replicas plus a floating-point bound";
+const char* kErrorMeaning =
+    "3 standard errors of the replicas (sampling) or the difference from the half-order rule (quadrature), "
+    "plus a floating-point bound";
 
 std::string render(Format format, const FresnelConfig& fresnel, const std::vector<Run>& runs, const Engine& engine,
                    double seconds) {
@@ -58,10 +62,15 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         j["models"] = nlohmann::json::array();
         for (const Run& r : runs) j["models"].push_back(r.model.canonical);
         j["fresnel"] = fresnel.canonical;
-        j["method"] = has_analytic_albedo(first.model) ? "analytic" : "importance";
+        j["method"] = has_analytic_albedo(first.model) ? "analytic" : method_name(first.result.values.front().method);
         j["estimator"] = first.result.method;
         j["precision"] = precision_name(first.request.precision);
         j["samples"] = first.result.samples_per_cell;
+        if (first.result.tolerance > 0.0) {
+            j["tolerance"] = first.result.tolerance;
+            j["rounds"] = first.result.rounds;
+            j["total_samples"] = first.result.total_samples;
+        }
         j["error_meaning"] = kErrorMeaning;
         j["device"] = engine.device().name;
         j["seconds"] = seconds;
@@ -74,6 +83,10 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
                                     {"phi_deg", r.request.cells[i].phi * kDeg},
                                     {"albedo", r.result.values[i].value},
                                     {"error", r.result.values[i].error}};
+                if (r.result.tolerance > 0.0) {
+                    e["method"] = method_name(r.result.values[i].method);
+                    e["samples"] = r.result.values[i].samples;
+                }
                 SpecularTransmission t;
                 if (analytic_transmission(r.model, r.request.cells[i].mu, t)) {
                     e["transmission"] = t.energy;
@@ -102,7 +115,8 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
                 << "# error: a rounding bound\n";
         else
             out << "# " << r.result.method << ", " << precision_name(r.request.precision) << ", "
-                << r.result.samples_per_cell << " samples per direction, " << engine.device().name << "\n"
+                << (r.result.tolerance > 0.0 ? "at most " : "") << r.result.samples_per_cell
+                << " samples per direction, " << engine.device().name << "\n"
                 << "# error: " << kErrorMeaning << "\n";
         out << "        mu   phi_deg       albedo      error\n";
         for (size_t i = 0; i < r.request.cells.size(); ++i) {
@@ -155,6 +169,7 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
             throw Error("--mu: " + format_number(mu) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
     const std::vector<double> phis = parse_number_list(o.phi, "--phi");
     if (o.samples <= 0) throw Error("--samples must be positive");
+    const MethodChoice choice = resolve_method_choice(o.method, o.tolerance, o.max_samples);
     std::vector<Run> runs;
     for (const std::string& spec : o.models) {
         Run r;
@@ -164,6 +179,7 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
         r.request.model = r.model.id;
         r.request.fresnel = fresnel;
         r.request.samples = std::uint64_t(o.samples);
+        r.request.method = choice.method;
         r.request.precision = o.precision == "double" ? Precision::Double : Precision::Float;
         r.request.seed = o.seed;
         for (double phi_deg : phis)
@@ -173,8 +189,12 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
 
     Engine engine(g.device, g.verbose);
     for (Run& r : runs) {
-        r.result = has_analytic_albedo(r.model) ? analytic_albedo_result(r.model, fresnel, r.request.cells)
-                                                : compute_albedo(engine, r.request);
+        if (has_analytic_albedo(r.model))
+            r.result = analytic_albedo_result(r.model, fresnel, r.request.cells);
+        else if (choice.tolerance.tolerance > 0.0)
+            r.result = compute_albedo_to_tolerance(engine, r.request, choice.tolerance);
+        else
+            r.result = compute_albedo(engine, r.request);
         if (g.verbose)
             std::cerr << "brdfbake: " << r.model.canonical << ": kernel " << r.result.kernel_seconds * 1e3 << " ms\n";
     }
@@ -199,10 +219,7 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
     cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
     cmd->add_option("--phi", o->phi, "comma-separated phi_o in degrees (anisotropic models)")->capture_default_str();
-    cmd->add_option("--samples", o->samples, "samples per direction")->capture_default_str();
-    cmd->add_option("--method", o->method, "integration method")
-        ->check(CLI::IsMember({"auto", "importance"}))
-        ->capture_default_str();
+    add_method_options(cmd, o->samples, o->method, o->tolerance, o->max_samples, "direction");
     cmd->add_option("--precision", o->precision, "kernel arithmetic")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();

@@ -178,6 +178,9 @@ std::string Engine::build_options(const BuildRequest& request) const {
         o << " -D BB_VECTOR_WIDTH=" << lanes;
     }
     for (const auto& d : request.defines) o << " -D " << d.first << "=" << d.second;
+    // Random123 is header-only and works in OpenCL C (its openclfeatures.h): the kernel
+    // includes the installed headers (librandom123-dev), found by CMake at configure time.
+    if (request.random123) o << " -D BB_PHILOX=1 -I " << BRDFBAKE_RANDOM123_INCLUDE_DIR;
     return o.str();
 }
 

@@ -1,24 +1,64 @@
 /* Directional albedo E(wo) = integral of f(wo, wi) cos(theta_i) over the upper hemisphere.
  *
- * Estimator: importance sampling of the model (bb_model_sample) driven by a randomised
- * Hammersley set. Each work-item computes one replica of one cell: the n-point set rotated by
- * its own Cranley-Patterson shift. The host turns the replicas into the mean and its standard
- * error. Non-finite weights are counted, never summed, so that a NaN cannot hide in a table.
+ * The methods (--method), all from the one shared source:
+ *   importance  the model's importance sampler (bb_model_sample: visible normals for GGX and
+ *               Beckmann, the cosine for Lambert and Oren-Nayar, the lobe for Phong and Blinn)
+ *               driven by a randomised Hammersley set;
+ *   qmc         uniform hemisphere sampling (integrands.h) driven by the same point sets;
+ *   mc          uniform hemisphere sampling driven by Philox4x32-10 (Random123, -D BB_PHILOX);
+ *   quadrature  a Gauss-Legendre product rule (integrands.h), kernel albedo_quadrature.
+ * The sampling methods run replicas: each work-item computes one replica of one cell (its own
+ * Cranley-Patterson shift, or its own Philox stream) and the host turns the replicas into the
+ * mean and its standard error. Non-finite weights are counted, never summed, so that a NaN
+ * cannot hide in a table.
  *
- * Two entry points from the one shared source, chosen by the build options (Engine::build_options):
- *   albedo_replicas       scalar real: one sample per step (GPUs, and models without a tabulated
- *                         sample);
- *   albedo_replicas_disk  -D BB_VECTOR_WIDTH=W, real a vector of W lanes: W samples per step, their
- *                         disk points bb_disk_polar(u1, u2) read from a table that the host fills
- *                         once for all cells (the points and their sin/cos do not depend on the
- *                         cell). Same point set, same shifts, same estimator; PoCL compiles it to
- *                         SIMD code.
+ * Two entry points for the sampling methods, chosen by the build options (Engine::build_options):
+ *   albedo_replicas       scalar real: one sample per step (GPUs, every method and model);
+ *   albedo_replicas_disk  -D BB_VECTOR_WIDTH=W, real a vector of W lanes: importance sampling
+ *                         with W samples per step, their disk points bb_disk_polar(u1, u2) read
+ *                         from a table that the host fills once for all cells (the points and
+ *                         their sin/cos do not depend on the cell). Same point set, same shifts,
+ *                         same estimator; PoCL compiles it to SIMD code.
  *
- * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W]. */
+ * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W]
+ * [-D BB_PHILOX -I <Random123's include directory>]. */
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
 
 #ifndef BB_VECTOR_WIDTH
+#include "brdfbake/brdf/integrands.h"
+
+#ifdef BB_PHILOX
+#include <Random123/philox.h>
+#endif
+
+/* The sampling methods' point source and warp (kernel argument `method`). */
+#define BB_METHOD_IMPORTANCE 0
+#define BB_METHOD_QMC 1
+#define BB_METHOD_MC 2
+
+/* Reads the cell's parameters; 0 if any is not finite. A non-finite parameter would hide behind
+ * the models' guards (x > 0 is false for NaN) and turn into zero weights: the kernels count
+ * every sample of such a cell as non-finite instead. */
+BB_FN unsigned int bb_read_params(__global const real* model_p, __global const real* fresnel_p, unsigned int cell,
+                                  bb_params* p, bb_params* fp) {
+    unsigned int ok = 1;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
+        p->v[k] = model_p[cell * BB_MAX_PARAMS + k];
+        fp->v[k] = fresnel_p[k];
+        ok &= (unsigned int)(isfinite(p->v[k]) && isfinite(fp->v[k]));
+    }
+    return ok;
+}
+
+/* Kahan-compensated accumulation: a float sum of 2^16 terms keeps ~1e-7 relative accuracy. */
+#define BB_KAHAN_ADD(sum, comp, x)       \
+    do {                                 \
+        const real y_ = (x) - (comp);    \
+        const real t_ = (sum) + y_;      \
+        (comp) = (t_ - (sum)) - y_;      \
+        (sum) = t_;                      \
+    } while (0)
 
 __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) per cell */
                               __global const real* cell_phi,   /* phi_o (radians) per cell */
@@ -28,6 +68,9 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
                               const unsigned int n_points,     /* points per replica */
                               const unsigned int n_replicas,
                               const unsigned int n_cells,
+                              const int method,                /* BB_METHOD_* */
+                              const unsigned int seed_lo,      /* Philox key (mc) */
+                              const unsigned int seed_hi,
                               __global real* replica_mean,     /* n_cells * n_replicas */
                               __global unsigned int* bad_count) /* n_cells * n_replicas */
 {
@@ -38,33 +81,100 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
     const unsigned int rep = gid - cell * n_replicas;
 
     bb_params p, fp;
-    /* A non-finite parameter would hide behind the models' guards (x > 0 is false for NaN) and
-     * turn into zero weights: count every sample of such a cell as non-finite instead. */
-    unsigned int params_ok = 1;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
-        p.v[k] = model_p[cell * BB_MAX_PARAMS + k];
-        fp.v[k] = fresnel_p[k];
-        params_ok &= (unsigned int)(isfinite(p.v[k]) && isfinite(fp.v[k]));
-    }
+    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
     const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], cell_phi[cell]);
     const real s1 = shifts[2 * rep], s2 = shifts[2 * rep + 1];
+#ifdef BB_PHILOX
+    philox4x32_key_t key = {{seed_lo, seed_hi}};
+#endif
 
-    /* Kahan-compensated sum: the float sum of 2^16 terms keeps ~1e-7 relative accuracy. */
     real sum = BB_R(0.0), comp = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int i = 0; i < n_points; ++i) {
-        const real u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
-        const real u2 = bb_rotate(bb_hammersley_u2(i), s2);
-        const bb_sample s = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
-        const int ok = isfinite(s.weight);
+        real u1, u2;
+#ifdef BB_PHILOX
+        if (method == BB_METHOD_MC) {
+            /* Counter (point, replica, cell, "albd"): every sample its own stream position. */
+            philox4x32_ctr_t ctr = {{i, rep, cell, 0x616c6264u}};
+            philox4x32_ctr_t r = philox4x32(ctr, key);
+            u1 = bb_unit_from_bits(r.v[0]);
+            u2 = bb_unit_from_bits(r.v[1]);
+        } else
+#endif
+        {
+            u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
+            u2 = bb_rotate(bb_hammersley_u2(i), s2);
+        }
+        real w;
+        if (method == BB_METHOD_IMPORTANCE)
+            w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2).weight;
+        else
+            w = bb_uniform_hemisphere_weight(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
+        const int ok = isfinite(w);
         bad += ok ? 0u : 1u;
-        const real y = (ok ? s.weight : BB_R(0.0)) - comp;
-        const real t = sum + y;
-        comp = (t - sum) - y;
-        sum = t;
+        BB_KAHAN_ADD(sum, comp, ok ? w : BB_R(0.0));
     }
     replica_mean[gid] = sum / (real)n_points;
     bad_count[gid] = params_ok ? bad : n_points;
+}
+
+/* Gauss-Legendre product quadrature (integrands.h). Work-item (cell, rule, quarter): rule 0 has
+ * n_fine nodes per axis, rule 1 n_coarse (the error estimate compares the two); the quarter is
+ * the azimuth range [q pi/2, (q + 1) pi/2]. `nodes` holds the fine rule's n_fine abscissae in
+ * [0, 1], then its weights (summing to 1), then the same for the coarse rule. Writes the
+ * quarter's share of E; the host adds the quarters. */
+__kernel void albedo_quadrature(__global const real* cell_mu,
+                                __global const real* cell_phi,
+                                __global const real* model_p,
+                                __global const real* fresnel_p,
+                                __global const real* nodes,
+                                const unsigned int n_fine,
+                                const unsigned int n_coarse,
+                                const unsigned int n_cells,
+                                __global real* quarter_sum,       /* n_cells * 2 * 4 */
+                                __global unsigned int* bad_count) /* n_cells * 2 * 4 */
+{
+    const unsigned int gid = (unsigned int)get_global_id(0);
+    if (gid >= n_cells * 8u)
+        return;
+    const unsigned int cell = gid / 8u, rule = (gid / 4u) & 1u, q = gid & 3u;
+    const unsigned int n = rule == 0u ? n_fine : n_coarse;
+    __global const real* x = nodes + (rule == 0u ? 0u : 2u * n_fine);
+    __global const real* wt = x + n;
+
+    bb_params p, fp;
+    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
+    const real phi_o = cell_phi[cell];
+    const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], phi_o);
+    const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);
+
+    real sum = BB_R(0.0), comp = BB_R(0.0);
+    unsigned int bad = 0;
+    for (unsigned int j = 0; j < n; ++j) {
+        const real s = ((real)q + x[j]) * BB_R(0.25); /* fraction of the full turn */
+        real row = BB_R(0.0), row_comp = BB_R(0.0), scale;
+        if (dist.kind == BB_QUAD_SAMPLER) {
+            for (unsigned int k = 0; k < n; ++k) {
+                const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, x[k], s).weight;
+                const int ok = isfinite(w);
+                bad += ok ? 0u : 1u;
+                BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
+            }
+            scale = BB_R(0.25);
+        } else {
+            const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, BB_2PI * s);
+            for (unsigned int k = 0; k < n; ++k) {
+                const real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
+                const int ok = isfinite(w);
+                bad += ok ? 0u : 1u;
+                BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
+            }
+            scale = BB_R(0.5) * BB_PI * r.t_max;
+        }
+        BB_KAHAN_ADD(sum, comp, wt[j] * scale * row);
+    }
+    quarter_sum[gid] = sum;
+    bad_count[gid] = params_ok ? bad : n * n;
 }
 
 #else /* BB_VECTOR_WIDTH */

@@ -11,6 +11,19 @@
 
 namespace brdfbake {
 
+/// How an albedo integral is computed (--method; DESIGN.md "Accuracy and speed").
+enum class Method {
+    Importance,       // the model's importance sampler, randomised Hammersley points ("importance")
+    QuasiMonteCarlo,  // uniform hemisphere sampling, randomised Hammersley points ("qmc")
+    MonteCarlo,       // uniform hemisphere sampling, Philox pseudo-random points ("mc")
+    Quadrature,       // Gauss-Legendre product rule, in half-vector space for microfacet lobes ("quadrature")
+};
+
+/// The method's name on the command line.
+const char* method_name(Method m);
+/// The method for a command-line name (not "auto", which the caller resolves). Throws Error.
+Method parse_method(const std::string& name);
+
 /// One outgoing direction (and, for table sweeps, the model parameters at that cell).
 struct AlbedoCell {
     double mu = 1.0;   // cos(theta_o), in (0, 1]
@@ -22,8 +35,11 @@ struct AlbedoRequest {
     int model = 0;  // BB_MODEL_*
     FresnelConfig fresnel;
     std::vector<AlbedoCell> cells;
-    std::uint64_t samples = 1u << 18;  // per cell, split over the replicas
-    unsigned replicas = 16;            // randomised replicas for the error estimate
+    Method method = Method::Importance;
+    /// Per cell: the sample count, split over the replicas; for quadrature the nodes of the fine
+    /// rule (4 n^2 for n nodes per axis, n = the even number nearest sqrt(samples / 4)).
+    std::uint64_t samples = 1u << 18;
+    unsigned replicas = 16;            // randomised replicas for the error estimate (sampling methods)
     Precision precision = Precision::Float;
     std::uint64_t seed = 0x62726466u;  // "brdf": results are reproducible by default
     /// Lanes of the kernel's vector path: 0 the device's choice (Engine::vector_width), 1 the
@@ -34,7 +50,11 @@ struct AlbedoRequest {
 
 struct AlbedoValue {
     double value = 0.0;
-    double error = 0.0;  // estimated absolute error: 3 standard errors + floating-point bound
+    /// Estimated absolute error: 3 standard errors of the replicas (sampling methods) or the
+    /// difference between the n- and n/2-node rules (quadrature), plus a floating-point bound.
+    double error = 0.0;
+    std::uint64_t samples = 0;  // integrand evaluations spent on this cell (all rounds)
+    Method method = Method::Importance;  // the method of the reported value
 };
 
 /// Thrown when a kernel produced NaN or Inf sample weights: nothing is reported for such a run.
@@ -48,15 +68,36 @@ public:
 
 struct AlbedoResult {
     std::vector<AlbedoValue> values;  // one per cell
-    std::uint64_t samples_per_cell = 0;
+    std::uint64_t samples_per_cell = 0;  // the largest per-cell count (AlbedoValue::samples)
     std::string method;               // what the estimator did, in words
     double kernel_seconds = 0.0;      // device time of the integration
     unsigned vector_width = 1;        // lanes of the kernel that ran (1: scalar)
+    std::uint64_t total_samples = 0;  // over all cells and rounds
+    double tolerance = 0.0;           // the tolerance met by every cell (0: a fixed sample count)
+    unsigned rounds = 1;              // kernel launches (tolerance mode refines in rounds)
 };
 
 /// Runs the albedo kernel over every cell. Throws Error if the device produced non-finite
 /// sample weights (the cell and count are named), or for an invalid request.
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request);
+
+/// Tolerance mode (--tolerance): every cell refined until its error estimate is at most
+/// `tolerance`. With auto_method the engine starts each cell with Gauss-Legendre quadrature and
+/// moves on to importance sampling where the rule does not converge; otherwise only
+/// request.method is refined. Work per cell grows geometrically up to max_samples; cells that
+/// still miss the tolerance make it throw Error with exit status 1, naming the worst cell.
+struct ToleranceRequest {
+    double tolerance = 0.0;  // absolute; 0: none (a fixed sample count)
+    bool auto_method = true;
+    std::uint64_t max_samples = std::uint64_t(1) << 24;
+};
+
+AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& request,
+                                         const ToleranceRequest& tolerance);
+
+/// The smallest tolerance a precision can honour: the floating-point bound of the error
+/// estimate at an albedo of 1.
+double tolerance_floor(Precision precision);
 
 /// One cell of a rough dielectric interface (GGX, isotropic): wo at cos(theta) = mu on the
 /// near side, eta the far side's index relative to the near side (eta < 1: seen from inside).

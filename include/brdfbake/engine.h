@@ -53,6 +53,7 @@ struct BuildRequest {
     std::string kernel_file;                       // e.g. "albedo.cl"
     Precision precision = Precision::Float;
     std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE
+    bool random123 = false;        // the kernel includes <Random123/philox.h>: add its -I
     bool has_vector_path = false;  // the kernel file has a vector path for this request
     unsigned vector_width = 0;     // 0: the device's choice; 1: scalar; N: N lanes
 };

@@ -1,0 +1,211 @@
+/* The integrands of the albedo methods other than a model's own importance sampler
+ * (kernels/albedo.cl, host/albedo.cpp). Shared by host and kernels like the models.
+ *
+ * E(wo) = integral over the upper hemisphere of f(wo, wi) cos(theta_i) dwi is computed as
+ *
+ *   mc, qmc      uniform hemisphere sampling, the model-agnostic estimator: wi with
+ *                cos(theta_i) = u1, phi_i = 2 pi u2, pdf = 1/(2 pi), weight 2 pi f cos(theta_i);
+ *                u from Philox (mc) or from randomised Hammersley points (qmc).
+ *
+ *   quadrature   a Gauss-Legendre product rule, in one of two coordinate systems:
+ *
+ *     half-vector space, for the models whose lobe is a distribution of normals D (ggx,
+ *     beckmann, torrance-sparrow, blinn-phong). The half vector h has azimuth phi_o + delta and
+ *     radial coordinate u = the CDF of D(h) cos(theta_h) along that azimuth, which flattens
+ *     the peak of D however narrow it is. wi = reflect(wo, h) is above the horizon exactly for
+ *       theta_h < theta_max(delta),  tan(theta_max) = (R + B)/A = A/(R - B),
+ *       A = cos(theta_o), B = sin(theta_o) cos(delta), R = sqrt(A^2 + B^2)
+ *     (from 2 (wo.h) h_z >= cos(theta_o), i.e. A cos 2theta + B sin 2theta >= 0), and there
+ *     wo.h > 0 too. So for each delta the rule integrates u over [0, u_max(delta)] only: the
+ *     integrand is smooth on the whole domain, with no horizon cut inside it. delta runs
+ *     over four quarters [k pi/2, (k+1) pi/2], split where u_max changes fastest at grazing
+ *     wo. With p(h) the density of the map (u, delta/2pi) -> h,
+ *       E = 1/(2 pi) int d(delta) int_0^u_max du  f cos(theta_i) 4 (wo.h) / p(h).
+ *     For an anisotropic D the map along azimuth phi uses the isotropic radial CDF with the
+ *     azimuth's roughness a(phi) = 1/sqrt(cos^2 phi/ax^2 + sin^2 phi/ay^2) [H14 eq. 80]; then
+ *     D(h)/p(h) = a^2/(ax ay cos(theta_h)) exactly.
+ *
+ *     sampler space, for the others (lambert, oren-nayar, phong, phong-original): the
+ *     model's own importance warp (u1, u2) -> wi on the unit square, u2 split into four
+ *     quarters (phi_i - phi_o = +-pi/2 for phi_o = 0 is where Oren-Nayar's max(0, cos) bends);
+ *     the integrand is the sample weight.
+ *
+ * References: [H14] Heitz, "Understanding the Masking-Shadowing Function in Microfacet-Based
+ * BRDFs", JCGT 3(2), 2014; [WMLT07] Walter et al., "Microfacet Models for Refraction through
+ * Rough Surfaces", EGSR 2007 (the D cos(theta_h) sampling densities). */
+#ifndef BRDFBAKE_BRDF_INTEGRANDS_H
+#define BRDFBAKE_BRDF_INTEGRANDS_H
+
+#include "brdfbake/brdf/models.h"
+
+/* ------------------------------------------------------- uniform hemisphere */
+
+/* The weight 2 pi f cos(theta_i) of the uniform hemisphere sample (u1, u2). */
+BB_FN real bb_uniform_hemisphere_weight(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1,
+                                        real u2) {
+    real mu = u1;
+    real s = bb_safe_sqrt(bb_sin2_from_cos(mu));
+    real phi = BB_2PI * u2;
+    bb_vec3 wi = bb_v3(s * bb_cos(phi), s * bb_sin(phi), mu);
+    return BB_2PI * mu * bb_model_eval(model, p, fkind, fp, wo, wi);
+}
+
+/* ------------------------------------------------------ half-vector space */
+
+#define BB_QUAD_SAMPLER 0 /* sampler space */
+#define BB_QUAD_GGX 1     /* half-vector space, radial CDF of GGX D cos */
+#define BB_QUAD_BECKMANN 2
+#define BB_QUAD_BLINN 3   /* cos^(N+1) density */
+
+/* The coordinate system of the quadrature for a model, and its distribution's parameters. */
+typedef struct {
+    int kind;
+    real ax, ay, n;
+} bb_quad_dist;
+
+BB_FN bb_quad_dist bb_make_quad_dist(int kind, real ax, real ay, real n) {
+    bb_quad_dist d;
+    d.kind = kind;
+    d.ax = ax;
+    d.ay = ay;
+    d.n = n;
+    return d;
+}
+
+BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
+    switch (model) {
+#if BB_HAS_MODEL(BB_MODEL_GGX)
+    case BB_MODEL_GGX:
+        return bb_make_quad_dist(BB_QUAD_GGX, p.v[BB_GGX_ALPHA_X], p.v[BB_GGX_ALPHA_Y], BB_R(0.0));
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BECKMANN)
+    case BB_MODEL_BECKMANN:
+        return bb_make_quad_dist(BB_QUAD_BECKMANN, p.v[BB_BECKMANN_ALPHA_X], p.v[BB_BECKMANN_ALPHA_Y], BB_R(0.0));
+#endif
+#if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
+    case BB_MODEL_TORRANCE_SPARROW: {
+        int d = (int)p.v[BB_TORRANCE_SPARROW_DIST];
+        int kind = d == BB_TS_D_GGX ? BB_QUAD_GGX : (d == BB_TS_D_BECKMANN ? BB_QUAD_BECKMANN : BB_QUAD_BLINN);
+        return bb_make_quad_dist(kind, p.v[BB_TORRANCE_SPARROW_ALPHA_X], p.v[BB_TORRANCE_SPARROW_ALPHA_Y],
+                                 p.v[BB_TORRANCE_SPARROW_N]);
+    }
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BLINN_PHONG)
+    case BB_MODEL_BLINN_PHONG:
+        return bb_make_quad_dist(BB_QUAD_BLINN, BB_R(1.0), BB_R(1.0), p.v[BB_BLINN_PHONG_N]);
+#endif
+    default:
+        return bb_make_quad_dist(BB_QUAD_SAMPLER, BB_R(1.0), BB_R(1.0), BB_R(0.0));
+    }
+}
+
+/* The roughness of an anisotropic distribution along azimuth phi, squared:
+ * a^2 = ax^2 ay^2 / (ay^2 cos^2 phi + ax^2 sin^2 phi). */
+BB_FN real bb_quad_alpha2(bb_quad_dist d, real cos_phi, real sin_phi) {
+    real ax2 = d.ax * d.ax, ay2 = d.ay * d.ay;
+    return ax2 * ay2 / (ay2 * cos_phi * cos_phi + ax2 * sin_phi * sin_phi);
+}
+
+/* D(h) cos^4(theta_h) at slope radius r = tan(theta_h) along an azimuth of roughness^2 a2. */
+BB_FN real bb_quad_slope_density(bb_quad_dist d, real a2, real r) {
+    real r2 = r * r;
+    switch (d.kind) {
+    case BB_QUAD_GGX: {
+        real q = BB_R(1.0) + r2 / a2;
+        return BB_R(1.0) / (BB_PI * d.ax * d.ay * q * q);
+    }
+    case BB_QUAD_BECKMANN:
+        return bb_exp(-r2 / a2) / (BB_PI * d.ax * d.ay);
+    default: /* normalised Blinn: (N + 2)/(2 pi) cos^(N+4) */
+        return (d.n + BB_R(2.0)) * (BB_R(0.5) * BB_INV_PI) * bb_exp(BB_R(-0.5) * (d.n + BB_R(4.0)) * bb_log1p(r2));
+    }
+}
+
+/* tan of the largest theta_h at azimuth offset delta whose mirror direction is above the
+ * horizon (see the head of this file): (R + B)/A, or A/(R - B) for B < 0. */
+BB_FN real bb_quad_tan_max(real mu_o, real sin_o, real cos_delta) {
+    real a = mu_o, b = sin_o * cos_delta;
+    real r = bb_sqrt(a * a + b * b);
+    return bb_select((r + b) / a, a / (r - b), b < BB_R(0.0));
+}
+
+/* One row of the half-vector rule: the half vectors at azimuth phi_h = phi_o + delta, with
+ * radial coordinate t in [0, t_max]: tan(theta_h) = a sinh(t), a the azimuth's roughness
+ * (sqrt(2/(N + 2)) for Blinn, the Beckmann width of the same lobe [WMLT07 sec. 5.2]). The map
+ * is linear in the slope inside the lobe and logarithmic outside it, so that the three scales
+ * of the integrand (the lobe's width a, the 45-degree bend, the horizon cut near
+ * tan(theta_max) ~ 2/cos(theta_o) at grazing) are each smooth in t; the Jacobian
+ * a r cosh(t) cos^4 meets D cos^4, the slope density, and the visible-normal factor
+ * (wo.h)/cos(theta_h) grows only linearly in r = a sinh(t). */
+typedef struct {
+    real cos_phi, sin_phi; /* of phi_h */
+    real a2, a;            /* the azimuth's roughness, squared and not */
+    real t_max;
+} bb_quad_row;
+
+BB_FN bb_quad_row bb_make_quad_row(bb_quad_dist d, bb_vec3 wo, real phi_o, real delta) {
+    bb_quad_row r;
+    real phi = phi_o + delta;
+    r.cos_phi = bb_cos(phi);
+    r.sin_phi = bb_sin(phi);
+    r.a2 = bb_select(bb_quad_alpha2(d, r.cos_phi, r.sin_phi), BB_R(2.0) / (d.n + BB_R(2.0)), d.kind == BB_QUAD_BLINN);
+    r.a = bb_sqrt(r.a2);
+    real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
+    /* Beyond r = tan(theta_h) = r_cap the Gaussian-like lobes are below 1e-18 of their peak:
+     * no nodes are spent there. */
+    real r_cap = bb_select(BB_R(6.5) * r.a, bb_sqrt(bb_expm1(BB_R(84.0) / (d.n + BB_R(4.0)))), d.kind == BB_QUAD_BLINN);
+    real r_max = bb_quad_tan_max(wo.z, sin_o, bb_cos(delta));
+    r_max = bb_select(r_max, bb_min(r_max, r_cap), d.kind != BB_QUAD_GGX);
+    real x = r_max / r.a;
+    r.t_max = bb_log(x + bb_sqrt(x * x + BB_R(1.0))); /* asinh */
+    return r;
+}
+
+/* The integrand f cos(theta_i) 4 (wo.h) times the map's Jacobian at t in [0, t_max): the
+ * models' closed forms, written so that the narrow D enters only through the slope density. */
+BB_FN real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_quad_dist d,
+                                    bb_quad_row row, real t) {
+    real em1 = bb_expm1(t);
+    real sinh_t = BB_R(0.5) * em1 * (em1 + BB_R(2.0)) / (em1 + BB_R(1.0));
+    real cosh_t = sinh_t + BB_R(1.0) / (em1 + BB_R(1.0));
+    real r = row.a * sinh_t;
+    real ch = BB_R(1.0) / bb_sqrt(BB_R(1.0) + r * r);
+    real sh = r * ch;
+    bb_vec3 h = bb_v3(sh * row.cos_phi, sh * row.sin_phi, ch);
+    /* D J cos(theta_h) */
+    real djc = row.a * r * cosh_t * bb_quad_slope_density(d, row.a2, r);
+
+    real oh = bb_clamp_cos(bb_dot(wo, h));
+    bb_vec3 wi = bb_reflect(wo, h);
+    int ok = wi.z > BB_R(0.0) && oh > BB_R(0.0) && wo.z > BB_R(0.0);
+    real co = bb_select(BB_R(1.0), wo.z, ok);
+    real f = bb_fresnel_eval(fkind, fp, oh);
+    real w = BB_R(0.0);
+    switch (model) {
+#if BB_HAS_MODEL(BB_MODEL_GGX)
+    case BB_MODEL_GGX: /* f = D G2 F / (4 co ci) */
+        w = f * bb_ggx_g2(p, wo, wi) * oh / (co * ch) * djc;
+        break;
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BECKMANN)
+    case BB_MODEL_BECKMANN:
+        w = f * bb_beckmann_g2(p, wo, wi) * oh / (co * ch) * djc;
+        break;
+#endif
+#if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
+    case BB_MODEL_TORRANCE_SPARROW: /* G = min(1, 2 hz co/oh, 2 hz ci/oh), see torrance_sparrow.h */
+        w = f * djc * bb_min(bb_min(oh / (co * ch), BB_R(2.0)), BB_R(2.0) * wi.z / co);
+        break;
+#endif
+#if BB_HAS_MODEL(BB_MODEL_BLINN_PHONG)
+    case BB_MODEL_BLINN_PHONG: /* f = K cos^N = K 2 pi/(N + 2) D */
+        w = bb_blinn_phong_k(p) * (BB_R(4.0) * BB_2PI) / (p.v[BB_BLINN_PHONG_N] + BB_R(2.0)) * wi.z * oh / ch * djc;
+        break;
+#endif
+    default:
+        break;
+    }
+    return bb_select(BB_R(0.0), w, ok);
+}
+
+#endif /* BRDFBAKE_BRDF_INTEGRANDS_H */
