@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <iostream>
 #include <map>
 #include <sstream>
 
@@ -293,7 +294,9 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     BuildRequest build;
     build.kernel_file = "albedo.cl";
     build.precision = req.precision;
-    build.defines = {{"BB_MODEL", std::to_string(req.model)}, {"BB_FRESNEL", std::to_string(req.fresnel.kind)}};
+    build.defines = {{"BB_MODEL", std::to_string(req.model)},
+                     {"BB_FRESNEL", std::to_string(req.fresnel.kind)},
+                     {"BB_QUADRATURE", "1"}};
     build.vector_width = 1;
     cl::Program& program = engine.program(build);
 
@@ -329,8 +332,6 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
 
     AlbedoResult result;
     const std::uint64_t per_cell = 4ull * n * n + 4ull * m * m;
-    result.samples_per_cell = per_cell;
-    result.total_samples = per_cell * n_cells;
     result.kernel_seconds = event_seconds(done);
     result.method = quadrature_text(req.model, n);
     const double fp_bound = tolerance_floor(req.precision);
@@ -349,7 +350,11 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
         AlbedoValue v;
         v.value = fine;
         v.error = std::fabs(fine - coarse) + fp_bound * std::max(std::fabs(fine), 1e-3);
-        v.samples = per_cell;
+        bb_params p;
+        for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = req.cells[c].params[k];
+        v.samples = bb_quad_mirrored(bb_model_quad_dist(req.model, p), req.cells[c].phi) ? per_cell / 2 : per_cell;
+        result.samples_per_cell = std::max(result.samples_per_cell, v.samples);
+        result.total_samples += v.samples;
         v.method = Method::Quadrature;
         result.values.push_back(v);
     }
@@ -409,6 +414,9 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
         r.cells.clear();
         for (size_t c : todo) r.cells.push_back(req.cells[c]);
         const AlbedoResult part = compute_albedo(engine, r);
+        if (engine.verbose())
+            std::cerr << "brdfbake: round " << result.rounds + 1 << ": " << todo.size() << " cells, " << part.method
+                      << ", kernel " << part.kernel_seconds * 1e3 << " ms\n";
         result.rounds++;
         result.kernel_seconds += part.kernel_seconds;
         result.vector_width = std::max(result.vector_width, part.vector_width);

@@ -19,6 +19,8 @@ struct LutOptions {
     std::string alpha_range = "0,1";
     std::string eta_range = "1,3";
     std::int64_t samples = 1 << 18;
+    double tolerance = 0.0;
+    std::int64_t max_samples = std::int64_t(1) << 24;
     std::string precision = "float";
     std::string method = "auto";
     bool half = false;
@@ -62,6 +64,9 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     r.eta_hi = eta[1];
     if (o.samples <= 0) throw Error("--samples must be positive");
     r.samples = std::uint64_t(o.samples);
+    const MethodChoice choice = resolve_method_choice(o.method, o.tolerance, o.max_samples);
+    r.method = choice.method;
+    r.tolerance = choice.tolerance;
     r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
     check_table_path(o.output);
     if (!o.preview.empty() && !is_plot_path(o.preview)) throw Error("--preview must end in .png or .svg");
@@ -103,10 +108,7 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->capture_default_str();
     cmd->add_option("--alpha-range", o->alpha_range, "LO,HI of the roughness axis coordinate")->capture_default_str();
     cmd->add_option("--eta-range", o->eta_range, "LO,HI of the eta axis (dielectric)")->capture_default_str();
-    cmd->add_option("--samples", o->samples, "samples per texel")->capture_default_str();
-    cmd->add_option("--method", o->method, "integration method")
-        ->check(CLI::IsMember({"auto", "importance"}))
-        ->capture_default_str();
+    add_method_options(cmd, o->samples, o->method, o->tolerance, o->max_samples, "texel");
     cmd->add_option("--precision", o->precision, "kernel arithmetic")
         ->check(CLI::IsMember({"float", "double"}))
         ->capture_default_str();

@@ -106,15 +106,65 @@ ParamBlock with_alpha(ParamBlock p, const std::vector<int>& slots, double alpha)
     return p;
 }
 
+// The albedo of every cell, with the request's method and samples, or to its tolerance times
+// `share` (the split-sum table adds two integrals' errors: each gets half).
 AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
-                       std::vector<AlbedoCell> cells) {
+                       std::vector<AlbedoCell> cells, double share = 1.0) {
     AlbedoRequest req;
     req.model = m.id;
     req.fresnel = f;
     req.cells = std::move(cells);
     req.samples = r.samples;
+    req.method = r.method;
     req.precision = r.precision;
+    if (r.tolerance.tolerance > 0.0) {
+        ToleranceRequest t = r.tolerance;
+        t.tolerance *= share;
+        return compute_albedo_to_tolerance(engine, req, t);
+    }
     return compute_albedo(engine, req);
+}
+
+// The rough dielectric to a tolerance: importance sampling in rounds of 4x the samples over the
+// cells whose larger error (R or T) is still above it.
+DielectricResult dielectric_to_tolerance(Engine& engine, DielectricRequest req, const ToleranceRequest& tol) {
+    if (tol.tolerance < 2.0 * tolerance_floor(req.precision))
+        throw Error("--tolerance is below what " + std::string(precision_name(req.precision)) +
+                    " arithmetic can certify");
+    DielectricResult out;
+    const size_t n = req.cells.size();
+    out.reflected.assign(n, AlbedoValue{});
+    out.transmitted.assign(n, AlbedoValue{});
+    std::vector<size_t> todo(n);
+    for (size_t c = 0; c < n; ++c) todo[c] = c;
+    const std::vector<DielectricCell> all = req.cells;
+    for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples && !todo.empty(); s *= 4) {
+        req.samples = s;
+        req.cells.clear();
+        for (size_t c : todo) req.cells.push_back(all[c]);
+        const DielectricResult part = compute_dielectric(engine, req);
+        out.kernel_seconds += part.kernel_seconds;
+        out.samples_per_cell = s;
+        std::vector<size_t> left;
+        for (size_t i = 0; i < todo.size(); ++i) {
+            out.reflected[todo[i]] = part.reflected[i];
+            out.transmitted[todo[i]] = part.transmitted[i];
+            if (std::max(part.reflected[i].error, part.transmitted[i].error) > tol.tolerance) left.push_back(todo[i]);
+        }
+        todo.swap(left);
+    }
+    if (!todo.empty()) {
+        std::ostringstream e;
+        e << "--tolerance " << tol.tolerance << " not met at " << todo.size() << " of " << n << " dielectric texels within "
+          << tol.max_samples << " samples per texel (first: mu = " << all[todo[0]].mu << ", alpha = " << all[todo[0]].alpha
+          << ", eta = " << all[todo[0]].eta << "); raise --max-samples or loosen the tolerance";
+        throw Error(e.str(), kExitViolation);
+    }
+    std::ostringstream m;
+    m << "importance sampling, randomised Hammersley, refined to tolerance " << tol.tolerance << " (at most "
+      << out.samples_per_cell << " samples per texel)";
+    out.method = m.str();
+    return out;
 }
 
 void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::string& fresnel,
@@ -124,6 +174,11 @@ void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::st
     t.attributes["method"] = res.method;
     t.attributes["samples"] = std::to_string(res.samples_per_cell);
     t.attributes["precision"] = precision_name(r.precision);
+    if (r.tolerance.tolerance > 0.0) {
+        std::ostringstream tol;
+        tol << r.tolerance.tolerance;
+        t.attributes["tolerance"] = tol.str();
+    }
     if (clamped) {
         std::ostringstream s;
         s << "alpha below " << BB_ALPHA_MIN << " was computed at " << BB_ALPHA_MIN;
@@ -157,6 +212,8 @@ void validate_lut(const LutRequest& r) {
         throw Error("--alpha-range must satisfy 0 <= lo < hi <= 3");
     if (r.samples < 16) throw Error("--samples must be at least 16");
     if (r.kind == "dielectric") {
+        if (r.method != Method::Importance || (r.tolerance.tolerance > 0.0 && !r.tolerance.auto_method))
+            throw Error("the dielectric table is computed by importance sampling only; use --method importance or auto");
         if (m.id != BB_MODEL_GGX) throw Error("the dielectric table is computed for GGX microfacets; use --model ggx");
         if (f.kind != BB_FRESNEL_NONE) throw Error("the dielectric table uses the exact dielectric Fresnel term; drop --fresnel");
         if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
@@ -244,7 +301,8 @@ Table compute_lut(Engine& engine, const LutRequest& r) {
             for (double eta : t.z.parameter)
                 for (double alpha : t.y.parameter)
                     for (double mu : t.x.parameter) dr.cells.push_back({mu, alpha, side == 0 ? eta : 1.0 / eta});
-        const DielectricResult res = compute_dielectric(engine, dr);
+        const DielectricResult res =
+            r.tolerance.tolerance > 0.0 ? dielectric_to_tolerance(engine, dr, r.tolerance) : compute_dielectric(engine, dr);
         const size_t n = dr.cells.size() / 2;
         t.channels = {"R", "T", "R_inside", "T_inside"};
         t.values.assign(4, std::vector<double>(n));
@@ -262,6 +320,11 @@ Table compute_lut(Engine& engine, const LutRequest& r) {
         t.attributes["method"] = res.method;
         t.attributes["samples"] = std::to_string(res.samples_per_cell);
         t.attributes["precision"] = precision_name(r.precision);
+        if (r.tolerance.tolerance > 0.0) {
+            std::ostringstream tol;
+            tol << r.tolerance.tolerance;
+            t.attributes["tolerance"] = tol.str();
+        }
         return t;
     }
 
@@ -301,8 +364,8 @@ Table compute_lut(Engine& engine, const LutRequest& r) {
     }
 
     // Split-sum terms: E with F = 1 and B with F = (1 - wo.wh)^5 (Schlick with f0 = 0); A = E - B.
-    const AlbedoResult e = integrate(engine, r, m, resolve_fresnel("none"), cells);
-    const AlbedoResult b = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), cells);
+    const AlbedoResult e = integrate(engine, r, m, resolve_fresnel("none"), cells, 0.5);
+    const AlbedoResult b = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), cells, 0.5);
     std::vector<double> va, vb, ve;
     for (size_t i = 0; i < cells.size(); ++i) {
         ve.push_back(e.values[i].value);

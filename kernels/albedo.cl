@@ -21,7 +21,8 @@
  *                         same estimator; PoCL compiles it to SIMD code.
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W]
- * [-D BB_PHILOX -I <Random123's include directory>]. */
+ * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
+ * alone, a smaller program to build]. */
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
 
@@ -59,6 +60,8 @@ BB_FN unsigned int bb_read_params(__global const real* model_p, __global const r
         (comp) = (t_ - (sum)) - y_;      \
         (sum) = t_;                      \
     } while (0)
+
+#ifndef BB_QUADRATURE
 
 __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) per cell */
                               __global const real* cell_phi,   /* phi_o (radians) per cell */
@@ -118,6 +121,8 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
     bad_count[gid] = params_ok ? bad : n_points;
 }
 
+#else /* BB_QUADRATURE */
+
 /* Gauss-Legendre product quadrature (integrands.h). Work-item (cell, rule, quarter): rule 0 has
  * n_fine nodes per axis, rule 1 n_coarse (the error estimate compares the two); the quarter is
  * the azimuth range [q pi/2, (q + 1) pi/2]. `nodes` holds the fine rule's n_fine abscissae in
@@ -148,17 +153,45 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
     const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], phi_o);
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);
 
+    /* Mirror symmetry (bb_quad_mirrored): quarters 0 and 1 count twice, 2 and 3 are skipped. */
+    const int mirrored = bb_quad_mirrored(dist, phi_o);
+    if (mirrored && q >= 2u) {
+        quarter_sum[gid] = BB_R(0.0);
+        bad_count[gid] = params_ok ? 0u : n * n;
+        return;
+    }
+    const real copies = mirrored ? BB_R(2.0) : BB_R(1.0);
+
     real sum = BB_R(0.0), comp = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int j = 0; j < n; ++j) {
         const real s = ((real)q + x[j]) * BB_R(0.25); /* fraction of the full turn */
         real row = BB_R(0.0), row_comp = BB_R(0.0), scale;
         if (dist.kind == BB_QUAD_SAMPLER) {
-            for (unsigned int k = 0; k < n; ++k) {
-                const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, x[k], s).weight;
-                const int ok = isfinite(w);
-                bad += ok ? 0u : 1u;
-                BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
+            if (bb_quad_sampler_is_cosine(BB_MODEL)) {
+                const real cos_s = bb_cos(BB_2PI * s), sin_s = bb_sin(BB_2PI * s);
+                /* c = cos(theta_i) over [0, mu_o] and [mu_o, 1]; u1 = 1 - c^2, du1 = 2c dc */
+                for (int piece = 0; piece < 2; ++piece) {
+                    const real lo = piece == 0 ? BB_R(0.0) : wo.z, len = piece == 0 ? wo.z : BB_R(1.0) - wo.z;
+                    for (unsigned int k = 0; k < n; ++k) {
+                        /* wi from c directly (not through u1 = 1 - c^2, which rounds to 1
+                         * for c < 2.4e-4 in float): the weight is pi f, the pdf being c/pi */
+                        const real c = lo + len * x[k];
+                        const real sn = bb_safe_sqrt(bb_sin2_from_cos(c));
+                        const bb_vec3 wi = bb_v3(sn * cos_s, sn * sin_s, c);
+                        const real w = BB_PI * bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, wi);
+                        const int ok = isfinite(w);
+                        bad += ok ? 0u : 1u;
+                        BB_KAHAN_ADD(row, row_comp, ok ? BB_R(2.0) * c * len * wt[k] * w : BB_R(0.0));
+                    }
+                }
+            } else {
+                for (unsigned int k = 0; k < n; ++k) {
+                    const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, x[k], s).weight;
+                    const int ok = isfinite(w);
+                    bad += ok ? 0u : 1u;
+                    BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
+                }
             }
             scale = BB_R(0.25);
         } else {
@@ -173,9 +206,11 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
         }
         BB_KAHAN_ADD(sum, comp, wt[j] * scale * row);
     }
-    quarter_sum[gid] = sum;
+    quarter_sum[gid] = copies * sum;
     bad_count[gid] = params_ok ? bad : n * n;
 }
+
+#endif /* BB_QUADRATURE */
 
 #else /* BB_VECTOR_WIDTH */
 

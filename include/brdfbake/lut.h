@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "brdfbake/albedo.h"
 #include "brdfbake/engine.h"
 #include "brdfbake/table.h"
 
@@ -24,6 +25,8 @@ struct LutRequest {
     int depth = 16;               // eta texels (dielectric)
     double eta_lo = 1.0, eta_hi = 3.0;  // eta axis range (dielectric); texel centres inside
     std::uint64_t samples = 1u << 18;   // per texel (per mu node for eavg)
+    Method method = Method::Importance; // with a fixed sample count; the dielectric table: importance only
+    ToleranceRequest tolerance;         // tolerance.tolerance > 0: refine every texel to it instead
     Precision precision = Precision::Float;
 };
 

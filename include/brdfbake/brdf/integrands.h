@@ -36,6 +36,7 @@
 #ifndef BRDFBAKE_BRDF_INTEGRANDS_H
 #define BRDFBAKE_BRDF_INTEGRANDS_H
 
+#include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
 
 /* ------------------------------------------------------- uniform hemisphere */
@@ -97,6 +98,21 @@ BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
     default:
         return bb_make_quad_dist(BB_QUAD_SAMPLER, BB_R(1.0), BB_R(1.0), BB_R(0.0));
     }
+}
+
+/* Mirror symmetry of the rule: for an isotropic lobe the integrand at azimuth offset -delta
+ * equals that at delta (half-vector space; in the sampler's square phi_i -> -phi_i needs
+ * phi_o = 0 too, and every sampler-space model is isotropic). Then two quarters suffice. */
+BB_FN int bb_quad_mirrored(bb_quad_dist d, real phi_o) {
+    return d.kind == BB_QUAD_SAMPLER ? phi_o == BB_R(0.0) : d.ax == d.ay;
+}
+
+/* Sampler space for the cosine samplers (Lambert, Oren-Nayar: sin^2(theta_i) = u1): the rule
+ * runs over c = cos(theta_i) instead, u1 = 1 - c^2 with Jacobian 2c, which removes the 1/c of
+ * Oren-Nayar's tan(theta_i), and in two pieces, [0, cos(theta_o)] and [cos(theta_o), 1], where
+ * its max(theta_i, theta_o) and min(...) switch. */
+BB_FN int bb_quad_sampler_is_cosine(int model) {
+    return model == BB_MODEL_LAMBERT || model == BB_MODEL_OREN_NAYAR;
 }
 
 /* The roughness of an anisotropic distribution along azimuth phi, squared:
