@@ -1,0 +1,194 @@
+// The integration methods (importance, qmc, mc, quadrature) and the tolerance mode against
+// independent high-precision references (tests/model_refs.h: Boost.Math Gauss-Kronrod).
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "brdfbake/albedo.h"
+#include "model_refs.h"
+#include "reference.h"
+#include "support.h"
+
+using namespace brdfbake;
+
+namespace {
+
+constexpr double kRefSlack = 1e-8;
+
+const std::vector<Method> kMethods = {Method::Importance, Method::QuasiMonteCarlo, Method::MonteCarlo,
+                                      Method::Quadrature};
+
+AlbedoRequest request_for(const std::string& spec, const std::vector<double>& mus, Method method, Precision p,
+                          std::uint64_t samples) {
+    const ModelConfig m = resolve_model(spec);
+    AlbedoRequest req;
+    req.model = m.id;
+    req.fresnel = resolve_fresnel("none");
+    req.cells = cells_for(mus, 0.0, m.params);
+    req.method = method;
+    req.precision = p;
+    req.samples = samples;
+    return req;
+}
+
+/// A model case with its references at the test's directions, computed once.
+struct RefCase {
+    modelref::Case c;
+    std::vector<double> mus;
+    std::vector<double> ref;
+};
+
+std::vector<RefCase>& grid() {
+    static std::vector<RefCase> cases = [] {
+        std::vector<RefCase> v = {
+            {modelref::ggx(0.5, true, 1e-9), {0.01, 0.3, 1.0}, {}},
+            {modelref::ggx(0.05, false, 1e-9), {0.01, 0.3, 1.0}, {}},
+            {modelref::beckmann(0.3, true, 1e-9), {0.01, 0.3, 1.0}, {}},
+            {modelref::oren_nayar(1.0, 0.8), {0.01, 0.3, 1.0}, {}},
+            {modelref::blinn_phong(50, 1e-9), {0.05, 0.5}, {}},
+            {modelref::phong(20, 1e-9), {0.05, 0.5}, {}},
+        };
+        for (auto& rc : v)
+            for (double mu : rc.mus) rc.ref.push_back(rc.c.albedo(mu));
+        return v;
+    }();
+    return cases;
+}
+
+}  // namespace
+
+TEST_CASE("every method agrees with independent references within its error estimate", "[methods][device]") {
+    int runs = 0, beyond3 = 0;
+    for (const RefCase& rc : grid())
+        for (Method method : kMethods)
+            for (Precision p : {Precision::Float, Precision::Double})
+                for (std::uint64_t samples : {std::uint64_t(1) << 12, std::uint64_t(1) << 16}) {
+                    const AlbedoResult r = compute_albedo(testing::engine(), request_for(rc.c.spec, rc.mus, method, p, samples));
+                    for (size_t i = 0; i < rc.mus.size(); ++i) {
+                        // The references are good to about their tolerance (1e-9): below
+                        // kRefSlack the comparison judges the reference, not the method.
+                        const double actual = std::max(0.0, std::fabs(r.values[i].value - rc.ref[i]) - kRefSlack);
+                        INFO(rc.c.spec << " " << method_name(method) << " " << precision_name(p) << " " << samples
+                                       << " samples, mu = " << rc.mus[i] << ": " << r.values[i].value << " +- "
+                                       << r.values[i].error << ", reference " << rc.ref[i]);
+                        CHECK(std::isfinite(r.values[i].error));
+                        CHECK(r.values[i].error > 0.0);
+                        CHECK(r.values[i].method == method);
+                        ++runs;
+                        if (actual > 3.0 * r.values[i].error) ++beyond3;
+                        // Issue 7's honesty criterion, per run: within 3x the estimate (the
+                        // estimate is itself 3 standard errors or a rule difference). A
+                        // uniform sampler that rarely hits a narrow lobe underestimates its
+                        // variance: mc and qmc at 4096 samples come closest (see docs/accuracy.md).
+                        CHECK(actual <= 3.0 * r.values[i].error);
+                    }
+                }
+    INFO(beyond3 << " of " << runs << " runs beyond 3x their estimate");
+    CHECK(runs > 200);
+    CHECK(double(beyond3) / runs < 0.01);
+}
+
+TEST_CASE("quadrature converges fast for smooth lobes, at grazing too", "[methods][device]") {
+    // GGX alpha = 0.5, double precision: the 32-node rule (5120 points) against the reference
+    // to 1e-9; the half-vector rows end exactly at the horizon, so grazing converges as fast.
+    const std::vector<double> mus = {1e-3, 0.1, 0.5, 1.0};
+    const AlbedoResult r =
+        compute_albedo(testing::engine(), request_for("ggx:alpha=0.5", mus, Method::Quadrature, Precision::Double, 4 * 32 * 32));
+    for (size_t i = 0; i < mus.size(); ++i) {
+        const double expect = ref::albedo_halfvector(
+            [](ref::Dir o, ref::Dir i) { return ref::ggx_f(o, i, 0.5, 0.5, true); }, mus[i], 0.0, 1e-9);
+        INFO("mu = " << mus[i] << ": " << r.values[i].value << " +- " << r.values[i].error << ", reference " << expect);
+        CHECK(std::fabs(r.values[i].value - expect) < 1e-6);
+        CHECK(std::fabs(r.values[i].value - expect) <= r.values[i].error);
+        CHECK(r.values[i].samples <= 5120u);
+    }
+}
+
+TEST_CASE("--tolerance results meet their tolerance", "[methods][tolerance][device]") {
+    struct Run {
+        Precision precision;
+        double tolerance;
+        bool auto_method;
+        Method method;
+    };
+    for (const Run& run : {Run{Precision::Float, 1e-5, true, Method::Importance},
+                           Run{Precision::Double, 1e-7, true, Method::Importance},
+                           Run{Precision::Float, 2e-4, false, Method::Importance},
+                           Run{Precision::Float, 1e-4, false, Method::QuasiMonteCarlo}})
+        for (const RefCase& rc : grid()) {
+            if (!run.auto_method && rc.mus.front() < 0.05) continue;  // sampling to 1e-4 at grazing: slow
+            AlbedoRequest req = request_for(rc.c.spec, rc.mus, run.method, run.precision, 0);
+            ToleranceRequest tol;
+            tol.tolerance = run.tolerance;
+            tol.auto_method = run.auto_method;
+            tol.max_samples = std::uint64_t(1) << 24;
+            const AlbedoResult r = compute_albedo_to_tolerance(testing::engine(), req, tol);
+            CHECK(r.tolerance == run.tolerance);
+            for (size_t i = 0; i < rc.mus.size(); ++i) {
+                INFO(rc.c.spec << " " << precision_name(run.precision) << " tolerance " << run.tolerance << " ("
+                               << (run.auto_method ? "auto" : method_name(run.method)) << "), mu = " << rc.mus[i]
+                               << ": " << r.values[i].value << " +- " << r.values[i].error << " by "
+                               << method_name(r.values[i].method) << " in " << r.values[i].samples
+                               << " samples; reference " << rc.ref[i]);
+                CHECK(r.values[i].error <= run.tolerance);
+                CHECK(std::fabs(r.values[i].value - rc.ref[i]) <= run.tolerance);
+                if (!run.auto_method) CHECK(r.values[i].method == run.method);
+            }
+        }
+}
+
+TEST_CASE("albedo --tolerance 1e-5 meets it at a narrow lobe and at grazing", "[methods][tolerance][cli]") {
+    struct Case {
+        double alpha, mu;
+    };
+    for (const Case c : {Case{0.001, 0.1}, Case{0.5, 1e-3}}) {
+        const auto r = testing::run_cli("albedo --model ggx:alpha=" + std::to_string(c.alpha) + " --mu " +
+                                        std::to_string(c.mu) + " --tolerance 1e-5 --format json");
+        REQUIRE(r.status == 0);
+        const auto j = nlohmann::json::parse(r.out);
+        CHECK(j["tolerance"].get<double>() == 1e-5);
+        const double got = j["results"][0]["albedo"].get<double>();
+        const double err = j["results"][0]["error"].get<double>();
+        const double expect = ref::albedo_halfvector(
+            [&](ref::Dir o, ref::Dir i) { return ref::ggx_f(o, i, c.alpha, c.alpha, true); }, c.mu, 0.0, 1e-11);
+        INFO("alpha = " << c.alpha << ", mu = " << c.mu << ": " << got << " +- " << err << ", reference " << expect
+                        << "; " << j["estimator"].get<std::string>());
+        CHECK(err <= 1e-5);
+        CHECK(std::fabs(got - expect) <= 1e-5);
+        CHECK(j["results"][0]["samples"].get<std::uint64_t>() > 0);
+    }
+}
+
+TEST_CASE("tolerance and method options refuse bad input", "[methods][tolerance][cli]") {
+    // Below what float can certify: one message, exit 2.
+    auto r = testing::run_cli("albedo --model ggx:alpha=0.5 --tolerance 1e-9");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("--precision double") != std::string::npos);
+    CHECK(testing::count_lines(r.err) == 1);
+    // A tolerance and a fixed sample count exclude each other.
+    r = testing::run_cli("albedo --model ggx:alpha=0.5 --tolerance 1e-4 --samples 1024");
+    CHECK(r.status == 2);
+    r = testing::run_cli("albedo --model ggx:alpha=0.5 --tolerance -1");
+    CHECK(r.status == 2);
+    r = testing::run_cli("albedo --model ggx:alpha=0.5 --method simpson");
+    CHECK(r.status == 2);
+    // A tolerance that the budget cannot reach: exit 1, the worst cell named, no table written.
+    r = testing::run_cli("albedo --model ggx:alpha=0.5 --mu 0.5 --method mc --tolerance 1e-5 --max-samples 65536");
+    CHECK(r.status == 1);
+    CHECK(r.err.find("not met") != std::string::npos);
+    const std::string table = "/tmp/brdfbake-test-methods-unmet.exr";
+    std::remove(table.c_str());
+    r = testing::run_cli("lut albedo --model ggx --size 4x4 --method mc --tolerance 1e-5 --max-samples 65536 -o " + table);
+    CHECK(r.status == 1);
+    CHECK(!std::ifstream(table).good());
+}
+
+TEST_CASE("mc streams are reproducible by seed and independent across seeds", "[methods][device]") {
+    AlbedoRequest req = request_for("ggx:alpha=0.5", {0.5}, Method::MonteCarlo, Precision::Double, 1 << 14);
+    const double a = compute_albedo(testing::engine(), req).values[0].value;
+    const double b = compute_albedo(testing::engine(), req).values[0].value;
+    req.seed += 1;
+    const double c = compute_albedo(testing::engine(), req).values[0].value;
+    CHECK(a == b);
+    CHECK(a != c);
+}
