@@ -1,0 +1,698 @@
+// brdfbake-tradeoff: speed against accuracy of the albedo methods (issue 7). For GGX, Beckmann,
+// Torrance-Sparrow (GGX and Blinn distributions) and Oren-Nayar over easy and hard cells, every
+// method (importance, qmc, mc, quadrature) in float and double across sample counts: the true
+// error against independent host references (tradeoff_refs.h), the error estimate, whether the
+// estimate was honest, and the kernel time; then the --tolerance mode (auto) on the same cells.
+// Writes NAME.json (every run, every cell) and NAME.md (tables), and with --plot the
+// error-against-time figure.
+//   brdfbake-tradeoff --plot docs/images/tradeoff.png      full study, results into benchmarks/results
+//   brdfbake-tradeoff --quick --out-dir D                  a small grid in seconds (what CI runs)
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <ctime>
+#include <filesystem>
+#include <fstream>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <thread>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/bench.h"
+#include "brdfbake/error.h"
+#include "brdfbake/output.h"
+#include "brdfbake/spec.h"
+#include "brdfbake/version.h"
+#include "plot.h"
+#include "tradeoff_refs.h"
+
+namespace {
+
+using namespace brdfbake;
+using nlohmann::json;
+
+double now() { return std::chrono::duration<double>(std::chrono::steady_clock::now().time_since_epoch()).count(); }
+
+// ------------------------------------------------------------------------------------------
+// The study's grid.
+
+/// One model family: how its parameter becomes a spec, an equivalent alpha and a reference.
+struct Family {
+    std::string key;    // short name in the outputs
+    std::string label;  // for titles
+    tradeoff_ref::Family ref;
+    std::string spec_format;    // printf format of the spec with the parameter
+    std::string param_name;     // alpha, n or sigma
+    std::vector<double> params;
+    /// The alpha of the lobe's width (Blinn n: sqrt(2 / (n + 2))); Oren-Nayar has no narrow
+    /// lobe and counts as alpha = 1.
+    double alpha_of(double p) const {
+        if (ref == tradeoff_ref::Family::TsBlinn) return std::sqrt(2.0 / (p + 2.0));
+        if (ref == tradeoff_ref::Family::OrenNayar) return 1.0;
+        return p;
+    }
+    std::string spec(double p) const {
+        char buf[160];
+        std::snprintf(buf, sizeof buf, spec_format.c_str(), p);
+        return buf;
+    }
+};
+
+/// Families of the full study. Blinn exponents give alpha = sqrt(2 / (n + 2)) of about 0.014
+/// (n = 1e4, the largest the model takes), 0.045, 0.1, 0.5 and 1.
+std::vector<Family> full_families() {
+    const std::vector<double> alphas = {1e-3, 1e-2, 0.1, 0.5, 1.0};
+    using F = tradeoff_ref::Family;
+    return {
+        {"ggx", "GGX", F::Ggx, "ggx:alpha=%.17g", "alpha", alphas},
+        {"beckmann", "Beckmann", F::Beckmann, "beckmann:alpha=%.17g", "alpha", alphas},
+        {"ts-ggx", "Torrance-Sparrow, GGX D", F::TsGgx, "torrance-sparrow:d=ggx,alpha=%.17g", "alpha", alphas},
+        {"ts-blinn", "Torrance-Sparrow, Blinn D", F::TsBlinn, "torrance-sparrow:d=blinn,n=%.17g", "n",
+         {1e4, 1e3, 198, 6, 0}},
+        {"oren-nayar", "Oren-Nayar (rho = 1)", F::OrenNayar, "oren-nayar:sigma=%.17g,rho=1", "sigma",
+         {0.1, 0.5, 1.0, 1.5}},
+    };
+}
+
+struct Options {
+    bool quick = false;
+    std::vector<Family> families;
+    std::vector<double> mus;
+    std::vector<std::uint64_t> samples;
+    std::vector<Method> methods = {Method::Importance, Method::QuasiMonteCarlo, Method::MonteCarlo,
+                                   Method::Quadrature};
+    std::vector<Precision> precisions = {Precision::Float, Precision::Double};
+    /// Tolerance-mode checks (auto method): (precision, tolerance).
+    std::vector<std::pair<Precision, double>> tolerances = {{Precision::Float, 1e-5}, {Precision::Double, 1e-7}};
+    std::uint64_t max_samples = std::uint64_t(1) << 24;
+    double min_seconds = 0.3;  // repeat a timed run until it has taken this long ...
+    int min_runs = 3, max_runs = 15;  // ... with at least / at most this many runs
+    // The references: two tolerances, the finer one the value, their difference its uncertainty.
+    double ref_tol_coarse = 1e-11, ref_tol_fine = 1e-13;
+    double ref_unc_floor = 1e-14;   // below this the integrand's own rounding (long double -> double)
+    double ref_unc_max = 1e-11;     // references less certain than this are dropped
+};
+
+Options full_options() {
+    Options o;
+    o.families = full_families();
+    o.mus = {1e-4, 1e-2, 0.3, 1.0};
+    for (int k = 8; k <= 20; k += 2) o.samples.push_back(std::uint64_t(1) << k);
+    return o;
+}
+
+Options quick_options() {
+    Options o;
+    o.quick = true;
+    std::vector<Family> all = full_families();
+    o.families = {all[0], all[4]};
+    o.families[0].params = {1e-2, 0.5};
+    o.families[1].params = {1.0};
+    o.mus = {1e-2, 1.0};
+    o.samples = {std::uint64_t(1) << 8, std::uint64_t(1) << 12};
+    o.tolerances = {{Precision::Float, 1e-4}};
+    o.max_samples = std::uint64_t(1) << 20;
+    o.min_seconds = 0.0;
+    o.min_runs = o.max_runs = 1;
+    return o;
+}
+
+/// One cell of the study with its reference.
+struct Cell {
+    size_t family = 0;
+    double param = 0.0, alpha = 0.0, mu = 0.0;
+    std::string spec;
+    bool easy = false;
+    double ref = NAN, ref_coarse = NAN, unc = NAN, ref_seconds = 0.0;
+    bool certain = false;
+};
+
+/// Easy cells: a lobe at least as wide as alpha = 0.1, seen from mu >= 0.3.
+bool is_easy(double alpha, double mu) { return alpha >= 0.1 && mu >= 0.3; }
+
+std::vector<Cell> make_cells(const Options& o) {
+    std::vector<Cell> cells;
+    for (size_t f = 0; f < o.families.size(); ++f)
+        for (double p : o.families[f].params)
+            for (double mu : o.mus) {
+                Cell c;
+                c.family = f;
+                c.param = p;
+                c.alpha = o.families[f].alpha_of(p);
+                c.mu = mu;
+                c.spec = o.families[f].spec(p);
+                c.easy = is_easy(c.alpha, mu);
+                cells.push_back(c);
+            }
+    return cells;
+}
+
+/// Every reference at both tolerances, on all cores (the references are independent).
+void compute_references(const Options& o, std::vector<Cell>& cells) {
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t i = next++; i < cells.size(); i = next++) {
+            Cell& c = cells[i];
+            const auto fam = o.families[c.family].ref;
+            const double t0 = now();
+            c.ref_coarse = tradeoff_ref::albedo(fam, c.param, c.mu, o.ref_tol_coarse);
+            c.ref = tradeoff_ref::albedo(fam, c.param, c.mu, o.ref_tol_fine);
+            c.ref_seconds = now() - t0;
+            c.unc = std::max(std::fabs(c.ref - c.ref_coarse), o.ref_unc_floor);
+            c.certain = std::isfinite(c.ref) && c.unc <= o.ref_unc_max;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < std::max(1u, std::thread::hardware_concurrency()); ++t) pool.emplace_back(work);
+    for (auto& t : pool) t.join();
+}
+
+// ------------------------------------------------------------------------------------------
+// Runs.
+
+AlbedoRequest request_for(const Family& fam, const std::vector<const Cell*>& cells, Method m, Precision p,
+                          std::uint64_t samples) {
+    AlbedoRequest req;
+    req.fresnel = resolve_fresnel("none");
+    for (const Cell* c : cells) {
+        const ModelConfig mc = resolve_model(c->spec);
+        if (req.cells.empty()) req.model = mc.id;
+        if (mc.id != req.model) throw Error("cells of one family resolve to different models: " + fam.key);
+        AlbedoCell ac;
+        ac.mu = c->mu;
+        ac.params = mc.params;
+        req.cells.push_back(ac);
+    }
+    req.method = m;
+    req.precision = p;
+    req.samples = samples;
+    return req;
+}
+
+double median(std::vector<double> v) {
+    if (v.empty()) return NAN;
+    std::sort(v.begin(), v.end());
+    const size_t n = v.size();
+    return n % 2 ? v[n / 2] : 0.5 * (v[n / 2 - 1] + v[n / 2]);
+}
+
+/// The judgement of one estimate against its reference.
+struct Verdict {
+    double true_error;
+    bool dishonest;  // the true error, less the reference's uncertainty, above 3x the estimate
+};
+Verdict judge(double value, double estimate, const Cell& c) {
+    const double t = std::fabs(value - c.ref);
+    return {t, t - c.unc > 3.0 * estimate};
+}
+
+/// One fixed-sample run of a family: a compute_albedo call over all its cells, timed.
+json timed_run(Engine& engine, const Options& o, const Family& fam, const std::vector<const Cell*>& cells,
+               Method m, Precision p, std::uint64_t samples) {
+    json run = {{"family", fam.key}, {"method", method_name(m)}, {"precision", precision_name(p)},
+                {"samples", samples}, {"cells", json::array()}};
+    const AlbedoRequest req = request_for(fam, cells, m, p, samples);
+    std::vector<double> kernel, wall;
+    AlbedoResult first;
+    double spent = 0.0;
+    try {
+        while (true) {
+            const double t0 = now();
+            AlbedoResult r = compute_albedo(engine, req);
+            const double dt = now() - t0;
+            if (kernel.empty()) first = std::move(r);
+            kernel.push_back(kernel.empty() ? first.kernel_seconds : r.kernel_seconds);
+            wall.push_back(dt);
+            spent += dt;
+            const int runs = int(kernel.size());
+            if (runs >= o.max_runs) break;
+            if (runs >= o.min_runs && spent >= o.min_seconds) break;
+            if (runs >= 1 && spent > 2.0) break;  // long runs are their own warm-up
+        }
+    } catch (const Error& e) {
+        run["failed"] = e.what();
+        return run;
+    }
+    run["estimator"] = first.method;
+    run["vector_width"] = first.vector_width;
+    run["repeats"] = kernel.size();
+    run["kernel_seconds"] = median(kernel);
+    run["wall_seconds"] = median(wall);
+    run["kernel_seconds_per_cell"] = median(kernel) / double(cells.size());
+    run["wall_seconds_per_cell"] = median(wall) / double(cells.size());
+    for (size_t i = 0; i < cells.size(); ++i) {
+        const AlbedoValue& v = first.values[i];
+        const Verdict j = judge(v.value, v.error, *cells[i]);
+        run["cells"].push_back({{"spec", cells[i]->spec}, {"mu", cells[i]->mu}, {"easy", cells[i]->easy},
+                                {"value", v.value}, {"estimate", v.error}, {"samples", v.samples},
+                                {"reference", cells[i]->ref}, {"true_error", j.true_error},
+                                {"dishonest", j.dishonest}});
+    }
+    return run;
+}
+
+/// The --tolerance mode (auto: quadrature, then importance) on each cell alone, so that one
+/// cell that cannot meet the tolerance does not hide the others.
+json tolerance_run(Engine& engine, const Options& o, const Family& fam, const Cell& c, Precision p, double tol) {
+    json out = {{"family", fam.key}, {"spec", c.spec}, {"mu", c.mu}, {"easy", c.easy},
+                {"precision", precision_name(p)}, {"tolerance", tol}, {"reference", c.ref}};
+    AlbedoRequest req = request_for(fam, {&c}, Method::Importance, p, 0);
+    ToleranceRequest t;
+    t.tolerance = tol;
+    t.auto_method = true;
+    t.max_samples = o.max_samples;
+    const double t0 = now();
+    try {
+        const AlbedoResult r = compute_albedo_to_tolerance(engine, req, t);
+        const AlbedoValue& v = r.values[0];
+        const Verdict j = judge(v.value, v.error, c);
+        out["value"] = v.value;
+        out["estimate"] = v.error;
+        out["samples"] = v.samples;
+        out["method"] = method_name(v.method);
+        out["rounds"] = r.rounds;
+        out["kernel_seconds"] = r.kernel_seconds;
+        out["true_error"] = j.true_error;
+        out["met"] = j.true_error <= tol;
+    } catch (const Error& e) {
+        out["failed"] = e.what();
+    }
+    out["wall_seconds"] = now() - t0;
+    return out;
+}
+
+// ------------------------------------------------------------------------------------------
+// Machine facts (as benchmarks/results/<machine>.md states them).
+
+std::string first_field(const std::string& path, const std::string& key) {
+    std::ifstream in(path);
+    std::string line;
+    while (std::getline(in, line))
+        if (line.rfind(key, 0) == 0) {
+            std::string v = line.substr(line.find(':') + 1);
+            return v.erase(0, v.find_first_not_of(" \t"));
+        }
+    return "unknown";
+}
+
+std::string loadavg() {
+    std::ifstream in("/proc/loadavg");
+    std::string a, b, c;
+    in >> a >> b >> c;
+    return a + " " + b + " " + c;
+}
+
+std::string utc_date() {
+    const std::time_t t = std::time(nullptr);
+    char buf[32];
+    std::strftime(buf, sizeof buf, "%Y-%m-%d %H:%M UTC", std::gmtime(&t));
+    return buf;
+}
+
+// ------------------------------------------------------------------------------------------
+// Summaries of the runs: per (family, method, precision, samples) and class (easy/hard).
+
+struct ClassStats {
+    size_t cells = 0, dishonest = 0;
+    double median_error = NAN, max_error = NAN;
+};
+
+ClassStats class_stats(const json& run, bool easy) {
+    ClassStats s;
+    std::vector<double> errors;
+    for (const auto& c : run["cells"])
+        if (c["easy"].get<bool>() == easy) {
+            errors.push_back(c["true_error"].get<double>());
+            s.dishonest += c["dishonest"].get<bool>();
+        }
+    s.cells = errors.size();
+    if (!errors.empty()) {
+        s.median_error = median(errors);
+        s.max_error = *std::max_element(errors.begin(), errors.end());
+    }
+    return s;
+}
+
+std::string sci(double v, int digits = 1) {
+    if (!std::isfinite(v)) return "–";
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*e", digits, v);
+    return buf;
+}
+
+/// A true error as text: below the references' uncertainty floor it cannot be told from 0.
+std::string err_text(double v, double floor) { return std::isfinite(v) && v < floor ? "<" + sci(floor, 0) : sci(v); }
+
+std::string fixed(double v, int digits) {
+    char buf[32];
+    std::snprintf(buf, sizeof buf, "%.*f", digits, v);
+    return buf;
+}
+
+std::string label_of(const json& run) {
+    return run["method"].get<std::string>() + " " + run["precision"].get<std::string>();
+}
+
+/// The best run (smallest max true error over a class) among those within a time budget per cell.
+const json* best_within(const json& runs, const std::string& family, bool easy, double budget) {
+    const json* best = nullptr;
+    double best_err = INFINITY;
+    for (const auto& r : runs) {
+        if (r["family"] != family || r.contains("failed")) continue;
+        if (r["kernel_seconds_per_cell"].get<double>() > budget) continue;
+        const ClassStats s = class_stats(r, easy);
+        if (s.cells > 0 && s.max_error < best_err) {
+            best_err = s.max_error;
+            best = &r;
+        }
+    }
+    return best;
+}
+
+std::string markdown(const json& j, const Options& o) {
+    std::ostringstream md;
+    const json& m = j["machine"];
+    md << "# brdfbake speed against accuracy: " << j["name"].get<std::string>() << "\n\n";
+    md << "Machine: " << m["cpu"].get<std::string>() << ", " << m["cores"].get<unsigned>() << " cores, "
+       << m["pocl_version"].get<std::string>() << " (" << m["opencl_device"].get<std::string>() << "); "
+       << m["date"].get<std::string>() << "; load average " << m["loadavg_start"].get<std::string>()
+       << " at the start, " << m["loadavg_end"].get<std::string>()
+       << " at the end (other work shared the two cores). brdfbake " << j["brdfbake_version"].get<std::string>()
+       << ", `brdfbake-tradeoff" << (o.quick ? " --quick" : "") << "`; the whole run took "
+       << fixed(j["seconds"].get<double>(), 0) << " s (references " << fixed(j["reference_seconds"].get<double>(), 1)
+       << " s wall).\n\n";
+    md << "Directional albedo E(mu), F = 1, phi = 0. Each row is one `compute_albedo` call over all the "
+          "family's cells (16 replicas for the sampling methods; quadrature: n = sqrt(samples / 4) nodes per "
+          "axis, 4n² points plus the n/2 rule for its estimate). **Time** is the kernel's device time (OpenCL "
+          "event) per cell, the median of repeated runs after an untimed warm-up that builds the kernel; "
+          "*wall* is the whole call per cell (buffers, host tables). **True error** is |value − reference|; "
+          "the reference is the Gauss-Kronrod value of benchmarks/tradeoff_refs.h at tolerance "
+       << sci(o.ref_tol_fine, 0) << ", its uncertainty the difference from the value at " << sci(o.ref_tol_coarse, 0)
+       << " (at least " << sci(o.ref_unc_floor, 0)
+       << "). **Dishonest**: cells whose true error, less the reference's uncertainty, exceeds 3× the "
+          "reported estimate. Easy cells: alpha ≥ 0.1 and mu ≥ 0.3 (Blinn: alpha = sqrt(2/(n+2)); Oren-Nayar "
+          "by mu alone); hard: the rest.\n\n";
+
+    // The cells and their references.
+    md << "## Cells and references\n\n";
+    md << "| family | parameter | alpha | mu | class | reference | uncertainty | reference time (s) |\n";
+    md << "| --- | ---: | ---: | ---: | --- | ---: | ---: | ---: |\n";
+    size_t dropped = 0;
+    for (const auto& c : j["cells"]) {
+        md << "| " << c["family"].get<std::string>() << " | " << c["param_name"].get<std::string>() << " = "
+           << c["param"].get<double>() << " | " << fixed(c["alpha"].get<double>(), 4) << " | " << c["mu"].get<double>()
+           << " | " << (c["easy"].get<bool>() ? "easy" : "hard") << " | " << fixed(c["reference"].get<double>(), 13)
+           << " | " << sci(c["uncertainty"].get<double>()) << " | " << fixed(c["reference_seconds"].get<double>(), 2)
+           << " |" << (c["certain"].get<bool>() ? "" : " **dropped: uncertain**") << "\n";
+        dropped += !c["certain"].get<bool>();
+    }
+    md << "\n" << dropped << " cells dropped for an uncertain reference (uncertainty above "
+       << sci(o.ref_unc_max, 0) << ").\n\n";
+
+    const json& runs = j["runs"];
+    // Summary: the best run within a time budget.
+    md << "## Best within a time budget\n\n";
+    md << "The run with the smallest max true error over the class among runs whose kernel time per cell "
+          "is within the budget (method, precision, samples per cell: max true error).\n\n";
+    md << "| family | class | ≤ 0.1 ms/cell | ≤ 1 ms/cell | ≤ 10 ms/cell |\n| --- | --- | --- | --- | --- |\n";
+    for (const Family& f : o.families)
+        for (bool easy : {true, false}) {
+            md << "| " << f.key << " | " << (easy ? "easy" : "hard");
+            for (double budget : {1e-4, 1e-3, 1e-2}) {
+                const json* b = best_within(runs, f.key, easy, budget);
+                if (!b)
+                    md << " | –";
+                else
+                    md << " | " << label_of(*b) << " " << (*b)["samples"].get<std::uint64_t>() << ": "
+                       << err_text(class_stats(*b, easy).max_error, o.ref_unc_floor);
+            }
+            md << " |\n";
+        }
+
+    // Honesty per method and precision, over every family.
+    md << "\n## Honesty of the error estimates\n\n";
+    md << "Cells (over all families and sample counts) whose true error exceeds 3× the estimate.\n\n";
+    md << "| method | precision | dishonest / cells | fraction | worst true error / estimate |\n";
+    md << "| --- | --- | ---: | ---: | --- |\n";
+    for (Method me : o.methods)
+        for (Precision p : o.precisions) {
+            size_t n = 0, bad = 0;
+            double worst = 0.0;
+            std::string where;
+            for (const auto& r : runs) {
+                if (r["method"] != method_name(me) || r["precision"] != precision_name(p) || r.contains("failed"))
+                    continue;
+                for (const auto& c : r["cells"]) {
+                    ++n;
+                    bad += c["dishonest"].get<bool>();
+                    const double ratio = c["true_error"].get<double>() / c["estimate"].get<double>();
+                    if (c["dishonest"].get<bool>() && ratio > worst) {
+                        worst = ratio;
+                        where = c["spec"].get<std::string>() + ", mu = " + sci(c["mu"].get<double>(), 0) + ", " +
+                                std::to_string(r["samples"].get<std::uint64_t>()) + " samples: " +
+                                sci(c["true_error"].get<double>()) + " vs " + sci(c["estimate"].get<double>());
+                    }
+                }
+            }
+            md << "| " << method_name(me) << " | " << precision_name(p) << " | " << bad << " / " << n << " | "
+               << fixed(n ? 100.0 * bad / n : 0.0, 2) << "% | " << (bad ? fixed(worst, 1) + "x at " + where : "–")
+               << " |\n";
+        }
+
+    // The tolerance mode.
+    if (!j["tolerance_runs"].empty()) {
+        md << "\n## `--tolerance` (auto: quadrature first, then importance sampling)\n\n";
+        md << "Each cell alone through `compute_albedo_to_tolerance` (max " << o.max_samples
+           << " samples per cell). *met*: true error within the tolerance; *by*: the method of the reported value.\n\n";
+        md << "| family | precision | tolerance | cells met / run | failed (not certified) | by quadrature / importance "
+              "| max true error | kernel time per cell: median, max (ms) |\n";
+        md << "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        for (const Family& f : o.families)
+            for (const auto& pt : o.tolerances) {
+                size_t n = 0, met = 0, failed = 0, quad = 0, imp = 0;
+                double worst = 0.0;
+                std::vector<double> times;
+                for (const auto& t : j["tolerance_runs"]) {
+                    if (t["family"] != f.key || t["precision"] != precision_name(pt.first) ||
+                        t["tolerance"].get<double>() != pt.second)
+                        continue;
+                    ++n;
+                    if (t.contains("failed")) {
+                        ++failed;
+                        continue;
+                    }
+                    met += t["met"].get<bool>();
+                    (t["method"] == "quadrature" ? quad : imp)++;
+                    worst = std::max(worst, t["true_error"].get<double>());
+                    times.push_back(t["kernel_seconds"].get<double>() * 1e3);
+                }
+                md << "| " << f.key << " | " << precision_name(pt.first) << " | " << sci(pt.second, 0) << " | " << met
+                   << " / " << n << " | " << failed << " | " << quad << " / " << imp << " | "
+                   << err_text(worst, o.ref_unc_floor) << " | "
+                   << (times.empty() ? "–"
+                                     : fixed(median(times), 2) + ", " +
+                                           fixed(*std::max_element(times.begin(), times.end()), 2))
+                   << " |\n";
+            }
+        md << "\n";
+        for (const auto& t : j["tolerance_runs"])
+            if (t.contains("failed") || !t["met"].get<bool>())
+                md << "- " << t["spec"].get<std::string>() << ", mu = " << t["mu"].get<double>() << ", "
+                   << t["precision"].get<std::string>() << " tolerance " << sci(t["tolerance"].get<double>(), 0) << ": "
+                   << (t.contains("failed") ? t["failed"].get<std::string>()
+                                             : "true error " + sci(t["true_error"].get<double>()) + ", estimate " +
+                                                   sci(t["estimate"].get<double>()))
+                   << "\n";
+    }
+
+    // Every run.
+    const double fl = o.ref_unc_floor;
+    md << "\n## Every run\n\n";
+    for (const Family& f : o.families) {
+        md << "### " << f.label << " (`" << f.spec_format.substr(0, f.spec_format.find('%')) << "...`)\n\n";
+        md << "| method | precision | samples | time/cell (ms) | wall/cell (ms) | easy: median | easy: max | hard: "
+              "median | hard: max | dishonest |\n";
+        md << "| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+        for (const auto& r : runs) {
+            if (r["family"] != f.key) continue;
+            md << "| " << r["method"].get<std::string>() << " | " << r["precision"].get<std::string>() << " | "
+               << r["samples"].get<std::uint64_t>() << " | ";
+            if (r.contains("failed")) {
+                md << "failed: " << r["failed"].get<std::string>() << " | | | | | | |\n";
+                continue;
+            }
+            const ClassStats e = class_stats(r, true), h = class_stats(r, false);
+            md << fixed(r["kernel_seconds_per_cell"].get<double>() * 1e3, 4) << " | "
+               << fixed(r["wall_seconds_per_cell"].get<double>() * 1e3, 4) << " | " << err_text(e.median_error, fl)
+               << " | " << err_text(e.max_error, fl) << " | " << err_text(h.median_error, fl) << " | "
+               << err_text(h.max_error, fl) << " | "
+               << e.dishonest + h.dishonest << " / " << e.cells + h.cells << " |\n";
+        }
+        md << "\n";
+    }
+    return md.str();
+}
+
+// ------------------------------------------------------------------------------------------
+// The figure: max true error against kernel time per cell, a panel per family and class.
+
+void write_tradeoff_plot(const json& j, const Options& o, const std::string& path) {
+    const std::map<std::string, std::string> colour = {
+        {"importance", "b"}, {"qmc", "g"}, {"mc", "r"}, {"quadrature", "k"}};
+    Figure fig;
+    fig.columns = 2;
+    fig.panel_width = 640;
+    fig.panel_height = 470;
+    constexpr double kFloor = 1e-16;  // errors of 0 (or below) drawn here
+    for (const Family& f : o.families)
+        for (bool easy : {true, false}) {
+            PlotSpec p;
+            p.title = f.label + (easy ? ": easy cells" : ": hard cells");
+            p.x.label = "log_{10} kernel seconds per cell";
+            p.y.label = "log_{10} max true error";
+            p.y.lo = -16.5;
+            p.y.hi = 0.5;
+            // One legend for the figure, where the hard panels leave room: fast and accurate.
+            p.legend = !easy && fig.panels.size() == 1 ? LegendPlace::BottomLeft : LegendPlace::None;
+            for (Method me : o.methods)
+                for (Precision pr : o.precisions) {
+                    Curve c;
+                    c.label = std::string(method_name(me)) + " " + precision_name(pr);
+                    c.style = colour.at(method_name(me)) + (pr == Precision::Float ? "-2o" : ";2s");
+                    for (const auto& r : j["runs"]) {
+                        if (r["family"] != f.key || r["method"] != method_name(me) ||
+                            r["precision"] != precision_name(pr) || r.contains("failed"))
+                            continue;
+                        const ClassStats s = class_stats(r, easy);
+                        if (s.cells == 0) continue;
+                        c.x.push_back(std::log10(r["kernel_seconds_per_cell"].get<double>()));
+                        c.y.push_back(std::log10(std::max(s.max_error, kFloor)));
+                    }
+                    if (!c.x.empty()) p.curves.push_back(c);
+                }
+            if (!p.curves.empty()) fig.panels.push_back(p);
+        }
+    write_figure(path, fig);
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"brdfbake-tradeoff: error against time of every albedo method and precision (issue 7)"};
+    bool quick = false;
+    std::string out_dir = BRDFBAKE_BENCH_RESULTS_DIR, name, plot, device, only;
+    app.add_flag("--quick", quick, "a small grid, two sample counts, one run each (what CI runs)");
+    app.add_option("--out-dir", out_dir, "directory for NAME.json and NAME.md")->capture_default_str();
+    app.add_option("--name", name, "file name stem (default: tradeoff-<machine>, -quick with --quick)");
+    app.add_option("--plot", plot, "also draw max true error against time per cell (.png or .svg)");
+    app.add_option("--device", device, "OpenCL device selector (see `brdfbake devices`)");
+    app.add_option("--families", only, "comma-separated family keys to run (ggx, beckmann, ts-ggx, ts-blinn, oren-nayar)");
+    CLI11_PARSE(app, argc, argv);
+    try {
+        const double t_start = now();
+        Options o = quick ? quick_options() : full_options();
+        if (!only.empty()) {
+            std::vector<Family> keep;
+            std::stringstream ss(only);
+            for (std::string k; std::getline(ss, k, ',');) {
+                auto it = std::find_if(o.families.begin(), o.families.end(), [&](const Family& f) { return f.key == k; });
+                if (it == o.families.end()) throw Error("unknown family '" + k + "'");
+                keep.push_back(*it);
+            }
+            o.families = keep;
+        }
+        if (name.empty()) name = "tradeoff-" + bench_machine_name() + (quick ? "-quick" : "");
+
+        json j;
+        j["name"] = name;
+        j["mode"] = quick ? "quick" : "full";
+        j["brdfbake_version"] = BRDFBAKE_VERSION;
+        Engine engine(device);
+        const DeviceInfo& dev = engine.device();
+        j["machine"] = {{"cpu", first_field("/proc/cpuinfo", "model name")},
+                        {"cores", std::thread::hardware_concurrency()},
+                        {"opencl_device", dev.name},
+                        {"pocl_version", dev.driver},
+                        {"date", utc_date()},
+                        {"loadavg_start", loadavg()}};
+        if (!dev.fp64) o.precisions = {Precision::Float};
+
+        // References.
+        std::vector<Cell> cells = make_cells(o);
+        std::cerr << "brdfbake-tradeoff: " << cells.size() << " references at tolerances " << o.ref_tol_coarse
+                  << " and " << o.ref_tol_fine << "\n";
+        const double t_ref = now();
+        compute_references(o, cells);
+        j["reference_seconds"] = now() - t_ref;
+        j["reference_tolerances"] = {o.ref_tol_coarse, o.ref_tol_fine};
+        j["cells"] = json::array();
+        for (const Cell& c : cells)
+            j["cells"].push_back({{"family", o.families[c.family].key}, {"spec", c.spec},
+                                  {"param_name", o.families[c.family].param_name}, {"param", c.param},
+                                  {"alpha", c.alpha}, {"mu", c.mu}, {"easy", c.easy}, {"reference", c.ref},
+                                  {"reference_coarse", c.ref_coarse}, {"uncertainty", c.unc},
+                                  {"reference_seconds", c.ref_seconds}, {"certain", c.certain}});
+        std::cerr << "brdfbake-tradeoff: references took " << j["reference_seconds"].get<double>() << " s\n";
+
+        // Fixed-sample runs: per family, method and precision an untimed warm-up (the build),
+        // then every sample count.
+        j["runs"] = json::array();
+        for (size_t f = 0; f < o.families.size(); ++f) {
+            std::vector<const Cell*> fc;
+            for (const Cell& c : cells)
+                if (c.family == f && c.certain) fc.push_back(&c);
+            if (fc.empty()) continue;
+            for (Method me : o.methods)
+                for (Precision p : o.precisions) {
+                    try {
+                        compute_albedo(engine, request_for(o.families[f], fc, me, p, o.samples.front()));
+                    } catch (const Error&) {
+                        // reported by the timed run
+                    }
+                    for (std::uint64_t s : o.samples) {
+                        j["runs"].push_back(timed_run(engine, o, o.families[f], fc, me, p, s));
+                        const json& r = j["runs"].back();
+                        std::cerr << "  " << o.families[f].key << " " << method_name(me) << " " << precision_name(p)
+                                  << " " << s << ": "
+                                  << (r.contains("failed") ? "failed: " + r["failed"].get<std::string>()
+                                                           : sci(r["kernel_seconds_per_cell"].get<double>() * 1e3, 2) +
+                                                                 " ms/cell")
+                                  << "\n";
+                    }
+                }
+        }
+
+        // The tolerance mode.
+        j["tolerance_runs"] = json::array();
+        for (const auto& pt : o.tolerances) {
+            if (pt.first == Precision::Double && !dev.fp64) continue;
+            for (const Cell& c : cells)
+                if (c.certain)
+                    j["tolerance_runs"].push_back(tolerance_run(engine, o, o.families[c.family], c, pt.first, pt.second));
+            std::cerr << "  tolerance " << pt.second << " " << precision_name(pt.first) << " done\n";
+        }
+
+        j["machine"]["loadavg_end"] = loadavg();
+        j["seconds"] = now() - t_start;
+        const std::string md = markdown(j, o);
+        std::filesystem::create_directories(out_dir);
+        write_file_atomically(out_dir + "/" + name + ".json", j.dump(1) + "\n");
+        write_file_atomically(out_dir + "/" + name + ".md", md);
+        if (!plot.empty()) write_tradeoff_plot(j, o, plot);
+        std::cerr << "brdfbake-tradeoff: wrote " << out_dir << "/" << name << ".json and .md in "
+                  << fixed(j["seconds"].get<double>(), 1) << " s\n";
+        return 0;
+    } catch (const Error& e) {
+        std::cerr << "brdfbake-tradeoff: error: " << e.what() << "\n";
+        return e.exit_code();
+    } catch (const std::exception& e) {
+        std::cerr << "brdfbake-tradeoff: error: " << e.what() << "\n";
+        return 2;
+    }
+}
