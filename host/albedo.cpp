@@ -91,7 +91,8 @@ std::string method_text(Method method, unsigned replicas, std::uint64_t points) 
 std::string quadrature_text(int model, unsigned n) {
     std::ostringstream m;
     m << "Gauss-Legendre product rule in " << (bb_model_quad_dist(model, bb_params{}).kind == BB_QUAD_SAMPLER ? "the sampler's unit square" : "half-vector space")
-      << ", " << n << " x 4x" << n << " nodes, error from the " << n / 2 << "-node rule";
+      << ", " << n << " x " << n << " nodes per azimuth piece (2 to 8 pieces), error from the " << n / 2
+      << "-node rule";
     return m.str();
 }
 
@@ -289,7 +290,7 @@ unsigned quadrature_order(std::uint64_t samples) {
 AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     if (req.samples == 0) throw Error("--samples must be positive");
     const unsigned n = quadrature_order(req.samples), m = n / 2;
-    const size_t n_cells = req.cells.size(), n_items = n_cells * 8;
+    const size_t n_cells = req.cells.size(), n_items = n_cells * 16;
 
     BuildRequest build;
     build.kernel_file = "albedo.cl";
@@ -331,17 +332,17 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
 
     AlbedoResult result;
-    const std::uint64_t per_cell = 4ull * n * n + 4ull * m * m;
+    const std::uint64_t per_piece = std::uint64_t(n) * n + std::uint64_t(m) * m;
     result.kernel_seconds = event_seconds(done);
     result.method = quadrature_text(req.model, n);
     const double fp_bound = tolerance_floor(req.precision);
     for (size_t c = 0; c < n_cells; ++c) {
         double fine = 0.0, coarse = 0.0;
         std::uint64_t n_bad = 0;
-        for (int q = 0; q < 4; ++q) {
-            fine += sums[c * 8 + q];
-            coarse += sums[c * 8 + 4 + q];
-            n_bad += bad[c * 8 + q] + bad[c * 8 + 4 + q];
+        for (int q = 0; q < 8; ++q) {
+            fine += sums[c * 16 + q];
+            coarse += sums[c * 16 + 8 + q];
+            n_bad += bad[c * 16 + q] + bad[c * 16 + 8 + q];
         }
         if (n_bad > 0)
             throw NonFiniteError(nonfinite_where(req, c) + " (" + std::to_string(n_bad) +
@@ -352,7 +353,7 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
         v.error = std::fabs(fine - coarse) + fp_bound * std::max(std::fabs(fine), 1e-3);
         bb_params p;
         for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = req.cells[c].params[k];
-        v.samples = bb_quad_mirrored(bb_model_quad_dist(req.model, p), req.cells[c].phi) ? per_cell / 2 : per_cell;
+        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(bb_model_quad_dist(req.model, p), req.cells[c].phi));
         result.samples_per_cell = std::max(result.samples_per_cell, v.samples);
         result.total_samples += v.samples;
         v.method = Method::Quadrature;

@@ -123,11 +123,12 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
 
 #else /* BB_QUADRATURE */
 
-/* Gauss-Legendre product quadrature (integrands.h). Work-item (cell, rule, quarter): rule 0 has
- * n_fine nodes per axis, rule 1 n_coarse (the error estimate compares the two); the quarter is
- * the azimuth range [q pi/2, (q + 1) pi/2]. `nodes` holds the fine rule's n_fine abscissae in
- * [0, 1], then its weights (summing to 1), then the same for the coarse rule. Writes the
- * quarter's share of E; the host adds the quarters. */
+/* Gauss-Legendre product quadrature (integrands.h). Work-item (cell, rule, piece): rule 0 has
+ * n_fine nodes per axis, rule 1 n_coarse (the error estimate compares the two); piece 2k + h is
+ * half h of the quarter k of azimuth offsets (bb_quad_azimuth_node; in the sampler's square the
+ * quarter of u2, and h = 1 is empty). `nodes` holds the fine rule's n_fine abscissae in [0, 1],
+ * then its weights (summing to 1), then the same for the coarse rule. Writes the piece's share
+ * of E; the host adds the pieces. */
 __kernel void albedo_quadrature(__global const real* cell_mu,
                                 __global const real* cell_phi,
                                 __global const real* model_p,
@@ -136,13 +137,13 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
                                 const unsigned int n_fine,
                                 const unsigned int n_coarse,
                                 const unsigned int n_cells,
-                                __global real* quarter_sum,       /* n_cells * 2 * 4 */
-                                __global unsigned int* bad_count) /* n_cells * 2 * 4 */
+                                __global real* piece_sum,         /* n_cells * 2 * 8 */
+                                __global unsigned int* bad_count) /* n_cells * 2 * 8 */
 {
     const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * 8u)
+    if (gid >= n_cells * 16u)
         return;
-    const unsigned int cell = gid / 8u, rule = (gid / 4u) & 1u, q = gid & 3u;
+    const unsigned int cell = gid / 16u, rule = (gid / 8u) & 1u, piece = gid & 7u, q = piece >> 1;
     const unsigned int n = rule == 0u ? n_fine : n_coarse;
     __global const real* x = nodes + (rule == 0u ? 0u : 2u * n_fine);
     __global const real* wt = x + n;
@@ -153,11 +154,13 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
     const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], phi_o);
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);
 
-    /* Mirror symmetry (bb_quad_mirrored): quarters 0 and 1 count twice, 2 and 3 are skipped. */
+    /* Mirror symmetry (bb_quad_mirrored): quarters 0 and 1 count twice, 2 and 3 are skipped;
+     * so are the empty halves (h = 1 in the sampler's square, and see bb_quad_azimuth_node). */
     const int mirrored = bb_quad_mirrored(dist, phi_o);
-    if (mirrored && q >= 2u) {
-        quarter_sum[gid] = BB_R(0.0);
-        bad_count[gid] = params_ok ? 0u : n * n;
+    const int is_sampler = dist.kind == BB_QUAD_SAMPLER;
+    if ((mirrored && q >= 2u) || ((piece & 1u) && (is_sampler || bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5)).ddelta == BB_R(0.0)))) {
+        piece_sum[gid] = BB_R(0.0);
+        bad_count[gid] = 0u;
         return;
     }
     const real copies = mirrored ? BB_R(2.0) : BB_R(1.0);
@@ -195,18 +198,19 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
             }
             scale = BB_R(0.25);
         } else {
-            const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, BB_2PI * s);
+            const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, x[j]);
+            const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
             for (unsigned int k = 0; k < n; ++k) {
                 const real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
                 const int ok = isfinite(w);
                 bad += ok ? 0u : 1u;
                 BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
             }
-            scale = BB_R(0.5) * BB_PI * r.t_max;
+            scale = az.ddelta * r.t_max; /* (pi/2) t_max for a whole quarter in delta */
         }
         BB_KAHAN_ADD(sum, comp, wt[j] * scale * row);
     }
-    quarter_sum[gid] = copies * sum;
+    piece_sum[gid] = copies * sum;
     bad_count[gid] = params_ok ? bad : n * n;
 }
 

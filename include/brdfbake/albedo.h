@@ -37,7 +37,8 @@ struct AlbedoRequest {
     std::vector<AlbedoCell> cells;
     Method method = Method::Importance;
     /// Per cell: the sample count, split over the replicas; for quadrature the nodes of the fine
-    /// rule (4 n^2 for n nodes per axis, n = the even number nearest sqrt(samples / 4)).
+    /// rule (n^2 per azimuth piece: 4 pieces, 2 for mirror-symmetric lobes, 8 for anisotropic lobes
+    /// off their axes; n = the even number nearest sqrt(samples / 4)).
     std::uint64_t samples = 1u << 18;
     unsigned replicas = 16;            // randomised replicas for the error estimate (sampling methods)
     Precision precision = Precision::Float;

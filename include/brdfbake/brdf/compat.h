@@ -65,6 +65,7 @@ typedef int bb_mask;
 #define bb_sin sin
 #define bb_cos cos
 #define bb_atan2 atan2
+#define bb_floor floor
 #define bb_fabs fabs
 #define bb_fma fma
 #define bb_min fmin
@@ -101,6 +102,7 @@ typedef int bb_mask;
 #define bb_sin std::sin
 #define bb_cos std::cos
 #define bb_atan2 std::atan2
+#define bb_floor std::floor
 #define bb_fabs std::fabs
 #define bb_fma std::fma
 #define bb_min std::fmin

@@ -107,6 +107,69 @@ BB_FN int bb_quad_mirrored(bb_quad_dist d, real phi_o) {
     return d.kind == BB_QUAD_SAMPLER ? phi_o == BB_R(0.0) : d.ax == d.ay;
 }
 
+/* Azimuth pieces of the half-vector rule. The rule runs over 8 pieces: each quarter k of the
+ * azimuth offset delta = phi_h - phi_o is cut in two (h = 0, 1) where it crosses an axis of an
+ * anisotropic D (phi_h a multiple of pi/2), so that every piece lies in one quadrant j of phi_h.
+ * There the azimuth follows the marginal of D's slopes, which for roughness a(phi) along the
+ * azimuth is proportional to a(phi)^2 (see the head of this file):
+ *   psi = phi_h - j pi/2 = atan(rho tan(theta)),  rho = ay/ax (j even) or ax/ay (j odd),
+ * with theta linear in the node x; dpsi/dtheta = rho / (cos^2 theta + rho^2 sin^2 theta) then
+ * cancels the factor a^2 of the integrand, however elongated the lobe (alpha_x = 1 with
+ * alpha_y = 1e-3 puts the lobe in 1e-3 rad of azimuth, which a rule in delta cannot see).
+ * For isotropic D (rho = 1) the map is the identity and the h = 1 pieces are empty, as they
+ * are when phi_o is on an axis. */
+typedef struct {
+    real delta;  /* the node's azimuth offset */
+    real ddelta; /* d(delta)/dx */
+} bb_quad_azimuth;
+
+/* Where the axis crossing cuts each quarter of delta: pi/2 - (phi_o mod pi/2), or pi/2 (no
+ * cut) for isotropic lobes and phi_o within 1e-6 rad of an axis. */
+BB_FN real bb_quad_piece_split(bb_quad_dist d, real phi_o) {
+    const real q = BB_R(0.5) * BB_PI;
+    real phi0 = phi_o - bb_floor(phi_o / q) * q;
+    int aligned = d.ax == d.ay || phi0 < BB_R(1e-6) || phi0 > q - BB_R(1e-6);
+    return bb_select(q - phi0, q, aligned);
+}
+
+/* The number of non-empty pieces (the node count is this times n^2). */
+BB_FN int bb_quad_piece_count(bb_quad_dist d, real phi_o) {
+    if (bb_quad_mirrored(d, phi_o)) return 2;
+    return bb_quad_piece_split(d, phi_o) < BB_R(0.5) * BB_PI ? 8 : 4;
+}
+
+/* The azimuth of node x in [0, 1] of piece (k, h) (piece = 2k + h); ddelta = 0 for an empty
+ * piece. */
+BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, real phi_o, unsigned int piece, real x) {
+    const real q = BB_R(0.5) * BB_PI;
+    real split = bb_quad_piece_split(d, phi_o);
+    real k = (real)(piece >> 1);
+    int h = (int)(piece & 1u);
+    real lo = k * q + bb_select(BB_R(0.0), split, h);
+    real hi = bb_select(k * q + split, (k + BB_R(1.0)) * q, h);
+    bb_quad_azimuth a;
+    if (!(hi > lo)) {
+        a.delta = lo;
+        a.ddelta = BB_R(0.0);
+        return a;
+    }
+    if (d.ax == d.ay) { /* rho = 1: the identity */
+        a.delta = lo + (hi - lo) * x;
+        a.ddelta = hi - lo;
+        return a;
+    }
+    real j = bb_floor((phi_o + BB_R(0.5) * (lo + hi)) / q);
+    real rho = bb_select(d.ax / d.ay, d.ay / d.ax, ((int)j & 1) == 0);
+    real psi_lo = bb_clamp(phi_o + lo - j * q, BB_R(0.0), q), psi_hi = bb_clamp(phi_o + hi - j * q, BB_R(0.0), q);
+    real th_lo = bb_atan2(bb_sin(psi_lo), rho * bb_cos(psi_lo));
+    real th_hi = bb_atan2(bb_sin(psi_hi), rho * bb_cos(psi_hi));
+    real th = th_lo + (th_hi - th_lo) * x;
+    real c = bb_cos(th), s = bb_sin(th);
+    a.delta = j * q + bb_atan2(rho * s, c) - phi_o;
+    a.ddelta = (th_hi - th_lo) * rho / (c * c + rho * rho * s * s);
+    return a;
+}
+
 /* Sampler space for the cosine samplers (Lambert, Oren-Nayar: sin^2(theta_i) = u1): the rule
  * runs over c = cos(theta_i) instead, u1 = 1 - c^2 with Jacobian 2c, which removes the 1/c of
  * Oren-Nayar's tan(theta_i), and in two pieces, [0, cos(theta_o)] and [cos(theta_o), 1], where

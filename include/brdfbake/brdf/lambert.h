@@ -3,6 +3,7 @@
 #define BRDFBAKE_BRDF_LAMBERT_H
 
 #include "brdfbake/brdf/params.h"
+#include "brdfbake/brdf/sampling.h"
 
 /* Parameter slots. */
 #define BB_LAMBERT_RHO 0
@@ -12,12 +13,10 @@ BB_FN real bb_lambert_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
 }
 
 /* Cosine-weighted hemisphere sampling (Malley's method): pdf = cos(theta_i)/pi, so the weight
- * f cos / pdf is rho for every sample. */
+ * f cos / pdf is rho for every sample (0 for u1 = 0, a direction on the horizon). */
 BB_FN bb_sample bb_lambert_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
-    real r = bb_sqrt(u1);
-    real phi = BB_2PI * u2;
-    bb_vec3 wi = bb_v3(r * bb_cos(phi), r * bb_sin(phi), bb_safe_sqrt(BB_R(1.0) - u1));
-    return bb_make_sample(wi, bb_select(BB_R(0.0), p.v[BB_LAMBERT_RHO], wo.z > BB_R(0.0)));
+    bb_vec3 wi = bb_cosine_hemisphere(u1, u2);
+    return bb_make_sample(wi, bb_select(BB_R(0.0), p.v[BB_LAMBERT_RHO], wo.z > BB_R(0.0) && wi.z > BB_R(0.0)));
 }
 
 #endif /* BRDFBAKE_BRDF_LAMBERT_H */

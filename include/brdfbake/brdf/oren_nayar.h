@@ -16,6 +16,7 @@
 #define BRDFBAKE_BRDF_OREN_NAYAR_H
 
 #include "brdfbake/brdf/params.h"
+#include "brdfbake/brdf/sampling.h"
 
 /* Parameter slots. */
 #define BB_OREN_NAYAR_SIGMA 0 /* radians, >= 0 */
@@ -47,9 +48,7 @@ BB_FN real bb_oren_nayar_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
  * rho (A + B max(0, t)/max(cos_i, cos_o)), bounded by rho (A + B / cos_o); its variance grows
  * only like log(1/cos_o) towards grazing. */
 BB_FN bb_sample bb_oren_nayar_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
-    real r = bb_sqrt(u1);
-    real phi = BB_2PI * u2;
-    bb_vec3 wi = bb_v3(r * bb_cos(phi), r * bb_sin(phi), bb_safe_sqrt(BB_R(1.0) - u1));
+    bb_vec3 wi = bb_cosine_hemisphere(u1, u2);
     real w = p.v[BB_OREN_NAYAR_RHO] * bb_oren_nayar_bracket(p.v[BB_OREN_NAYAR_SIGMA], wo, wi);
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wo.z > BB_R(0.0) && wi.z > BB_R(0.0)));
 }

@@ -42,4 +42,16 @@ BB_FN bb_vec2 bb_disk_polar(real u1, real u2) {
     return bb_v2(r * bb_cos(phi), r * bb_sin(phi));
 }
 
+/* Cosine-weighted direction on the hemisphere (Malley's method), pdf = cos(theta)/pi:
+ * cos(theta) = sqrt(u1) and sin(theta) = sqrt(1 - u1), the mirror image u1 -> 1 - u1 of the
+ * disk warp above. Grazing directions come from small u1, where a float keeps full relative
+ * precision; with cos(theta) = sqrt(1 - u1) they would come from u1 near 1, where float
+ * resolves cos(theta) only in steps of about 2.4e-4 and integrands that grow like 1/cos(theta)
+ * near the horizon (Oren-Nayar) are biased by ~1e-4. */
+BB_FN bb_vec3 bb_cosine_hemisphere(real u1, real u2) {
+    real s = bb_safe_sqrt(BB_R(1.0) - u1);
+    real phi = BB_2PI * u2;
+    return bb_v3(s * bb_cos(phi), s * bb_sin(phi), bb_sqrt(u1));
+}
+
 #endif /* BRDFBAKE_BRDF_SAMPLING_H */
