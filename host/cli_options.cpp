@@ -10,7 +10,7 @@ namespace brdfbake {
 void add_method_options(CLI::App* cmd, std::int64_t& samples, std::string& method, double& tolerance,
                         std::int64_t& max_samples, const std::string& per) {
     CLI::Option* s = cmd->add_option("--samples", samples,
-                                     "samples per " + per + " (quadrature: nodes of the finer rule, 4 n^2)")
+                                     "samples per " + per + " (quadrature: n = sqrt(samples/4) nodes per axis of the finer rule, n^2 per azimuth piece)")
                          ->capture_default_str();
     cmd->add_option("--method", method,
                     "integration method: importance (the model's sampler, randomised Hammersley), qmc and mc "
