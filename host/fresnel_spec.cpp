@@ -74,6 +74,7 @@ FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
         f.kind = BB_FRESNEL_DIELECTRIC;
         const double eta = keys.required_number("eta", kEta, "relative index of refraction, e.g. 1.5");
         f.params[BB_FRESNEL_ETA] = eta;
+        f.params[BB_FRESNEL_ETA_M1] = eta - 1.0;  // exact here; a float kernel could not recover it
         f.canonical = "dielectric:eta=" + format_number(eta);
     } else if (spec.name == "conductor" || spec.name == "conductor-approx") {
         f.kind = spec.name == "conductor" ? BB_FRESNEL_CONDUCTOR : BB_FRESNEL_CONDUCTOR_APPROX;

@@ -226,3 +226,19 @@ TEST_CASE("quadrature follows elongated anisotropic lobes off their axes", "[met
         }
     }
 }
+
+TEST_CASE("float carries an index as close to 1 as 1.0001 through eta - 1", "[methods][fresnel][device]") {
+    // 1.0001f is 1 + 1.00017e-4: from eta alone a float kernel would integrate F of the wrong
+    // index, 3.3e-4 relative off (F ~ (eta - 1)^2), beyond its own error estimate.
+    AlbedoRequest req = request_for("ggx:alpha=0.001,shadowing=separable", {1e-3, 0.1}, Method::Importance,
+                                    Precision::Float, 1 << 18);
+    req.fresnel = resolve_fresnel("dielectric:eta=1.0001");
+    const AlbedoResult f = compute_albedo(testing::engine(), req);
+    req.precision = Precision::Double;
+    const AlbedoResult d = compute_albedo(testing::engine(), req);
+    for (size_t i = 0; i < f.values.size(); ++i) {
+        INFO("mu = " << req.cells[i].mu << ": float " << f.values[i].value << " +- " << f.values[i].error << ", double "
+                     << d.values[i].value << " +- " << d.values[i].error);
+        CHECK(std::fabs(f.values[i].value - d.values[i].value) <= 0.25 * f.values[i].error);
+    }
+}

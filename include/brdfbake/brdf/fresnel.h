@@ -46,6 +46,10 @@
 #define BB_SCHLICK_F0 0
 #define BB_FRESNEL_ETA 0 /* dielectric, conductor, conductor-approx: real part of the index */
 #define BB_FRESNEL_K 1   /* conductor, conductor-approx: extinction coefficient k >= 0 */
+/* dielectric: eta - 1, computed where eta is exact (the host, in double), or 0: then the
+ * functions compute it from eta. float cannot hold an eta close to 1 (1.0001f = 1 + 1.00017e-4,
+ * 1.7e-4 off in eta - 1, and F ~ (eta - 1)^2); its distance from 1 it holds exactly. */
+#define BB_FRESNEL_ETA_M1 1
 
 /* The two polarised reflectances of one evaluation. */
 typedef struct {
@@ -87,12 +91,15 @@ BB_FN real bb_fresnel_schlick(real cos_theta, real f0) {
  *                                                     =>  r_p = d ((eta^2 + 1) cos_i^2 - 1) / (eta^2 cos_i + w)^2
  * (r_p multiplied through by eta). Total internal reflection (d + cos_i^2 <= 0) gives 1,
  * eta = 1 gives 0. */
-BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(real cos_theta, real eta) {
+BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp_m1(real cos_theta, real eta, real eta_m1) {
     real c = bb_clamp_cos(cos_theta);
-    /* Seen from the other side: invert the relative index [PBR4 FrDielectric]. */
-    real e = bb_select(eta, BB_R(1.0) / eta, c < BB_R(0.0));
+    /* Seen from the other side: invert the relative index [PBR4 FrDielectric];
+     * 1/eta - 1 = -(eta - 1)/eta. */
+    bb_mask back = c < BB_R(0.0);
+    real e = bb_select(eta, BB_R(1.0) / eta, back);
+    real em1 = bb_select(eta_m1, -eta_m1 / eta, back);
     c = bb_fabs(c);
-    real d = (e - BB_R(1.0)) * (e + BB_R(1.0)); /* eta^2 - 1, exact near eta = 1 */
+    real d = em1 * (e + BB_R(1.0)); /* eta^2 - 1, exact near eta = 1 */
     real q = d + c * c;                         /* eta^2 - sin_i^2 = (eta cos_t)^2 */
     real w = bb_safe_sqrt(q);                   /* eta cos_t */
     real e2 = e * e;
@@ -100,12 +107,17 @@ BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(real cos_theta, real eta) {
     real rs = bb_ratio_or(-d, ds * ds, BB_R(0.0));
     real rp = bb_ratio_or(d * ((e2 + BB_R(1.0)) * c * c - BB_R(1.0)), dp * dp, BB_R(0.0));
     bb_mask tir = q <= BB_R(0.0);
-    bb_mask unit = e == BB_R(1.0);
+    bb_mask unit = em1 == BB_R(0.0);
     /* |r| <= 1 exactly, but near grazing (cos_i -> 0) (cos_i + w)^2 -> w^2 = d only up to the
      * rounding of w = sqrt(d + cos_i^2): |r| may round to 1 + 2 ulp. Clamp to 1. */
     real Rs = bb_select(bb_select(bb_min(rs * rs, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
     real Rp = bb_select(bb_select(bb_min(rp * rp, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
     return bb_make_fresnel_sp(Rs, Rp);
+}
+
+/* The same with eta - 1 computed from eta. */
+BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(real cos_theta, real eta) {
+    return bb_fresnel_dielectric_sp_m1(cos_theta, eta, eta - BB_R(1.0));
 }
 
 BB_FN real bb_fresnel_dielectric_rs(real cos_theta, real eta) {
@@ -231,7 +243,9 @@ BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, real cos_theta) {
         return bb_make_fresnel_sp(f, f);
     }
     case BB_FRESNEL_DIELECTRIC:
-        return bb_fresnel_dielectric_sp(cos_theta, fp.v[BB_FRESNEL_ETA]);
+        return bb_fresnel_dielectric_sp_m1(
+            cos_theta, fp.v[BB_FRESNEL_ETA],
+            bb_select(fp.v[BB_FRESNEL_ETA] - BB_R(1.0), fp.v[BB_FRESNEL_ETA_M1], fp.v[BB_FRESNEL_ETA_M1] != BB_R(0.0)));
     case BB_FRESNEL_CONDUCTOR:
         return bb_fresnel_conductor_sp(cos_theta, fp.v[BB_FRESNEL_ETA], fp.v[BB_FRESNEL_K]);
     case BB_FRESNEL_CONDUCTOR_APPROX:
