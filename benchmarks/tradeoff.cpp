@@ -70,12 +70,12 @@ std::vector<Family> full_families() {
     const std::vector<double> alphas = {1e-3, 1e-2, 0.1, 0.5, 1.0};
     using F = tradeoff_ref::Family;
     return {
-        {"ggx", "GGX", F::Ggx, "ggx:alpha=%.17g", "alpha", alphas},
-        {"beckmann", "Beckmann", F::Beckmann, "beckmann:alpha=%.17g", "alpha", alphas},
-        {"ts-ggx", "Torrance-Sparrow, GGX D", F::TsGgx, "torrance-sparrow:d=ggx,alpha=%.17g", "alpha", alphas},
-        {"ts-blinn", "Torrance-Sparrow, Blinn D", F::TsBlinn, "torrance-sparrow:d=blinn,n=%.17g", "n",
+        {"ggx", "GGX", F::Ggx, "ggx:alpha=%.15g", "alpha", alphas},
+        {"beckmann", "Beckmann", F::Beckmann, "beckmann:alpha=%.15g", "alpha", alphas},
+        {"ts-ggx", "Torrance-Sparrow, GGX D", F::TsGgx, "torrance-sparrow:d=ggx,alpha=%.15g", "alpha", alphas},
+        {"ts-blinn", "Torrance-Sparrow, Blinn D", F::TsBlinn, "torrance-sparrow:d=blinn,n=%.15g", "n",
          {1e4, 1e3, 198, 6, 0}},
-        {"oren-nayar", "Oren-Nayar (rho = 1)", F::OrenNayar, "oren-nayar:sigma=%.17g,rho=1", "sigma",
+        {"oren-nayar", "Oren-Nayar (rho = 1)", F::OrenNayar, "oren-nayar:sigma=%.15g,rho=1", "sigma",
          {0.1, 0.5, 1.0, 1.5}},
     };
 }
@@ -315,6 +315,26 @@ std::string utc_date() {
     return buf;
 }
 
+/// JSON text with one line per cell: arrays of objects get a line per element, objects holding
+/// such arrays a line per member, everything else stays on one line.
+std::string json_lines(const json& v, const std::string& indent = "") {
+    auto object_array = [](const json& a) {
+        return a.is_array() && !a.empty() && std::all_of(a.begin(), a.end(), [](const json& e) { return e.is_object(); });
+    };
+    const std::string in = indent + " ";
+    std::string out;
+    if (object_array(v)) {
+        for (const auto& e : v) out += (out.empty() ? "[\n" : ",\n") + in + json_lines(e, in);
+        return out + "\n" + indent + "]";
+    }
+    if (v.is_object() && std::any_of(v.begin(), v.end(), object_array)) {
+        for (auto it = v.begin(); it != v.end(); ++it)
+            out += (out.empty() ? "{\n" : ",\n") + in + json(it.key()).dump() + ": " + json_lines(it.value(), in);
+        return out + "\n" + indent + "}";
+    }
+    return v.dump();
+}
+
 // ------------------------------------------------------------------------------------------
 // Summaries of the runs: per (family, method, precision, samples) and class (easy/hard).
 
@@ -461,8 +481,29 @@ std::string markdown(const json& j, const Options& o) {
                 }
             }
             md << "| " << method_name(me) << " | " << precision_name(p) << " | " << bad << " / " << n << " | "
-               << fixed(n ? 100.0 * bad / n : 0.0, 2) << "% | " << (bad ? fixed(worst, 1) + "x at " + where : "–")
+               << fixed(n ? 100.0 * bad / n : 0.0, 2) << "% | " << (bad ? sci(worst) + "x at " + where : "–")
                << " |\n";
+        }
+    md << "\nThe same by samples per cell (dishonest / cells):\n\n| method | precision";
+    for (std::uint64_t s : o.samples) md << " | " << s;
+    md << " |\n| --- | ---";
+    for (size_t k = 0; k < o.samples.size(); ++k) md << " | ---:";
+    md << " |\n";
+    for (Method me : o.methods)
+        for (Precision p : o.precisions) {
+            md << "| " << method_name(me) << " | " << precision_name(p);
+            for (std::uint64_t s : o.samples) {
+                size_t n = 0, bad = 0;
+                for (const auto& r : runs)
+                    if (r["method"] == method_name(me) && r["precision"] == precision_name(p) &&
+                        r["samples"].get<std::uint64_t>() == s && !r.contains("failed"))
+                        for (const auto& c : r["cells"]) {
+                            ++n;
+                            bad += c["dishonest"].get<bool>();
+                        }
+                md << " | " << bad << " / " << n;
+            }
+            md << " |\n";
         }
 
     // The tolerance mode.
@@ -549,15 +590,18 @@ void write_tradeoff_plot(const json& j, const Options& o, const std::string& pat
     fig.columns = 2;
     fig.panel_width = 640;
     fig.panel_height = 470;
-    constexpr double kFloor = 1e-16;  // errors of 0 (or below) drawn here
+    const double floor = o.ref_unc_floor;  // errors the references cannot resolve are drawn here
     for (const Family& f : o.families)
         for (bool easy : {true, false}) {
             PlotSpec p;
             p.title = f.label + (easy ? ": easy cells" : ": hard cells");
             p.x.label = "log_{10} kernel seconds per cell";
             p.y.label = "log_{10} max true error";
-            p.y.lo = -16.5;
-            p.y.hi = 0.5;
+            p.x.lo = -6.0;
+            p.x.hi = 0.5;
+            p.y.lo = -15.0;
+            p.y.hi = 1.0;
+            p.lines.push_back({'y', std::log10(floor), "reference resolution"});
             // One legend for the figure, where the hard panels leave room: fast and accurate.
             p.legend = !easy && fig.panels.size() == 1 ? LegendPlace::BottomLeft : LegendPlace::None;
             for (Method me : o.methods)
@@ -572,7 +616,7 @@ void write_tradeoff_plot(const json& j, const Options& o, const std::string& pat
                         const ClassStats s = class_stats(r, easy);
                         if (s.cells == 0) continue;
                         c.x.push_back(std::log10(r["kernel_seconds_per_cell"].get<double>()));
-                        c.y.push_back(std::log10(std::max(s.max_error, kFloor)));
+                        c.y.push_back(std::log10(std::max(s.max_error, floor)));
                     }
                     if (!c.x.empty()) p.curves.push_back(c);
                 }
@@ -682,7 +726,7 @@ int main(int argc, char** argv) {
         j["seconds"] = now() - t_start;
         const std::string md = markdown(j, o);
         std::filesystem::create_directories(out_dir);
-        write_file_atomically(out_dir + "/" + name + ".json", j.dump(1) + "\n");
+        write_file_atomically(out_dir + "/" + name + ".json", json_lines(j) + "\n");
         write_file_atomically(out_dir + "/" + name + ".md", md);
         if (!plot.empty()) write_tradeoff_plot(j, o, plot);
         std::cerr << "brdfbake-tradeoff: wrote " << out_dir << "/" << name << ".json and .md in "
