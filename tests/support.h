@@ -9,7 +9,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include "brdfbake/albedo.h"
 #include "brdfbake/engine.h"
+#include "brdfbake/spec.h"
 
 namespace testing {
 
@@ -24,6 +26,21 @@ struct CliResult {
     std::string out;
     std::string err;
 };
+
+/// An albedo request for a model spec at the given mu (phi = 0), Fresnel none.
+inline brdfbake::AlbedoRequest albedo_request(const std::string& spec, const std::vector<double>& mus,
+                                              brdfbake::Method method, brdfbake::Precision p,
+                                              std::uint64_t samples) {
+    const brdfbake::ModelConfig m = brdfbake::resolve_model(spec);
+    brdfbake::AlbedoRequest req;
+    req.model = m.id;
+    req.fresnel = brdfbake::resolve_fresnel("none");
+    req.cells = brdfbake::cells_for(mus, 0.0, m.params);
+    req.method = method;
+    req.precision = p;
+    req.samples = samples;
+    return req;
+}
 
 inline std::string slurp(const std::string& path) {
     std::ifstream in(path, std::ios::binary);

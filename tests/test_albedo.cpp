@@ -11,14 +11,7 @@ namespace {
 
 AlbedoResult run(const std::string& model_spec, const std::vector<double>& mus, Precision p,
                  std::uint64_t samples = 1 << 18) {
-    const ModelConfig m = resolve_model(model_spec);
-    AlbedoRequest req;
-    req.model = m.id;
-    req.fresnel = resolve_fresnel("none");
-    req.cells = cells_for(mus, 0.0, m.params);
-    req.precision = p;
-    req.samples = samples;
-    return compute_albedo(testing::engine(), req);
+    return compute_albedo(testing::engine(), testing::albedo_request(model_spec, mus, Method::Importance, p, samples));
 }
 
 double ggx_reference(double alpha, double mu, bool correlated) {

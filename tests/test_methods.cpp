@@ -20,18 +20,6 @@ constexpr double kRefSlack = 1e-8;
 const std::vector<Method> kMethods = {Method::Importance, Method::QuasiMonteCarlo, Method::MonteCarlo,
                                       Method::Quadrature};
 
-AlbedoRequest request_for(const std::string& spec, const std::vector<double>& mus, Method method, Precision p,
-                          std::uint64_t samples) {
-    const ModelConfig m = resolve_model(spec);
-    AlbedoRequest req;
-    req.model = m.id;
-    req.fresnel = resolve_fresnel("none");
-    req.cells = cells_for(mus, 0.0, m.params);
-    req.method = method;
-    req.precision = p;
-    req.samples = samples;
-    return req;
-}
 
 /// A model case with its references at the test's directions, computed once.
 struct RefCase {
@@ -65,7 +53,7 @@ TEST_CASE("every method agrees with independent references within its error esti
         for (Method method : kMethods)
             for (Precision p : {Precision::Float, Precision::Double})
                 for (std::uint64_t samples : {std::uint64_t(1) << 12, std::uint64_t(1) << 16}) {
-                    const AlbedoResult r = compute_albedo(testing::engine(), request_for(rc.c.spec, rc.mus, method, p, samples));
+                    const AlbedoResult r = compute_albedo(testing::engine(), testing::albedo_request(rc.c.spec, rc.mus, method, p, samples));
                     for (size_t i = 0; i < rc.mus.size(); ++i) {
                         // The references are good to about their tolerance (1e-9): below
                         // kRefSlack the comparison judges the reference, not the method.
@@ -95,7 +83,7 @@ TEST_CASE("quadrature converges fast for smooth lobes, at grazing too", "[method
     // to 1e-9; the half-vector rows end exactly at the horizon, so grazing converges as fast.
     const std::vector<double> mus = {1e-3, 0.1, 0.5, 1.0};
     const AlbedoResult r =
-        compute_albedo(testing::engine(), request_for("ggx:alpha=0.5", mus, Method::Quadrature, Precision::Double, 4 * 32 * 32));
+        compute_albedo(testing::engine(), testing::albedo_request("ggx:alpha=0.5", mus, Method::Quadrature, Precision::Double, 4 * 32 * 32));
     for (size_t i = 0; i < mus.size(); ++i) {
         const double expect = ref::albedo_halfvector(
             [](ref::Dir o, ref::Dir i) { return ref::ggx_f(o, i, 0.5, 0.5, true); }, mus[i], 0.0, 1e-9);
@@ -119,7 +107,7 @@ TEST_CASE("tolerance mode: results meet their tolerance", "[methods][tolerance][
                            Run{Precision::Float, 1e-4, false, Method::QuasiMonteCarlo}})
         for (const RefCase& rc : grid()) {
             if (!run.auto_method && rc.mus.front() < 0.05) continue;  // sampling to 1e-4 at grazing: slow
-            AlbedoRequest req = request_for(rc.c.spec, rc.mus, run.method, run.precision, 0);
+            AlbedoRequest req = testing::albedo_request(rc.c.spec, rc.mus, run.method, run.precision, 0);
             ToleranceRequest tol;
             tol.tolerance = run.tolerance;
             tol.auto_method = run.auto_method;
@@ -186,7 +174,7 @@ TEST_CASE("tolerance and method options refuse bad input", "[methods][tolerance]
 }
 
 TEST_CASE("mc streams are reproducible by seed and independent across seeds", "[methods][device]") {
-    AlbedoRequest req = request_for("ggx:alpha=0.5", {0.5}, Method::MonteCarlo, Precision::Double, 1 << 14);
+    AlbedoRequest req = testing::albedo_request("ggx:alpha=0.5", {0.5}, Method::MonteCarlo, Precision::Double, 1 << 14);
     const double a = compute_albedo(testing::engine(), req).values[0].value;
     const double b = compute_albedo(testing::engine(), req).values[0].value;
     req.seed += 1;
@@ -206,7 +194,7 @@ TEST_CASE("quadrature follows elongated anisotropic lobes off their axes", "[met
     const std::vector<double> mus = {0.05, 0.5};
     for (const Case c : {Case{0.1, 0.8, 30.0}, Case{0.02, 0.5, 60.0}}) {
         const std::string spec = "ggx:alpha_x=" + modelref::num(c.ax) + ",alpha_y=" + modelref::num(c.ay);
-        AlbedoRequest req = request_for(spec, mus, Method::Quadrature, Precision::Double, 4 * 64 * 64);
+        AlbedoRequest req = testing::albedo_request(spec, mus, Method::Quadrature, Precision::Double, 4 * 64 * 64);
         const double phi = c.phi_deg * M_PI / 180.0;
         for (auto& cell : req.cells) cell.phi = phi;
         const AlbedoResult r = compute_albedo(testing::engine(), req);
@@ -230,7 +218,7 @@ TEST_CASE("quadrature follows elongated anisotropic lobes off their axes", "[met
 TEST_CASE("float carries an index as close to 1 as 1.0001 through eta - 1", "[methods][fresnel][device]") {
     // 1.0001f is 1 + 1.00017e-4: from eta alone a float kernel would integrate F of the wrong
     // index, 3.3e-4 relative off (F ~ (eta - 1)^2), beyond its own error estimate.
-    AlbedoRequest req = request_for("ggx:alpha=0.001,shadowing=separable", {1e-3, 0.1}, Method::Importance,
+    AlbedoRequest req = testing::albedo_request("ggx:alpha=0.001,shadowing=separable", {1e-3, 0.1}, Method::Importance,
                                     Precision::Float, 1 << 18);
     req.fresnel = resolve_fresnel("dielectric:eta=1.0001");
     const AlbedoResult f = compute_albedo(testing::engine(), req);
