@@ -31,7 +31,7 @@ struct AlbedoOptions {
     std::string phi = "0";
     std::int64_t samples = 1 << 18;
     double tolerance = 0.0;
-    std::int64_t max_samples = std::int64_t(1) << 24;
+    std::int64_t max_samples = std::int64_t(1) << 26;
     std::string method = "auto";
     std::string precision = "float";
     std::string format = "table";
@@ -48,8 +48,8 @@ struct Run {
 };
 
 const char* kErrorMeaning =
-    "3 standard errors of the replicas (sampling) or the difference from the half-order rule (quadrature), "
-    "plus a floating-point bound";
+    "3 standard errors of the replicas plus 3 |E| / N for what N samples cannot see (sampling), or the "
+    "difference from the half-order rule (quadrature), plus a floating-point bound";
 
 std::string render(Format format, const FresnelConfig& fresnel, const std::vector<Run>& runs, const Engine& engine,
                    double seconds) {

@@ -20,7 +20,7 @@ struct LutOptions {
     std::string eta_range = "1,3";
     std::int64_t samples = 1 << 18;
     double tolerance = 0.0;
-    std::int64_t max_samples = std::int64_t(1) << 24;
+    std::int64_t max_samples = std::int64_t(1) << 26;
     std::string precision = "float";
     std::string method = "auto";
     bool half = false;

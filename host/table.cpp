@@ -83,7 +83,8 @@ std::vector<std::pair<std::string, std::string>> describe(const Table& t) {
     for (const auto& c : t.channels) ch += (ch.empty() ? "" : " ") + c;
     a.emplace_back("channels", ch + " error");
     a.emplace_back("error_meaning", "estimated absolute error of the texel (max over channels): "
-                                    "3 standard errors plus a floating-point bound");
+                                    "3 standard errors of the replicas plus 3 |E| / N (sampling) or the difference "
+                                    "from the half-order rule (quadrature), plus a floating-point bound");
     a.emplace_back("max_error", num(t.max_error()));
     a.emplace_back("tool", std::string("brdfbake ") + BRDFBAKE_VERSION);
     return a;

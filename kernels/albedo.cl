@@ -124,10 +124,12 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
 #else /* BB_QUADRATURE */
 
 /* Gauss-Legendre product quadrature (integrands.h). Work-item (cell, rule, piece): rule 0 has
- * n_fine nodes per axis, rule 1 n_coarse (the error estimate compares the two); piece 2k + h is
+ * n_fine nodes per axis, rule 1 n_coarse, rule 2 n_coarsest (the error estimate compares the
+ * three); piece 2k + h is
  * half h of the quarter k of azimuth offsets (bb_quad_azimuth_node; in the sampler's square the
  * quarter of u2, and h = 1 is empty). `nodes` holds the fine rule's n_fine abscissae in [0, 1],
- * then its weights (summing to 1), then the same for the coarse rule. Writes the piece's share
+ * then its weights (summing to 1), then the same for the coarse and the coarsest rule. Writes
+ * the piece's share
  * of E; the host adds the pieces. */
 __kernel void albedo_quadrature(__global const real* cell_mu,
                                 __global const real* cell_phi,
@@ -136,16 +138,17 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
                                 __global const real* nodes,
                                 const unsigned int n_fine,
                                 const unsigned int n_coarse,
+                                const unsigned int n_coarsest,
                                 const unsigned int n_cells,
-                                __global real* piece_sum,         /* n_cells * 2 * 8 */
-                                __global unsigned int* bad_count) /* n_cells * 2 * 8 */
+                                __global real* piece_sum,         /* n_cells * 3 * 8 */
+                                __global unsigned int* bad_count) /* n_cells * 3 * 8 */
 {
     const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * 16u)
+    if (gid >= n_cells * 24u)
         return;
-    const unsigned int cell = gid / 16u, rule = (gid / 8u) & 1u, piece = gid & 7u, q = piece >> 1;
-    const unsigned int n = rule == 0u ? n_fine : n_coarse;
-    __global const real* x = nodes + (rule == 0u ? 0u : 2u * n_fine);
+    const unsigned int cell = gid / 24u, rule = (gid / 8u) % 3u, piece = gid & 7u, q = piece >> 1;
+    const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);
+    __global const real* x = nodes + (rule == 0u ? 0u : (rule == 1u ? 2u * n_fine : 2u * (n_fine + n_coarse)));
     __global const real* wt = x + n;
 
     bb_params p, fp;

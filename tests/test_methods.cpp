@@ -111,7 +111,7 @@ TEST_CASE("tolerance mode: results meet their tolerance", "[methods][tolerance][
             ToleranceRequest tol;
             tol.tolerance = run.tolerance;
             tol.auto_method = run.auto_method;
-            tol.max_samples = std::uint64_t(1) << 24;
+            tol.max_samples = std::uint64_t(1) << 26;
             const AlbedoResult r = compute_albedo_to_tolerance(testing::engine(), req, tol);
             CHECK(r.tolerance == run.tolerance);
             for (size_t i = 0; i < rc.mus.size(); ++i) {
@@ -210,7 +210,7 @@ TEST_CASE("quadrature follows elongated anisotropic lobes off their axes", "[met
                       << r.values[i].error << ", reference " << expect);
             CHECK(std::fabs(r.values[i].value - expect) < 1e-6);
             CHECK(std::fabs(r.values[i].value - expect) <= r.values[i].error + 1e-7);  // reference to ~1e-8
-            CHECK(r.values[i].samples == 8u * (64u * 64u + 32u * 32u));  // 8 azimuth pieces off the axes
+            CHECK(r.values[i].samples == 8u * (64u * 64u + 32u * 32u + 16u * 16u));  // 8 azimuth pieces off the axes
         }
     }
 }

@@ -90,7 +90,7 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request);
 struct ToleranceRequest {
     double tolerance = 0.0;  // absolute; 0: none (a fixed sample count)
     bool auto_method = true;
-    std::uint64_t max_samples = std::uint64_t(1) << 24;
+    std::uint64_t max_samples = std::uint64_t(1) << 26;
 };
 
 AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& request,
