@@ -409,7 +409,7 @@ std::string markdown(const json& j, const Options& o) {
        << " s wall).\n\n";
     md << "Directional albedo E(mu), F = 1, phi = 0. Each row is one `compute_albedo` call over all the "
           "family's cells (16 replicas for the sampling methods; quadrature: n = sqrt(samples / 4) nodes per "
-          "axis, 4n² points plus the n/2 rule for its estimate). **Time** is the kernel's device time (OpenCL "
+          "axis, n² points per azimuth piece (2 to 4 pieces here) for each of the n-, n/2- and n/4-node rules). **Time** is the kernel's device time (OpenCL "
           "event) per cell, the median of repeated runs after an untimed warm-up that builds the kernel; "
           "*wall* is the whole call per cell (buffers, host tables). **True error** is |value − reference|; "
           "the reference is the Gauss-Kronrod value of benchmarks/tradeoff_refs.h at tolerance "
