@@ -290,24 +290,6 @@ json tolerance_run(Engine& engine, const Options& o, const Family& fam, const Ce
 // ------------------------------------------------------------------------------------------
 // Machine facts (as benchmarks/results/<machine>.md states them).
 
-std::string first_field(const std::string& path, const std::string& key) {
-    std::ifstream in(path);
-    std::string line;
-    while (std::getline(in, line))
-        if (line.rfind(key, 0) == 0) {
-            std::string v = line.substr(line.find(':') + 1);
-            return v.erase(0, v.find_first_not_of(" \t"));
-        }
-    return "unknown";
-}
-
-std::string loadavg() {
-    std::ifstream in("/proc/loadavg");
-    std::string a, b, c;
-    in >> a >> b >> c;
-    return a + " " + b + " " + c;
-}
-
 std::string utc_date() {
     const std::time_t t = std::time(nullptr);
     char buf[32];
@@ -659,12 +641,12 @@ int main(int argc, char** argv) {
         j["brdfbake_version"] = BRDFBAKE_VERSION;
         Engine engine(device);
         const DeviceInfo& dev = engine.device();
-        j["machine"] = {{"cpu", first_field("/proc/cpuinfo", "model name")},
+        j["machine"] = {{"cpu", bench_cpu_model()},
                         {"cores", std::thread::hardware_concurrency()},
                         {"opencl_device", dev.name},
                         {"pocl_version", dev.driver},
                         {"date", utc_date()},
-                        {"loadavg_start", loadavg()}};
+                        {"loadavg_start", bench_loadavg()}};
         if (!dev.fp64) o.precisions = {Precision::Float};
 
         // References.
@@ -722,7 +704,7 @@ int main(int argc, char** argv) {
             std::cerr << "  tolerance " << pt.second << " " << precision_name(pt.first) << " done\n";
         }
 
-        j["machine"]["loadavg_end"] = loadavg();
+        j["machine"]["loadavg_end"] = bench_loadavg();
         j["seconds"] = now() - t_start;
         const std::string md = markdown(j, o);
         std::filesystem::create_directories(out_dir);

@@ -478,4 +478,7 @@ void write_bench_plot(const BenchReport& report, const std::string& path) {
     write_plot(path, p);
 }
 
+std::string bench_cpu_model() { return read_cpu_model(); }
+std::string bench_loadavg() { return read_loadavg(); }
+
 }  // namespace brdfbake

@@ -50,4 +50,9 @@ void write_bench_plot(const BenchReport& report, const std::string& path);
 /// A short file-name-safe name for this machine, e.g. "amd-epyc-2c".
 std::string bench_machine_name();
 
+/// The CPU's model name (/proc/cpuinfo) and the load average (/proc/loadavg), as the benchmark
+/// reports state them.
+std::string bench_cpu_model();
+std::string bench_loadavg();
+
 }  // namespace brdfbake
