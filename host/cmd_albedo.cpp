@@ -49,7 +49,8 @@ struct Run {
 
 const char* kErrorMeaning =
     "3 standard errors of the replicas plus 3 |E| / N for what N samples cannot see (sampling), or the "
-    "difference from the half-order rule (quadrature), plus a floating-point bound";
+    "difference from the half-order rule, the larger of the last two differences where the n/4, n/2 and n "
+    "rules do not converge geometrically (quadrature), plus a floating-point bound";
 
 std::string render(Format format, const FresnelConfig& fresnel, const std::vector<Run>& runs, const Engine& engine,
                    double seconds) {
