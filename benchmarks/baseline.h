@@ -2,15 +2,16 @@
 // FMA-throughput probe that gives the machine's peak.
 //
 // The baseline computes exactly the estimator of kernels/albedo.cl for GGX (visible-normal
-// importance sampling through the shared header brdf/ggx.h, Fresnel none): per cell, `replicas`
+// importance sampling, Fresnel none), written independently of the shared headers as a
+// vectorisable loop (baseline_impl.h): per cell, `replicas`
 // copies of the n-point Hammersley set, each rotated by its own Cranley-Patterson shift from
 // Philox4x32-10 keyed by the seed (the very shifts compute_albedo uses), the replica means
 // turned into the mean, 3 standard errors + the floating-point bound. It is compiled with
 // -O3 -march=native -fopenmp (benchmarks/CMakeLists.txt), one OpenMP thread per core, in two
 // flavours of the same source:
 //   strict    the kernel's semantics: NaN/Inf weights counted, no -ffast-math;
-//   fastmath  -ffast-math as in the measurement: the compiler may vectorise the sin/cos
-//             calls (libmvec) but also assumes every value finite, so non-finite samples go
+//   fastmath  -ffast-math as in the measurement: approximate reciprocal square roots
+//             and divisions, and every value assumed finite, so non-finite samples go
 //             unnoticed. A yardstick, not an equal.
 #pragma once
 
