@@ -1,12 +1,12 @@
-// Baseline flavour: fast, float (flags in benchmarks/CMakeLists.txt): the shared math with
-// real = float on the host (BB_HOST_REAL_FLOAT, brdf/compat.h).
+// Baseline flavour: fast, float (flags in benchmarks/CMakeLists.txt): real = float
+// (BB_HOST_REAL_FLOAT, baseline_impl.h).
 #define BB_HOST_REAL_FLOAT 1
 #define BASELINE_NS bb_fast_float
 #define BASELINE_FN replicas_fast_float
 #include "baseline_impl.h"
 #include "baseline_kernels.h"
 
-static_assert(sizeof(bb_fast_float::real) == sizeof(float), "brdf/compat.h ignores BB_HOST_REAL_FLOAT");
+static_assert(sizeof(bb_fast_float::real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");
 
 namespace brdfbake {
 namespace baseline {

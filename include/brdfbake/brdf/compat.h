@@ -76,7 +76,7 @@ typedef int bb_mask;
 #else
 /* ---------------------------------------------------------------- host C++ */
 #include <cmath>
-/* double on the host; -D BB_HOST_REAL_FLOAT (the float flavour of benchmarks/' baseline)
+/* double on the host; -D BB_HOST_REAL_FLOAT (a float host build of the shared math)
  * gives float, as a --precision float kernel computes. */
 #ifdef BB_HOST_REAL_FLOAT
 typedef float real;
