@@ -39,13 +39,16 @@ Result albedo_table(const Request& req) {
     if (req.mu.size() != req.alpha.size()) throw std::invalid_argument("baseline: mu and alpha differ in length");
     if (req.replicas < 2 || req.samples < req.replicas) throw std::invalid_argument("baseline: too few samples");
     const std::uint64_t points = req.samples / req.replicas;
+    if (req.fast_math && req.kernel_arithmetic)
+        throw std::invalid_argument("baseline: the kernel-arithmetic flavour is strict only");
     std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
     if (req.single)  // the float kernel reads its shifts as float
         for (double& s : shifts) s = double(float(s));
     std::vector<double> means;
     std::vector<std::uint64_t> bad;
-    auto fn = req.single ? (req.fast_math ? replicas_fast_float : replicas_strict_float)
-                         : (req.fast_math ? replicas_fast_double : replicas_strict_double);
+    auto fn = req.kernel_arithmetic ? (req.single ? replicas_kernel_arith_float : replicas_kernel_arith_double)
+              : req.single          ? (req.fast_math ? replicas_fast_float : replicas_strict_float)
+                                    : (req.fast_math ? replicas_fast_double : replicas_strict_double);
     const auto t0 = std::chrono::steady_clock::now();
     fn(req.mu, req.alpha, req.correlated, points, req.replicas, shifts, means, bad);
     Result r;
@@ -69,6 +72,15 @@ Result albedo_table(const Request& req) {
 }
 
 std::string compile_flags() { return BRDFBAKE_BASELINE_FLAGS; }
+
+// Counted from baseline_impl.h's loop bodies (common subexpressions once):
+//   closed form: t2 = s1 h + s y (3), t3 = sqrt(max(0, 1 - x^2 - t2^2)) (6), n (9), L = |n|^2
+//     (5), z = 2 (wo.n) n.z - wo.z L (7), q = sqrt(a^2 L^2 + (1 - a^2) z^2) (6), the weight
+//     2 c0 z / ((2 c0 - 1) z + q) (4), the horizon select (1), finiteness and sums (5)      46
+//   kernel arithmetic: t2 with sqrt(1 - x^2) (7), t3 (4), n (9), normalise (11), clamped
+//     wo.wh (5), reflect (6), G1(wi) (14), correlated G2 and / G1(wo) (9), finiteness and
+//     sums (5)                                                                              70
+double flops_per_sample(bool kernel_arithmetic) { return kernel_arithmetic ? 70.0 : 46.0; }
 
 }  // namespace baseline
 }  // namespace brdfbake

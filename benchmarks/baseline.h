@@ -3,16 +3,21 @@
 //
 // The baseline computes exactly the estimator of kernels/albedo.cl for GGX (visible-normal
 // importance sampling, Fresnel none), written independently of the shared headers as a
-// vectorisable loop (baseline_impl.h): per cell, `replicas`
-// copies of the n-point Hammersley set, each rotated by its own Cranley-Patterson shift from
-// Philox4x32-10 keyed by the seed (the very shifts compute_albedo uses), the replica means
-// turned into the mean, 3 standard errors + the floating-point bound. It is compiled with
-// -O3 -march=native -fopenmp (benchmarks/CMakeLists.txt), one OpenMP thread per core, in two
-// flavours of the same source:
-//   strict    the kernel's semantics: NaN/Inf weights counted, no -ffast-math;
-//   fastmath  -ffast-math as in the measurement: approximate reciprocal square roots
-//             and divisions, and every value assumed finite, so non-finite samples go
-//             unnoticed. A yardstick, not an equal.
+// vectorised loop (baseline_impl.h): per cell, `replicas` copies of the n-point Hammersley
+// set, each rotated by its own Cranley-Patterson shift from Philox4x32-10 keyed by the seed
+// (the very shifts compute_albedo uses), the replica means turned into the mean, 3 standard
+// errors + the floating-point bound. The cell-independent work (the disk points) is tabulated
+// once per call as the kernel does, and the weight is evaluated in a closed form with two
+// square roots and one division per sample. It is compiled with -O3 -march=native -fopenmp
+// (benchmarks/CMakeLists.txt), one OpenMP thread per core, in three flavours of one source:
+//   strict       the kernel's semantics: NaN/Inf weights counted, no -ffast-math
+//                (-fno-math-errno -fno-trapping-math, which change no value);
+//   fastmath     -ffast-math as in the measurement: approximate reciprocal square roots
+//                and divisions, and every value assumed finite, so non-finite samples go
+//                unnoticed. A yardstick, not an equal;
+//   kernel arithmetic  strict, but the weight computed with the operations of the shared
+//                headers (four square roots and four divisions per sample): what g++ makes of
+//                the kernel's arithmetic, to tell the compiler's share from the arithmetic's.
 #pragma once
 
 #include <cstdint>
@@ -31,6 +36,7 @@ struct Request {
     std::uint64_t seed = 0x62726466u;  // AlbedoRequest's default seed
     bool single = false;        // float arithmetic (as a --precision float kernel), else double
     bool fast_math = false;     // the -ffast-math flavour
+    bool kernel_arithmetic = false;  // the weight with the shared headers' operations (strict)
 };
 
 struct Result {
@@ -40,8 +46,8 @@ struct Result {
     int threads = 0;
 };
 
-/// The albedo table of `request` on all cores. Throws std::runtime_error if the float flavour
-/// is not available.
+/// The albedo table of `request` on all cores. Throws std::invalid_argument for a bad request
+/// (fast_math and kernel_arithmetic together, too few samples).
 Result albedo_table(const Request& request);
 
 /// The Cranley-Patterson shifts of compute_albedo (two per replica), in double.
@@ -59,6 +65,11 @@ Peak fma_peak(double seconds = 0.25);
 
 /// What the baseline was compiled with, for the report.
 std::string compile_flags();
+
+/// Flops per sample of the inner loop, counted from its source as host/bench.cpp counts the
+/// kernel's (+, -, *, /, sqrt, min/max and compare-select 1, fma 2; the tabulated work and the
+/// per-cell work left out).
+double flops_per_sample(bool kernel_arithmetic);
 
 }  // namespace baseline
 }  // namespace brdfbake

@@ -13,6 +13,8 @@ BB_BASELINE_DECLARE(replicas_strict_double)
 BB_BASELINE_DECLARE(replicas_fast_double)
 BB_BASELINE_DECLARE(replicas_strict_float)
 BB_BASELINE_DECLARE(replicas_fast_float)
+BB_BASELINE_DECLARE(replicas_kernel_arith_double)
+BB_BASELINE_DECLARE(replicas_kernel_arith_float)
 #undef BB_BASELINE_DECLARE
 }  // namespace baseline
 }  // namespace brdfbake

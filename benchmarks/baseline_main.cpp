@@ -3,6 +3,7 @@
 // --precision P` computes (same texel centres, estimator, replicas and shifts) with the OpenMP
 // loop of benchmarks/, and writes it as CSV (mu, alpha, E, error).
 //   brdfbake-baseline --size 64x64 --samples 262144 --precision float [--fast-math] -o E.csv
+// --kernel-arithmetic runs the loop with the shared headers' arithmetic instead (benchmarks/baseline.h).
 #include <CLI/CLI.hpp>
 
 #include <algorithm>
@@ -16,11 +17,13 @@ int main(int argc, char** argv) {
     CLI::App app{"brdfbake-baseline: the GGX albedo table with the plain C++ OpenMP loop"};
     std::string size = "64x64", precision = "float", output;
     std::uint64_t samples = 1u << 18;
-    bool fast = false, separable = false;
+    bool fast = false, separable = false, karith = false;
     app.add_option("--size", size, "WIDTHxHEIGHT (mu x alpha)")->capture_default_str();
     app.add_option("--samples", samples, "samples per texel")->capture_default_str();
     app.add_option("--precision", precision, "float or double")->check(CLI::IsMember({"float", "double"}));
     app.add_flag("--fast-math", fast, "the -ffast-math flavour (no NaN accounting)");
+    app.add_flag("--kernel-arithmetic", karith, "the weight with the kernel's operations (strict only)")
+        ->excludes("--fast-math");
     app.add_flag("--separable", separable, "separable G2 instead of height-correlated");
     app.add_option("-o,--output", output, "CSV file (default: none)");
     CLI11_PARSE(app, argc, argv);
@@ -38,6 +41,7 @@ int main(int argc, char** argv) {
     r.samples = samples;
     r.single = precision == "float";
     r.fast_math = fast;
+    r.kernel_arithmetic = karith;
     r.correlated = !separable;
     try {
         const brdfbake::baseline::Result res = brdfbake::baseline::albedo_table(r);
