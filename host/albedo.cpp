@@ -149,13 +149,14 @@ cl::NDRange global_range(size_t items, size_t local) { return cl::NDRange((items
 constexpr size_t kLocalSize = 8;
 
 // The cell-independent half of the vector path: the disk point bb_disk_polar(u1, u2) of every
-// point of every replica (the rotated Hammersley point, as the scalar kernel forms it), laid out
-// for vector loads: per replica, per step of `lanes` points, the lanes' x then their y. Computed
-// here once in double with the shared functions and rounded to the kernel's real; the float
-// kernel sees its shifts rounded to float, as the scalar kernel does.
+// point of every replica (the rotated Hammersley point, as the scalar kernel forms it) and
+// h = sqrt(1 - x^2), laid out for vector loads: per replica, per step of `lanes` points, the
+// lanes' x, then their y, then their h. Computed here once in double with the shared functions
+// and rounded to the kernel's real; the float kernel sees its shifts rounded to float, as the
+// scalar kernel does.
 std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
                                unsigned lanes, Precision precision) {
-    std::vector<double> table(size_t(replicas) * points * 2);
+    std::vector<double> table(size_t(replicas) * points * 3);
     const unsigned n = unsigned(points);
     for (unsigned r = 0; r < replicas; ++r) {
         double s1 = shifts[2 * r], s2 = shifts[2 * r + 1];
@@ -163,12 +164,13 @@ std::vector<double> disk_table(const std::vector<double>& shifts, unsigned repli
             s1 = double(float(s1));
             s2 = double(float(s2));
         }
-        double* out = table.data() + size_t(r) * points * 2;
+        double* out = table.data() + size_t(r) * points * 3;
         for (unsigned i = 0; i < n; ++i) {
             const bb_vec2 d = bb_disk_polar(bb_rotate(bb_hammersley_u1(i, n), s1), bb_rotate(bb_hammersley_u2(i), s2));
-            const size_t base = size_t(i / lanes) * 2 * lanes + i % lanes;
+            const size_t base = size_t(i / lanes) * 3 * lanes + i % lanes;
             out[base] = d.x;
             out[base + lanes] = d.y;
+            out[base + 2 * lanes] = bb_safe_sqrt(1.0 - d.x * d.x);
         }
     }
     return table;

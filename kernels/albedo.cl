@@ -15,10 +15,11 @@
  * Two entry points for the sampling methods, chosen by the build options (Engine::build_options):
  *   albedo_replicas       scalar real: one sample per step (GPUs, every method and model);
  *   albedo_replicas_disk  -D BB_VECTOR_WIDTH=W, real a vector of W lanes: importance sampling
- *                         with W samples per step, their disk points bb_disk_polar(u1, u2) read
- *                         from a table that the host fills once for all cells (the points and
- *                         their sin/cos do not depend on the cell). Same point set, same shifts,
- *                         same estimator; PoCL compiles it to SIMD code.
+ *                         with W samples per step, their disk points bb_disk_polar(u1, u2) and
+ *                         sqrt(1 - x^2) read from a table that the host fills once for all cells
+ *                         (they do not depend on the cell), the weight in the model's closed form
+ *                         (bb_model_disk_weight). Same point set, same shifts, same estimator;
+ *                         PoCL compiles it to SIMD code.
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W]
  * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
@@ -241,7 +242,7 @@ __kernel void albedo_replicas_disk(__global const bb_scalar* cell_mu,
                                    __global const bb_scalar* model_p,
                                    __global const bb_scalar* fresnel_p,
                                    __global const bb_scalar* disk,   /* per replica: n_points / W
-                                                                        chunks of W x then W y */
+                                                                        chunks of W x, W y, W h */
                                    const unsigned int n_points,      /* a multiple of W */
                                    const unsigned int n_replicas,
                                    const unsigned int n_cells,
@@ -263,18 +264,19 @@ __kernel void albedo_replicas_disk(__global const bb_scalar* cell_mu,
         params_ok &= (unsigned int)(isfinite(a) && isfinite(b));
     }
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], (real)cell_phi[cell]);
+    const bb_disk_cell dc = bb_model_disk_cell(BB_MODEL, p, wo);
 
     /* Kahan-compensated sums, one per lane. */
     real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_chunks = n_points / BB_VECTOR_WIDTH;
-    __global const bb_scalar* d = disk + (size_t)rep * n_chunks * (2 * BB_VECTOR_WIDTH);
-    for (unsigned int c = 0; c < n_chunks; ++c, d += 2 * BB_VECTOR_WIDTH) {
+    __global const bb_scalar* d = disk + (size_t)rep * n_chunks * (3 * BB_VECTOR_WIDTH);
+    for (unsigned int c = 0; c < n_chunks; ++c, d += 3 * BB_VECTOR_WIDTH) {
         const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
-        const bb_sample s = bb_model_sample_disk(BB_MODEL, p, BB_FRESNEL, fp, wo, pt);
-        const bb_mask ok = isfinite(s.weight);
+        const real w = bb_model_disk_weight(BB_MODEL, dc, BB_FRESNEL, fp, pt, bb_vload(d + 2 * BB_VECTOR_WIDTH));
+        const bb_mask ok = isfinite(w);
         bad += bb_select((bb_mask)1, (bb_mask)0, ok);
-        const real y = bb_select(BB_R(0.0), s.weight, ok) - comp;
+        const real y = bb_select(BB_R(0.0), w, ok) - comp;
         const real t = sum + y;
         comp = (t - sum) - y;
         sum = t;

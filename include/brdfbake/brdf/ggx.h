@@ -41,6 +41,71 @@ BB_FN bb_sample bb_ggx_sample_disk(bb_params p, int fkind, bb_params fp, bb_vec3
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wi.z > BB_R(0.0) && g1o > BB_R(0.0)));
 }
 
+/* The same estimator weight, F(wo.wh) G2(wo, wi) / G1(wo), in the two halves the vector kernel
+ * uses (kernels/albedo.cl, albedo_replicas_disk): what depends on the cell alone, once per cell
+ * (bb_ggx_disk_cell_make), and the weight of one disk point (bb_ggx_disk_weight), in a closed
+ * form on the unnormalised visible normal. With Nh the normal of the hemisphere configuration
+ * [H18 sec. 4.3], n = (ax Nh.x, ay Nh.y, max(0, Nh.z)), L = n.n and W = L wi = 2 (wo.n) n - L wo
+ * (the reflection of wo about n/|n|, scaled by L): Lambda(wi) = (q / W.z - 1) / 2 with
+ * q = sqrt(W.z^2 + (ax W.x)^2 + (ay W.y)^2) [H14 eq. 86, 80], and
+ *   G2/G1(wo) = c0 / (c0 + Lambda(wi)) = 2 c0 W.z / ((2 c0 - 1) W.z + q),
+ * c0 = 1/G1(wo) = 1 + Lambda(wo) for height-correlated G2 [H14 eq. 99], c0 = 1 for separable
+ * G2 (the weight is then G1(wi)). Every term of the denominator is >= 0 (c0 >= 1): no
+ * cancellation, however small alpha. Per sample: two square roots and one division, where
+ * bb_ggx_sample_disk's normalise, reflect, G1(wi), G2 and / G1(wo) take four of each; a Fresnel
+ * term adds F((wo.n) / sqrt(L)). Algebraically bb_ggx_sample_disk's weight (tests/test_microfacet.cpp
+ * compares them). */
+typedef struct {
+    bb_vec3 wo, vh, t1, t2; /* the view, the stretched view and its basis [H18 sec. 3.2, 4.1] */
+    real ax, ay, s;         /* s = (1 + vh.z) / 2 [H18 sec. 4.2] */
+    real k2, k1;            /* 2 c0 and 2 c0 - 1 */
+    real live;              /* 1 where G1(wo) > 0, else 0: every weight 0 */
+} bb_ggx_disk_cell;
+
+BB_FN bb_ggx_disk_cell bb_ggx_disk_cell_make(bb_params p, bb_vec3 wo) {
+    bb_ggx_disk_cell c;
+    c.wo = wo;
+    c.ax = p.v[BB_GGX_ALPHA_X];
+    c.ay = p.v[BB_GGX_ALPHA_Y];
+    c.vh = bb_normalize(bb_v3(c.ax * wo.x, c.ay * wo.y, wo.z));
+    real lensq = c.vh.x * c.vh.x + c.vh.y * c.vh.y;
+    real inv_len = BB_R(1.0) / bb_sqrt(bb_select(BB_R(1.0), lensq, lensq > BB_R(0.0)));
+    c.t1 = bb_v3(bb_select(BB_R(1.0), -c.vh.y * inv_len, lensq > BB_R(0.0)),
+                 bb_select(BB_R(0.0), c.vh.x * inv_len, lensq > BB_R(0.0)), BB_R(0.0));
+    c.t2 = bb_cross(c.vh, c.t1);
+    c.s = BB_R(0.5) * (BB_R(1.0) + c.vh.z);
+    real g1o = bb_ggx_g1(wo, c.ax, c.ay);
+    real c0 = bb_select(BB_R(1.0), BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0)),
+                        p.v[BB_GGX_SHADOWING] > BB_R(0.5));
+    c.k2 = BB_R(2.0) * c0;
+    c.k1 = c.k2 - BB_R(1.0);
+    c.live = bb_select(BB_R(0.0), BB_R(1.0), g1o > BB_R(0.0));
+    return c;
+}
+
+/* The weight of the disk point d = bb_disk_polar(u1, u2), given h = sqrt(1 - d.x^2) (both
+ * cell-independent: the host tabulates them). */
+BB_FN real bb_ggx_disk_weight(bb_ggx_disk_cell c, int fkind, bb_params fp, bb_vec2 d, real h) {
+    /* [H18 sec. 4.2, 4.3]: the point of the projected area, lifted onto the hemisphere */
+    real p1 = d.x;
+    real p2 = (BB_R(1.0) - c.s) * h + c.s * d.y;
+    real p3 = bb_safe_sqrt(BB_R(1.0) - p1 * p1 - p2 * p2);
+    /* Nh = p1 t1 + p2 t2 + p3 vh (t1.z = 0), unstretched [H18 sec. 3.4], not normalised */
+    real nx = c.ax * (p1 * c.t1.x + p2 * c.t2.x + p3 * c.vh.x);
+    real ny = c.ay * (p1 * c.t1.y + p2 * c.t2.y + p3 * c.vh.y);
+    real nz = bb_max(BB_R(0.0), p2 * c.t2.z + p3 * c.vh.z);
+    real len2 = nx * nx + ny * ny + nz * nz;
+    real on = c.wo.x * nx + c.wo.y * ny + c.wo.z * nz;
+    real wx = BB_R(2.0) * on * nx - len2 * c.wo.x;
+    real wy = BB_R(2.0) * on * ny - len2 * c.wo.y;
+    real wz = BB_R(2.0) * on * nz - len2 * c.wo.z;
+    real q = bb_sqrt(wz * wz + bb_sqr(c.ax * wx) + bb_sqr(c.ay * wy));
+    real w = c.k2 * wz / (c.k1 * wz + q);
+    if (fkind != BB_FRESNEL_NONE)
+        w = w * bb_fresnel_eval(fkind, fp, bb_clamp_cos(on / bb_sqrt(len2)));
+    return bb_select(BB_R(0.0), w, wz > BB_R(0.0) && c.live > BB_R(0.0));
+}
+
 BB_FN bb_sample bb_ggx_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
     return bb_ggx_sample_disk(p, fkind, fp, wo, bb_disk_polar(u1, u2));
 }

@@ -161,15 +161,21 @@ BB_FN bb_sample bb_model_sample(int model, bb_params p, int fkind, bb_params fp,
  * vector path of kernels/albedo.cl. The host asks before choosing that path. */
 BB_FN int bb_model_samples_disk(int model) { return model == BB_MODEL_GGX; }
 
-BB_FN bb_sample bb_model_sample_disk(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec2 d) {
-    switch (model) {
 #if BB_HAS_MODEL(BB_MODEL_GGX)
-    case BB_MODEL_GGX:
-        return bb_ggx_sample_disk(p, fkind, fp, wo, d);
-#endif
-    default:
-        return bb_make_sample(bb_v3(BB_R(0.0), BB_R(0.0), BB_R(1.0)), BB_R(0.0));
-    }
+/* The vector path's estimator, in two halves: the constants of a cell, once per cell, and the
+ * weight of one disk point d with h = sqrt(1 - d.x^2), both tabulated by the host (GGX's closed
+ * form, ggx.h). Only GGX's sample is a function of the disk point (bb_model_samples_disk). */
+typedef bb_ggx_disk_cell bb_disk_cell;
+
+BB_FN bb_disk_cell bb_model_disk_cell(int model, bb_params p, bb_vec3 wo) {
+    (void)model;
+    return bb_ggx_disk_cell_make(p, wo);
 }
+
+BB_FN real bb_model_disk_weight(int model, bb_disk_cell c, int fkind, bb_params fp, bb_vec2 d, real h) {
+    (void)model;
+    return bb_ggx_disk_weight(c, fkind, fp, d, h);
+}
+#endif
 
 #endif /* BRDFBAKE_BRDF_MODELS_H */
