@@ -1,4 +1,5 @@
-// Baseline driver: replica shifts, flavour dispatch, mean and error estimate (as compute_albedo).
+// Baseline driver: replica shifts, flavour dispatch (tuned and plain loops), mean and error
+// estimate (as compute_albedo).
 #include "baseline.h"
 
 #include <Random123/philox.h>
@@ -39,16 +40,18 @@ Result albedo_table(const Request& req) {
     if (req.mu.size() != req.alpha.size()) throw std::invalid_argument("baseline: mu and alpha differ in length");
     if (req.replicas < 2 || req.samples < req.replicas) throw std::invalid_argument("baseline: too few samples");
     const std::uint64_t points = req.samples / req.replicas;
-    if (req.fast_math && req.kernel_arithmetic)
-        throw std::invalid_argument("baseline: the kernel-arithmetic flavour is strict only");
+    if (req.kernel_arithmetic && (req.fast_math || req.plain))
+        throw std::invalid_argument("baseline: the kernel-arithmetic flavour is strict and tuned only");
     std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
     if (req.single)  // the float kernel reads its shifts as float
         for (double& s : shifts) s = double(float(s));
     std::vector<double> means;
     std::vector<std::uint64_t> bad;
     auto fn = req.kernel_arithmetic ? (req.single ? replicas_kernel_arith_float : replicas_kernel_arith_double)
-              : req.single          ? (req.fast_math ? replicas_fast_float : replicas_strict_float)
-                                    : (req.fast_math ? replicas_fast_double : replicas_strict_double);
+              : req.plain ? (req.single ? (req.fast_math ? replicas_plain_fast_float : replicas_plain_strict_float)
+                                        : (req.fast_math ? replicas_plain_fast_double : replicas_plain_strict_double))
+              : req.single ? (req.fast_math ? replicas_fast_float : replicas_strict_float)
+                           : (req.fast_math ? replicas_fast_double : replicas_strict_double);
     const auto t0 = std::chrono::steady_clock::now();
     fn(req.mu, req.alpha, req.correlated, points, req.replicas, shifts, means, bad);
     Result r;
@@ -80,7 +83,22 @@ std::string compile_flags() { return BRDFBAKE_BASELINE_FLAGS; }
 //   kernel arithmetic: t2 with sqrt(1 - x^2) (7), t3 (4), n (9), normalise (11), clamped
 //     wo.wh (5), reflect (6), G1(wi) (14), correlated G2 and / G1(wo) (9), finiteness and
 //     sums (5)                                                                              70
-double flops_per_sample(bool kernel_arithmetic) { return kernel_arithmetic ? 70.0 : 46.0; }
+// Counted from baseline_plain_impl.h's loop body, as written (wo and the basis as general
+// vectors; loop invariants such as 1 - s and 1 + Lambda(wo) once per cell, not per sample):
+//   the rotated point: u1 = rot((i + 1/2)/n + shift) (5), u2 = rot(ri 2^-24 + shift) (4)     9
+//   r = sqrt(u1), phi = 2 pi u2 (2), t1 = r cos, t2 = r sin (2), sqrt(max(0, 1 - t1^2)) (4),
+//     the blend (3), t3 = sqrt(max(0, 1 - t1^2 - t2^2)) (5), Nh = t1 T1 + t2 T2 + t3 Vh (15),
+//     unstretch (3), normalise (10)                                                        44
+//   reflect: wo.m (5), 2 (wo.m) m - wo (7); Lambda(wi) (10), G2 correlated (2) and separable
+//     (2) and the select (1), / G1(wo) (1), the horizon select (1)                         29
+//   finiteness and sums (5)                                                                  5
+// 87 flops, plus one sin and one cos that are NOT counted (a range reduction and a polynomial
+// each, in libmvec's vector form with -ffast-math or glibc's scalar sincos without): the figure
+// is a lower bound of the work. With -ffast-math g++ also drops the terms of wo.y = 0 and
+// T1.z = 0, which the strict build must keep (0 x Inf is NaN).
+double flops_per_sample(bool kernel_arithmetic, bool plain) {
+    return plain ? 87.0 : kernel_arithmetic ? 70.0 : 46.0;
+}
 
 }  // namespace baseline
 }  // namespace brdfbake

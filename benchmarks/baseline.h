@@ -1,23 +1,33 @@
-// The plain C++ OpenMP baseline the benchmarks compare the kernels against (issue 9), and the
+// The C++ OpenMP baselines the benchmarks compare the kernels against (issue 9), and the
 // FMA-throughput probe that gives the machine's peak.
 //
-// The baseline computes exactly the estimator of kernels/albedo.cl for GGX (visible-normal
-// importance sampling, Fresnel none), written independently of the shared headers as a
-// vectorised loop (baseline_impl.h): per cell, `replicas` copies of the n-point Hammersley
-// set, each rotated by its own Cranley-Patterson shift from Philox4x32-10 keyed by the seed
-// (the very shifts compute_albedo uses), the replica means turned into the mean, 3 standard
-// errors + the floating-point bound. The cell-independent work (the disk points) is tabulated
-// once per call as the kernel does, and the weight is evaluated in a closed form with two
-// square roots and one division per sample. It is compiled with -O3 -march=native -fopenmp
-// (benchmarks/CMakeLists.txt), one OpenMP thread per core, in three flavours of one source:
+// Both baselines compute exactly the estimator of kernels/albedo.cl for GGX (visible-normal
+// importance sampling, Fresnel none), written independently of the shared headers: per cell,
+// `replicas` copies of the n-point Hammersley set, each rotated by its own Cranley-Patterson
+// shift from Philox4x32-10 keyed by the seed (the very shifts compute_albedo uses), the replica
+// means turned into the mean, 3 standard errors + the floating-point bound. They are compiled
+// with -O3 -march=native -fopenmp (benchmarks/CMakeLists.txt), one OpenMP thread per core.
+//
+// The *tuned* baseline (baseline_impl.h) is a hand-tuned vectorised loop: the cell-independent
+// work (the disk points and sqrt(1 - x^2)) is tabulated once per call as the kernel does, and the
+// weight is evaluated in a closed form with two square roots and one division per sample. Three
+// flavours of one source:
 //   strict       the kernel's semantics: NaN/Inf weights counted, no -ffast-math
 //                (-fno-math-errno -fno-trapping-math, which change no value);
-//   fastmath     -ffast-math as in the issue's measurement: approximate reciprocal square roots
-//                and divisions, and every value assumed finite, so non-finite samples go
-//                unnoticed. A yardstick, not an equal;
+//   fastmath     -ffast-math: approximate reciprocal square roots and divisions, and every
+//                value assumed finite, so non-finite samples go unnoticed. A yardstick, not an
+//                equal;
 //   kernel arithmetic  strict, but the weight computed with the operations of the shared
 //                headers (four square roots and four divisions per sample): what g++ makes of
 //                the kernel's arithmetic, to tell the compiler's share from the arithmetic's.
+// The *plain* baseline (baseline_plain_impl.h, `plain`) is the issue's "plain C++ OpenMP loop of
+// the same estimator": the textbook algorithm per sample (the rotated Hammersley point, a sin and
+// a cos, Heitz 2018 listing 1, reflection, Smith G2/G1 with the textbook Lambda), nothing
+// tabulated, in two flavours:
+//   strict       as above; glibc has no vector sin/cos without -ffast-math, so the points loop
+//                runs scalar (one sincos call per sample);
+//   fastmath     -ffast-math as in the issue's measurement (860 M samples/s there): libmvec's
+//                vector sin and cos, the loop vectorised.
 #pragma once
 
 #include <cstdint>
@@ -37,6 +47,7 @@ struct Request {
     bool single = false;        // float arithmetic (as a --precision float kernel), else double
     bool fast_math = false;     // the -ffast-math flavour
     bool kernel_arithmetic = false;  // the weight with the shared headers' operations (strict)
+    bool plain = false;         // the plain textbook loop (baseline_plain_impl.h), else the tuned one
 };
 
 struct Result {
@@ -47,7 +58,7 @@ struct Result {
 };
 
 /// The albedo table of `request` on all cores. Throws std::invalid_argument for a bad request
-/// (fast_math and kernel_arithmetic together, too few samples).
+/// (kernel_arithmetic with fast_math or plain, too few samples).
 Result albedo_table(const Request& request);
 
 /// The Cranley-Patterson shifts of compute_albedo (two per replica), in double.
@@ -68,8 +79,8 @@ std::string compile_flags();
 
 /// Flops per sample of the inner loop, counted from its source as host/bench.cpp counts the
 /// kernel's (+, -, *, /, sqrt, min/max and compare-select 1, fma 2; the tabulated work and the
-/// per-cell work left out).
-double flops_per_sample(bool kernel_arithmetic);
+/// per-cell work left out; the plain loop's sin and cos left out too, baseline.cpp).
+double flops_per_sample(bool kernel_arithmetic, bool plain = false);
 
 }  // namespace baseline
 }  // namespace brdfbake

@@ -1,4 +1,5 @@
-// The flavours of the baseline loop (baseline_*.cpp), each compiled with its own flags.
+// The flavours of the tuned (baseline_*.cpp) and plain (baseline_plain_*.cpp) baseline loops,
+// each compiled with its own flags.
 #pragma once
 #include <cstdint>
 #include <vector>
@@ -15,6 +16,10 @@ BB_BASELINE_DECLARE(replicas_strict_float)
 BB_BASELINE_DECLARE(replicas_fast_float)
 BB_BASELINE_DECLARE(replicas_kernel_arith_double)
 BB_BASELINE_DECLARE(replicas_kernel_arith_float)
+BB_BASELINE_DECLARE(replicas_plain_strict_double)
+BB_BASELINE_DECLARE(replicas_plain_fast_double)
+BB_BASELINE_DECLARE(replicas_plain_strict_float)
+BB_BASELINE_DECLARE(replicas_plain_fast_float)
 #undef BB_BASELINE_DECLARE
 }  // namespace baseline
 }  // namespace brdfbake

@@ -1,0 +1,9 @@
+// Plain baseline flavour: strict, double (flags in benchmarks/CMakeLists.txt): the textbook
+// loop of baseline_plain_impl.h with real = double.
+#define BASELINE_NS bb_plain_strict_double
+#define BASELINE_FN replicas_plain_strict_double
+#include "baseline_kernels.h"
+#include "baseline_plain_impl.h"
+
+static_assert(sizeof(bb_plain_strict_double::real) == sizeof(double),
+              "baseline_plain_impl.h ignores BB_HOST_REAL_FLOAT");
