@@ -1,6 +1,7 @@
 // The benchmark harness (include/brdfbake/bench.h): GGX albedo tables through the kernel
-// (compute_albedo, the code path of `brdfbake lut albedo`) against the OpenMP baseline of
-// benchmarks/, the FMA peak, kernel build times and scaling sweeps.
+// (compute_albedo, the code path of `brdfbake lut albedo`) against the OpenMP baselines of
+// benchmarks/ (the tuned loop and the plain textbook loop), the FMA peak, kernel build times and
+// scaling sweeps.
 #include "brdfbake/bench.h"
 
 #include <algorithm>
@@ -134,8 +135,9 @@ AlbedoRequest kernel_request(const TableCells& t, std::uint64_t samples, Precisi
     return r;
 }
 
-/// The flavours of the baseline (benchmarks/baseline.h).
-enum class Flavour { Strict, FastMath, KernelArithmetic };
+/// The flavours of the baselines (benchmarks/baseline.h): the tuned loop (strict, -ffast-math,
+/// the kernel's arithmetic) and the plain textbook loop (strict, -ffast-math).
+enum class Flavour { Strict, FastMath, KernelArithmetic, PlainStrict, PlainFastMath };
 
 /// The baseline's table at precision p in the given flavour.
 baseline::Result run_baseline(const TableCells& t, std::uint64_t samples, Precision p, Flavour f) {
@@ -144,8 +146,9 @@ baseline::Result run_baseline(const TableCells& t, std::uint64_t samples, Precis
     r.alpha = t.alpha;
     r.samples = samples;
     r.single = p == Precision::Float;
-    r.fast_math = f == Flavour::FastMath;
+    r.fast_math = f == Flavour::FastMath || f == Flavour::PlainFastMath;
     r.kernel_arithmetic = f == Flavour::KernelArithmetic;
+    r.plain = f == Flavour::PlainStrict || f == Flavour::PlainFastMath;
     return baseline::albedo_table(r);
 }
 
@@ -279,11 +282,13 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
         const AlbedoRequest kreq = kernel_request(cells, o.samples, p);
         const AlbedoResult kres = compute_albedo(engine, kreq);  // warm-up and the checked result
         // Every flavour of the baseline must agree with the kernel within the two estimates.
-        const Flavour flavours[] = {Flavour::Strict, Flavour::FastMath, Flavour::KernelArithmetic};
-        const char* flavour_names[] = {"strict", "-ffast-math", "kernel arithmetic"};
+        const Flavour flavours[] = {Flavour::Strict, Flavour::FastMath, Flavour::KernelArithmetic,
+                                    Flavour::PlainStrict, Flavour::PlainFastMath};
+        const char* flavour_names[] = {"tuned strict", "tuned -ffast-math", "tuned, kernel arithmetic",
+                                       "plain strict", "plain -ffast-math"};
         double worst = 0.0;
         bool agreed = true;
-        for (int f = 0; f < 3; ++f) {
+        for (int f = 0; f < 5; ++f) {
             const baseline::Result bres = run_baseline(cells, o.samples, p, flavours[f]);
             double worst_f = 0.0;
             size_t worst_cell = 0;
@@ -313,7 +318,8 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
         }
         double max_err = 0.0;
         for (const auto& v : kres.values) max_err = std::max(max_err, v.error);
-        log << precision_name(p) << ": kernel and baseline agree (largest |difference| / (error_k + error_b) = "
+        log << precision_name(p)
+            << ": kernel and every baseline flavour agree (largest |difference| / (error_k + error_b) = "
             << fixed(worst, 3) << ", max error " << sci(max_err) << ")\n";
 
         double kernel_device = 0.0;
@@ -330,6 +336,8 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
         const double t_base = time_baseline(Flavour::Strict);
         const double t_fast = time_baseline(Flavour::FastMath);
         const double t_karith = time_baseline(Flavour::KernelArithmetic);
+        const double t_plain = time_baseline(Flavour::PlainStrict);
+        const double t_plain_fast = time_baseline(Flavour::PlainFastMath);
         const double pk = p == Precision::Float ? peak.gflops_float : peak.gflops_double;
         auto entry = [&](const std::string& impl, double t, double flops) {
             const double sps = n_samples / t;
@@ -339,8 +347,8 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
                         {"samples_per_cell", o.samples},
                         {"seconds", t},
                         {"samples_per_second", sps},
-                        {"ratio_to_baseline", t_base / t},
-                        {"ratio_to_fastmath_baseline", t_fast / t},
+                        {"ratio_to_tuned_baseline", t_base / t},
+                        {"ratio_to_plain_fastmath_baseline", t_plain_fast / t},
                         {"flops_per_sample", flops},
                         {"gflops", sps * flops * 1e-9},
                         {"fraction_of_peak", sps * flops * 1e-9 / pk}};
@@ -350,18 +358,22 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
         ke["max_error"] = max_err;
         ke["agreement"] = worst;
         thr.push_back(ke);
-        thr.push_back(entry("baseline (OpenMP, strict)", t_base, baseline::flops_per_sample(false)));
-        thr.push_back(entry("baseline (OpenMP, -ffast-math)", t_fast, baseline::flops_per_sample(false)));
-        thr.push_back(entry("C++ with the kernel's arithmetic (OpenMP, strict)", t_karith,
+        thr.push_back(entry("tuned baseline (OpenMP, strict)", t_base, baseline::flops_per_sample(false)));
+        thr.push_back(entry("tuned baseline (OpenMP, -ffast-math)", t_fast, baseline::flops_per_sample(false)));
+        thr.push_back(entry("tuned C++ with the kernel's arithmetic (OpenMP, strict)", t_karith,
                             baseline::flops_per_sample(true)));
-        log << precision_name(p) << ": kernel " << fixed(n_samples / t_kernel * 1e-6, 1) << " M samples/s, baseline "
-            << fixed(n_samples / t_base * 1e-6, 1) << " M samples/s (x" << fixed(t_base / t_kernel, 2)
-            << "), -ffast-math " << fixed(n_samples / t_fast * 1e-6, 1) << ", kernel's arithmetic in C++ "
-            << fixed(n_samples / t_karith * 1e-6, 1) << "\n";
+        thr.push_back(entry("plain baseline (OpenMP, strict)", t_plain, baseline::flops_per_sample(false, true)));
+        thr.push_back(
+            entry("plain baseline (OpenMP, -ffast-math)", t_plain_fast, baseline::flops_per_sample(false, true)));
+        auto msps = [&](double t) { return fixed(n_samples / t * 1e-6, 1); };
+        log << precision_name(p) << ": kernel " << msps(t_kernel) << " M samples/s; tuned baseline " << msps(t_base)
+            << " (kernel x" << fixed(t_base / t_kernel, 2) << "), -ffast-math " << msps(t_fast)
+            << ", kernel's arithmetic " << msps(t_karith) << "; plain baseline " << msps(t_plain) << ", -ffast-math "
+            << msps(t_plain_fast) << " (kernel x" << fixed(t_plain_fast / t_kernel, 2) << ")\n";
     }
     j["throughput"] = thr;
 
-    // Scaling: time against cells x samples (float; the kernel and the strict baseline).
+    // Scaling: time against cells x samples (float; the kernel and the strict tuned baseline).
     json scaling = json::array();
     if (rep.agreed) {
         auto point = [&](int n, std::uint64_t s, const char* sweep) {
@@ -383,9 +395,9 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
                                {"work", work},
                                {"kernel_seconds", tk},
                                {"kernel_ns_per_sample", tk / work * 1e9},
-                               {"baseline_seconds", tb}});
+                               {"tuned_baseline_seconds", tb}});
             log << "scaling " << sweep << ": " << n << "x" << n << " x " << s << " samples: kernel " << fixed(tk, 4)
-                << " s, baseline " << fixed(tb, 4) << " s\n";
+                << " s, tuned baseline " << fixed(tb, 4) << " s\n";
         };
         for (int n : o.scaling_sizes) point(n, o.scaling_size_samples, "size");
         for (std::uint64_t s : o.scaling_samples) point(o.scaling_samples_table, s, "samples");
@@ -404,9 +416,10 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
        << "); load average " << m["loadavg_start"].get<std::string>() << " at the start, "
        << m["loadavg_end"].get<std::string>() << " at the end. FMA peak: " << fixed(peak.gflops_float, 1)
        << " GFLOP/s float, " << fixed(peak.gflops_double, 1) << " GFLOP/s double (" << peak.threads << " threads, "
-       << peak.vector_bits << "-bit vectors). Baseline flags: `" << baseline::compile_flags() << "`.\n\n";
+       << peak.vector_bits << "-bit vectors). Baseline flags (tuned and plain loops): `"
+       << baseline::compile_flags() << "`.\n\n";
     if (!rep.agreed) {
-        md << "**The kernel and the baseline disagreed; no times are reported.**\n\n```\n" << rep.disagreement
+        md << "**The kernel and a baseline flavour disagreed; no times are reported.**\n\n```\n" << rep.disagreement
            << "```\n";
         rep.markdown = md.str();
         return rep;
@@ -414,15 +427,18 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
     md << "GGX albedo table (height-correlated, F = 1, VNDF importance sampling, randomised Hammersley, 16 "
           "replicas), "
        << o.table << "x" << o.table << " cells x " << o.samples
-       << " samples; median of timed runs after a warm-up. Ratios against the strict baseline; flops per "
-          "sample counted from each implementation's source (host/bench.cpp, benchmarks/baseline.cpp).\n\n";
-    md << "| precision | implementation | time (s) | M samples/s | vs baseline | vs -ffast-math baseline | "
+       << " samples; median of timed runs after a warm-up. Ratios: time of the strict tuned baseline "
+          "(benchmarks/baseline_impl.h) and of the -ffast-math plain baseline (benchmarks/baseline_plain_impl.h, "
+          "the issue's yardstick) over the row's time. Flops per sample counted from each implementation's source "
+          "(host/bench.cpp, benchmarks/baseline.cpp; the plain loop's sin and cos not counted).\n\n";
+    md << "| precision | implementation | time (s) | M samples/s | vs tuned baseline (strict) | "
+          "vs plain baseline (-ffast-math) | "
           "flops/sample | GFLOP/s | of peak |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const auto& e : thr)
         md << "| " << e["precision"].get<std::string>() << " | " << e["implementation"].get<std::string>() << " | "
            << fixed(e["seconds"].get<double>(), 3) << " | " << fixed(e["samples_per_second"].get<double>() * 1e-6, 1)
-           << " | " << fixed(e["ratio_to_baseline"].get<double>(), 2) << "x | "
-           << fixed(e["ratio_to_fastmath_baseline"].get<double>(), 2) << "x | "
+           << " | " << fixed(e["ratio_to_tuned_baseline"].get<double>(), 2) << "x | "
+           << fixed(e["ratio_to_plain_fastmath_baseline"].get<double>(), 2) << "x | "
            << fixed(e["flops_per_sample"].get<double>(), 0) << " | " << fixed(e["gflops"].get<double>(), 1) << " | "
            << fixed(100.0 * e["fraction_of_peak"].get<double>(), 1) << "% |\n";
     if (!builds.empty()) {
@@ -433,12 +449,12 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
                << " | " << fixed(b["warm_seconds"].get<double>(), 3) << " |\n";
     }
     md << "\nScaling (float): time against cells x samples.\n\n| sweep | cells | samples/cell | cells x samples | "
-          "kernel (s) | kernel ns/sample | baseline (s) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+          "kernel (s) | kernel ns/sample | tuned baseline (s) |\n| --- | ---: | ---: | ---: | ---: | ---: | ---: |\n";
     for (const auto& s : scaling)
         md << "| " << s["sweep"].get<std::string>() << " | " << s["cells"].get<size_t>() << " | "
            << s["samples_per_cell"].get<std::uint64_t>() << " | " << sci(s["work"].get<double>()) << " | "
            << fixed(s["kernel_seconds"].get<double>(), 4) << " | " << fixed(s["kernel_ns_per_sample"].get<double>(), 2)
-           << " | " << fixed(s["baseline_seconds"].get<double>(), 4) << " |\n";
+           << " | " << fixed(s["tuned_baseline_seconds"].get<double>(), 4) << " |\n";
     rep.markdown = md.str();
     return rep;
 }
@@ -458,14 +474,15 @@ void write_bench_plot(const BenchReport& report, const std::string& path) {
     p.x.label = "cells x samples";
     p.y.label = "seconds";
     Curve ks{"kernel, table size sweep", {}, {}, "b-2o"}, kn{"kernel, samples sweep", {}, {}, "r-2s"};
-    Curve bs{"baseline, table size sweep", {}, {}, "b;2"}, bn{"baseline, samples sweep", {}, {}, "r;2"};
+    Curve bs{"tuned baseline, table size sweep", {}, {}, "b;2"};
+    Curve bn{"tuned baseline, samples sweep", {}, {}, "r;2"};
     for (const auto& s : report.json.at("scaling")) {
         const bool size = s["sweep"] == "size";
         const double w = std::log10(s["work"].get<double>());
         (size ? ks : kn).x.push_back(w);
         (size ? ks : kn).y.push_back(std::log10(s["kernel_seconds"].get<double>()));
         (size ? bs : bn).x.push_back(w);
-        (size ? bs : bn).y.push_back(std::log10(s["baseline_seconds"].get<double>()));
+        (size ? bs : bn).y.push_back(std::log10(s["tuned_baseline_seconds"].get<double>()));
     }
     if (ks.x.empty()) throw Error("the report has no scaling data to plot");
     p.x.label = "log_{10}(cells x samples)";

@@ -40,7 +40,7 @@ int run_bench_command(const BenchCmdOptions& o, const GlobalOptions& g) {
     if (!o.json.empty()) write_file_atomically(o.json, r.json.dump(2) + "\n");
     if (!o.markdown.empty()) write_file_atomically(o.markdown, r.markdown);
     if (!o.plot.empty() && r.agreed) write_bench_plot(r, o.plot);
-    if (!r.agreed) throw Error("the kernel and the baseline disagree:\n" + r.disagreement);
+    if (!r.agreed) throw Error("the kernel and a baseline flavour disagree:\n" + r.disagreement);
     return kExitOk;
 }
 
