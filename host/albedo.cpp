@@ -243,6 +243,17 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
         build.vector_width = 1;  // a ragged last step: the scalar kernel
         lanes = 1;
     }
+    if (lanes > 1) {
+        // A launch whose cells are all isotropic gets the disk weight without the terms that
+        // vanish then (bb_model_disk_isotropic): a program of its own, cached as any other.
+        bool isotropic = true;
+        for (const AlbedoCell& c : req.cells) {
+            bb_params p;
+            for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = c.params[k];
+            isotropic = isotropic && bb_model_disk_isotropic(req.model, p);
+        }
+        if (isotropic) build.defines.push_back({"BB_ISOTROPIC", "1"});
+    }
     cl::Program& program = engine.program(build);
 
     const CellArrays cells = cell_arrays(req.cells);

@@ -21,7 +21,8 @@
  *                         (bb_model_disk_weight). Same point set, same shifts, same estimator;
  *                         PoCL compiles it to SIMD code.
  *
- * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W]
+ * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W
+ * [-D BB_ISOTROPIC=1]]
  * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
  * alone, a smaller program to build]. */
 #include "brdfbake/brdf/models.h"
@@ -222,6 +223,14 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
 
 #else /* BB_VECTOR_WIDTH */
 
+/* -D BB_ISOTROPIC=1: every cell of the launch is isotropic (bb_model_disk_isotropic). */
+#ifndef BB_ISOTROPIC
+#define BB_ISOTROPIC 0
+#endif
+
+/* Steps per plain-summed block of the vector path. */
+#define BB_DISK_BLOCK 32u
+
 /* The sum of the lanes of v, compensated (Kahan). */
 BB_FN bb_scalar bb_lane_sum(real v, real c) {
     bb_scalar a[BB_VECTOR_WIDTH], b[BB_VECTOR_WIDTH];
@@ -264,19 +273,26 @@ __kernel void albedo_replicas_disk(__global const bb_scalar* cell_mu,
         params_ok &= (unsigned int)(isfinite(a) && isfinite(b));
     }
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], (real)cell_phi[cell]);
-    const bb_disk_cell dc = bb_model_disk_cell(BB_MODEL, p, wo);
+    const bb_disk_cell dc = bb_model_disk_cell(BB_MODEL, p, wo, BB_ISOTROPIC);
 
-    /* Kahan-compensated sums, one per lane. */
+    /* Per lane: plain sums over blocks of BB_DISK_BLOCK steps (at most 32 terms, exact to a few
+     * ulps), the blocks added with Kahan compensation (no loop-carried compensation per sample). */
     real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_chunks = n_points / BB_VECTOR_WIDTH;
     __global const bb_scalar* d = disk + (size_t)rep * n_chunks * (3 * BB_VECTOR_WIDTH);
-    for (unsigned int c = 0; c < n_chunks; ++c, d += 3 * BB_VECTOR_WIDTH) {
-        const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
-        const real w = bb_model_disk_weight(BB_MODEL, dc, BB_FRESNEL, fp, pt, bb_vload(d + 2 * BB_VECTOR_WIDTH));
-        const bb_mask ok = isfinite(w);
-        bad += bb_select((bb_mask)1, (bb_mask)0, ok);
-        const real y = bb_select(BB_R(0.0), w, ok) - comp;
+    for (unsigned int c0 = 0; c0 < n_chunks; c0 += BB_DISK_BLOCK) {
+        const unsigned int c1 = min(n_chunks, c0 + BB_DISK_BLOCK);
+        real block = BB_R(0.0);
+        for (unsigned int c = c0; c < c1; ++c, d += 3 * BB_VECTOR_WIDTH) {
+            const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
+            const real w = bb_model_disk_weight(BB_MODEL, dc, BB_FRESNEL, fp, pt, bb_vload(d + 2 * BB_VECTOR_WIDTH),
+                                                BB_ISOTROPIC);
+            const bb_mask ok = isfinite(w);
+            bad += bb_select((bb_mask)1, (bb_mask)0, ok);
+            block += bb_select(BB_R(0.0), w, ok);
+        }
+        const real y = block - comp;
         const real t = sum + y;
         comp = (t - sum) - y;
         sum = t;

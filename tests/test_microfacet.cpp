@@ -121,7 +121,7 @@ TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/
     bb_params cond{};
     cond.v[BB_FRESNEL_ETA] = 0.2;
     cond.v[BB_FRESNEL_K] = 3.0;
-    int compared = 0;
+    int compared = 0, compared_iso = 0;
     for (const double ax : {1e-3, 0.05, 0.5, 1.0})
         for (const double ay : {ax, 0.7})
             for (const double mu : {1e-4, 0.05, 0.5, 1.0})
@@ -134,14 +134,16 @@ TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/
                             p.v[BB_GGX_SHADOWING] = correlated;
                             const ref::Dir wo_ref = ref::dir_mu(mu, phi);
                             const bb_vec3 wo = v3(wo_ref);
-                            const bb_ggx_disk_cell cell = bb_ggx_disk_cell_make(p, wo);
+                            const int iso = ax == ay;  // the kernels' -D BB_ISOTROPIC
+                            const bb_ggx_disk_cell cell = bb_ggx_disk_cell_make(p, wo, 0);
+                            const bb_ggx_disk_cell cell_iso = bb_ggx_disk_cell_make(p, wo, 1);
                             for (int k = 0; k < 64; ++k) {
                                 const bb_vec2 d = bb_disk_polar(u(rng), u(rng));
                                 const double h = std::sqrt(1.0 - d.x * d.x);
                                 const bb_vec3 m = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
                                 const ref::Dir mr{m.x, m.y, m.z};
                                 const ref::Dir wi = ref::reflect(wo_ref, ref::normalize(mr));
-                                const double w = bb_ggx_disk_weight(cell, fkind, cond, d, h);
+                                const double w = bb_ggx_disk_weight(cell, fkind, cond, d, h, 0);
                                 if (std::fabs(double(wi.z)) < 1e-9) continue;  // the horizon: either side
                                 const ref::ld lo = ref::ggx_lambda(wo_ref, ax, ay), li = ref::ggx_lambda(wi, ax, ay);
                                 const ref::ld g2 = correlated ? 1 / (1 + lo + li) : ref::ggx_g1(wo_ref, ax, ay) * ref::ggx_g1(wi, ax, ay);
@@ -154,8 +156,17 @@ TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/
                                 // and the shared sampler's own weight, the scalar kernel's
                                 const bb_sample s = bb_ggx_sample_disk(p, fkind, cond, wo, d);
                                 CHECK(w == Approx(s.weight).epsilon(1e-11).margin(1e-13));
+                                if (iso) {
+                                    // the isotropic form: wo rotated into the x-z plane, same point
+                                    // of the disk, so wi rotated too; the weight is the same.
+                                    const double wi_iso = bb_ggx_disk_weight(cell_iso, fkind, cond, d, h, 1);
+                                    CHECK(std::isfinite(wi_iso));
+                                    if (phi == 0.0) CHECK(wi_iso == Approx(expect).epsilon(1e-11).margin(1e-13));
+                                    ++compared_iso;
+                                }
                                 ++compared;
                             }
                         }
     CHECK(compared > 10000);
+    CHECK(compared_iso > 4000);
 }

@@ -164,17 +164,26 @@ BB_FN int bb_model_samples_disk(int model) { return model == BB_MODEL_GGX; }
 #if BB_HAS_MODEL(BB_MODEL_GGX)
 /* The vector path's estimator, in two halves: the constants of a cell, once per cell, and the
  * weight of one disk point d with h = sqrt(1 - d.x^2), both tabulated by the host (GGX's closed
- * form, ggx.h). Only GGX's sample is a function of the disk point (bb_model_samples_disk). */
+ * form, ggx.h). Only GGX's sample is a function of the disk point (bb_model_samples_disk).
+ * isotropic: a constant, 1 when every cell of the launch is isotropic (-D BB_ISOTROPIC). */
 typedef bb_ggx_disk_cell bb_disk_cell;
 
-BB_FN bb_disk_cell bb_model_disk_cell(int model, bb_params p, bb_vec3 wo) {
+#ifndef BB_VECTOR_WIDTH
+/* Whether the disk path may treat a cell as isotropic (then wo is rotated into the x-z plane and
+ * the terms that vanish are dropped): the host asks for every cell of a launch. */
+BB_FN int bb_model_disk_isotropic(int model, bb_params p) {
+    return model == BB_MODEL_GGX && p.v[BB_GGX_ALPHA_X] == p.v[BB_GGX_ALPHA_Y];
+}
+#endif
+
+BB_FN bb_disk_cell bb_model_disk_cell(int model, bb_params p, bb_vec3 wo, int isotropic) {
     (void)model;
-    return bb_ggx_disk_cell_make(p, wo);
+    return bb_ggx_disk_cell_make(p, wo, isotropic);
 }
 
-BB_FN real bb_model_disk_weight(int model, bb_disk_cell c, int fkind, bb_params fp, bb_vec2 d, real h) {
+BB_FN real bb_model_disk_weight(int model, bb_disk_cell c, int fkind, bb_params fp, bb_vec2 d, real h, int isotropic) {
     (void)model;
-    return bb_ggx_disk_weight(c, fkind, fp, d, h);
+    return bb_ggx_disk_weight(c, fkind, fp, d, h, isotropic);
 }
 #endif
 
