@@ -259,7 +259,7 @@ void write_figure(const std::string& path, const Figure& figure) {
     mglGraph::SuppressWarn(true);  // problems are checked below and reported as errors
     mglGraph gr(0, figure.panel_width * cols, figure.panel_height * rows);
     gr.Clf('w');
-    gr.SetQuality(MGL_DRAW_NORM);
+    gr.SetQuality(figure.flat ? MGL_DRAW_FAST : MGL_DRAW_NORM);
     for (int i = 0; i < n; ++i) {
         // Each panel is a cell of the grid (fractions of the canvas, y upwards); the axes box
         // leaves room for the y label on the left, the x label below and the title above.

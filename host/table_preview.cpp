@@ -49,6 +49,7 @@ void write_table_preview(const Table& t, const std::string& path) {
         fig.columns = std::min<int>(int(t.channels.size()), 2);
         fig.panel_width = 760;
         fig.panel_height = 640;
+        fig.flat = true;
     }
     write_figure(path, fig);
 }
