@@ -29,22 +29,23 @@ namespace brdfbake {
 
 namespace {
 
-/* Flops of one sample of the estimator, counted by hand from the arithmetic the albedo kernel
- * performs per (cell, sample) for GGX with F = 1 and height-correlated G2 (kernels/albedo.cl
- * with brdf/microfacet.h and ggx.h), counting +, -, *, /, sqrt, min/max and compare-select as 1
- * flop and fma as 2, and leaving out what does not depend on the cell (the Hammersley point,
- * its rotation, sqrt(u1) cos/sin(2 pi u2), which the fast kernel takes from a table) and what
- * is the same for every sample of a cell (the stretched view vector, its basis, G1(wo)):
- *   VNDF warp: p2 = (1-s) sqrt(1 - p1^2) + s p2 (7), p3 = sqrt(1 - p1^2 - p2^2) (6),
- *     nh = t1 p1 + t2 p2 + vh p3 (15), unstretch and normalise (13)                  41
- *   reflection wi = 2 (wo.wh) wh - wo (12), G1(wi) (14), correlated G2 (6),
- *     weight F G2 / G1(wo) and the horizon guards (5)                                   37
- *   finiteness test and Kahan-compensated sum (6)                                        6
- * The scalar kernel does more work per sample than this (it recomputes the hoisted parts),
- * which the count does not credit. The baseline's loops are counted the same way from their
- * source (baseline::flops_per_sample): 46 for its closed form, 70 for the kernel's arithmetic;
- * the fraction of peak of each row uses its own count. */
-constexpr double kFlopsPerSample = 84.0;
+/* Flops of one sample of the estimator, counted by hand from the arithmetic the albedo kernel's
+ * vector path performs per (cell, sample) for isotropic GGX with F = 1 (kernels/albedo.cl,
+ * albedo_replicas_disk built with -D BB_ISOTROPIC=1, and bb_ggx_disk_weight in brdf/ggx.h),
+ * counting +, -, *, /, sqrt, min/max and compare-select as 1 flop and fma as 2, and leaving out
+ * what does not depend on the cell (the Hammersley point, its rotation, the disk point
+ * sqrt(u1) cos/sin(2 pi u2) and sqrt(1 - x^2), which the host tabulates) and what is the same
+ * for every sample of a cell (the stretched view, its basis, 1/G1(wo)):
+ *   hemisphere point: p2 = (1-s) h + s y (3), p3 = sqrt(max(0, 1 - p1^2 - p2^2)) (6)       9
+ *   unnormalised normal n (8), L = |n|^2 (5), wo.n (3), W.z = 2 (wo.n) n.z - L wo.z (4)  20
+ *   q = sqrt(a^2 L^2 + (1 - a^2) W.z^2) (6), weight 2 c0 W.z / ((2 c0 - 1) W.z + q) (4),
+ *     the horizon and G1(wo) guards (3)                                                  13
+ *   finiteness test, non-finite count and the block sum (6)                               6
+ * The anisotropic form adds W.x, W.y and their terms in q (about 14 more); the scalar kernel
+ * does more work per sample than this (the textbook form, recomputing the hoisted parts),
+ * which the count does not credit. The baselines' loops are counted the same way from their
+ * source (baseline::flops_per_sample); the fraction of peak of each row uses its own count. */
+constexpr double kFlopsPerSample = 48.0;
 
 std::string read_cpu_model() {
     std::ifstream in("/proc/cpuinfo");
