@@ -20,7 +20,7 @@ int main(int argc, char** argv) {
     app.add_option("--table", table, "throughput table side N (N x N cells; default 32, quick 8)");
     app.add_option("--samples", samples, "samples per cell of the throughput table (default 65536)");
     app.add_option("--out-dir", out_dir, "directory for NAME.json and NAME.md")->capture_default_str();
-    app.add_option("--name", name, "file name stem (default: the machine, e.g. amd-epyc-2c)");
+    app.add_option("--name", name, "file name stem (default: the machine, e.g. amd-epyc-2c-avx512)");
     app.add_option("--plot", plot, "also plot time against cells x samples (.png or .svg)");
     app.add_option("--device", device, "OpenCL device selector (see `brdfbake devices`)");
     app.add_flag("--no-build-times", no_build, "skip the cold/warm kernel build figures");

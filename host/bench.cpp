@@ -191,7 +191,12 @@ std::string bench_machine_name() {
             out += '-';
     }
     while (!out.empty() && out.back() == '-') out.pop_back();
-    return out + "-" + std::to_string(std::thread::hardware_concurrency()) + "c";
+    // The vector extension too: machines sold under one name differ in it (an AVX2 and an
+    // AVX-512 EPYC have both been development machines), and the kernels' speed follows it.
+    std::string simd = cpu_simd(), tag;
+    for (char c : simd)
+        if (std::isalnum(static_cast<unsigned char>(c))) tag += char(std::tolower(static_cast<unsigned char>(c)));
+    return out + "-" + std::to_string(std::thread::hardware_concurrency()) + "c-" + tag;
 }
 
 BenchReport run_bench(const BenchOptions& o, std::ostream& log) {

@@ -47,7 +47,7 @@ void write_bench_report(const BenchReport& report, const std::string& dir, const
 /// Plots time against cells x samples from the report's scaling sweeps (PNG or SVG).
 void write_bench_plot(const BenchReport& report, const std::string& path);
 
-/// A short file-name-safe name for this machine, e.g. "amd-epyc-2c".
+/// A short file-name-safe name for this machine, e.g. "amd-epyc-2c-avx512".
 std::string bench_machine_name();
 
 /// The CPU's model name (/proc/cpuinfo) and the load average (/proc/loadavg), as the benchmark
