@@ -207,9 +207,16 @@ cl::Program& Engine::program(const BuildRequest& request) {
     const double seconds =
         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     build_seconds_ += seconds;
-    if (verbose_)
+    if (verbose_) {
         std::cerr << "brdfbake: built " << request.kernel_file << " [" << options << "] in "
                   << seconds * 1e3 << " ms\n";
+        std::string log;
+        try {
+            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device);
+        } catch (const cl::Error&) {
+        }
+        if (log.find_first_not_of(" \t\r\n") != std::string::npos) std::cerr << "brdfbake: build log:\n" << log << "\n";
+    }
     return programs_.emplace(key, std::move(program)).first->second;
 }
 
