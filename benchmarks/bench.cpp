@@ -17,7 +17,7 @@ int main(int argc, char** argv) {
     int table = 0;
     std::int64_t samples = 0;
     app.add_flag("--quick", quick, "tiny sizes, one run each (a few seconds)");
-    app.add_option("--table", table, "throughput table side N (N x N cells; default 32, quick 8)");
+    app.add_option("--table", table, "throughput table side N (N x N cells; default 64, quick 8)");
     app.add_option("--samples", samples, "samples per cell of the throughput table (default 65536)");
     app.add_option("--out-dir", out_dir, "directory for NAME.json and NAME.md")->capture_default_str();
     app.add_option("--name", name, "file name stem (default: the machine, e.g. amd-epyc-2c-avx512)");

@@ -15,14 +15,14 @@ namespace brdfbake {
 struct BenchOptions {
     std::string device;                 // device selector (see choose_device)
     bool quick = false;                 // a few seconds: small tables, one run each
-    int table = 32;                     // throughput table: table x table cells (mu x alpha)
+    int table = 64;                     // throughput table: table x table cells (mu x alpha)
     std::uint64_t samples = 1u << 16;   // samples per cell for the throughput figures
     std::vector<int> scaling_sizes = {16, 32, 64, 128, 256};
     std::uint64_t scaling_size_samples = 1u << 10;  // samples per cell of the size sweep
     std::vector<std::uint64_t> scaling_samples = {1u << 8, 1u << 10, 1u << 12, 1u << 14, 1u << 16};
     int scaling_samples_table = 32;     // table of the samples sweep
     double min_seconds = 0.5;           // repeat a measurement until it has taken this long
-    int max_runs = 5;
+    int max_runs = 11;
     bool build_times = true;            // cold and warm kernel build (fresh POCL_CACHE_DIR)
     bool verbose = false;
     /// The best of the quick options (`--quick`): tiny tables, one run each.
