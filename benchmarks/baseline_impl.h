@@ -42,6 +42,8 @@
 
 #include <omp.h>
 
+#include "baseline_common.h"
+
 namespace BASELINE_NS {
 #ifdef BB_HOST_REAL_FLOAT
 using real = float;
@@ -49,13 +51,7 @@ using real = float;
 using real = double;
 #endif
 
-inline std::uint32_t reverse_bits(std::uint32_t v) {
-    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
-    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
-    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
-    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
-    return (v >> 16) | (v << 16);
-}
+using brdfbake::baseline::reverse_bits;
 
 // max(x, 0) by value (NaN gives 0, as fmax(x, 0) and the kernel's bb_max).
 inline real max0(real x) { return x > real(0) ? x : real(0); }

@@ -30,6 +30,8 @@
 
 #include <omp.h>
 
+#include "baseline_common.h"
+
 // g++ (12) merges sin(phi) and cos(phi) into one scalar sincos (__builtin_cexpi) before it
 // vectorises, and it cannot vectorise that call: with -ffast-math, where libmvec offers vector
 // sin and cos, the cosines of a block are therefore taken in a loop of their own (the same values).
@@ -46,13 +48,7 @@ using real = float;
 using real = double;
 #endif
 
-inline std::uint32_t reverse_bits(std::uint32_t v) {
-    v = ((v >> 1) & 0x55555555u) | ((v & 0x55555555u) << 1);
-    v = ((v >> 2) & 0x33333333u) | ((v & 0x33333333u) << 2);
-    v = ((v >> 4) & 0x0F0F0F0Fu) | ((v & 0x0F0F0F0Fu) << 4);
-    v = ((v >> 8) & 0x00FF00FFu) | ((v & 0x00FF00FFu) << 8);
-    return (v >> 16) | (v << 16);
-}
+using brdfbake::baseline::reverse_bits;
 
 // The radical inverse in base 2 as a real in [0, 1), as the kernel's bb_unit_from_bits.
 inline real radical_inverse(std::uint32_t i) {
