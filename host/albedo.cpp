@@ -314,8 +314,10 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
 }
 
 // Gauss-Legendre nodes and weights of the n-point rule on [0, 1] (weights summing to 1):
-// the zeros of P_n and 2/((1 - x^2) P_n'(x)^2) from Boost.Math, mapped from [-1, 1].
-void append_gauss_legendre(unsigned n, std::vector<double>& out) {
+// the zeros of P_n and 2/((1 - x^2) P_n'(x)^2) from Boost.Math, mapped from [-1, 1]. With
+// lanes > 1 (the vector kernel) the abscissae and the weights are each padded to a multiple of
+// lanes with abscissa 1/2 and weight 0.
+void append_gauss_legendre(unsigned n, std::vector<double>& out, unsigned lanes = 1) {
     const std::vector<double> zeros = boost::math::legendre_p_zeros<double>(int(n));  // the zeros >= 0
     std::vector<std::pair<double, double>> rule;
     for (double z : zeros) {
@@ -325,8 +327,11 @@ void append_gauss_legendre(unsigned n, std::vector<double>& out) {
         if (z != 0.0) rule.push_back({0.5 * (1.0 - z), w});
     }
     std::sort(rule.begin(), rule.end());
+    const size_t padded = (rule.size() + lanes - 1) / lanes * lanes;
     for (const auto& r : rule) out.push_back(r.first);
+    out.resize(out.size() + padded - rule.size(), 0.5);
     for (const auto& r : rule) out.push_back(r.second);
+    out.resize(out.size() + padded - rule.size(), 0.0);
 }
 
 // The error of the n-node rule from the n/2- and n/4-node rules. For an integrand that is smooth
@@ -363,13 +368,17 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     build.defines = {{"BB_MODEL", std::to_string(req.model)},
                      {"BB_FRESNEL", std::to_string(req.fresnel.kind)},
                      {"BB_QUADRATURE", "1"}};
-    build.vector_width = 1;
+    // The vector path (albedo_quadrature_rows, one row of the rule per lane) for the half-vector
+    // rule; the sampler's square keeps the scalar kernel.
+    build.has_vector_path = bb_model_quad_dist(req.model, bb_params{}).kind != BB_QUAD_SAMPLER;
+    build.vector_width = req.vector_width;
+    const unsigned lanes = engine.vector_width(build);
     cl::Program& program = engine.program(build);
 
     std::vector<double> nodes;
-    append_gauss_legendre(n, nodes);
-    append_gauss_legendre(m, nodes);
-    append_gauss_legendre(l, nodes);
+    append_gauss_legendre(n, nodes, lanes);
+    append_gauss_legendre(m, nodes, lanes);
+    append_gauss_legendre(l, nodes, lanes);
     const CellArrays cells = cell_arrays(req.cells);
     const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
     RealBuffers bufs(engine, req.precision);
@@ -378,7 +387,7 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     cl::Buffer b_sum = bufs.output(n_items);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
 
-    cl::Kernel kernel(program, "albedo_quadrature");
+    cl::Kernel kernel(program, lanes > 1 ? "albedo_quadrature_rows" : "albedo_quadrature");
     int a = 0;
     kernel.setArg(a++, b_mu);
     kernel.setArg(a++, b_phi);
@@ -401,6 +410,7 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     AlbedoResult result;
     const std::uint64_t per_piece = std::uint64_t(n) * n + std::uint64_t(m) * m + std::uint64_t(l) * l;
     result.kernel_seconds = event_seconds(done);
+    result.vector_width = lanes;
     result.method = quadrature_text(req.model, n);
     const double fp_bound = tolerance_floor(req.precision);
     for (size_t c = 0; c < n_cells; ++c) {

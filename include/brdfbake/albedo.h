@@ -46,6 +46,7 @@ struct AlbedoRequest {
     /// Lanes of the kernel's vector path: 0 the device's choice (Engine::vector_width), 1 the
     /// scalar kernel. The vector path needs a model whose sample is tabulated (GGX) and points
     /// per replica (samples / replicas) divisible by the lanes; otherwise the scalar kernel runs.
+    /// Quadrature has one for the half-vector rule (ggx, beckmann, torrance-sparrow, blinn-phong).
     unsigned vector_width = 0;
 };
 

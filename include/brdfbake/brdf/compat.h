@@ -8,6 +8,8 @@
  *                or double with -D BB_REAL_DOUBLE, in kernels; with -D BB_VECTOR_WIDTH=W a vector
  *                of W lanes (float16, double8): one source for scalar and vector kernels
  *   bb_scalar    the element type of real; bb_mask the type of a comparison of reals
+ *   bb_first(x), bb_all(m)  the first lane of x and whether every lane of m holds (for values
+ *                that are equal in every lane; the value itself in scalar builds)
  *   BB_R(x)       a literal of type real
  *   bb_select(a, b, c)   c ? b : a, branch-free (OpenCL select() semantics)
  *   bb_clamp, bb_min, bb_max, bb_sqrt ...  math that maps to the OpenCL built-ins
@@ -47,12 +49,18 @@ typedef BB_CAT(float, BB_VECTOR_WIDTH) real;
 typedef BB_CAT(int, BB_VECTOR_WIDTH) bb_mask;
 #endif
 #define bb_vload(p) BB_CAT(vload, BB_VECTOR_WIDTH)(0, (p))
+/* For values and masks that are equal in every lane (a cell's parameters broadcast): the first
+ * lane, and whether the mask holds (in every lane). Scalar builds: the value itself. */
+#define bb_first(x) ((x).s0)
+#define bb_all(m) all(m)
 /* Wider vectors than the CPU's registers (float16 on AVX2) make clang warn, once per helper,
  * that passing them "changes the ABI": every helper is inlined (BB_FN), so no call passes one. */
 #pragma clang diagnostic ignored "-Wpsabi"
 #else
 typedef bb_scalar real;
 typedef int bb_mask;
+#define bb_first(x) (x)
+#define bb_all(m) (m)
 #endif
 #define BB_R(x) ((real)(x))
 /* The ternary operator: for vector operands OpenCL C applies it per component, like select(). */
@@ -90,6 +98,8 @@ typedef double real;
 #endif
 typedef real bb_scalar;
 typedef int bb_mask;
+#define bb_first(x) (x)
+#define bb_all(m) (m)
 #define BB_FN static inline
 #define BB_R(x) ((real)(x))
 /* OpenCL's select(a, b, c) for scalars: c ? b : a */

@@ -85,7 +85,7 @@ BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
 #endif
 #if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
     case BB_MODEL_TORRANCE_SPARROW: {
-        int d = (int)p.v[BB_TORRANCE_SPARROW_DIST];
+        int d = (int)bb_first(p.v[BB_TORRANCE_SPARROW_DIST]);
         int kind = d == BB_TS_D_GGX ? BB_QUAD_GGX : (d == BB_TS_D_BECKMANN ? BB_QUAD_BECKMANN : BB_QUAD_BLINN);
         return bb_make_quad_dist(kind, p.v[BB_TORRANCE_SPARROW_ALPHA_X], p.v[BB_TORRANCE_SPARROW_ALPHA_Y],
                                  p.v[BB_TORRANCE_SPARROW_N]);
@@ -102,9 +102,10 @@ BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
 
 /* Mirror symmetry of the rule: for an isotropic lobe the integrand at azimuth offset -delta
  * equals that at delta (half-vector space; in the sampler's square phi_i -> -phi_i needs
- * phi_o = 0 too, and every sampler-space model is isotropic). Then two quarters suffice. */
+ * phi_o = 0 too, and every sampler-space model is isotropic). Then two quarters suffice.
+ * In a vector build d and phi_o are one cell's, equal in every lane. */
 BB_FN int bb_quad_mirrored(bb_quad_dist d, real phi_o) {
-    return d.kind == BB_QUAD_SAMPLER ? phi_o == BB_R(0.0) : d.ax == d.ay;
+    return d.kind == BB_QUAD_SAMPLER ? bb_all(phi_o == BB_R(0.0)) : bb_all(d.ax == d.ay);
 }
 
 /* Azimuth pieces of the half-vector rule. The rule runs over 8 pieces: each quarter k of the
@@ -128,18 +129,19 @@ typedef struct {
 BB_FN real bb_quad_piece_split(bb_quad_dist d, real phi_o) {
     const real q = BB_R(0.5) * BB_PI;
     real phi0 = phi_o - bb_floor(phi_o / q) * q;
-    int aligned = d.ax == d.ay || phi0 < BB_R(1e-6) || phi0 > q - BB_R(1e-6);
+    bb_mask aligned = d.ax == d.ay || phi0 < BB_R(1e-6) || phi0 > q - BB_R(1e-6);
     return bb_select(q - phi0, q, aligned);
 }
 
 /* The number of non-empty pieces (the node count is this times n^2). */
 BB_FN int bb_quad_piece_count(bb_quad_dist d, real phi_o) {
     if (bb_quad_mirrored(d, phi_o)) return 2;
-    return bb_quad_piece_split(d, phi_o) < BB_R(0.5) * BB_PI ? 8 : 4;
+    return bb_all(bb_quad_piece_split(d, phi_o) < BB_R(0.5) * BB_PI) ? 8 : 4;
 }
 
 /* The azimuth of node x in [0, 1] of piece (k, h) (piece = 2k + h); ddelta = 0 for an empty
- * piece. */
+ * piece. In a vector build (one row per lane, kernels/albedo.cl) only x may differ between
+ * lanes: d and phi_o are one cell's, so the branches below are taken by every lane alike. */
 BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, real phi_o, unsigned int piece, real x) {
     const real q = BB_R(0.5) * BB_PI;
     real split = bb_quad_piece_split(d, phi_o);
@@ -148,18 +150,18 @@ BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, real phi_o, unsigned 
     real lo = k * q + bb_select(BB_R(0.0), split, h);
     real hi = bb_select(k * q + split, (k + BB_R(1.0)) * q, h);
     bb_quad_azimuth a;
-    if (!(hi > lo)) {
+    if (bb_all(!(hi > lo))) {
         a.delta = lo;
         a.ddelta = BB_R(0.0);
         return a;
     }
-    if (d.ax == d.ay) { /* rho = 1: the identity */
+    if (bb_all(d.ax == d.ay)) { /* rho = 1: the identity */
         a.delta = lo + (hi - lo) * x;
         a.ddelta = hi - lo;
         return a;
     }
     real j = bb_floor((phi_o + BB_R(0.5) * (lo + hi)) / q);
-    real rho = bb_select(d.ax / d.ay, d.ay / d.ax, ((int)j & 1) == 0);
+    real rho = bb_select(d.ax / d.ay, d.ay / d.ax, bb_floor(BB_R(0.5) * j) == BB_R(0.5) * j); /* j even */
     real psi_lo = bb_clamp(phi_o + lo - j * q, BB_R(0.0), q), psi_hi = bb_clamp(phi_o + hi - j * q, BB_R(0.0), q);
     real th_lo = bb_atan2(bb_sin(psi_lo), rho * bb_cos(psi_lo));
     real th_hi = bb_atan2(bb_sin(psi_hi), rho * bb_cos(psi_hi));
@@ -256,7 +258,7 @@ BB_FN real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_params
 
     real oh = bb_clamp_cos(bb_dot(wo, h));
     bb_vec3 wi = bb_reflect(wo, h);
-    int ok = wi.z > BB_R(0.0) && oh > BB_R(0.0) && wo.z > BB_R(0.0);
+    bb_mask ok = wi.z > BB_R(0.0) && oh > BB_R(0.0) && wo.z > BB_R(0.0);
     real co = bb_select(BB_R(1.0), wo.z, ok);
     real f = bb_fresnel_eval(fkind, fp, oh);
     real w = BB_R(0.0);

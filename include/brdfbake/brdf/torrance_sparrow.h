@@ -35,7 +35,7 @@
 BB_FN real bb_torrance_sparrow_d(bb_params p, bb_vec3 m) {
     real ax = p.v[BB_TORRANCE_SPARROW_ALPHA_X], ay = p.v[BB_TORRANCE_SPARROW_ALPHA_Y];
     /* The distribution is the same for every work-item: a uniform branch. */
-    switch ((int)p.v[BB_TORRANCE_SPARROW_DIST]) {
+    switch ((int)bb_first(p.v[BB_TORRANCE_SPARROW_DIST])) {
     case BB_TS_D_BECKMANN:
         return bb_beckmann_d(m, ax, ay);
     case BB_TS_D_GGX:
@@ -48,7 +48,7 @@ BB_FN real bb_torrance_sparrow_d(bb_params p, bb_vec3 m) {
 /* A microfacet normal with density D(m) cos(theta_m). */
 BB_FN bb_vec3 bb_torrance_sparrow_sample_dcos(bb_params p, real u1, real u2) {
     real ax = p.v[BB_TORRANCE_SPARROW_ALPHA_X], ay = p.v[BB_TORRANCE_SPARROW_ALPHA_Y];
-    switch ((int)p.v[BB_TORRANCE_SPARROW_DIST]) {
+    switch ((int)bb_first(p.v[BB_TORRANCE_SPARROW_DIST])) {
     case BB_TS_D_BECKMANN:
         return bb_beckmann_sample_dcos(ax, ay, u1, u2);
     case BB_TS_D_GGX:
@@ -70,7 +70,7 @@ BB_FN real bb_vgroove_g(bb_vec3 wo, bb_vec3 wi) {
 BB_FN real bb_torrance_sparrow_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
     bb_vec3 wh = bb_normalize(bb_add(wo, wi));
     real oh = bb_clamp_cos(bb_dot(wo, wh));
-    int ok = wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0) && oh > BB_R(0.0);
+    bb_mask ok = wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0) && oh > BB_R(0.0);
     real co = bb_select(BB_R(1.0), wo.z, ok), ci = bb_select(BB_R(1.0), wi.z, ok);
     real ohs = bb_select(BB_R(1.0), oh, ok);
     /* G / (cos_o cos_i); 1/(co ci) may overflow to inf in float, which min() discards. */
@@ -83,7 +83,7 @@ BB_FN bb_sample bb_torrance_sparrow_sample(bb_params p, int fkind, bb_params fp,
     bb_vec3 wh = bb_torrance_sparrow_sample_dcos(p, u1, u2);
     real oh = bb_clamp_cos(bb_dot(wo, wh));
     bb_vec3 wi = bb_reflect(wo, wh);
-    int ok = wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0) && oh > BB_R(0.0);
+    bb_mask ok = wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0) && oh > BB_R(0.0);
     real co = bb_select(BB_R(1.0), wo.z, ok), hz = bb_select(BB_R(1.0), wh.z, ok);
     real g = bb_min(bb_min(oh / (co * hz), BB_R(2.0)), BB_R(2.0) * wi.z / co);
     real w = g * bb_fresnel_eval(fkind, fp, oh);
