@@ -558,6 +558,15 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     BuildRequest build;
     build.kernel_file = "dielectric.cl";
     build.precision = req.precision;
+    // The vector path (dielectric_replicas_disk): W samples per step, their disk points from the
+    // table shared by all cells, as the albedo kernel's.
+    build.has_vector_path = true;
+    build.vector_width = req.vector_width;
+    unsigned lanes = engine.vector_width(build);
+    if (lanes > 1 && points % lanes != 0) {
+        build.vector_width = 1;  // a ragged last step: the scalar kernel
+        lanes = 1;
+    }
     cl::Program& program = engine.program(build);
 
     std::vector<double> mus, alphas, etas;
@@ -567,11 +576,12 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
         etas.push_back(c.eta);
     }
     RealBuffers bufs(engine, req.precision);
+    const std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
     cl::Buffer b_mu = bufs.input(mus), b_alpha = bufs.input(alphas), b_eta = bufs.input(etas),
-               b_shift = bufs.input(replica_shifts(req.replicas, req.seed));
+               b_shift = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
     cl::Buffer b_r = bufs.output(n_items), b_t = bufs.output(n_items);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
-    cl::Kernel kernel(program, "dielectric_replicas");
+    cl::Kernel kernel(program, lanes > 1 ? "dielectric_replicas_disk" : "dielectric_replicas");
     int a = 0;
     kernel.setArg(a++, b_mu);
     kernel.setArg(a++, b_alpha);
@@ -595,6 +605,7 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     result.samples_per_cell = points * req.replicas;
     result.kernel_seconds = event_seconds(done);
     result.method = method_text(Method::Importance, req.replicas, points);
+    result.vector_width = lanes;
     auto where = [&](size_t c) {
         std::ostringstream m;
         m << "the rough dielectric produced NaN or Inf at mu = " << req.cells[c].mu << ", alpha = " << req.cells[c].alpha

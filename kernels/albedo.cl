@@ -242,21 +242,6 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
 /* Steps per plain-summed block of the vector path. */
 #define BB_DISK_BLOCK 32u
 
-/* The sum of the lanes of v, compensated (Kahan). */
-BB_FN bb_scalar bb_lane_sum(real v, real c) {
-    bb_scalar a[BB_VECTOR_WIDTH], b[BB_VECTOR_WIDTH];
-    BB_CAT(vstore, BB_VECTOR_WIDTH)(v, 0, a);
-    BB_CAT(vstore, BB_VECTOR_WIDTH)(c, 0, b);
-    bb_scalar sum = 0, comp = 0;
-    for (int k = 0; k < BB_VECTOR_WIDTH; ++k) {
-        const bb_scalar y = (a[k] - b[k]) - comp;
-        const bb_scalar t = sum + y;
-        comp = (t - sum) - y;
-        sum = t;
-    }
-    return sum;
-}
-
 #ifdef BB_QUADRATURE
 
 /* The half-vector rule of albedo_quadrature (ggx, beckmann, torrance-sparrow, blinn-phong) with
@@ -330,12 +315,7 @@ __kernel void albedo_quadrature_rows(__global const bb_scalar* cell_mu,
         const real scale = az.ddelta * r.t_max;
         BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * scale * row, live));
     }
-    unsigned int n_bad = 0;
-    {
-        unsigned int nb[BB_VECTOR_WIDTH];
-        BB_CAT(vstore, BB_VECTOR_WIDTH)(BB_CAT(convert_uint, BB_VECTOR_WIDTH)(bad), 0, nb);
-        for (int k = 0; k < BB_VECTOR_WIDTH; ++k) n_bad += nb[k];
-    }
+    const unsigned int n_bad = bb_lane_count(bad);
     piece_sum[gid] = copies * bb_lane_sum(sum, comp);
     bad_count[gid] = params_ok ? n_bad : n * n;
 }
@@ -397,12 +377,7 @@ __kernel void albedo_replicas_disk(__global const bb_scalar* cell_mu,
         comp = (t - sum) - y;
         sum = t;
     }
-    unsigned int n_bad = 0;
-    {
-        unsigned int nb[BB_VECTOR_WIDTH];
-        BB_CAT(vstore, BB_VECTOR_WIDTH)(BB_CAT(convert_uint, BB_VECTOR_WIDTH)(bad), 0, nb);
-        for (int k = 0; k < BB_VECTOR_WIDTH; ++k) n_bad += nb[k];
-    }
+    const unsigned int n_bad = bb_lane_count(bad);
     replica_mean[gid] = bb_lane_sum(sum, comp) / (bb_scalar)n_points;
     bad_count[gid] = params_ok ? n_bad : n_points;
 }

@@ -116,6 +116,9 @@ struct DielectricRequest {
     unsigned replicas = 16;
     Precision precision = Precision::Float;
     std::uint64_t seed = 0x62726466u;
+    // Samples per kernel step: 0 the device's choice (vectors on CPUs, as AlbedoRequest), 1 the
+    // scalar kernel, 2/4/8/16 a vector kernel of that width.
+    unsigned vector_width = 0;
 };
 
 struct DielectricResult {
@@ -124,6 +127,7 @@ struct DielectricResult {
     std::uint64_t samples_per_cell = 0;
     std::string method;
     double kernel_seconds = 0.0;
+    unsigned vector_width = 1;  // samples per kernel step (1: the scalar kernel)
 };
 
 /// Reflected and transmitted energy fractions of a rough dielectric (kernels/dielectric.cl).

@@ -183,4 +183,31 @@ BB_FN bb_vec3 bb_reflect(bb_vec3 w, bb_vec3 m) {
     return bb_add(bb_scale(m, BB_R(2.0) * bb_dot(w, m)), bb_scale(w, BB_R(-1.0)));
 }
 
+#if defined(__OPENCL_C_VERSION__) && defined(BB_VECTOR_WIDTH)
+/* The vector kernels' reductions over lanes. */
+
+/* The sum of the lanes of v - c (a per-lane sum and its Kahan compensation), compensated. */
+BB_FN bb_scalar bb_lane_sum(real v, real c) {
+    bb_scalar a[BB_VECTOR_WIDTH], b[BB_VECTOR_WIDTH];
+    BB_CAT(vstore, BB_VECTOR_WIDTH)(v, 0, a);
+    BB_CAT(vstore, BB_VECTOR_WIDTH)(c, 0, b);
+    bb_scalar sum = 0, comp = 0;
+    for (int k = 0; k < BB_VECTOR_WIDTH; ++k) {
+        const bb_scalar y = (a[k] - b[k]) - comp;
+        const bb_scalar t = sum + y;
+        comp = (t - sum) - y;
+        sum = t;
+    }
+    return sum;
+}
+
+/* The sum of the lanes of a per-lane count. */
+BB_FN unsigned int bb_lane_count(bb_mask m) {
+    unsigned int n[BB_VECTOR_WIDTH], total = 0;
+    BB_CAT(vstore, BB_VECTOR_WIDTH)(BB_CAT(convert_uint, BB_VECTOR_WIDTH)(m), 0, n);
+    for (int k = 0; k < BB_VECTOR_WIDTH; ++k) total += n[k];
+    return total;
+}
+#endif
+
 #endif /* BRDFBAKE_BRDF_COMPAT_H */

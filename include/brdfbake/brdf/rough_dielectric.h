@@ -20,6 +20,7 @@
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/sampling.h"
 
 typedef struct {
     real r; /* reflected energy fraction of this sample */
@@ -45,10 +46,12 @@ BB_FN real bb_beta(real a, real b) {
 #endif
 }
 
-/* One sample of the reflected and transmitted fractions; u1, u2 in [0, 1). */
-BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, real ax, real ay, real eta, int correlated, real u1, real u2) {
+/* One sample of the reflected and transmitted fractions from the disk point d of the visible-
+ * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
+ * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
+BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int correlated, bb_vec2 d) {
     bb_rt out;
-    bb_vec3 wh = bb_ggx_sample_vndf(wo, ax, ay, u1, u2);
+    bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
     real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
     real f = bb_fresnel_dielectric(c, eta);
     real g1o = bb_ggx_g1(wo, ax, ay);
@@ -61,11 +64,20 @@ BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, real ax, real ay, real eta, i
     bb_vec3 wt = bb_refract(wo, wh, c, eta);
     bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
     real g1t = bb_ggx_g1(wt_up, ax, ay);
-    real lo = bb_ggx_lambda(wo, ax, ay), lt = bb_ggx_lambda(wt_up, ax, ay);
-    real corr_t = bb_select(BB_R(0.0), bb_beta(BB_R(1.0) + lo, BB_R(1.0) + lt), g1o > BB_R(0.0) && g1t > BB_R(0.0));
-    real g2t = bb_select(g1o * g1t, corr_t, correlated != 0);
+    /* correlated is the same for every sample (and every lane): only its branch is computed
+     * (the Beta function's log-gammas are the costliest part of a sample) */
+    real g2t = g1o * g1t;
+    if (correlated != 0) {
+        real lo = bb_ggx_lambda(wo, ax, ay), lt = bb_ggx_lambda(wt_up, ax, ay);
+        g2t = bb_select(BB_R(0.0), bb_beta(BB_R(1.0) + lo, BB_R(1.0) + lt), g1o > BB_R(0.0) && g1t > BB_R(0.0));
+    }
     out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t * inv_g1o, wt.z < BB_R(0.0) && g1o > BB_R(0.0));
     return out;
+}
+
+/* One sample of the reflected and transmitted fractions; u1, u2 in [0, 1). */
+BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, real ax, real ay, real eta, int correlated, real u1, real u2) {
+    return bb_rough_dielectric_sample_disk(wo, ax, ay, eta, correlated, bb_disk_polar(u1, u2));
 }
 
 #endif /* BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H */
