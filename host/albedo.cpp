@@ -10,6 +10,7 @@
 #include <iostream>
 #include <map>
 #include <sstream>
+#include <type_traits>
 
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/integrands.h"
@@ -176,6 +177,42 @@ std::vector<double> disk_table(const std::vector<double>& shifts, unsigned repli
     return table;
 }
 
+// The cell-independent half of the generic vector path (albedo_replicas_points): the rotated
+// Hammersley point (u1, u2) of every point of every replica, laid out per replica, per step of
+// `lanes` points, the lanes' u1 then their u2. Computed in the kernel's precision with the
+// scalar kernel's operations (bb_hammersley_u1/u2, bb_rotate), so that both kernels see the
+// same points to the last bit.
+template <typename T>
+void fill_point_table(std::vector<double>& table, const std::vector<double>& shifts, unsigned replicas,
+                      std::uint64_t points, unsigned lanes) {
+    const unsigned n = unsigned(points);
+    for (unsigned r = 0; r < replicas; ++r) {
+        const T s1 = T(shifts[2 * r]), s2 = T(shifts[2 * r + 1]);
+        double* out = table.data() + size_t(r) * points * 2;
+        for (unsigned i = 0; i < n; ++i) {
+            T u1 = (T(i) + T(0.5)) / T(n) + s1;
+            u1 = u1 >= T(1) ? u1 - T(1) : u1;
+            const std::uint32_t bits = bb_reverse_bits(i);
+            T u2 = (std::is_same<T, float>::value ? T(bits >> 8) * T(5.9604644775390625e-8)
+                                                   : T(bits) * T(2.3283064365386963e-10)) + s2;
+            u2 = u2 >= T(1) ? u2 - T(1) : u2;
+            const size_t base = size_t(i / lanes) * 2 * lanes + i % lanes;
+            out[base] = double(u1);
+            out[base + lanes] = double(u2);
+        }
+    }
+}
+
+std::vector<double> point_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
+                                unsigned lanes, Precision precision) {
+    std::vector<double> table(size_t(replicas) * points * 2);
+    if (precision == Precision::Float)
+        fill_point_table<float>(table, shifts, replicas, points, lanes);
+    else
+        fill_point_table<double>(table, shifts, replicas, points, lanes);
+    return table;
+}
+
 }  // namespace
 
 namespace {
@@ -236,14 +273,16 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     build.random123 = req.method == Method::MonteCarlo;
     // The vector path: importance sampling with W samples per step, their disk points from a
     // table shared by all cells.
-    build.has_vector_path = req.method == Method::Importance && bb_model_samples_disk(req.model) != 0;
+    const bool disk = bb_model_samples_disk(req.model) != 0;
+    build.has_vector_path = req.method == Method::Importance && (disk || bb_model_samples_vector(req.model) != 0);
     build.vector_width = req.vector_width;
     unsigned lanes = engine.vector_width(build);
     if (lanes > 1 && points % lanes != 0) {
         build.vector_width = 1;  // a ragged last step: the scalar kernel
         lanes = 1;
     }
-    if (lanes > 1) {
+    if (lanes > 1 && !disk) build.defines.push_back({"BB_VECTOR_POINTS", "1"});
+    if (lanes > 1 && disk) {
         // A launch whose cells are all isotropic gets the disk weight without the terms that
         // vanish then (bb_model_disk_isotropic): a program of its own, cached as any other.
         bool isotropic = true;
@@ -263,11 +302,13 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     RealBuffers bufs(engine, req.precision);
     cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
                b_fp = bufs.input(fparams);
-    cl::Buffer b_points = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
+    cl::Buffer b_points = bufs.input(lanes == 1 ? shifts
+                                     : disk   ? disk_table(shifts, req.replicas, points, lanes, req.precision)
+                                              : point_table(shifts, req.replicas, points, lanes, req.precision));
     cl::Buffer b_mean = bufs.output(n_items);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
 
-    cl::Kernel kernel(program, lanes > 1 ? "albedo_replicas_disk" : "albedo_replicas");
+    cl::Kernel kernel(program, lanes == 1 ? "albedo_replicas" : (disk ? "albedo_replicas_disk" : "albedo_replicas_points"));
     int a = 0;
     kernel.setArg(a++, b_mu);
     kernel.setArg(a++, b_phi);

@@ -19,14 +19,18 @@
  *                         sqrt(1 - x^2) read from a table that the host fills once for all cells
  *                         (they do not depend on the cell), the weight in the model's closed form
  *                         (bb_model_disk_weight). Same point set, same shifts, same estimator;
- *                         PoCL compiles it to SIMD code.
+ *                         PoCL compiles it to SIMD code;
+ *   albedo_replicas_points  -D BB_VECTOR_WIDTH=W -D BB_VECTOR_POINTS: the same for the other
+ *                         models with a branch-free sampler (bb_model_samples_vector), the
+ *                         rotated Hammersley points (u1, u2) read from a table in the kernel's
+ *                         precision and bb_model_sample evaluated on W lanes.
  * And two for quadrature (-D BB_QUADRATURE):
  *   albedo_quadrature       scalar real: every rule (GPUs, and the sampler's square everywhere);
  *   albedo_quadrature_rows  -D BB_VECTOR_WIDTH=W: the half-vector rule with W rows per step, one
  *                           per lane (same nodes, same functions, the same sums to rounding).
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W
- * [-D BB_ISOTROPIC=1]]
+ * [-D BB_ISOTROPIC=1 | -D BB_VECTOR_POINTS=1]]
  * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
  * alone, a smaller program to build]. */
 #include "brdfbake/brdf/models.h"
@@ -322,12 +326,26 @@ __kernel void albedo_quadrature_rows(__global const bb_scalar* cell_mu,
 
 #else /* BB_QUADRATURE */
 
-__kernel void albedo_replicas_disk(__global const bb_scalar* cell_mu,
+/* Two vector entry points from one body:
+ *   albedo_replicas_disk    (GGX) the table holds W x, W y, W h of the disk points per step and
+ *                           the weight is the model's closed form (bb_model_disk_weight);
+ *   albedo_replicas_points  (-D BB_VECTOR_POINTS: the other models with a branch-free sampler,
+ *                           bb_model_samples_vector) the table holds W u1, W u2 of the rotated
+ *                           Hammersley points per step and the weight is bb_model_sample's. */
+#ifdef BB_VECTOR_POINTS
+#define BB_VECTOR_KERNEL albedo_replicas_points
+#define BB_STEP (2 * BB_VECTOR_WIDTH)
+#else
+#define BB_VECTOR_KERNEL albedo_replicas_disk
+#define BB_STEP (3 * BB_VECTOR_WIDTH)
+#endif
+
+__kernel void BB_VECTOR_KERNEL(__global const bb_scalar* cell_mu,
                                    __global const bb_scalar* cell_phi,
                                    __global const bb_scalar* model_p,
                                    __global const bb_scalar* fresnel_p,
                                    __global const bb_scalar* disk,   /* per replica: n_points / W
-                                                                        chunks of W x, W y, W h */
+                                                                        steps of BB_STEP values */
                                    const unsigned int n_points,      /* a multiple of W */
                                    const unsigned int n_replicas,
                                    const unsigned int n_cells,
@@ -349,14 +367,16 @@ __kernel void albedo_replicas_disk(__global const bb_scalar* cell_mu,
         params_ok &= (unsigned int)(isfinite(a) && isfinite(b));
     }
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], (real)cell_phi[cell]);
+#ifndef BB_VECTOR_POINTS
     const bb_disk_cell dc = bb_model_disk_cell(BB_MODEL, p, wo, BB_ISOTROPIC);
+#endif
 
     /* Per lane: plain sums over blocks of BB_DISK_BLOCK steps (at most 32 terms, exact to a few
      * ulps), the blocks added with Kahan compensation (no loop-carried compensation per sample). */
     real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_chunks = n_points / BB_VECTOR_WIDTH;
-    __global const bb_scalar* d = disk + (size_t)rep * n_chunks * (3 * BB_VECTOR_WIDTH);
+    __global const bb_scalar* d = disk + (size_t)rep * n_chunks * BB_STEP;
     for (unsigned int c0 = 0; c0 < n_chunks; c0 += BB_DISK_BLOCK) {
         const unsigned int c1 = min(n_chunks, c0 + BB_DISK_BLOCK);
         real block = BB_R(0.0);
@@ -364,10 +384,14 @@ __kernel void albedo_replicas_disk(__global const bb_scalar* cell_mu,
          * in sequence), and four independent steps in flight keep the units busy (issue 9:
          * x1.35 in float, x1.3 in double on the development machine; 8 gave no more). */
         __attribute__((opencl_unroll_hint(4)))
-        for (unsigned int c = c0; c < c1; ++c, d += 3 * BB_VECTOR_WIDTH) {
+        for (unsigned int c = c0; c < c1; ++c, d += BB_STEP) {
+#ifdef BB_VECTOR_POINTS
+            const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH)).weight;
+#else
             const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
             const real w = bb_model_disk_weight(BB_MODEL, dc, BB_FRESNEL, fp, pt, bb_vload(d + 2 * BB_VECTOR_WIDTH),
                                                 BB_ISOTROPIC);
+#endif
             const bb_mask ok = isfinite(w);
             bad += bb_select((bb_mask)1, (bb_mask)0, ok);
             block += bb_select(BB_R(0.0), w, ok);

@@ -161,6 +161,16 @@ BB_FN bb_sample bb_model_sample(int model, bb_params p, int fkind, bb_params fp,
  * vector path of kernels/albedo.cl. The host asks before choosing that path. */
 BB_FN int bb_model_samples_disk(int model) { return model == BB_MODEL_GGX; }
 
+/* Models whose importance sampler (bb_model_sample) is branch-free, so that the generic vector
+ * path of kernels/albedo.cl (albedo_replicas_points, -D BB_VECTOR_POINTS) evaluates it on W
+ * lanes; the others run the scalar kernel. tests/test_albedo_vector.cpp holds each to the scalar
+ * kernel's answer. */
+BB_FN int bb_model_samples_vector(int model) {
+    return model == BB_MODEL_BECKMANN || model == BB_MODEL_LAMBERT || model == BB_MODEL_OREN_NAYAR ||
+           model == BB_MODEL_PHONG || model == BB_MODEL_PHONG_ORIGINAL || model == BB_MODEL_BLINN_PHONG ||
+           model == BB_MODEL_TORRANCE_SPARROW;
+}
+
 #if BB_HAS_MODEL(BB_MODEL_GGX)
 /* The vector path's estimator, in two halves: the constants of a cell, once per cell, and the
  * weight of one disk point d with h = sqrt(1 - d.x^2), both tabulated by the host (GGX's closed
