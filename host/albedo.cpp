@@ -273,8 +273,12 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     build.random123 = req.method == Method::MonteCarlo;
     // The vector path: importance sampling with W samples per step, their disk points from a
     // table shared by all cells.
-    const bool disk = bb_model_samples_disk(req.model) != 0;
-    build.has_vector_path = req.method == Method::Importance && (disk || bb_model_samples_vector(req.model) != 0);
+    // The vector paths: importance sampling (GGX's disk path, or the model's own branch-free
+    // sampler) and qmc's uniform hemisphere weights for models with a branch-free evaluation.
+    const bool uniform = req.method == Method::QuasiMonteCarlo;
+    const bool disk = !uniform && bb_model_samples_disk(req.model) != 0;
+    build.has_vector_path = (req.method == Method::Importance && (disk || bb_model_samples_vector(req.model) != 0)) ||
+                            (uniform && bb_model_evals_vector(req.model) != 0);
     build.vector_width = req.vector_width;
     unsigned lanes = engine.vector_width(build);
     if (lanes > 1 && points % lanes != 0) {
@@ -282,6 +286,7 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
         lanes = 1;
     }
     if (lanes > 1 && !disk) build.defines.push_back({"BB_VECTOR_POINTS", "1"});
+    if (lanes > 1 && uniform) build.defines.push_back({"BB_VECTOR_UNIFORM", "1"});
     if (lanes > 1 && disk) {
         // A launch whose cells are all isotropic gets the disk weight without the terms that
         // vanish then (bb_model_disk_isotropic): a program of its own, cached as any other.

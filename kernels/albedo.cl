@@ -23,20 +23,22 @@
  *   albedo_replicas_points  -D BB_VECTOR_WIDTH=W -D BB_VECTOR_POINTS: the same for the other
  *                         models with a branch-free sampler (bb_model_samples_vector), the
  *                         rotated Hammersley points (u1, u2) read from a table in the kernel's
- *                         precision and bb_model_sample evaluated on W lanes.
+ *                         precision and bb_model_sample evaluated on W lanes; with
+ *                         -D BB_VECTOR_UNIFORM the qmc method (uniform hemisphere weights,
+ *                         bb_model_evals_vector) on the same points.
  * And two for quadrature (-D BB_QUADRATURE):
  *   albedo_quadrature       scalar real: every rule (GPUs, and the sampler's square everywhere);
  *   albedo_quadrature_rows  -D BB_VECTOR_WIDTH=W: the half-vector rule with W rows per step, one
  *                           per lane (same nodes, same functions, the same sums to rounding).
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W
- * [-D BB_ISOTROPIC=1 | -D BB_VECTOR_POINTS=1]]
+ * [-D BB_ISOTROPIC=1 | -D BB_VECTOR_POINTS=1 [-D BB_VECTOR_UNIFORM=1]]]
  * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
  * alone, a smaller program to build]. */
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
 
-#if !defined(BB_VECTOR_WIDTH) || defined(BB_QUADRATURE)
+#if !defined(BB_VECTOR_WIDTH) || defined(BB_QUADRATURE) || defined(BB_VECTOR_UNIFORM)
 #include "brdfbake/brdf/integrands.h"
 #endif
 
@@ -385,7 +387,9 @@ __kernel void BB_VECTOR_KERNEL(__global const bb_scalar* cell_mu,
          * x1.35 in float, x1.3 in double on the development machine; 8 gave no more). */
         __attribute__((opencl_unroll_hint(4)))
         for (unsigned int c = c0; c < c1; ++c, d += BB_STEP) {
-#ifdef BB_VECTOR_POINTS
+#if defined(BB_VECTOR_POINTS) && defined(BB_VECTOR_UNIFORM)
+            const real w = bb_uniform_hemisphere_weight(BB_MODEL, p, BB_FRESNEL, fp, wo, bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
+#elif defined(BB_VECTOR_POINTS)
             const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH)).weight;
 #else
             const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));

@@ -171,6 +171,12 @@ BB_FN int bb_model_samples_vector(int model) {
            model == BB_MODEL_TORRANCE_SPARROW;
 }
 
+/* Models whose evaluation (bb_model_eval) is branch-free, so that the qmc method's uniform
+ * hemisphere weights run on W lanes too (-D BB_VECTOR_UNIFORM); tests/test_albedo_vector.cpp. */
+BB_FN int bb_model_evals_vector(int model) {
+    return model == BB_MODEL_GGX || bb_model_samples_vector(model);
+}
+
 #if BB_HAS_MODEL(BB_MODEL_GGX)
 /* The vector path's estimator, in two halves: the constants of a cell, once per cell, and the
  * weight of one disk point d with h = sqrt(1 - d.x^2), both tabulated by the host (GGX's closed
