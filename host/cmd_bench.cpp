@@ -23,9 +23,14 @@ struct BenchCmdOptions {
 int run_bench_command(const BenchCmdOptions& o, const GlobalOptions& g) {
     if (!o.plot.empty() && !is_plot_path(o.plot)) throw Error("--plot must end in .png or .svg");
     BenchOptions b = o.full ? BenchOptions() : BenchOptions::quick_options();
-    if (!o.full) {  // short, but large enough for figures that mean something
-        b.table = 16;
-        b.samples = 1u << 14;
+    if (!o.full) {  // short, but large enough for figures that mean something: runs of tens of
+                    // milliseconds, a warm-up and the median of up to 5 (single runs of a 16x16
+                    // table lasted 2-16 ms and their ratios varied 2x)
+        b.quick = false;
+        b.min_seconds = 0.1;
+        b.max_runs = 5;
+        b.table = 32;
+        b.samples = 1u << 16;
         b.scaling_sizes = {8, 16, 32};
         b.scaling_size_samples = 1u << 12;
         b.scaling_samples = {1u << 10, 1u << 12, 1u << 14};
