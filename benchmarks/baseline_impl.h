@@ -155,3 +155,5 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
     }
 }
 }  // namespace BASELINE_NS
+
+#include "baseline_entry.h"

@@ -3,7 +3,6 @@
 #define BB_HOST_REAL_FLOAT 1
 #define BASELINE_NS bb_plain_fast_float
 #define BASELINE_FN replicas_plain_fast_float
-#include "baseline_kernels.h"
 #include "baseline_plain_impl.h"
 
 static_assert(sizeof(bb_plain_fast_float::real) == sizeof(float),

@@ -157,13 +157,4 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
 }
 }  // namespace BASELINE_NS
 
-// The flavour's entry point (baseline_kernels.h).
-namespace brdfbake {
-namespace baseline {
-void BASELINE_FN(const std::vector<double>& mus, const std::vector<double>& alphas, bool correlated,
-                 std::uint64_t points, unsigned replicas, const std::vector<double>& shifts,
-                 std::vector<double>& means, std::vector<std::uint64_t>& bad) {
-    BASELINE_NS::BASELINE_FN(mus, alphas, correlated, points, replicas, shifts, means, bad);
-}
-}  // namespace baseline
-}  // namespace brdfbake
+#include "baseline_entry.h"

@@ -2,7 +2,6 @@
 // loop of baseline_plain_impl.h with real = double.
 #define BASELINE_NS bb_plain_strict_double
 #define BASELINE_FN replicas_plain_strict_double
-#include "baseline_kernels.h"
 #include "baseline_plain_impl.h"
 
 static_assert(sizeof(bb_plain_strict_double::real) == sizeof(double),

@@ -3,7 +3,6 @@
 #define BB_HOST_REAL_FLOAT 1
 #define BASELINE_NS bb_plain_strict_float
 #define BASELINE_FN replicas_plain_strict_float
-#include "baseline_kernels.h"
 #include "baseline_plain_impl.h"
 
 static_assert(sizeof(bb_plain_strict_float::real) == sizeof(float),

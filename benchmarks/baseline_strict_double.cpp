@@ -2,14 +2,3 @@
 #define BASELINE_NS bb_strict_double
 #define BASELINE_FN replicas_strict_double
 #include "baseline_impl.h"
-#include "baseline_kernels.h"
-
-namespace brdfbake {
-namespace baseline {
-void replicas_strict_double(const std::vector<double>& mus, const std::vector<double>& alphas, bool correlated,
-                 std::uint64_t points, unsigned replicas, const std::vector<double>& shifts,
-                 std::vector<double>& means, std::vector<std::uint64_t>& bad) {
-    bb_strict_double::replicas_strict_double(mus, alphas, correlated, points, replicas, shifts, means, bad);
-}
-}  // namespace baseline
-}  // namespace brdfbake

@@ -4,16 +4,5 @@
 #define BASELINE_NS bb_strict_float
 #define BASELINE_FN replicas_strict_float
 #include "baseline_impl.h"
-#include "baseline_kernels.h"
 
 static_assert(sizeof(bb_strict_float::real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");
-
-namespace brdfbake {
-namespace baseline {
-void replicas_strict_float(const std::vector<double>& mus, const std::vector<double>& alphas, bool correlated,
-                 std::uint64_t points, unsigned replicas, const std::vector<double>& shifts,
-                 std::vector<double>& means, std::vector<std::uint64_t>& bad) {
-    bb_strict_float::replicas_strict_float(mus, alphas, correlated, points, replicas, shifts, means, bad);
-}
-}  // namespace baseline
-}  // namespace brdfbake

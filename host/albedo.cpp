@@ -271,8 +271,6 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     build.defines = {{"BB_MODEL", std::to_string(req.model)},
                      {"BB_FRESNEL", std::to_string(req.fresnel.kind)}};
     build.random123 = req.method == Method::MonteCarlo;
-    // The vector path: importance sampling with W samples per step, their disk points from a
-    // table shared by all cells.
     // The vector paths: importance sampling (GGX's disk path, or the model's own branch-free
     // sampler) and qmc's uniform hemisphere weights for models with a branch-free evaluation.
     const bool uniform = req.method == Method::QuasiMonteCarlo;

@@ -51,6 +51,21 @@
         (sum) = t_;                      \
     } while (0)
 
+/* Reads the cell's parameters (into every lane of a vector build); 0 if any is not finite. A
+ * non-finite parameter would hide behind the models' guards (x > 0 is false for NaN) and turn
+ * into zero weights: the kernels count every sample of such a cell as non-finite instead. */
+BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global const bb_scalar* fresnel_p,
+                                  unsigned int cell, bb_params* p, bb_params* fp) {
+    unsigned int ok = 1;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
+        const bb_scalar a = model_p[cell * BB_MAX_PARAMS + k], b = fresnel_p[k];
+        p->v[k] = (real)a;
+        fp->v[k] = (real)b;
+        ok &= (unsigned int)(isfinite(a) && isfinite(b));
+    }
+    return ok;
+}
+
 #ifndef BB_VECTOR_WIDTH
 
 #ifdef BB_PHILOX
@@ -61,20 +76,6 @@
 #define BB_METHOD_IMPORTANCE 0
 #define BB_METHOD_QMC 1
 #define BB_METHOD_MC 2
-
-/* Reads the cell's parameters; 0 if any is not finite. A non-finite parameter would hide behind
- * the models' guards (x > 0 is false for NaN) and turn into zero weights: the kernels count
- * every sample of such a cell as non-finite instead. */
-BB_FN unsigned int bb_read_params(__global const real* model_p, __global const real* fresnel_p, unsigned int cell,
-                                  bb_params* p, bb_params* fp) {
-    unsigned int ok = 1;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
-        p->v[k] = model_p[cell * BB_MAX_PARAMS + k];
-        fp->v[k] = fresnel_p[k];
-        ok &= (unsigned int)(isfinite(p->v[k]) && isfinite(fp->v[k]));
-    }
-    return ok;
-}
 
 #ifndef BB_QUADRATURE
 
@@ -245,9 +246,6 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
 #define BB_ISOTROPIC 0
 #endif
 
-/* Steps per plain-summed block of the vector path. */
-#define BB_DISK_BLOCK 32u
-
 #ifdef BB_QUADRATURE
 
 /* The half-vector rule of albedo_quadrature (ggx, beckmann, torrance-sparrow, blinn-phong) with
@@ -281,13 +279,7 @@ __kernel void albedo_quadrature_rows(__global const bb_scalar* cell_mu,
 #undef BB_PAD
 
     bb_params p, fp;
-    unsigned int params_ok = 1;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
-        const bb_scalar a = model_p[cell * BB_MAX_PARAMS + k], b = fresnel_p[k];
-        p.v[k] = (real)a;
-        fp.v[k] = (real)b;
-        params_ok &= (unsigned int)(isfinite(a) && isfinite(b));
-    }
+    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
     const real phi_o = (real)cell_phi[cell];
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], phi_o);
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);
@@ -361,26 +353,20 @@ __kernel void BB_VECTOR_KERNEL(__global const bb_scalar* cell_mu,
     const unsigned int rep = gid - cell * n_replicas;
 
     bb_params p, fp;
-    unsigned int params_ok = 1;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
-        const bb_scalar a = model_p[cell * BB_MAX_PARAMS + k], b = fresnel_p[k];
-        p.v[k] = (real)a;
-        fp.v[k] = (real)b;
-        params_ok &= (unsigned int)(isfinite(a) && isfinite(b));
-    }
+    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], (real)cell_phi[cell]);
 #ifndef BB_VECTOR_POINTS
     const bb_disk_cell dc = bb_model_disk_cell(BB_MODEL, p, wo, BB_ISOTROPIC);
 #endif
 
-    /* Per lane: plain sums over blocks of BB_DISK_BLOCK steps (at most 32 terms, exact to a few
+    /* Per lane: plain sums over blocks of BB_VECTOR_BLOCK steps (at most 32 terms, exact to a few
      * ulps), the blocks added with Kahan compensation (no loop-carried compensation per sample). */
     real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_chunks = n_points / BB_VECTOR_WIDTH;
     __global const bb_scalar* d = disk + (size_t)rep * n_chunks * BB_STEP;
-    for (unsigned int c0 = 0; c0 < n_chunks; c0 += BB_DISK_BLOCK) {
-        const unsigned int c1 = min(n_chunks, c0 + BB_DISK_BLOCK);
+    for (unsigned int c0 = 0; c0 < n_chunks; c0 += BB_VECTOR_BLOCK) {
+        const unsigned int c1 = min(n_chunks, c0 + BB_VECTOR_BLOCK);
         real block = BB_R(0.0);
         /* Unrolled: the body is one long dependency chain (two square roots and a division
          * in sequence), and four independent steps in flight keep the units busy (issue 9:

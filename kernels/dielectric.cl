@@ -70,13 +70,13 @@ __kernel void dielectric_replicas_disk(__global const bb_scalar* cell_mu, __glob
     const unsigned int rep = gid - cell * n_replicas;
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], BB_R(0.0));
     const real alpha = (real)cell_alpha[cell], eta = (real)cell_eta[cell];
-    /* Per lane: plain sums over blocks of 32 steps, Kahan-compensated across blocks. */
+    /* Per lane: plain sums over blocks of BB_VECTOR_BLOCK steps, Kahan-compensated across blocks. */
     real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_steps = n_points / BB_VECTOR_WIDTH;
     __global const bb_scalar* d = disk + (size_t)rep * n_steps * (3 * BB_VECTOR_WIDTH);
-    for (unsigned int c0 = 0; c0 < n_steps; c0 += 32u) {
-        const unsigned int c1 = min(n_steps, c0 + 32u);
+    for (unsigned int c0 = 0; c0 < n_steps; c0 += BB_VECTOR_BLOCK) {
+        const unsigned int c1 = min(n_steps, c0 + BB_VECTOR_BLOCK);
         real br = BB_R(0.0), bt = BB_R(0.0);
         __attribute__((opencl_unroll_hint(2)))
         for (unsigned int c = c0; c < c1; ++c, d += 3 * BB_VECTOR_WIDTH) {

@@ -184,7 +184,10 @@ BB_FN bb_vec3 bb_reflect(bb_vec3 w, bb_vec3 m) {
 }
 
 #if defined(__OPENCL_C_VERSION__) && defined(BB_VECTOR_WIDTH)
-/* The vector kernels' reductions over lanes. */
+/* The vector kernels' sums: per lane, plain sums over blocks of BB_VECTOR_BLOCK steps (at most
+ * 32 terms, exact to a few ulps), the blocks added with Kahan compensation; then the reductions
+ * over lanes. */
+#define BB_VECTOR_BLOCK 32u
 
 /* The sum of the lanes of v - c (a per-lane sum and its Kahan compensation), compensated. */
 BB_FN bb_scalar bb_lane_sum(real v, real c) {
