@@ -6,7 +6,7 @@
 
 #include <iostream>
 
-#include "brdfbake/bench.h"
+#include "harness/bench.h"
 #include "brdfbake/error.h"
 
 int main(int argc, char** argv) {

@@ -24,13 +24,13 @@
 #include <thread>
 
 #include "brdfbake/albedo.h"
-#include "brdfbake/bench.h"
+#include "harness/bench.h"
 #include "brdfbake/error.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/version.h"
-#include "plot.h"
-#include "tradeoff_refs.h"
+#include "plot/plot.h"
+#include "reference/tradeoff_refs.h"
 
 namespace {
 

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "reference.h"
+#include "reference/reference.h"
 
 namespace modelref {
 

@@ -2,7 +2,7 @@
 #include <catch2/catch.hpp>
 
 #include "brdfbake/albedo.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "support.h"
 
 using namespace brdfbake;

@@ -5,7 +5,7 @@
 #include <nlohmann/json.hpp>
 #include <unistd.h>
 
-#include "reference.h"
+#include "reference/reference.h"
 #include "support.h"
 
 using testing::run_cli;

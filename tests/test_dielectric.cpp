@@ -8,7 +8,7 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/lut.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "support.h"
 
 using namespace brdfbake;

@@ -14,9 +14,9 @@
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
-#include "device_buffer.h"
-#include "nk_data.h"
-#include "reference.h"
+#include "engine/device_buffer.h"
+#include "models/nk_data.h"
+#include "reference/reference.h"
 #include "support.h"
 
 using namespace brdfbake;

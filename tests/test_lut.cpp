@@ -26,7 +26,7 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/ggx.h"
 #include "brdfbake/lut.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "support.h"
 
 using namespace brdfbake;

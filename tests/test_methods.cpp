@@ -8,7 +8,7 @@
 
 #include "brdfbake/albedo.h"
 #include "model_refs.h"
-#include "reference.h"
+#include "reference/reference.h"
 #include "support.h"
 
 using namespace brdfbake;

@@ -4,7 +4,7 @@
 #include <random>
 
 #include "brdfbake/brdf/ggx.h"
-#include "reference.h"
+#include "reference/reference.h"
 
 namespace {
 

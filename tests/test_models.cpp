@@ -11,7 +11,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "model_refs.h"
-#include "reference.h"
+#include "reference/reference.h"
 
 using namespace brdfbake;
 

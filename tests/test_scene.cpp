@@ -20,7 +20,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/spec.h"
-#include "scene.h"
+#include "scene/scene.h"
 #include "support.h"
 
 using namespace brdfbake;

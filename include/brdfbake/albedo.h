@@ -11,7 +11,7 @@
 
 namespace brdfbake {
 
-/// How an albedo integral is computed (--method; DESIGN.md "Accuracy and speed").
+/// How an albedo integral is computed (--method; docs/accuracy.md).
 enum class Method {
     Importance,       // the model's importance sampler, randomised Hammersley points ("importance")
     QuasiMonteCarlo,  // uniform hemisphere sampling, randomised Hammersley points ("qmc")

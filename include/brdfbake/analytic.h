@@ -1,5 +1,5 @@
 // Closed-form directional albedo of the delta lobes (mirror, dielectric-specular), which are
-// never integrated by Monte Carlo (DESIGN.md). The formulas are those of brdf/specular.h,
+// never integrated by Monte Carlo. The formulas are those of brdf/specular.h,
 // evaluated on the host in double.
 #pragma once
 

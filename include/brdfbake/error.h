@@ -6,7 +6,7 @@
 
 namespace brdfbake {
 
-/// Exit statuses of the command line (DESIGN.md): 0 success, 1 a violation found by `check`,
+/// Exit statuses of the command line: 0 success, 1 a violation found by `check`,
 /// 2 bad input or a fault (no device, build failure, unwritable file, ...).
 enum ExitCode : int { kExitOk = 0, kExitViolation = 1, kExitError = 2 };
 

@@ -1,4 +1,4 @@
-// Model and Fresnel specifications: `name:key=value,key=value` (DESIGN.md), parsed, checked
+// Model and Fresnel specifications: `name:key=value,key=value`, parsed, checked
 // against the registry of known models, and resolved to the parameter block the kernels take.
 #pragma once
 

@@ -54,9 +54,6 @@ void check_table_path(const std::string& path);
 /// Every write goes through a temporary file and a rename. Throws Error.
 void write_table(const Table& table, const std::string& path, bool half = false);
 
-/// A preview picture (.png or .svg): a heatmap with axes and a colour bar per channel.
-void write_table_preview(const Table& table, const std::string& path);
-
 void write_exr(const Table& table, const std::string& path, bool half);
 std::string table_csv(const Table& table);
 std::string table_header(const Table& table, const std::string& symbol);

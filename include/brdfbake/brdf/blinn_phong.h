@@ -1,5 +1,5 @@
 /* The Blinn-Phong BRDF (`blinn-phong`):
- *   f = K (wh.n)^N,  K = ks, or ks (N + 2)/(2 pi) with normalized=1 (DESIGN.md),
+ *   f = K (wh.n)^N,  K = ks, or ks (N + 2)/(2 pi) with normalized=1,
  * the half-vector form of the Phong highlight [B77: Blinn, "Models of Light Reflection for
  * Computer Synthesized Pictures", SIGGRAPH 1977, the D1 term]; (N + 2)/(2 pi) is the factor that
  * normalises (wh.n)^N as a microfacet distribution (integral of D cos(theta_h) = 1) [WMLT07 eq. 30],

@@ -14,7 +14,7 @@
  *   bb_select(a, b, c)   c ? b : a, branch-free (OpenCL select() semantics)
  *   bb_clamp, bb_min, bb_max, bb_sqrt ...  math that maps to the OpenCL built-ins
  *   bb_vec3      a 3-vector of real with bb_v3, bb_dot, bb_normalize, ...
- * No templates, references, namespaces or overloading in shared code (STYLE.md).
+ * No templates, references, namespaces or overloading in shared code (docs/architecture.md).
  */
 #ifndef BRDFBAKE_BRDF_COMPAT_H
 #define BRDFBAKE_BRDF_COMPAT_H

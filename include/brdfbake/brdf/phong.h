@@ -9,7 +9,7 @@
  *         Rendering", tech. report CW197, KU Leuven, 1994: sampling the lobe about the mirror
  *         direction with density (N + 1)/(2 pi) cos^N.
  *
- * Models (DESIGN.md), with R(w) = 2 (w.n) n - w:
+ * Models, with R(w) = 2 (w.n) n - w:
  *   phong:           f = K max(0, wo.R(wi))^N,              K = ks, or ks (N + 2)/(2 pi) if normalized
  *   phong-original:  f = K max(0, wo.R(wi))^N / cos(theta_i), K = ks  (not reciprocal: Phong's
  *                    shading term as a BRDF; kept as the counter-example for the reciprocity tests)

@@ -4,7 +4,7 @@
  *   [TS67] Torrance, Sparrow, "Theory for Off-Specular Reflection from Roughened Surfaces",
  *          JOSA 57(9), 1967 (the V-groove geometry, their eq. for G);
  *   [CT82] Cook, Torrance, "A Reflectance Model for Computer Graphics", ACM TOG 1(1), 1982
- *          (G in the form above, eq. 7 there, and the 4 cos_o cos_i denominator used by DESIGN.md).
+ *          (G in the form above, eq. 7 there, and the 4 cos_o cos_i denominator used here).
  * D is chosen by a parameter: normalised Blinn (exponent N), Beckmann or GGX (alpha, or
  * alpha_x/alpha_y), from microfacet.h. o.h = i.h, so f is reciprocal.
  *

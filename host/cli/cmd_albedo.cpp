@@ -1,0 +1,236 @@
+// `brdfbake albedo`: directional albedo E(mu) of one or more models, each value with its error
+// estimate, as a table, JSON or CSV, and optionally as a plot of E(mu) curves.
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/analytic.h"
+#include "brdfbake/error.h"
+#include "brdfbake/output.h"
+#include "brdfbake/spec.h"
+#include "cli/cli.h"
+#include "models/key_reader.h"
+#include "plot/plot.h"
+
+namespace brdfbake {
+namespace {
+
+constexpr double kDeg = 180.0 / M_PI;
+
+struct AlbedoOptions {
+    std::vector<std::string> models;
+    std::string fresnel = "none";
+    double wavelength_nm = 0.0;
+    std::string mu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
+    std::string phi = "0";
+    std::int64_t samples = 1 << 18;
+    double tolerance = 0.0;
+    std::int64_t max_samples = std::int64_t(1) << 26;
+    std::string method = "auto";
+    std::string precision = "float";
+    std::string format = "table";
+    std::string output;
+    std::string plot;
+    std::uint64_t seed = 0x62726466u;
+};
+
+/// One model's request and result.
+struct Run {
+    ModelConfig model;
+    AlbedoRequest request;
+    AlbedoResult result;
+};
+
+const char* kErrorMeaning =
+    "3 standard errors of the replicas plus 3 |E| / N for what N samples cannot see (sampling), or the "
+    "difference from the half-order rule, the larger of the last two differences where the n/4, n/2 and n "
+    "rules do not converge geometrically (quadrature), plus a floating-point bound";
+
+std::string render(Format format, const FresnelConfig& fresnel, const std::vector<Run>& runs, const Engine& engine,
+                   double seconds) {
+    std::ostringstream out;
+    const Run& first = runs.front();
+    if (format == Format::Json) {
+        nlohmann::json j;
+        j["command"] = "albedo";
+        if (runs.size() == 1) j["model"] = first.model.canonical;
+        j["models"] = nlohmann::json::array();
+        for (const Run& r : runs) j["models"].push_back(r.model.canonical);
+        j["fresnel"] = fresnel.canonical;
+        j["method"] = has_analytic_albedo(first.model) ? "analytic" : method_name(first.result.values.front().method);
+        j["estimator"] = first.result.method;
+        j["precision"] = precision_name(first.request.precision);
+        j["samples"] = first.result.samples_per_cell;
+        if (first.result.tolerance > 0.0) {
+            j["tolerance"] = first.result.tolerance;
+            j["rounds"] = first.result.rounds;
+            j["total_samples"] = first.result.total_samples;
+        }
+        j["error_meaning"] = kErrorMeaning;
+        j["device"] = engine.device().name;
+        j["seconds"] = seconds;
+        j["results"] = nlohmann::json::array();
+        for (const Run& r : runs)
+            for (size_t i = 0; i < r.request.cells.size(); ++i)
+            {
+                nlohmann::json e = {{"model", r.model.canonical},
+                                    {"mu", r.request.cells[i].mu},
+                                    {"phi_deg", r.request.cells[i].phi * kDeg},
+                                    {"albedo", r.result.values[i].value},
+                                    {"error", r.result.values[i].error}};
+                if (r.result.tolerance > 0.0) {
+                    e["method"] = method_name(r.result.values[i].method);
+                    e["samples"] = r.result.values[i].samples;
+                }
+                SpecularTransmission t;
+                if (analytic_transmission(r.model, r.request.cells[i].mu, t)) {
+                    e["transmission"] = t.energy;
+                    e["radiance_factor"] = t.radiance_factor;
+                }
+                j["results"].push_back(e);
+            }
+        out << j.dump(2) << "\n";
+        return out.str();
+    }
+    char line[256];
+    if (format == Format::Csv) {
+        out << (runs.size() > 1 ? "model," : "") << "mu,phi_deg,albedo,error\n";
+        for (const Run& r : runs)
+            for (size_t i = 0; i < r.request.cells.size(); ++i) {
+                std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.3e\n", r.request.cells[i].mu,
+                              r.request.cells[i].phi * kDeg, r.result.values[i].value, r.result.values[i].error);
+                out << (runs.size() > 1 ? "\"" + r.model.canonical + "\"," : "") << line;
+            }
+        return out.str();
+    }
+    for (const Run& r : runs) {
+        out << "# albedo of " << r.model.canonical << ", Fresnel " << fresnel.canonical << "\n";
+        if (r.result.samples_per_cell == 0)
+            out << "# " << r.result.method << ", computed on the host in double\n"
+                << "# error: a rounding bound\n";
+        else
+            out << "# " << r.result.method << ", " << precision_name(r.request.precision) << ", "
+                << (r.result.tolerance > 0.0 ? "at most " : "") << r.result.samples_per_cell
+                << " samples per direction, " << engine.device().name << "\n"
+                << "# error: " << kErrorMeaning << "\n";
+        out << "        mu   phi_deg       albedo      error\n";
+        for (size_t i = 0; i < r.request.cells.size(); ++i) {
+            std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e\n", r.request.cells[i].mu,
+                          r.request.cells[i].phi * kDeg, r.result.values[i].value, r.result.values[i].error);
+            out << line;
+        }
+        if (&r != &runs.back()) out << "\n";
+    }
+    return out.str();
+}
+
+void plot_runs(const std::string& path, const FresnelConfig& fresnel, const std::vector<Run>& runs) {
+    PlotSpec p;
+    p.title = "directional albedo E(\\mu)" + (fresnel.kind ? ", Fresnel " + fresnel.canonical : std::string());
+    p.x.label = "\\mu = cos \\theta_o";
+    p.y.label = "E(\\mu)";
+    p.x.lo = 0.0;
+    p.x.hi = 1.0;
+    p.legend = LegendPlace::BottomLeft;
+    for (const Run& r : runs) {
+        // One curve per model and azimuth.
+        std::map<double, Curve> by_phi;
+        for (size_t i = 0; i < r.request.cells.size(); ++i) {
+            Curve& c = by_phi[r.request.cells[i].phi];
+            c.x.push_back(r.request.cells[i].mu);
+            c.y.push_back(r.result.values[i].value);
+        }
+        for (auto& kv : by_phi) {
+            std::string label = r.model.canonical;
+            for (char& ch : label)
+                if (ch == '_') ch = ' ';  // MathGL reads _ as a subscript
+            if (by_phi.size() > 1) label += ", \\phi = " + format_number(std::round(kv.first * kDeg * 10) / 10);
+            kv.second.label = label;
+            p.curves.push_back(kv.second);
+        }
+    }
+    write_plot(path, p);
+}
+
+int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // Check every input before touching the device.
+    const FresnelConfig fresnel = resolve_fresnel(o.fresnel, o.wavelength_nm);
+    const Format format = parse_format(o.format);
+    if (!o.plot.empty() && !is_plot_path(o.plot)) throw Error("--plot must end in .png or .svg");
+    const std::vector<double> mus = parse_number_list(o.mu, "--mu");
+    for (double mu : mus)
+        if (!(mu > 0.0 && mu <= 1.0))
+            throw Error("--mu: " + format_number(mu) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
+    const std::vector<double> phis = parse_number_list(o.phi, "--phi");
+    if (o.samples <= 0) throw Error("--samples must be positive");
+    const MethodChoice choice = resolve_method_choice(o.method, o.tolerance, o.max_samples);
+    std::vector<Run> runs;
+    for (const std::string& spec : o.models) {
+        Run r;
+        r.model = resolve_model(spec);
+        if (fresnel.kind != 0 && !r.model.uses_fresnel)
+            throw Error("model '" + r.model.name + "' has no Fresnel term; drop --fresnel");
+        r.request.model = r.model.id;
+        r.request.fresnel = fresnel;
+        r.request.samples = std::uint64_t(o.samples);
+        r.request.method = choice.method;
+        r.request.precision = o.precision == "double" ? Precision::Double : Precision::Float;
+        r.request.seed = o.seed;
+        for (double phi_deg : phis)
+            for (const auto& c : cells_for(mus, phi_deg / kDeg, r.model.params)) r.request.cells.push_back(c);
+        runs.push_back(std::move(r));
+    }
+
+    Engine engine(g.device, g.verbose);
+    for (Run& r : runs) {
+        if (has_analytic_albedo(r.model))
+            r.result = analytic_albedo_result(r.model, fresnel, r.request.cells);
+        else if (choice.tolerance.tolerance > 0.0)
+            r.result = compute_albedo_to_tolerance(engine, r.request, choice.tolerance);
+        else
+            r.result = compute_albedo(engine, r.request);
+        if (g.verbose)
+            std::cerr << "brdfbake: " << r.model.canonical << ": kernel " << r.result.kernel_seconds * 1e3 << " ms\n";
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    if (!o.plot.empty()) plot_runs(o.plot, fresnel, runs);
+    emit(o.output, render(format, fresnel, runs, engine, seconds));
+    return kExitOk;
+}
+
+}  // namespace
+
+void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action) {
+    auto o = std::make_shared<AlbedoOptions>();
+    CLI::App* cmd = app.add_subcommand("albedo", "directional albedo E(mu_o) = integral of f cos(theta_i) dwi");
+    cmd->add_option("--model", o->models,
+                    "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8; repeat it to compare models")
+        ->required();
+    cmd->add_option("--fresnel", o->fresnel,
+                    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
+                    "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml")
+        ->capture_default_str();
+    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
+    cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
+    cmd->add_option("--phi", o->phi, "comma-separated phi_o in degrees (anisotropic models)")->capture_default_str();
+    add_method_options(cmd, o->samples, o->method, o->tolerance, o->max_samples, "direction");
+    cmd->add_option("--precision", o->precision, "kernel arithmetic")
+        ->check(CLI::IsMember({"float", "double"}))
+        ->capture_default_str();
+    cmd->add_option("--format", o->format, "output format")
+        ->check(CLI::IsMember({"table", "json", "csv"}))
+        ->capture_default_str();
+    cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
+    cmd->add_option("--plot", o->plot, "draw E(mu) curves, one per model (and phi), into FILE.png or .svg");
+    cmd->add_option("--seed", o->seed, "seed of the randomised point sets")->capture_default_str();
+    cmd->callback([o, &global, &action] { action = [o, &global] { return run_albedo(*o, global); }; });
+}
+
+}  // namespace brdfbake

@@ -1,0 +1,538 @@
+// `brdfbake fresnel`: Fresnel reflectance F, Rs and Rp over incidence angles (computed in the
+// fresnel_curve kernel), the hemispherical average 2 int F mu dmu, the deviation of the
+// approximate forms from the exact one, and plots; `--compare` draws the classic figure.
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <functional>
+#include <iomanip>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/engine.h"
+#include "brdfbake/error.h"
+#include "brdfbake/output.h"
+#include "brdfbake/spec.h"
+#include "cli/cli.h"
+#include "engine/device_buffer.h"
+#include "models/key_reader.h"
+#include "plot/plot.h"
+
+namespace brdfbake {
+namespace {
+
+struct FresnelOptions {
+    std::string fresnel;
+    std::string theta = "0,10,20,30,40,50,60,70,75,80,85,89,89.9,90";
+    double wavelength_nm = 0.0;
+    std::string precision = "float";
+    std::string format = "table";
+    std::string output;
+    std::string plot;
+    bool compare = false;
+};
+
+constexpr double kDeg = M_PI / 180.0;
+
+/// cos(theta) for theta in degrees, as sin(90 deg - theta): exactly 0 at 90 deg and accurate to
+/// the last bit near grazing, where cos(theta * pi/180) would carry the rounding of the angle.
+double cos_deg(double theta_deg) { return std::sin((90.0 - theta_deg) * kDeg); }
+
+bb_params to_params(const ParamBlock& p) {
+    bb_params b;
+    for (int i = 0; i < BB_MAX_PARAMS; ++i) b.v[i] = p[size_t(i)];
+    return b;
+}
+
+/// F, Rs, Rp of a Fresnel term on the host, in double, from the shared header.
+struct HostFresnel {
+    int kind;
+    bb_params p;
+    explicit HostFresnel(const FresnelConfig& f) : kind(f.kind), p(to_params(f.params)) {}
+    HostFresnel(int k, double eta, double ext) : kind(k), p{} {
+        p.v[BB_FRESNEL_ETA] = eta;
+        p.v[BB_FRESNEL_K] = ext;
+    }
+    double f(double mu) const { return bb_fresnel_eval(kind, p, mu); }
+    double rs(double mu) const { return bb_fresnel_eval_rs(kind, p, mu); }
+    double rp(double mu) const { return bb_fresnel_eval_rp(kind, p, mu); }
+};
+
+HostFresnel schlick(double f0) {
+    HostFresnel h(BB_FRESNEL_SCHLICK, 0.0, 0.0);
+    h.p.v[BB_SCHLICK_F0] = f0;
+    return h;
+}
+
+// ------------------------------------------------------------ hemispherical average
+
+/// Adaptive Gauss-Kronrod (7-point Gauss, 15-point Kronrod; nodes and weights of QUADPACK qk15)
+/// with the estimate |K15 - G7| per interval, bisecting until each interval's estimate is below
+/// its share of `tol`.
+struct Quadrature {
+    double value = 0.0;
+    double error = 0.0;
+    int intervals = 0;
+};
+
+template <class F>
+void gk15(const F& f, double a, double b, double tol, int depth, Quadrature& q) {
+    static const double xgk[8] = {0.991455371120812639206854697526329, 0.949107912342758524526189684047851,
+                                  0.864864423359769072789712788640926, 0.741531185599394439863864773280788,
+                                  0.586087235467691130294144845693013, 0.405845151377397166906606412076961,
+                                  0.207784955007898467600689403773245, 0.0};
+    static const double wgk[8] = {0.022935322010529224963732008058970, 0.063092092629978553290700663189204,
+                                  0.104790010322250183839876322541518, 0.140653259715525918745189590510238,
+                                  0.169004726639267902826583426598550, 0.190350578064785409913256402421014,
+                                  0.204432940075298892414161999234649, 0.209482141084727828012999174891714};
+    static const double wg[4] = {0.129484966168869693270611432679082, 0.279705391489276667901467771423780,
+                                 0.381830050505118944950369775488975, 0.417959183673469387755102040816327};
+    const double c = 0.5 * (a + b), h = 0.5 * (b - a);
+    const double fc = f(c);
+    double k = wgk[7] * fc, g = wg[3] * fc;
+    for (int j = 0; j < 7; ++j) {
+        const double f1 = f(c - h * xgk[j]), f2 = f(c + h * xgk[j]);
+        k += wgk[j] * (f1 + f2);
+        if (j % 2 == 1) g += wg[j / 2] * (f1 + f2);
+    }
+    k *= h;
+    g *= h;
+    const double err = std::fabs(k - g);
+    if (err <= tol || depth >= 40) {
+        q.value += k;
+        q.error += err;
+        ++q.intervals;
+        return;
+    }
+    gk15(f, a, c, 0.5 * tol, depth + 1, q);
+    gk15(f, c, b, 0.5 * tol, depth + 1, q);
+}
+
+/// 2 int_0^1 F(mu) mu dmu. Where total internal reflection can occur (a relative index below 1
+/// without absorption), F = 1 for mu < mu_c = sqrt(1 - eta^2) contributes mu_c^2 exactly, and
+/// above mu_c, F - 1 ~ sqrt(mu - mu_c): the substitution mu = mu_c + (1 - mu_c) t^2 makes the
+/// integrand smooth in t, so the quadrature converges as for an analytic function.
+Quadrature hemispherical_average(const HostFresnel& h) {
+    const double eta = h.p.v[BB_FRESNEL_ETA], k = h.p.v[BB_FRESNEL_K];
+    const bool tir = (h.kind == BB_FRESNEL_DIELECTRIC && eta < 1.0) ||
+                     (h.kind == BB_FRESNEL_CONDUCTOR && k == 0.0 && eta < 1.0);
+    const double mu_c = tir ? std::sqrt((1.0 - eta) * (1.0 + eta)) : 0.0;
+    Quadrature q;
+    const double tol = 1e-14;
+    gk15([&](double t) {
+        const double mu = mu_c + (1.0 - mu_c) * t * t;
+        return 2.0 * h.f(mu) * mu * 2.0 * (1.0 - mu_c) * t;
+    }, 0.0, 1.0, tol, 0, q);
+    q.value += mu_c * mu_c;
+    // Rounding: each of the ~15 evaluations per interval is good to a few ulps of the result.
+    q.error += 16.0 * 2.220446049250313e-16 * std::fabs(q.value);
+    return q;
+}
+
+// ------------------------------------------------------------ deviation of approximations
+
+struct Deviation {
+    double max_abs = 0.0;
+    double theta_deg = 0.0;
+};
+
+/// max over theta in [0, 90] of |a(theta) - b(theta)|: a 0.01 degree scan, then a golden-section
+/// refinement around the largest grid value (the differences are smooth in theta).
+template <class A, class B>
+Deviation max_deviation(const A& a, const B& b) {
+    auto d = [&](double t) { return std::fabs(a(cos_deg(t)) - b(cos_deg(t))); };
+    const int n = 9000;
+    int best = 0;
+    double best_v = -1.0;
+    for (int i = 0; i <= n; ++i) {
+        const double v = d(90.0 * i / n);
+        if (v > best_v) best_v = v, best = i;
+    }
+    double lo = 90.0 * std::max(best - 1, 0) / n, hi = 90.0 * std::min(best + 1, n) / n;
+    const double r = 0.5 * (std::sqrt(5.0) - 1.0);
+    for (int it = 0; it < 60; ++it) {
+        const double x1 = hi - r * (hi - lo), x2 = lo + r * (hi - lo);
+        if (d(x1) > d(x2)) hi = x2; else lo = x1;
+    }
+    Deviation out{best_v, 90.0 * best / n};
+    const double mid = 0.5 * (lo + hi);
+    if (d(mid) > out.max_abs) out = {d(mid), mid};
+    return out;
+}
+
+/// The exact form that an approximate or measured term approximates, if any.
+bool exact_reference(const FresnelConfig& f, HostFresnel& exact) {
+    const double eta = f.params[BB_FRESNEL_ETA], k = f.params[BB_FRESNEL_K];
+    if (f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX) {
+        exact = HostFresnel(BB_FRESNEL_CONDUCTOR, eta, k);
+        return true;
+    }
+    if (f.kind == BB_FRESNEL_DIELECTRIC) {
+        exact = HostFresnel(BB_FRESNEL_DIELECTRIC, eta, 0.0);
+        return true;
+    }
+    return false;
+}
+
+struct Comparison {
+    bool present = false;
+    bool conductor = false;
+    double f0 = 0.0;
+    Deviation approx, schlick;
+    Quadrature exact_avg, approx_avg, schlick_avg;
+};
+
+Comparison compare_forms(const FresnelConfig& f) {
+    Comparison c;
+    HostFresnel exact(BB_FRESNEL_NONE, 0.0, 0.0);
+    if (!exact_reference(f, exact)) return c;
+    c.present = true;
+    c.conductor = exact.kind == BB_FRESNEL_CONDUCTOR;
+    const HostFresnel approx(BB_FRESNEL_CONDUCTOR_APPROX, exact.p.v[BB_FRESNEL_ETA], exact.p.v[BB_FRESNEL_K]);
+    c.f0 = exact.f(1.0);
+    const HostFresnel sch = schlick(c.f0);
+    auto fe = [&](double mu) { return exact.f(mu); };
+    c.approx = max_deviation([&](double mu) { return approx.f(mu); }, fe);
+    c.schlick = max_deviation([&](double mu) { return sch.f(mu); }, fe);
+    c.exact_avg = hemispherical_average(exact);
+    c.approx_avg = hemispherical_average(approx);
+    c.schlick_avg = hemispherical_average(sch);
+    return c;
+}
+
+// ------------------------------------------------------------ device evaluation
+
+struct Curves {
+    std::vector<double> f, rs, rp;
+};
+
+Curves evaluate_on_device(Engine& engine, const FresnelConfig& f, Precision precision, const std::vector<double>& cosines) {
+    BuildRequest build;
+    build.kernel_file = "fresnel.cl";
+    build.precision = precision;
+    build.defines = {{"BB_FRESNEL", std::to_string(f.kind)}};
+    cl::Program& program = engine.program(build);
+    RealBuffers bufs(engine, precision);
+    const size_t n = cosines.size();
+    cl::Buffer b_cos = bufs.input(cosines);
+    cl::Buffer b_p = bufs.input(std::vector<double>(f.params.begin(), f.params.end()));
+    cl::Buffer b_out = bufs.output(3 * n);
+    cl::Kernel kernel(program, "fresnel_curve");
+    kernel.setArg(0, b_cos);
+    kernel.setArg(1, b_p);
+    kernel.setArg(2, cl_uint(n));
+    kernel.setArg(3, b_out);
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
+    const std::vector<double> out = bufs.read(b_out, 3 * n);
+    Curves c;
+    for (size_t i = 0; i < n; ++i) {
+        for (int j = 0; j < 3; ++j)
+            if (!std::isfinite(out[3 * i + j]))
+                throw Error("the Fresnel kernel produced a non-finite value at cos(theta) = " +
+                            format_number(cosines[i]) + "; refusing to report it");
+        c.f.push_back(out[3 * i]);
+        c.rs.push_back(out[3 * i + 1]);
+        c.rp.push_back(out[3 * i + 2]);
+    }
+    return c;
+}
+
+// ------------------------------------------------------------ plots
+
+std::vector<double> plot_thetas() {
+    std::vector<double> t;
+    for (int i = 0; i <= 900; ++i) t.push_back(0.1 * i);
+    return t;
+}
+
+Curve host_curve(const std::string& label, const std::string& style, const std::vector<double>& thetas,
+                 const std::function<double(double)>& fn) {
+    Curve c;
+    c.label = label;
+    c.style = style;
+    c.x = thetas;
+    for (double t : thetas) c.y.push_back(fn(cos_deg(t)));
+    return c;
+}
+
+PlotAxis theta_axis() {
+    PlotAxis a;
+    a.label = "angle of incidence \\theta  (degrees)";
+    a.lo = 0.0;
+    a.hi = 90.0;
+    a.tick = 15.0;
+    return a;
+}
+
+PlotAxis reflectance_axis() {
+    PlotAxis a;
+    a.label = "reflectance";
+    a.lo = 0.0;
+    a.hi = 1.0;
+    a.tick = 0.2;
+    return a;
+}
+
+/// The panel for one Fresnel term: F, Rs, Rp and, where an exact form exists, the approximate
+/// conductor formula and Schlick with F0 = F(0).
+PlotSpec single_panel(const FresnelConfig& f) {
+    const auto th = plot_thetas();
+    PlotSpec p;
+    p.title = f.canonical;
+    p.x = theta_axis();
+    p.y = reflectance_axis();
+    const HostFresnel h(f);
+    p.curves.push_back(host_curve("F", "b-4", th, [&](double mu) { return h.f(mu); }));
+    if (f.kind != BB_FRESNEL_NONE && f.kind != BB_FRESNEL_SCHLICK) {
+        p.curves.push_back(host_curve("R_s", "r;2", th, [&](double mu) { return h.rs(mu); }));
+        p.curves.push_back(host_curve("R_p", "g;2", th, [&](double mu) { return h.rp(mu); }));
+    }
+    HostFresnel exact(BB_FRESNEL_NONE, 0.0, 0.0);
+    if (exact_reference(f, exact)) {
+        if (f.kind != BB_FRESNEL_CONDUCTOR)
+            p.curves.push_back(host_curve("exact", "k-2", th, [&](double mu) { return exact.f(mu); }));
+        if (f.kind != BB_FRESNEL_CONDUCTOR_APPROX && exact.kind == BB_FRESNEL_CONDUCTOR) {
+            const HostFresnel approx(BB_FRESNEL_CONDUCTOR_APPROX, exact.p.v[BB_FRESNEL_ETA], exact.p.v[BB_FRESNEL_K]);
+            p.curves.push_back(host_curve("approximate conductor", "m|2", th, [&](double mu) { return approx.f(mu); }));
+        }
+        const HostFresnel sch = schlick(exact.f(1.0));
+        p.curves.push_back(host_curve("Schlick, F_0 = F(0)", "q:3", th, [&](double mu) { return sch.f(mu); }));
+    }
+    p.legend = f.kind == BB_FRESNEL_DIELECTRIC && f.params[BB_FRESNEL_ETA] > 1.0 ? LegendPlace::TopLeft
+                                                                               : LegendPlace::BottomLeft;
+    return p;
+}
+
+/// "metal:Al at 550 nm: \eta = 1.0152 + 6.6273 i" for a measured metal, else the canonical spec.
+std::string metal_title(const FresnelConfig& f) {
+    char text[160];
+    const std::string what = f.canonical.substr(0, f.canonical.find(" = "));
+    std::snprintf(text, sizeof text, "%s:  n = %.4f + %.4f i", what.c_str(), f.params[BB_FRESNEL_ETA],
+                  f.params[BB_FRESNEL_K]);
+    return text;
+}
+
+/// The classic figure: a metal (exact, approximate, Schlick, with Rs and Rp) beside a dielectric
+/// of eta = 1.5 seen from outside and from inside (Brewster and critical angles marked).
+Figure comparison_figure(const FresnelConfig& metal) {
+    const auto th = plot_thetas();
+    Figure fig;
+    fig.columns = 2;
+    fig.panel_width = 900;
+    fig.panel_height = 680;
+
+    PlotSpec a;
+    a.title = metal_title(metal);
+    a.x = theta_axis();
+    a.y = reflectance_axis();
+    a.y.lo = std::numeric_limits<double>::quiet_NaN();  // metals: zoom on the upper range
+    a.y.tick = 0.05;
+    HostFresnel exact(BB_FRESNEL_NONE, 0.0, 0.0);
+    exact_reference(metal, exact);
+    const double eta = exact.p.v[BB_FRESNEL_ETA], k = exact.p.v[BB_FRESNEL_K];
+    const HostFresnel approx(BB_FRESNEL_CONDUCTOR_APPROX, eta, k);
+    const HostFresnel sch = schlick(exact.f(1.0));
+    a.curves.push_back(host_curve("exact F", "b-4", th, [&](double mu) { return exact.f(mu); }));
+    a.curves.push_back(host_curve("exact R_s", "r;2", th, [&](double mu) { return exact.rs(mu); }));
+    a.curves.push_back(host_curve("exact R_p", "g;2", th, [&](double mu) { return exact.rp(mu); }));
+    a.curves.push_back(host_curve("approximate conductor F", "m|2", th, [&](double mu) { return approx.f(mu); }));
+    a.curves.push_back(host_curve("Schlick F, F_0 = F(0)", "q:3", th, [&](double mu) { return sch.f(mu); }));
+    a.legend = LegendPlace::BottomLeft;
+    fig.panels.push_back(a);
+
+    PlotSpec b;
+    b.title = "glass \\eta  = 1.5: outside, and inside (\\eta  = 1/1.5)";
+    b.x = theta_axis();
+    b.y = reflectance_axis();
+    const HostFresnel out(BB_FRESNEL_DIELECTRIC, 1.5, 0.0), in(BB_FRESNEL_DIELECTRIC, 1.0 / 1.5, 0.0);
+    const HostFresnel sch_out = schlick(out.f(1.0));
+    b.curves.push_back(host_curve("outside F", "b-4", th, [&](double mu) { return out.f(mu); }));
+    b.curves.push_back(host_curve("outside R_s", "r;2", th, [&](double mu) { return out.rs(mu); }));
+    b.curves.push_back(host_curve("outside R_p", "g;2", th, [&](double mu) { return out.rp(mu); }));
+    b.curves.push_back(host_curve("inside F", "k-4", th, [&](double mu) { return in.f(mu); }));
+    b.curves.push_back(host_curve("inside R_s", "r:2", th, [&](double mu) { return in.rs(mu); }));
+    b.curves.push_back(host_curve("inside R_p", "g:2", th, [&](double mu) { return in.rp(mu); }));
+    b.curves.push_back(host_curve("Schlick F_0 = 0.04", "q|2", th, [&](double mu) { return sch_out.f(mu); }));
+    char text[64];
+    std::snprintf(text, sizeof text, "Brewster %.1f\\degree", std::atan(1.5) / kDeg);
+    b.lines.push_back({'x', std::atan(1.5) / kDeg, text});
+    std::snprintf(text, sizeof text, "critical %.1f\\degree", std::asin(1.0 / 1.5) / kDeg);
+    b.lines.push_back({'x', std::asin(1.0 / 1.5) / kDeg, text});
+    b.legend = LegendPlace::TopLeft;
+    fig.panels.push_back(b);
+    return fig;
+}
+
+// ------------------------------------------------------------ output
+
+const char* kind_name(int kind) {
+    switch (kind) {
+    case BB_FRESNEL_NONE: return "none";
+    case BB_FRESNEL_SCHLICK: return "schlick";
+    case BB_FRESNEL_DIELECTRIC: return "dielectric";
+    case BB_FRESNEL_CONDUCTOR: return "conductor";
+    case BB_FRESNEL_CONDUCTOR_APPROX: return "conductor-approx";
+    default: return "unknown";
+    }
+}
+
+const char kAverageMethod[] =
+    "adaptive Gauss-Kronrod 7-15 in double on the host (error: sum of |K15 - G7| plus rounding); "
+    "F = 1 below the critical angle integrated exactly and mu = mu_c + (1 - mu_c) t^2 above it";
+
+std::string render(const FresnelOptions& o, const FresnelConfig& f, Precision precision, const std::vector<double>& thetas,
+                   const std::vector<double>& cosines, const Curves& dev, double host_diff, const Quadrature& avg,
+                   const Comparison& cmp, const Engine& engine, double seconds) {
+    const Format format = parse_format(o.format);
+    std::ostringstream out;
+    if (format == Format::Json) {
+        nlohmann::json j;
+        j["command"] = "fresnel";
+        j["fresnel"] = f.canonical;
+        j["kind"] = kind_name(f.kind);
+        if (f.kind == BB_FRESNEL_DIELECTRIC || f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX)
+            j["eta"] = f.params[BB_FRESNEL_ETA];
+        if (f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX) j["k"] = f.params[BB_FRESNEL_K];
+        if (f.kind == BB_FRESNEL_SCHLICK) j["f0"] = f.params[BB_SCHLICK_F0];
+        if (o.wavelength_nm > 0.0) j["wavelength_nm"] = o.wavelength_nm;
+        j["precision"] = precision_name(precision);
+        j["device"] = engine.device().name;
+        j["seconds"] = seconds;
+        j["results"] = nlohmann::json::array();
+        for (size_t i = 0; i < thetas.size(); ++i)
+            j["results"].push_back({{"theta_deg", thetas[i]},
+                                    {"cos_theta", cosines[i]},
+                                    {"F", dev.f[i]},
+                                    {"Rs", dev.rs[i]},
+                                    {"Rp", dev.rp[i]}});
+        j["device_vs_host_max_abs_diff"] = host_diff;
+        j["hemispherical_average"] = {{"value", avg.value}, {"error", avg.error}, {"method", kAverageMethod}};
+        if (cmp.present) {
+            nlohmann::json d;
+            d["reference"] = cmp.conductor ? "conductor (exact)" : "dielectric (exact)";
+            d["scan"] = "0.01 degree grid over [0, 90], refined by golden-section search";
+            d["conductor_approx"] = {{"max_abs", cmp.approx.max_abs},
+                                     {"theta_deg", cmp.approx.theta_deg},
+                                     {"hemispherical_average", cmp.approx_avg.value}};
+            d["schlick"] = {{"f0", cmp.f0},
+                            {"max_abs", cmp.schlick.max_abs},
+                            {"theta_deg", cmp.schlick.theta_deg},
+                            {"hemispherical_average", cmp.schlick_avg.value}};
+            d["exact_hemispherical_average"] = cmp.exact_avg.value;
+            j["deviations"] = d;
+        }
+        out << j.dump(2) << "\n";
+    } else if (format == Format::Csv) {
+        out << "theta_deg,cos_theta,F,Rs,Rp\n";
+        char line[200];
+        for (size_t i = 0; i < thetas.size(); ++i) {
+            std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g\n", thetas[i], cosines[i], dev.f[i],
+                          dev.rs[i], dev.rp[i]);
+            out << line;
+        }
+    } else {
+        out << "# Fresnel " << f.canonical << "\n"
+            << "# kernel fresnel_curve, " << precision_name(precision) << ", " << engine.device().name
+            << "; max |device - host double| = " << std::setprecision(2) << host_diff << "\n";
+        out << " theta_deg      cos_theta            F           Rs           Rp\n";
+        char line[200];
+        for (size_t i = 0; i < thetas.size(); ++i) {
+            std::snprintf(line, sizeof line, "%10.4f %14.8g %12.8f %12.8f %12.8f\n", thetas[i], cosines[i], dev.f[i],
+                          dev.rs[i], dev.rp[i]);
+            out << line;
+        }
+        std::snprintf(line, sizeof line, "# hemispherical average 2 int F mu dmu = %.12f +- %.1e\n", avg.value, avg.error);
+        out << line << "#   (" << kAverageMethod << ")\n";
+        if (cmp.present) {
+            out << "# deviation from the exact " << (cmp.conductor ? "conductor" : "dielectric")
+                << " over theta in [0, 90] deg:\n";
+            std::snprintf(line, sizeof line,
+                          "#   conductor-approx          max |dF| = %.3e at theta = %.3f deg; average %.8f\n",
+                          cmp.approx.max_abs, cmp.approx.theta_deg, cmp.approx_avg.value);
+            out << line;
+            std::snprintf(line, sizeof line,
+                          "#   schlick (f0 = %.6f)  max |dF| = %.3e at theta = %.3f deg; average %.8f\n", cmp.f0,
+                          cmp.schlick.max_abs, cmp.schlick.theta_deg, cmp.schlick_avg.value);
+            out << line;
+        }
+    }
+    return out.str();
+}
+
+int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
+    const auto t0 = std::chrono::steady_clock::now();
+    // Check every input before touching the device.
+    if (o.compare) {
+        if (o.plot.empty()) throw Error("--compare draws a figure; give --plot FILE.png or --plot FILE.svg");
+        if (o.fresnel.empty()) o.fresnel = "metal:Al";
+        if (o.wavelength_nm == 0.0 && (o.fresnel.rfind("metal:", 0) == 0 || o.fresnel.rfind("nk:", 0) == 0))
+            o.wavelength_nm = 550.0;
+    }
+    if (o.fresnel.empty()) throw Error("--fresnel SPEC is required (or --compare for the comparison figure)");
+    const FresnelConfig f = resolve_fresnel(o.fresnel, o.wavelength_nm);
+    if (o.compare && f.kind != BB_FRESNEL_CONDUCTOR && f.kind != BB_FRESNEL_CONDUCTOR_APPROX)
+        throw Error("--compare needs a conductor (conductor:, conductor-approx:, metal: or nk: with k data); got '" +
+                    f.canonical + "'");
+    parse_format(o.format);
+    if (!o.plot.empty() && !is_plot_path(o.plot))
+        throw Error("--plot '" + o.plot + "': expected a file name ending in .png or .svg");
+    const std::vector<double> thetas = parse_number_list(o.theta, "--theta");
+    for (double t : thetas)
+        if (!(t >= 0.0 && t <= 90.0))
+            throw Error("--theta: " + format_number(t) + " is out of range; angles of incidence lie in [0, 90] degrees");
+    const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
+
+    std::vector<double> cosines;
+    for (double t : thetas) cosines.push_back(cos_deg(t));
+
+    Engine engine(g.device, g.verbose);
+    const Curves dev = evaluate_on_device(engine, f, precision, cosines);
+    const HostFresnel host(f);
+    double host_diff = 0.0;
+    for (size_t i = 0; i < cosines.size(); ++i) {
+        host_diff = std::max(host_diff, std::fabs(dev.f[i] - host.f(cosines[i])));
+        host_diff = std::max(host_diff, std::fabs(dev.rs[i] - host.rs(cosines[i])));
+        host_diff = std::max(host_diff, std::fabs(dev.rp[i] - host.rp(cosines[i])));
+    }
+    const Quadrature avg = f.kind == BB_FRESNEL_NONE ? Quadrature{1.0, 0.0, 0} : hemispherical_average(host);
+    const Comparison cmp = compare_forms(f);
+
+    if (!o.plot.empty()) {
+        if (o.compare)
+            write_figure(o.plot, comparison_figure(f));
+        else
+            write_plot(o.plot, single_panel(f));
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    emit(o.output, render(o, f, precision, thetas, cosines, dev, host_diff, avg, cmp, engine, seconds));
+    return kExitOk;
+}
+
+}  // namespace
+
+void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action) {
+    auto o = std::make_shared<FresnelOptions>();
+    CLI::App* cmd = app.add_subcommand("fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence");
+    cmd->add_option("--fresnel", o->fresnel,
+                    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
+                    "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml");
+    cmd->add_option("--theta", o->theta, "comma-separated angles of incidence in degrees, in [0, 90]")
+        ->capture_default_str();
+    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured data (metal:, nk:)");
+    cmd->add_option("--precision", o->precision, "kernel arithmetic")->capture_default_str()
+        ->check(CLI::IsMember({"float", "double"}));
+    cmd->add_option("--format", o->format, "output format")->capture_default_str()
+        ->check(CLI::IsMember({"table", "json", "csv"}));
+    cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
+    cmd->add_option("--plot", o->plot, "draw the curves into FILE.png or FILE.svg");
+    cmd->add_flag("--compare", o->compare,
+                  "draw the comparison figure: exact vs approximate vs Schlick for a metal (default metal:Al at "
+                  "550 nm) beside eta = 1.5 seen from outside and inside; needs --plot");
+    cmd->callback([o, &global, &action] { action = [o, &global] { return run_fresnel(*o, global); }; });
+}
+
+}  // namespace brdfbake

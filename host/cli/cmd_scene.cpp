@@ -1,0 +1,534 @@
+// `brdfbake plan SCENE` and `brdfbake bake SCENE -o DIR`: the tables a scene needs, and baking
+// them (progress on stderr, an index of what was written and for which materials, tables
+// already up to date skipped). docs/scenes.md describes both.
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdlib>
+#include <cstring>
+#include <cstdio>
+#include <fstream>
+#include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "brdfbake/error.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/output.h"
+#include "brdfbake/spec.h"
+#include "brdfbake/table.h"
+#include "brdfbake/version.h"
+#include "cli/cli.h"
+#include "scene/scene.h"
+
+namespace brdfbake {
+namespace {
+
+using json = nlohmann::ordered_json;  // keys in the order written: a readable index
+using Clock = std::chrono::steady_clock;
+
+double since(Clock::time_point t0) { return std::chrono::duration<double>(Clock::now() - t0).count(); }
+
+/// Command-line overrides of the scene's settings (0 or empty: not given).
+struct SceneOptions {
+    std::string scene;
+    std::int64_t samples = 0;
+    int mu_texels = 0;
+    int alpha_texels = 0;
+    std::string precision;
+    std::string table_format;
+    bool half = false;
+};
+
+void add_scene_options(CLI::App* cmd, SceneOptions& o) {
+    cmd->add_option("scene", o.scene, "scene: a brdfbake scene file (.json) or glTF 2.0 (.gltf, .glb)")->required();
+    cmd->add_option("--samples", o.samples, "samples per texel (default: the scene's settings, else 16384)");
+    cmd->add_option("--mu-texels", o.mu_texels, "texels along mu (default 32)");
+    cmd->add_option("--alpha-texels", o.alpha_texels,
+                    "texels over the full roughness axis [0, 1]; a scene's range gets its share (default 32)");
+    cmd->add_option("--precision", o.precision, "kernel arithmetic (default float)")
+        ->check(CLI::IsMember({"float", "double"}));
+    cmd->add_option("--table-format", o.table_format, "table files: exr (default), csv or h")
+        ->check(CLI::IsMember({"exr", "csv", "h"}));
+    cmd->add_flag("--half", o.half, "half-float EXR channels");
+}
+
+Plan load_plan(const SceneOptions& o, Scene* loaded = nullptr) {
+    Scene scene = load_scene(o.scene);
+    SceneSettings& s = scene.settings;
+    if (o.samples < 0) throw Error("--samples must be positive");
+    if (o.samples > 0) s.samples = std::uint64_t(o.samples);
+    if (o.mu_texels < 0 || o.alpha_texels < 0) throw Error("--mu-texels and --alpha-texels must be positive");
+    if (o.mu_texels > 0) s.mu_texels = o.mu_texels;
+    if (o.alpha_texels > 0) s.alpha_texels = o.alpha_texels;
+    if (!o.precision.empty()) s.precision = o.precision == "double" ? Precision::Double : Precision::Float;
+    if (!o.table_format.empty()) s.table_format = o.table_format;
+    if (o.half) s.half = true;
+    check_settings(s);
+    Plan plan = make_plan(scene);
+    if (loaded) *loaded = std::move(scene);
+    return plan;
+}
+
+// --- kernel build measurement ------------------------------------------------------------------
+
+/// The model id of a model name, found by resolving it with typical parameters.
+int model_id(const std::string& name) {
+    for (const char* keys : {"", ":alpha=0.5", ":n=10", ":sigma=0.3", ":eta=1.5"}) {
+        try {
+            return resolve_model(name + keys).id;
+        } catch (const Error&) {
+        }
+    }
+    throw Error("internal error: cannot resolve model '" + name + "' for a kernel build");
+}
+
+struct BuildStats {
+    int programs = 0;
+    double seconds = 0.0;
+    std::uint64_t binary_bytes = 0;
+    std::uint64_t source_bytes = 0;
+};
+
+/// Builds the albedo kernel (the kernel every table integrates with) for each model and measures
+/// the build time (clBuildProgram) and the size of the device binary.
+BuildStats measure_builds(Engine& engine, const std::vector<std::string>& models, Precision precision) {
+    BuildStats s;
+    const std::string source = kernel_source("albedo.cl");
+    for (const auto& name : models) {
+        BuildRequest b;
+        b.kernel_file = "albedo.cl";
+        b.precision = precision;
+        b.defines = {{"BB_MODEL", std::to_string(model_id(name))}, {"BB_FRESNEL", "0"}};
+        const double before = engine.build_seconds();
+        cl::Program& p = engine.program(b);
+        s.seconds += engine.build_seconds() - before;
+        for (std::size_t n : p.getInfo<CL_PROGRAM_BINARY_SIZES>()) s.binary_bytes += n;
+        s.source_bytes += source.size();
+        ++s.programs;
+    }
+    return s;
+}
+
+json stats_json(const BuildStats& s) {
+    return {{"programs", s.programs}, {"build_seconds", s.seconds}, {"binary_bytes", s.binary_bytes},
+            {"source_bytes", s.source_bytes}};
+}
+
+// --- plan --------------------------------------------------------------------------------------
+
+struct PlanOptions {
+    SceneOptions scene;
+    std::string format = "table";
+    bool measure = false;
+};
+
+int run_plan(const PlanOptions& o, const GlobalOptions& g) {
+    const Plan plan = load_plan(o.scene);
+    std::string out = o.format == "json" ? plan_json(plan) : plan_text(plan);
+    if (o.measure) {
+        // The scene's models against every model, each model its own program as the engine
+        // builds them. Separate engines, so that neither run reuses the other's programs.
+        const char* cache = std::getenv("POCL_KERNEL_CACHE");
+        const bool cached = !(cache && std::string(cache) == "0");
+        Engine scene_engine(g.device, g.verbose);
+        {
+            // Warm-up: the first build in a process also starts the compiler (about 2 s on PoCL);
+            // a trivial program pays that, so that neither measurement below does.
+            cl::Program warm(scene_engine.context(), std::string("__kernel void bb_warm_up(__global int* x) { x[0] = 1; }"));
+            warm.build(std::vector<cl::Device>{scene_engine.device().device}, "-cl-std=CL1.2");
+        }
+        const BuildStats used = measure_builds(scene_engine, plan.models, plan.settings.precision);
+        Engine all_engine(g.device, g.verbose);
+        const BuildStats all = measure_builds(all_engine, model_names(), plan.settings.precision);
+        if (o.format == "json") {
+            json j = json::parse(out);
+            j["kernels"] = {{"device", scene_engine.device().name},
+                            {"pocl_kernel_cache", cached},
+                            {"scene_models", stats_json(used)},
+                            {"all_models", stats_json(all)}};
+            out = j.dump(2) + "\n";
+        } else {
+            char line[512];
+            std::snprintf(line, sizeof line,
+                          "kernels (%s, %s): scene models %d program%s, build %.3f s, binary %.1f KiB; "
+                          "all %d models: build %.3f s, binary %.1f KiB\n",
+                          scene_engine.device().name.c_str(),
+                          cached ? "PoCL cache on: set POCL_KERNEL_CACHE=0 for cold builds" : "cold builds",
+                          used.programs, used.programs == 1 ? "" : "s", used.seconds, used.binary_bytes / 1024.0,
+                          all.programs, all.seconds, all.binary_bytes / 1024.0);
+            out += line;
+        }
+    }
+    std::cout << out << std::flush;
+    return kExitOk;
+}
+
+// --- bake --------------------------------------------------------------------------------------
+
+struct BakeOptions {
+    SceneOptions scene;
+    std::string output = "out";
+    bool force = false;
+};
+
+/// Progress on stderr: a bar redrawn in place when stderr is a terminal, plain lines otherwise.
+class Progress {
+public:
+    explicit Progress(double total_work) : total_(std::max(total_work, 1.0)), tty_(::isatty(2) != 0), t0_(Clock::now()) {}
+    bool tty() const { return tty_; }
+
+    void start(const std::string& label, int index, int count, const std::string& detail) {
+        label_ = label;
+        index_ = index;
+        count_ = count;
+        if (!tty_) std::fprintf(stderr, "brdfbake: [%d/%d] %s: computing %s\n", index, count, label.c_str(), detail.c_str());
+        draw();
+    }
+    void advance(double work) {
+        done_ += work;
+        draw();
+    }
+    void finish_table(const std::string& message) {
+        if (tty_) std::fprintf(stderr, "\r\033[K");
+        std::fprintf(stderr, "brdfbake: [%d/%d] %s\n", index_, count_, message.c_str());
+        draw();
+    }
+    void end() {
+        if (tty_) std::fprintf(stderr, "\r\033[K");
+        std::fflush(stderr);
+    }
+
+private:
+    void draw() {
+        if (!tty_) return;
+        const double f = std::min(1.0, done_ / total_);
+        const int width = 30, fill = int(f * width + 0.5);
+        const double t = since(t0_);
+        std::string bar(size_t(fill), '=');
+        bar += std::string(size_t(width - fill), ' ');
+        char eta[32] = "";
+        if (f > 0.02 && f < 1.0) std::snprintf(eta, sizeof eta, ", ~%.0f s left", t / f * (1.0 - f));
+        std::fprintf(stderr, "\r\033[K[%s] %3.0f%%  %s (%d/%d)  %.1f s%s", bar.c_str(), 100 * f, label_.c_str(), index_,
+                     count_, t, eta);
+        std::fflush(stderr);
+    }
+
+    double total_, done_ = 0.0;
+    bool tty_;
+    Clock::time_point t0_;
+    std::string label_;
+    int index_ = 0, count_ = 0;
+};
+
+/// The tiles of a table along its roughness axis (rows of a 2D table, texels of eavg): each tile
+/// is the same request over a sub-range whose texel centres are the full table's.
+std::vector<LutRequest> tiles_of(const LutRequest& r, int max_tiles) {
+    const bool along_x = r.kind == "eavg";
+    const int n = along_x ? r.width : r.height;
+    const int tiles = std::max(1, std::min(n, max_tiles));
+    std::vector<LutRequest> out;
+    for (int k = 0; k < tiles; ++k) {
+        const int j0 = n * k / tiles, j1 = n * (k + 1) / tiles;
+        LutRequest t = r;
+        t.alpha_lo = r.alpha_lo + (r.alpha_hi - r.alpha_lo) * j0 / n;
+        t.alpha_hi = k + 1 == tiles ? r.alpha_hi : r.alpha_lo + (r.alpha_hi - r.alpha_lo) * j1 / n;
+        (along_x ? t.width : t.height) = j1 - j0;
+        out.push_back(t);
+    }
+    return out;
+}
+
+/// Joins tiles computed by tiles_of back into the table of the full request.
+Table stitch(const LutRequest& r, std::vector<Table>& parts) {
+    Table t = std::move(parts.front());
+    const bool along_x = r.kind == "eavg";
+    Axis& axis = along_x ? t.x : t.y;
+    for (size_t k = 1; k < parts.size(); ++k) {
+        const Table& p = parts[k];
+        const Axis& a = along_x ? p.x : p.y;
+        axis.coordinate.insert(axis.coordinate.end(), a.coordinate.begin(), a.coordinate.end());
+        axis.parameter.insert(axis.parameter.end(), a.parameter.begin(), a.parameter.end());
+        for (size_t c = 0; c < t.values.size(); ++c)
+            t.values[c].insert(t.values[c].end(), p.values[c].begin(), p.values[c].end());
+        t.error.insert(t.error.end(), p.error.begin(), p.error.end());
+        for (const auto& kv : p.attributes)
+            if (!t.attributes.count(kv.first)) t.attributes.insert(kv);  // e.g. the alpha floor note
+    }
+    axis.lo = r.alpha_lo;
+    axis.hi = r.alpha_hi;
+    axis.size = int(axis.coordinate.size());
+    return t;
+}
+
+bool tileable(const std::string& kind) { return kind == "albedo" || kind == "eavg" || kind == "dfg" || kind == "dfg-ms"; }
+
+std::string join_path(const std::string& dir, const std::string& file) {
+    return dir.empty() || dir.back() == '/' ? dir + file : dir + "/" + file;
+}
+
+bool file_exists(const std::string& path) {
+    struct stat st;
+    return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
+}
+
+void make_dirs(const std::string& dir) {
+    std::string partial;
+    std::stringstream in(dir);
+    std::string part;
+    if (!dir.empty() && dir[0] == '/') partial = "/";
+    while (std::getline(in, part, '/')) {
+        if (part.empty()) continue;
+        partial += part + "/";
+        struct stat st;
+        if (::stat(partial.c_str(), &st) == 0) {
+            if (!S_ISDIR(st.st_mode)) throw Error("output folder '" + dir + "': '" + partial + "' is not a folder");
+            continue;
+        }
+        if (::mkdir(partial.c_str(), 0777) != 0 && errno != EEXIST)
+            throw Error("cannot create output folder '" + dir + "': " + std::strerror(errno));
+    }
+}
+
+json axis_json(const Axis& a) {
+    return {{"name", a.name}, {"mapping", a.mapping}, {"lo", a.lo}, {"hi", a.hi}, {"size", a.size}};
+}
+
+json lobe_json(const Lobe& l) {
+    json j = {{"role", l.role}, {"model", l.model}, {"fresnel", l.fresnel}, {"alpha_range", {l.alpha.lo, l.alpha.hi}},
+              {"kinds", l.kinds}};
+    if (l.eta) j["eta_range"] = {l.eta->lo, l.eta->hi};
+    if (l.wavelength_nm > 0) j["wavelength_nm"] = l.wavelength_nm;
+    return j;
+}
+
+json materials_json(const Scene& scene, const Plan& plan) {
+    json out = json::array();
+    for (const auto& m : scene.materials) {
+        json files = json::array();
+        for (const auto& t : plan.tables)
+            if (std::find(t.materials.begin(), t.materials.end(), m.name) != t.materials.end()) files.push_back(t.file);
+        json lobes = json::array();
+        for (const auto& l : m.lobes) lobes.push_back(lobe_json(l));
+        out.push_back({{"name", m.name}, {"tables", files}, {"lobes", lobes}, {"notes", m.notes}});
+    }
+    return out;
+}
+
+json settings_json(const SceneSettings& s) {
+    return {{"samples", s.samples},       {"mu_texels", s.mu_texels}, {"alpha_texels", s.alpha_texels},
+            {"eta_step", s.eta_step},     {"mu_map", s.mu_map},       {"alpha_map", s.alpha_map},
+            {"precision", precision_name(s.precision)}, {"format", s.table_format}, {"half", s.half}};
+}
+
+int run_bake(const BakeOptions& o, const GlobalOptions& g) {
+    const auto t0 = Clock::now();
+    const SceneOptions& so = o.scene;
+    // Everything is checked before the device is touched or a file is written.
+    Scene scene;
+    const Plan plan = load_plan(so, &scene);
+    if (o.output.empty()) throw Error("-o: give an output folder");
+    for (const auto& t : plan.tables)
+        if (!t.unavailable.empty())
+            throw Error("cannot bake '" + t.file + "' (for " + [&] {
+                std::string s;
+                for (const auto& m : t.materials) s += (s.empty() ? "" : ", ") + m;
+                return s;
+            }() + "): " + t.unavailable);
+    for (const auto& w : plan.warnings) std::fprintf(stderr, "brdfbake: warning: %s\n", w.c_str());
+
+    make_dirs(o.output);
+    const std::string index_path = join_path(o.output, "index.json");
+    json old_index;
+    if (file_exists(index_path)) {
+        std::ifstream in(index_path);
+        std::stringstream s;
+        s << in.rdbuf();
+        try {
+            old_index = json::parse(s.str());
+        } catch (const json::exception&) {
+            std::fprintf(stderr, "brdfbake: warning: %s is not valid JSON; every table is recomputed\n", index_path.c_str());
+        }
+    }
+    auto old_entry = [&](const std::string& file) -> const json* {
+        if (!old_index.is_object() || !old_index.contains("tables") || !old_index["tables"].is_array()) return nullptr;
+        for (const auto& e : old_index["tables"])
+            if (e.is_object() && e.value("file", "") == file) return &e;
+        return nullptr;
+    };
+
+    // What is up to date: the same request hash in the index and the file still present.
+    std::vector<bool> fresh(plan.tables.size(), false);
+    double work = 0.0;
+    int to_compute = 0;
+    for (size_t i = 0; i < plan.tables.size(); ++i) {
+        const PlannedTable& t = plan.tables[i];
+        const json* e = old_entry(t.file);
+        fresh[i] = !o.force && e && e->value("request_hash", "") == t.hash && file_exists(join_path(o.output, t.file));
+        if (!fresh[i]) {
+            work += double(t.samples_total);
+            ++to_compute;
+        }
+    }
+
+    json index = {{"brdfbake_index", 1},
+                  {"tool", std::string("brdfbake ") + BRDFBAKE_VERSION},
+                  {"scene", plan.scene},
+                  {"source", plan.source},
+                  {"settings", settings_json(plan.settings)},
+                  {"tables", json::array()},
+                  {"materials", materials_json(scene, plan)},
+                  {"warnings", plan.warnings}};
+    for (size_t i = 0; i < plan.tables.size(); ++i)
+        if (fresh[i]) {
+            json e = *old_entry(plan.tables[i].file);
+            e["materials"] = plan.tables[i].materials;  // which materials it serves may have changed
+            e["serves"] = plan.tables[i].serves;
+            index["tables"].push_back(e);
+        }
+    auto write_index = [&] {
+        const std::string text = index.dump(2) + "\n";
+        std::ifstream in(index_path, std::ios::binary);
+        std::stringstream s;
+        if (in) s << in.rdbuf();
+        if (!in || s.str() != text) write_file_atomically(index_path, text);
+    };
+
+    // Tables of an earlier bake that the plan no longer has: reported, left in place.
+    if (old_index.is_object() && old_index.contains("tables") && old_index["tables"].is_array())
+        for (const auto& e : old_index["tables"]) {
+            const std::string f = e.is_object() ? e.value("file", "") : "";
+            if (!f.empty() && std::none_of(plan.tables.begin(), plan.tables.end(),
+                                           [&](const PlannedTable& t) { return t.file == f; }))
+                std::fprintf(stderr, "brdfbake: %s is no longer in the plan; left in place, dropped from the index\n",
+                             join_path(o.output, f).c_str());
+        }
+
+    if (to_compute == 0) {
+        write_index();
+        std::fprintf(stderr, "brdfbake: all %zu tables in %s are up to date (same request hash, file present); "
+                             "nothing to compute\n",
+                     plan.tables.size(), o.output.c_str());
+        return kExitOk;
+    }
+
+    std::unique_ptr<Engine> engine = std::make_unique<Engine>(g.device, g.verbose);
+    Progress progress(work);
+    int n = 0, computed = 0;
+    double max_error = 0.0;
+    for (size_t i = 0; i < plan.tables.size(); ++i) {
+        const PlannedTable& t = plan.tables[i];
+        if (fresh[i]) continue;
+        ++n;
+        const auto t1 = Clock::now();
+        LutRequest r = t.request;
+        apply_eta_axis(t, r);
+        char detail[160];
+        std::snprintf(detail, sizeof detail, "%s table %dx%d%s, %llu samples per cell (estimate %.1f s)", r.kind.c_str(),
+                      r.width, r.height, r.kind == "dielectric" ? ("x" + std::to_string(t.depth)).c_str() : "",
+                      static_cast<unsigned long long>(r.samples), t.est_seconds);
+        progress.start(t.file, n, to_compute, detail);
+        Table table;
+        if (tileable(r.kind)) {
+            const std::vector<LutRequest> tiles = tiles_of(r, 16);
+            std::vector<Table> parts;
+            for (const auto& tile : tiles) {
+                parts.push_back(compute_lut(*engine, tile));
+                progress.advance(double(t.samples_total) * (tile.kind == "eavg" ? tile.width : tile.height) /
+                                 (r.kind == "eavg" ? r.width : r.height));
+            }
+            table = stitch(r, parts);
+        } else {
+            table = compute_lut(*engine, r);
+            progress.advance(double(t.samples_total));
+        }
+        check_finite(table);
+        const std::string path = join_path(o.output, t.file);
+        write_table(table, path, plan.settings.half);
+        const double seconds = since(t1);
+        max_error = std::max(max_error, table.max_error());
+
+        json axes = json::array({axis_json(table.x)});
+        if (table.height() > 1 || r.kind != "eavg") axes.push_back(axis_json(table.y));
+        if (table.depth() > 1 || r.kind == "dielectric") axes.push_back(axis_json(table.z));
+        json e = {{"file", t.file},
+                  {"kind", r.kind},
+                  {"quantity", table.quantity},
+                  {"model", r.model},
+                  {"fresnel", r.fresnel},
+                  {"size", std::to_string(table.width()) + "x" + std::to_string(table.height()) +
+                               (r.kind == "dielectric" ? "x" + std::to_string(table.depth()) : "")},
+                  {"layout", table.depth() > 1 ? "z-slices stacked along y" : "2D"},
+                  {"axes", axes},
+                  {"channels", table.channels},
+                  {"error_channel", "estimated absolute error per texel"},
+                  {"max_error", table.max_error()},
+                  {"samples_per_cell", r.samples},
+                  {"precision", precision_name(r.precision)},
+                  {"attributes", table.attributes},
+                  {"alpha_range", {t.alpha.lo, t.alpha.hi}},
+                  {"materials", t.materials},
+                  {"serves", t.serves},
+                  {"request_hash", t.hash},
+                  {"request", t.key},
+                  {"seconds", std::round(seconds * 1000) / 1000}};
+        if (t.eta) e["eta_range"] = {t.eta->lo, t.eta->hi};
+        if (r.wavelength_nm > 0) e["wavelength_nm"] = r.wavelength_nm;
+        // Keep the index in plan order, and written after every table: an interrupted bake
+        // keeps what it finished.
+        json tables = json::array();
+        for (size_t k = 0; k < plan.tables.size(); ++k) {
+            if (k == i) tables.push_back(e);
+            else
+                for (const auto& x : index["tables"])
+                    if (x.value("file", "") == plan.tables[k].file) tables.push_back(x);
+        }
+        index["tables"] = tables;
+        write_index();
+        ++computed;
+        char msg[256];
+        std::snprintf(msg, sizeof msg, "wrote %s in %.2f s, max error %.2e", path.c_str(), seconds, table.max_error());
+        progress.finish_table(msg);
+    }
+    progress.end();
+    std::fprintf(stderr,
+                 "brdfbake: baked %d table%s (%zu up to date) into %s in %.2f s (kernel builds %.2f s, %s only); "
+                 "max error %.2e; index %s\n",
+                 computed, computed == 1 ? "" : "s", plan.tables.size() - size_t(computed), o.output.c_str(), since(t0),
+                 engine->build_seconds(), [&] {
+                     std::string s;
+                     for (const auto& m : plan.models) s += (s.empty() ? "" : ", ") + m;
+                     return s;
+                 }().c_str(),
+                 max_error, index_path.c_str());
+    return kExitOk;
+}
+
+}  // namespace
+
+void add_plan_command(CLI::App& app, const GlobalOptions& global, Action& action) {
+    auto o = std::make_shared<PlanOptions>();
+    CLI::App* cmd = app.add_subcommand("plan", "list the tables a scene needs (kinds, ranges, sizes, materials, estimates)");
+    add_scene_options(cmd, o->scene);
+    cmd->add_option("--format", o->format, "output format")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
+    cmd->add_flag("--measure-kernels", o->measure,
+                  "build the kernels for the scene's models and for every model on the device; report build time and "
+                  "binary size");
+    cmd->callback([o, &global, &action] { action = [o, &global] { return run_plan(*o, global); }; });
+}
+
+void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action) {
+    auto o = std::make_shared<BakeOptions>();
+    CLI::App* cmd = app.add_subcommand("bake", "compute the tables a scene needs into a folder, with an index.json");
+    add_scene_options(cmd, o->scene);
+    cmd->add_option("-o,--output", o->output, "output folder")->capture_default_str();
+    cmd->add_flag("--force", o->force, "recompute tables that are up to date");
+    cmd->callback([o, &global, &action] { action = [o, &global] { return run_bake(*o, global); }; });
+}
+
+}  // namespace brdfbake

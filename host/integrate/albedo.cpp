@@ -1,0 +1,664 @@
+#include "brdfbake/albedo.h"
+
+#include <Random123/philox.h>
+#include <Random123/uniform.hpp>
+#include <boost/math/special_functions/legendre.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <iostream>
+#include <map>
+#include <sstream>
+#include <type_traits>
+
+#include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/integrands.h"
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/sampling.h"
+#include "brdfbake/error.h"
+#include "engine/device_buffer.h"
+
+namespace brdfbake {
+
+const char* method_name(Method m) {
+    switch (m) {
+    case Method::Importance:
+        return "importance";
+    case Method::QuasiMonteCarlo:
+        return "qmc";
+    case Method::MonteCarlo:
+        return "mc";
+    case Method::Quadrature:
+        return "quadrature";
+    }
+    return "?";
+}
+
+Method parse_method(const std::string& name) {
+    for (Method m : {Method::Importance, Method::QuasiMonteCarlo, Method::MonteCarlo, Method::Quadrature})
+        if (name == method_name(m)) return m;
+    throw Error("unknown method '" + name + "'; methods: auto, importance, qmc, mc, quadrature");
+}
+
+double tolerance_floor(Precision precision) {
+    return 8.0 * (precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7);
+}
+
+std::vector<AlbedoCell> cells_for(const std::vector<double>& mus, double phi, const ParamBlock& params) {
+    std::vector<AlbedoCell> cells;
+    for (double mu : mus) cells.push_back(AlbedoCell{mu, phi, params});
+    return cells;
+}
+
+namespace {
+
+// Cranley-Patterson shifts, two per replica, from Philox4x32-10 (Salmon et al. 2011) keyed by
+// the seed: counter-based, so replica r's shift does not depend on how many replicas there are.
+std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed) {
+    using Philox = r123::Philox4x32;
+    Philox rng;
+    Philox::key_type key = {{std::uint32_t(seed), std::uint32_t(seed >> 32)}};
+    std::vector<double> shifts;
+    for (unsigned r = 0; r < replicas; ++r) {
+        Philox::ctr_type ctr = {{r, 0x616c6264u /* "albd" */, 0, 0}};
+        const Philox::ctr_type out = rng(ctr, key);
+        // 53-bit doubles in [0, 1) from two 32-bit words each.
+        shifts.push_back(r123::u01<double>(std::uint64_t(out[0]) << 32 | out[1]));
+        shifts.push_back(r123::u01<double>(std::uint64_t(out[2]) << 32 | out[3]));
+    }
+    for (double& s : shifts)
+        if (s >= 1.0) s = 0.0;
+    return shifts;
+}
+
+std::string method_text(Method method, unsigned replicas, std::uint64_t points) {
+    std::ostringstream m;
+    switch (method) {
+    case Method::Importance:
+        m << "importance sampling, randomised Hammersley";
+        break;
+    case Method::QuasiMonteCarlo:
+        m << "uniform hemisphere sampling, randomised Hammersley";
+        break;
+    default:
+        m << "uniform hemisphere sampling, Philox4x32-10";
+        break;
+    }
+    m << " (" << replicas << " replicas x " << points << " points)";
+    return m.str();
+}
+
+std::string quadrature_text(int model, unsigned n) {
+    std::ostringstream m;
+    m << "Gauss-Legendre product rule in " << (bb_model_quad_dist(model, bb_params{}).kind == BB_QUAD_SAMPLER ? "the sampler's unit square" : "half-vector space")
+      << ", " << n << " x " << n << " nodes per azimuth piece (2 to 8 pieces), error from the " << n / 2
+      << "- and " << n / 4 << "-node rules";
+    return m.str();
+}
+
+// Mean and error estimate of each cell from its replica means. The error is 3 standard errors of
+// the replicas, plus an unseen-mass term 3 |E| / N for the N samples of the cell, plus a
+// floating-point bound: the per-sample weight carries a few ulps of rounding error that
+// averaging does not remove (compensated summation keeps the sums exact to ~1 ulp).
+// The unseen-mass term is the rule of three: a part of the sample space of probability below
+// 3/N goes unseen by all N points with probability 5% or more, and the replicas then agree
+// without knowing of it; with an importance sampler the weight there is of the order of E.
+// Without it the replicas claim too much in two measured ways (benchmarks/results/tradeoff-*):
+// GGX alpha = 0.01 at mu = 1 from 4096 samples misses the rare grazing reflections (1e-4 of
+// E) and its 16 replicas agree to 6e-8; Torrance-Sparrow at mu = 1e-4, whose weight is 2 on
+// half of the square and 0 on the other, is split exactly in half by every Hammersley replica.
+// Throws Error if any sample of a cell was non-finite (`where(cell)` names the cell).
+template <typename Where>
+std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::vector<cl_uint>& bad,
+                                   unsigned replicas, std::uint64_t samples_per_cell, Precision precision,
+                                   Where where) {
+    const double fp_bound = tolerance_floor(precision);
+    const size_t n_cells = means.size() / replicas;
+    std::vector<AlbedoValue> out;
+    for (size_t c = 0; c < n_cells; ++c) {
+        std::uint64_t n_bad = 0;
+        double sum = 0.0;
+        for (unsigned r = 0; r < replicas; ++r) {
+            n_bad += bad[c * replicas + r];
+            sum += means[c * replicas + r];
+        }
+        if (n_bad > 0)
+            throw NonFiniteError(where(c) + " (" + std::to_string(n_bad) + " samples); refusing to report a result", c,
+                                 n_bad);
+        const double mean = sum / replicas;
+        double ss = 0.0;
+        for (unsigned r = 0; r < replicas; ++r) ss += std::pow(means[c * replicas + r] - mean, 2);
+        const double std_error = std::sqrt(ss / (replicas - 1) / replicas);
+        AlbedoValue v;
+        v.value = mean;
+        v.error = 3.0 * std_error + 3.0 * std::fabs(mean) / double(samples_per_cell) +
+                  fp_bound * std::max(std::fabs(mean), 1e-3);
+        out.push_back(v);
+    }
+    return out;
+}
+
+void check_sampling(std::uint64_t samples, unsigned replicas) {
+    if (replicas < 2) throw Error("at least 2 replicas are needed for an error estimate");
+    if (samples < replicas) throw Error("--samples must be at least " + std::to_string(replicas));
+    if (samples / replicas > 0xffffffffu) throw Error("--samples is too large (at most 2^32 per replica)");
+}
+
+cl::NDRange global_range(size_t items, size_t local) { return cl::NDRange((items + local - 1) / local * local); }
+
+constexpr size_t kLocalSize = 8;
+
+// The cell-independent half of the vector path: the disk point bb_disk_polar(u1, u2) of every
+// point of every replica (the rotated Hammersley point, as the scalar kernel forms it) and
+// h = sqrt(1 - x^2), laid out for vector loads: per replica, per step of `lanes` points, the
+// lanes' x, then their y, then their h. Computed here once in double with the shared functions
+// and rounded to the kernel's real; the float kernel sees its shifts rounded to float, as the
+// scalar kernel does.
+std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
+                               unsigned lanes, Precision precision) {
+    std::vector<double> table(size_t(replicas) * points * 3);
+    const unsigned n = unsigned(points);
+    for (unsigned r = 0; r < replicas; ++r) {
+        double s1 = shifts[2 * r], s2 = shifts[2 * r + 1];
+        if (precision == Precision::Float) {
+            s1 = double(float(s1));
+            s2 = double(float(s2));
+        }
+        double* out = table.data() + size_t(r) * points * 3;
+        for (unsigned i = 0; i < n; ++i) {
+            const bb_vec2 d = bb_disk_polar(bb_rotate(bb_hammersley_u1(i, n), s1), bb_rotate(bb_hammersley_u2(i), s2));
+            const size_t base = size_t(i / lanes) * 3 * lanes + i % lanes;
+            out[base] = d.x;
+            out[base + lanes] = d.y;
+            out[base + 2 * lanes] = bb_safe_sqrt(1.0 - d.x * d.x);
+        }
+    }
+    return table;
+}
+
+// The cell-independent half of the generic vector path (albedo_replicas_points): the rotated
+// Hammersley point (u1, u2) of every point of every replica, laid out per replica, per step of
+// `lanes` points, the lanes' u1 then their u2. Computed in the kernel's precision with the
+// scalar kernel's operations (bb_hammersley_u1/u2, bb_rotate), so that both kernels see the
+// same points to the last bit.
+template <typename T>
+void fill_point_table(std::vector<double>& table, const std::vector<double>& shifts, unsigned replicas,
+                      std::uint64_t points, unsigned lanes) {
+    const unsigned n = unsigned(points);
+    for (unsigned r = 0; r < replicas; ++r) {
+        const T s1 = T(shifts[2 * r]), s2 = T(shifts[2 * r + 1]);
+        double* out = table.data() + size_t(r) * points * 2;
+        for (unsigned i = 0; i < n; ++i) {
+            T u1 = (T(i) + T(0.5)) / T(n) + s1;
+            u1 = u1 >= T(1) ? u1 - T(1) : u1;
+            const std::uint32_t bits = bb_reverse_bits(i);
+            T u2 = (std::is_same<T, float>::value ? T(bits >> 8) * T(5.9604644775390625e-8)
+                                                   : T(bits) * T(2.3283064365386963e-10)) + s2;
+            u2 = u2 >= T(1) ? u2 - T(1) : u2;
+            const size_t base = size_t(i / lanes) * 2 * lanes + i % lanes;
+            out[base] = double(u1);
+            out[base + lanes] = double(u2);
+        }
+    }
+}
+
+std::vector<double> point_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
+                                unsigned lanes, Precision precision) {
+    std::vector<double> table(size_t(replicas) * points * 2);
+    if (precision == Precision::Float)
+        fill_point_table<float>(table, shifts, replicas, points, lanes);
+    else
+        fill_point_table<double>(table, shifts, replicas, points, lanes);
+    return table;
+}
+
+}  // namespace
+
+namespace {
+
+struct CellArrays {
+    std::vector<double> mus, phis, params;
+};
+
+CellArrays cell_arrays(const std::vector<AlbedoCell>& cells) {
+    CellArrays a;
+    for (const auto& c : cells) {
+        a.mus.push_back(c.mu);
+        a.phis.push_back(c.phi);
+        for (int k = 0; k < BB_MAX_PARAMS; ++k) a.params.push_back(c.params[k]);
+    }
+    return a;
+}
+
+std::string nonfinite_where(const AlbedoRequest& req, size_t c) {
+    std::ostringstream m;
+    m << "the BRDF produced NaN or Inf at mu = " << req.cells[c].mu;
+    return m.str();
+}
+
+// Whether N uniform hemisphere samples (mc, qmc) can see the lobe of a cell. A lobe of angular
+// width a (alpha of a microfacet D, sqrt(2/(n+2)) for a Blinn or Phong exponent n) around the
+// mirror direction covers a fraction of about 2 a^2 of the hemisphere: with fewer than 64
+// expected hits (4 per replica) the replicas may all miss it and agree on a value near 0 (the
+// trade-off study: Beckmann alpha = 1e-3 from 256 samples gives 0 +- 1e-9 against 1.0).
+// Such a result is reported with an error of max(1, |E|): the method cannot tell.
+bool uniform_resolves_lobe(int model, const AlbedoCell& cell, std::uint64_t samples) {
+    bb_params p;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = cell.params[k];
+    const bb_quad_dist d = bb_model_quad_dist(model, p);
+    double width = 1.0;
+    if (d.kind == BB_QUAD_BLINN)
+        width = std::sqrt(2.0 / (d.n + 2.0));
+    else if (d.kind != BB_QUAD_SAMPLER)
+        width = std::min(d.ax, d.ay);
+#if BB_HAS_MODEL(BB_MODEL_PHONG)
+    else if (model == BB_MODEL_PHONG || model == BB_MODEL_PHONG_ORIGINAL)
+        width = std::sqrt(2.0 / (p.v[BB_PHONG_N] + 2.0));
+#endif
+    return double(samples) * std::min(1.0, 2.0 * width * width) >= 64.0;
+}
+
+AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
+    check_sampling(req.samples, req.replicas);
+    const std::uint64_t points = req.samples / req.replicas;
+    const size_t n_cells = req.cells.size();
+    const size_t n_items = n_cells * req.replicas;
+
+    BuildRequest build;
+    build.kernel_file = "albedo.cl";
+    build.precision = req.precision;
+    build.defines = {{"BB_MODEL", std::to_string(req.model)},
+                     {"BB_FRESNEL", std::to_string(req.fresnel.kind)}};
+    build.random123 = req.method == Method::MonteCarlo;
+    // The vector paths: importance sampling (GGX's disk path, or the model's own branch-free
+    // sampler) and qmc's uniform hemisphere weights for models with a branch-free evaluation.
+    const bool uniform = req.method == Method::QuasiMonteCarlo;
+    const bool disk = !uniform && bb_model_samples_disk(req.model) != 0;
+    build.has_vector_path = (req.method == Method::Importance && (disk || bb_model_samples_vector(req.model) != 0)) ||
+                            (uniform && bb_model_evals_vector(req.model) != 0);
+    build.vector_width = req.vector_width;
+    unsigned lanes = engine.vector_width(build);
+    if (lanes > 1 && points % lanes != 0) {
+        build.vector_width = 1;  // a ragged last step: the scalar kernel
+        lanes = 1;
+    }
+    if (lanes > 1 && !disk) build.defines.push_back({"BB_VECTOR_POINTS", "1"});
+    if (lanes > 1 && uniform) build.defines.push_back({"BB_VECTOR_UNIFORM", "1"});
+    if (lanes > 1 && disk) {
+        // A launch whose cells are all isotropic gets the disk weight without the terms that
+        // vanish then (bb_model_disk_isotropic): a program of its own, cached as any other.
+        bool isotropic = true;
+        for (const AlbedoCell& c : req.cells) {
+            bb_params p;
+            for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = c.params[k];
+            isotropic = isotropic && bb_model_disk_isotropic(req.model, p);
+        }
+        if (isotropic) build.defines.push_back({"BB_ISOTROPIC", "1"});
+    }
+    cl::Program& program = engine.program(build);
+
+    const CellArrays cells = cell_arrays(req.cells);
+    const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
+    const std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
+
+    RealBuffers bufs(engine, req.precision);
+    cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
+               b_fp = bufs.input(fparams);
+    cl::Buffer b_points = bufs.input(lanes == 1 ? shifts
+                                     : disk   ? disk_table(shifts, req.replicas, points, lanes, req.precision)
+                                              : point_table(shifts, req.replicas, points, lanes, req.precision));
+    cl::Buffer b_mean = bufs.output(n_items);
+    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+
+    cl::Kernel kernel(program, lanes == 1 ? "albedo_replicas" : (disk ? "albedo_replicas_disk" : "albedo_replicas_points"));
+    int a = 0;
+    kernel.setArg(a++, b_mu);
+    kernel.setArg(a++, b_phi);
+    kernel.setArg(a++, b_p);
+    kernel.setArg(a++, b_fp);
+    kernel.setArg(a++, b_points);
+    kernel.setArg(a++, cl_uint(points));
+    kernel.setArg(a++, cl_uint(req.replicas));
+    kernel.setArg(a++, cl_uint(n_cells));
+    if (lanes == 1) {
+        const int method = req.method == Method::Importance ? 0 : (req.method == Method::QuasiMonteCarlo ? 1 : 2);
+        kernel.setArg(a++, cl_int(method));
+        kernel.setArg(a++, cl_uint(req.seed));
+        kernel.setArg(a++, cl_uint(req.seed >> 32));
+    }
+    kernel.setArg(a++, b_mean);
+    kernel.setArg(a++, b_bad);
+
+    // An explicit small work-group: the default could give PoCL two groups for two cores, or
+    // one, whatever the table size (issue 9).
+    cl::Event done;
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize),
+                                        cl::NDRange(kLocalSize), nullptr, &done);
+    const std::vector<double> means = bufs.read(b_mean, n_items);
+    std::vector<cl_uint> bad(n_items);
+    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+
+    AlbedoResult result;
+    result.samples_per_cell = points * req.replicas;
+    result.total_samples = result.samples_per_cell * n_cells;
+    result.kernel_seconds = event_seconds(done);
+    result.vector_width = lanes;
+    result.method = method_text(req.method, req.replicas, points);
+    result.values = summarize(means, bad, req.replicas, result.samples_per_cell, req.precision,
+                              [&](size_t c) { return nonfinite_where(req, c); });
+    for (size_t c = 0; c < result.values.size(); ++c) {
+        AlbedoValue& v = result.values[c];
+        v.samples = result.samples_per_cell;
+        v.method = req.method;
+        if (req.method != Method::Importance && !uniform_resolves_lobe(req.model, req.cells[c], result.samples_per_cell))
+            v.error = std::max(v.error, std::max(1.0, std::fabs(v.value)));
+    }
+    return result;
+}
+
+// Gauss-Legendre nodes and weights of the n-point rule on [0, 1] (weights summing to 1):
+// the zeros of P_n and 2/((1 - x^2) P_n'(x)^2) from Boost.Math, mapped from [-1, 1]. With
+// lanes > 1 (the vector kernel) the abscissae and the weights are each padded to a multiple of
+// lanes with abscissa 1/2 and weight 0.
+void append_gauss_legendre(unsigned n, std::vector<double>& out, unsigned lanes = 1) {
+    const std::vector<double> zeros = boost::math::legendre_p_zeros<double>(int(n));  // the zeros >= 0
+    std::vector<std::pair<double, double>> rule;
+    for (double z : zeros) {
+        const double d = boost::math::legendre_p_prime(int(n), z);
+        const double w = 1.0 / ((1.0 - z * z) * d * d);  // half the weight on [-1, 1]
+        rule.push_back({0.5 * (1.0 + z), w});
+        if (z != 0.0) rule.push_back({0.5 * (1.0 - z), w});
+    }
+    std::sort(rule.begin(), rule.end());
+    const size_t padded = (rule.size() + lanes - 1) / lanes * lanes;
+    for (const auto& r : rule) out.push_back(r.first);
+    out.resize(out.size() + padded - rule.size(), 0.5);
+    for (const auto& r : rule) out.push_back(r.second);
+    out.resize(out.size() + padded - rule.size(), 0.0);
+}
+
+// The error of the n-node rule from the n/2- and n/4-node rules. For an integrand that is smooth
+// on the domain the Gauss-Legendre error falls geometrically, e(n) ~ r^(2n): the difference
+// d1 = |Q(n) - Q(n/2)| ~ e(n/2) is then about the square of d2 = |Q(n/2) - Q(n/4)| (relative
+// to the integral), and d1 bounds e(n) with a wide margin. Where it is not (a kink, such as
+// Torrance-Sparrow's V-groove min(), or a feature the rules do not yet resolve), the error
+// falls algebraically or erratically and d1 can be far below e(n) (22x measured at mu = 1e-4):
+// then the larger of the two differences is taken. Torrance-Sparrow's integrand always has
+// the kink, and at grazing its rules can agree at 8, 16 and 32 nodes on a value 2.5e-5 off
+// (n = 6, mu = 1e-4) before they resolve it: for it the larger difference is always taken.
+double quadrature_error(double fine, double coarse, double coarsest, bool kinked) {
+    const double scale = std::max(std::fabs(fine), 1e-3);
+    const double d1 = std::fabs(fine - coarse) / scale, d2 = std::fabs(coarse - coarsest) / scale;
+    const bool geometric = !kinked && d1 <= std::pow(d2, 1.5);
+    return scale * (geometric ? d1 : std::max(d1, d2));
+}
+
+// The fine rule's order for a sample budget: the even n nearest sqrt(samples / 4), at least 4.
+unsigned quadrature_order(std::uint64_t samples) {
+    const double n = std::sqrt(double(samples) / 4.0);
+    unsigned order = 2 * unsigned(std::lround(n / 2.0));
+    return std::clamp(order, 4u, 4096u);
+}
+
+AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
+    if (req.samples == 0) throw Error("--samples must be positive");
+    const unsigned n = quadrature_order(req.samples), m = n / 2, l = std::max(1u, n / 4);
+    const size_t n_cells = req.cells.size(), n_items = n_cells * 24;
+
+    BuildRequest build;
+    build.kernel_file = "albedo.cl";
+    build.precision = req.precision;
+    build.defines = {{"BB_MODEL", std::to_string(req.model)},
+                     {"BB_FRESNEL", std::to_string(req.fresnel.kind)},
+                     {"BB_QUADRATURE", "1"}};
+    // The vector path (albedo_quadrature_rows, one row of the rule per lane) for the half-vector
+    // rule; the sampler's square keeps the scalar kernel.
+    build.has_vector_path = bb_model_quad_dist(req.model, bb_params{}).kind != BB_QUAD_SAMPLER;
+    build.vector_width = req.vector_width;
+    const unsigned lanes = engine.vector_width(build);
+    cl::Program& program = engine.program(build);
+
+    std::vector<double> nodes;
+    append_gauss_legendre(n, nodes, lanes);
+    append_gauss_legendre(m, nodes, lanes);
+    append_gauss_legendre(l, nodes, lanes);
+    const CellArrays cells = cell_arrays(req.cells);
+    const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
+    RealBuffers bufs(engine, req.precision);
+    cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
+               b_fp = bufs.input(fparams), b_nodes = bufs.input(nodes);
+    cl::Buffer b_sum = bufs.output(n_items);
+    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+
+    cl::Kernel kernel(program, lanes > 1 ? "albedo_quadrature_rows" : "albedo_quadrature");
+    int a = 0;
+    kernel.setArg(a++, b_mu);
+    kernel.setArg(a++, b_phi);
+    kernel.setArg(a++, b_p);
+    kernel.setArg(a++, b_fp);
+    kernel.setArg(a++, b_nodes);
+    kernel.setArg(a++, cl_uint(n));
+    kernel.setArg(a++, cl_uint(m));
+    kernel.setArg(a++, cl_uint(l));
+    kernel.setArg(a++, cl_uint(n_cells));
+    kernel.setArg(a++, b_sum);
+    kernel.setArg(a++, b_bad);
+    cl::Event done;
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize),
+                                        cl::NDRange(kLocalSize), nullptr, &done);
+    const std::vector<double> sums = bufs.read(b_sum, n_items);
+    std::vector<cl_uint> bad(n_items);
+    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+
+    AlbedoResult result;
+    const std::uint64_t per_piece = std::uint64_t(n) * n + std::uint64_t(m) * m + std::uint64_t(l) * l;
+    result.kernel_seconds = event_seconds(done);
+    result.vector_width = lanes;
+    result.method = quadrature_text(req.model, n);
+    const double fp_bound = tolerance_floor(req.precision);
+    for (size_t c = 0; c < n_cells; ++c) {
+        double fine = 0.0, coarse = 0.0, coarsest = 0.0;
+        std::uint64_t n_bad = 0;
+        for (int q = 0; q < 8; ++q) {
+            fine += sums[c * 24 + q];
+            coarse += sums[c * 24 + 8 + q];
+            coarsest += sums[c * 24 + 16 + q];
+            n_bad += bad[c * 24 + q] + bad[c * 24 + 8 + q] + bad[c * 24 + 16 + q];
+        }
+        if (n_bad > 0)
+            throw NonFiniteError(nonfinite_where(req, c) + " (" + std::to_string(n_bad) +
+                                     " quadrature nodes); refusing to report a result",
+                                 c, n_bad);
+        AlbedoValue v;
+        v.value = fine;
+        v.error = quadrature_error(fine, coarse, coarsest, req.model == BB_MODEL_TORRANCE_SPARROW) + fp_bound * std::max(std::fabs(fine), 1e-3);
+        bb_params p;
+        for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = req.cells[c].params[k];
+        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(bb_model_quad_dist(req.model, p), req.cells[c].phi));
+        result.samples_per_cell = std::max(result.samples_per_cell, v.samples);
+        result.total_samples += v.samples;
+        v.method = Method::Quadrature;
+        result.values.push_back(v);
+    }
+    return result;
+}
+
+}  // namespace
+
+AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
+    if (req.cells.empty()) throw Error("no directions to integrate");
+    for (const auto& c : req.cells)
+        if (!(c.mu > 0.0 && c.mu <= 1.0) || !std::isfinite(c.phi))
+            throw Error("mu must lie in (0, 1]; got " + std::to_string(c.mu));
+    return req.method == Method::Quadrature ? compute_quadrature(engine, req) : compute_sampled(engine, req);
+}
+
+AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
+    if (!(tol.tolerance > 0.0) || !std::isfinite(tol.tolerance))
+        throw Error("--tolerance must be a positive number");
+    const double floor = tolerance_floor(req.precision);
+    if (tol.tolerance < 2.0 * floor)
+        throw Error("--tolerance " + std::to_string(tol.tolerance) + " is below what " + precision_name(req.precision) +
+                    " arithmetic can certify (about " + std::to_string(2.0 * floor) + ")" +
+                    (req.precision == Precision::Float ? "; use --precision double" : ""));
+    if (req.cells.empty()) throw Error("no directions to integrate");
+
+    // The plan: (method, samples) steps, each a round over the cells still above the tolerance.
+    // Quadrature first (auto): its error falls exponentially for smooth lobes; importance
+    // sampling, whose error falls like N^-0.9 with randomised QMC, takes the cells where the
+    // rule stalls (kinks such as Torrance-Sparrow's V-groove min()). Work grows 4x per step.
+    std::vector<std::pair<Method, std::uint64_t>> steps;
+    const bool quad_first = tol.auto_method || req.method == Method::Quadrature;
+    if (quad_first)
+        for (std::uint64_t s = 4 * 16 * 16; s <= std::min<std::uint64_t>(tol.max_samples, 4ull * 512 * 512); s *= 4)
+            steps.push_back({Method::Quadrature, s});
+    if (tol.auto_method || req.method != Method::Quadrature) {
+        const Method sampler = tol.auto_method ? Method::Importance : req.method;
+        for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples; s *= 4) steps.push_back({sampler, s});
+    }
+    if (steps.empty()) throw Error("--max-samples is too small for a first round");
+
+    AlbedoResult result;
+    result.tolerance = tol.tolerance;
+    result.rounds = 0;
+    result.values.assign(req.cells.size(), AlbedoValue{});
+    std::vector<bool> done(req.cells.size(), false);
+    std::vector<double> best_error(req.cells.size(), INFINITY);
+    std::map<std::string, size_t> met_by;  // "quadrature n=32" -> cells
+    for (const auto& step : steps) {
+        std::vector<size_t> todo;
+        for (size_t c = 0; c < done.size(); ++c)
+            if (!done[c]) todo.push_back(c);
+        if (todo.empty()) break;
+        AlbedoRequest r = req;
+        r.method = step.first;
+        r.samples = step.second;
+        r.cells.clear();
+        for (size_t c : todo) r.cells.push_back(req.cells[c]);
+        const AlbedoResult part = compute_albedo(engine, r);
+        if (engine.verbose())
+            std::cerr << "brdfbake: round " << result.rounds + 1 << ": " << todo.size() << " cells, " << part.method
+                      << ", kernel " << part.kernel_seconds * 1e3 << " ms\n";
+        result.rounds++;
+        result.kernel_seconds += part.kernel_seconds;
+        result.vector_width = std::max(result.vector_width, part.vector_width);
+        for (size_t i = 0; i < todo.size(); ++i) {
+            const size_t c = todo[i];
+            const std::uint64_t spent = result.values[c].samples + part.values[i].samples;
+            result.total_samples += part.values[i].samples;
+            // Keep the better estimate so far; a cell is done when it meets the tolerance.
+            if (part.values[i].error < best_error[c]) {
+                best_error[c] = part.values[i].error;
+                result.values[c] = part.values[i];
+            }
+            result.values[c].samples = spent;
+            result.samples_per_cell = std::max(result.samples_per_cell, spent);
+            if (part.values[i].error <= tol.tolerance) {
+                done[c] = true;
+                std::ostringstream key;
+                key << method_name(step.first) << " (" << part.values[i].samples << " points)";
+                met_by[key.str()]++;
+            }
+        }
+    }
+    std::ostringstream m;
+    m << "tolerance " << tol.tolerance << ": ";
+    bool first = true;
+    for (const auto& kv : met_by) {
+        m << (first ? "" : ", ") << kv.second << (kv.second == 1 ? " cell" : " cells") << " by " << kv.first;
+        first = false;
+    }
+    m << "; " << result.rounds << (result.rounds == 1 ? " round" : " rounds");
+    result.method = m.str();
+
+    size_t missed = 0, worst = 0;
+    for (size_t c = 0; c < done.size(); ++c)
+        if (!done[c]) {
+            if (missed == 0 || result.values[c].error > result.values[worst].error) worst = c;
+            ++missed;
+        }
+    if (missed > 0) {
+        std::ostringstream e;
+        e << "--tolerance " << tol.tolerance << " not met at " << missed << " of " << done.size()
+          << " cells within " << tol.max_samples << " samples per cell; worst: mu = " << req.cells[worst].mu
+          << ", error estimate " << result.values[worst].error << " (" << method_name(result.values[worst].method)
+          << "). Raise --max-samples, " << (req.precision == Precision::Float ? "use --precision double, " : "")
+          << "or loosen the tolerance";
+        throw Error(e.str(), kExitViolation);
+    }
+    return result;
+}
+
+DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req) {
+    if (req.cells.empty()) throw Error("no cells to integrate");
+    check_sampling(req.samples, req.replicas);
+    for (const auto& c : req.cells)
+        if (!(c.mu > 0.0 && c.mu <= 1.0) || !(c.alpha >= BB_ALPHA_MIN) || !(c.eta > 0.0) || !std::isfinite(c.eta))
+            throw Error("dielectric cell out of range (mu in (0, 1], alpha >= 1e-4, eta > 0)");
+    const std::uint64_t points = req.samples / req.replicas;
+    const size_t n_cells = req.cells.size(), n_items = n_cells * req.replicas;
+
+    BuildRequest build;
+    build.kernel_file = "dielectric.cl";
+    build.precision = req.precision;
+    // The vector path (dielectric_replicas_disk): W samples per step, their disk points from the
+    // table shared by all cells, as the albedo kernel's.
+    build.has_vector_path = true;
+    build.vector_width = req.vector_width;
+    unsigned lanes = engine.vector_width(build);
+    if (lanes > 1 && points % lanes != 0) {
+        build.vector_width = 1;  // a ragged last step: the scalar kernel
+        lanes = 1;
+    }
+    cl::Program& program = engine.program(build);
+
+    std::vector<double> mus, alphas, etas;
+    for (const auto& c : req.cells) {
+        mus.push_back(c.mu);
+        alphas.push_back(c.alpha);
+        etas.push_back(c.eta);
+    }
+    RealBuffers bufs(engine, req.precision);
+    const std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
+    cl::Buffer b_mu = bufs.input(mus), b_alpha = bufs.input(alphas), b_eta = bufs.input(etas),
+               b_shift = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
+    cl::Buffer b_r = bufs.output(n_items), b_t = bufs.output(n_items);
+    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+    cl::Kernel kernel(program, lanes > 1 ? "dielectric_replicas_disk" : "dielectric_replicas");
+    int a = 0;
+    kernel.setArg(a++, b_mu);
+    kernel.setArg(a++, b_alpha);
+    kernel.setArg(a++, b_eta);
+    kernel.setArg(a++, b_shift);
+    kernel.setArg(a++, cl_uint(points));
+    kernel.setArg(a++, cl_uint(req.replicas));
+    kernel.setArg(a++, cl_uint(n_cells));
+    kernel.setArg(a++, cl_int(req.correlated ? 1 : 0));
+    kernel.setArg(a++, b_r);
+    kernel.setArg(a++, b_t);
+    kernel.setArg(a++, b_bad);
+    cl::Event done;
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, 8), cl::NDRange(8), nullptr,
+                                        &done);
+    const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
+    std::vector<cl_uint> bad(n_items);
+    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+
+    DielectricResult result;
+    result.samples_per_cell = points * req.replicas;
+    result.kernel_seconds = event_seconds(done);
+    result.method = method_text(Method::Importance, req.replicas, points);
+    result.vector_width = lanes;
+    auto where = [&](size_t c) {
+        std::ostringstream m;
+        m << "the rough dielectric produced NaN or Inf at mu = " << req.cells[c].mu << ", alpha = " << req.cells[c].alpha
+          << ", eta = " << req.cells[c].eta;
+        return m.str();
+    };
+    result.reflected = summarize(r, bad, req.replicas, result.samples_per_cell, req.precision, where);
+    result.transmitted = summarize(t, bad, req.replicas, result.samples_per_cell, req.precision, where);
+    return result;
+}
+
+}  // namespace brdfbake

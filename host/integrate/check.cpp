@@ -1,0 +1,128 @@
+#include "brdfbake/check.h"
+
+#include <cmath>
+#include <sstream>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/analytic.h"
+#include "brdfbake/brdf/params.h"
+#include "brdfbake/error.h"
+#include "engine/device_buffer.h"
+
+namespace brdfbake {
+
+ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
+                                int n_theta, int n_phi, Precision precision) {
+    if (n_theta < 1 || n_theta > 1024) throw Error("--resolution must be 1 to 1024");
+    if (n_phi < 1 || n_phi > 1024) throw Error("--phi-resolution must be 1 to 1024");
+    ReciprocityMap m;
+    m.n_theta = n_theta;
+    m.n_phi = n_phi;
+    m.n_phi_o = model.anisotropic ? n_phi : 1;
+    m.precision = precision;
+    for (int k = 0; k < n_theta; ++k) m.theta.push_back((k + 0.5) / n_theta * M_PI / 2);
+
+    BuildRequest build;
+    build.kernel_file = "scan.cl";
+    build.precision = precision;
+    build.defines = {{"BB_MODEL", std::to_string(model.id)}, {"BB_FRESNEL", std::to_string(fresnel.kind)}};
+    cl::Program& program = engine.program(build);
+
+    const size_t cells = size_t(n_theta) * n_theta;
+    RealBuffers bufs(engine, precision);
+    cl::Buffer b_theta = bufs.input(m.theta);
+    cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
+    cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
+    cl::Buffer b_rel = bufs.output(cells), b_phi = bufs.output(cells), b_min = bufs.output(cells);
+    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, cells * sizeof(cl_uint));
+    cl::Kernel k(program, "reciprocity_scan");
+    int a = 0;
+    k.setArg(a++, b_theta);
+    k.setArg(a++, cl_uint(n_theta));
+    k.setArg(a++, cl_uint(n_phi));
+    k.setArg(a++, cl_uint(m.n_phi_o));
+    k.setArg(a++, b_p);
+    k.setArg(a++, b_fp);
+    k.setArg(a++, b_rel);
+    k.setArg(a++, b_phi);
+    k.setArg(a++, b_min);
+    k.setArg(a++, b_bad);
+    const size_t local = 4, global = (size_t(n_theta) + local - 1) / local * local;
+    engine.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global, global), cl::NDRange(local, local));
+    m.max_rel = bufs.read(b_rel, cells);
+    m.dphi_at_max = bufs.read(b_phi, cells);
+    m.min_value = bufs.read(b_min, cells);
+    std::vector<cl_uint> bad(cells);
+    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, cells * sizeof(cl_uint), bad.data());
+    for (cl_uint b : bad) m.nonfinite += b;
+    m.evaluations = std::uint64_t(cells) * n_phi * m.n_phi_o * 2;
+    return m;
+}
+
+CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o) {
+    if (o.directions < 1 || o.directions > 4096) throw Error("--directions must be 1 to 4096");
+    if (o.phis < 1 || o.phis > 360) throw Error("--phis must be 1 to 360");
+    if (!(o.energy_tolerance >= 0) || !(o.reciprocity_tolerance >= 0)) throw Error("tolerances must be >= 0");
+    CheckReport r;
+    r.options = o;
+    r.model = model.canonical;
+    r.fresnel = fresnel.canonical;
+
+    // Values and reciprocity, in double where the device has it (round-off then stays far
+    // below any tolerance a user would set).
+    const Precision scan_precision = engine.device().fp64 ? Precision::Double : Precision::Float;
+    r.reciprocity_tolerance = o.reciprocity_tolerance;
+    if (scan_precision == Precision::Float) r.reciprocity_tolerance = std::max(o.reciprocity_tolerance, 1e-3);
+    const ReciprocityMap map = scan_reciprocity(engine, model, fresnel, o.resolution, o.phi_resolution, scan_precision);
+    r.pairs = map.evaluations / 2;
+    r.nonfinite = map.nonfinite;
+    r.min_value = map.min_value.empty() ? 0.0 : map.min_value[0];
+    for (size_t k = 0; k < map.max_rel.size(); ++k) {
+        r.min_value = std::min(r.min_value, map.min_value[k]);
+        if (map.max_rel[k] > r.max_rel) {
+            r.max_rel = map.max_rel[k];
+            r.max_rel_theta_i = map.theta[k % size_t(map.n_theta)];
+            r.max_rel_theta_o = map.theta[k / size_t(map.n_theta)];
+            r.max_rel_dphi = map.dphi_at_max[k];
+        }
+    }
+    r.reciprocity_violation = r.max_rel > r.reciprocity_tolerance;
+
+    // White furnace over theta_o (and phi_o for anisotropic models).
+    AlbedoRequest req;
+    req.model = model.id;
+    req.fresnel = fresnel;
+    req.samples = o.samples;
+    req.precision = o.precision;
+    const int nphi = model.anisotropic ? o.phis : 1;
+    for (int p = 0; p < nphi; ++p)
+        for (int k = 0; k < o.directions; ++k)
+            req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
+    r.furnace_directions = int(req.cells.size());
+    try {
+        const AlbedoResult res = has_analytic_albedo(model) ? analytic_albedo_result(model, fresnel, req.cells)
+                                                            : compute_albedo(engine, req);
+        r.furnace_samples = res.samples_per_cell;
+        r.furnace_analytic = res.samples_per_cell == 0;
+        for (size_t c = 0; c < res.values.size(); ++c) {
+            const AlbedoValue& v = res.values[c];
+            if (c == 0 || v.value - v.error > r.max_albedo - r.max_albedo_error) {
+                r.max_albedo = v.value;
+                r.max_albedo_error = v.error;
+                r.max_albedo_mu = req.cells[c].mu;
+                r.max_albedo_phi = req.cells[c].phi;
+            }
+        }
+        r.energy_violation = r.max_albedo - r.max_albedo_error > 1.0 + o.energy_tolerance;
+    } catch (const NonFiniteError& e) {
+        r.nonfinite += e.count;
+        std::ostringstream w;
+        w << "importance samples at mu = " << req.cells[e.cell].mu;
+        r.nonfinite_where = w.str();
+        r.energy_violation = false;  // unknown: the furnace could not be computed
+    }
+    r.value_violation = r.nonfinite > 0 || r.min_value < 0.0;
+    return r;
+}
+
+}  // namespace brdfbake

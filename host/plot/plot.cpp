@@ -1,0 +1,319 @@
+#include "plot/plot.h"
+
+#include <mgl2/mgl.h>
+
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include "brdfbake/error.h"
+
+namespace brdfbake {
+
+namespace {
+
+enum class Kind { Png, Svg, Unknown };
+
+Kind kind_of(const std::string& path) {
+    const size_t dot = path.find_last_of('.');
+    if (dot == std::string::npos) return Kind::Unknown;
+    std::string ext = path.substr(dot + 1);
+    std::transform(ext.begin(), ext.end(), ext.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    if (ext == "png") return Kind::Png;
+    if (ext == "svg") return Kind::Svg;
+    return Kind::Unknown;
+}
+
+// Colours that stay distinct in print and for the common colour-vision deficiencies:
+// blue, red, green, orange, magenta, cyan, black, grey.
+const char* const kPalette[] = {"b", "r", "g", "q", "m", "c", "k", "h"};
+
+struct Bounds {
+    double lo = std::numeric_limits<double>::infinity();
+    double hi = -std::numeric_limits<double>::infinity();
+    void add(double v) {
+        if (!std::isfinite(v)) return;
+        lo = std::min(lo, v);
+        hi = std::max(hi, v);
+    }
+    bool empty() const { return !(lo <= hi); }
+};
+
+/// The axis range: the given bounds, or the data's with a 4% margin (and a unit span if flat).
+void resolve_range(const PlotAxis& axis, Bounds data, double& lo, double& hi) {
+    double dlo = data.lo, dhi = data.hi;
+    if (dhi - dlo <= 0.0) {
+        const double pad = std::max(1.0, std::fabs(dlo)) * 0.5;
+        dlo -= pad;
+        dhi += pad;
+    } else {
+        const double pad = 0.04 * (dhi - dlo);
+        dlo -= pad;
+        dhi += pad;
+    }
+    lo = std::isfinite(axis.lo) ? axis.lo : dlo;
+    hi = std::isfinite(axis.hi) ? axis.hi : dhi;
+    if (!(hi > lo)) hi = lo + 1.0;
+}
+
+/// The data of a curve with non-finite points replaced by NaN, which MathGL draws as gaps.
+mglData to_mgl(const std::vector<double>& v) {
+    mglData d(long(v.size()));
+    for (size_t i = 0; i < v.size(); ++i) d.a[i] = std::isfinite(v[i]) ? v[i] : NAN;
+    return d;
+}
+
+/// The legend, drawn by hand in data coordinates: MathGL's Legend() scales its text with the
+/// data ranges of an InPlot and comes out unreadably small or not at all.
+void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<std::string, std::string>>& entries,
+                 double x0, double x1, double y0, double y1) {
+    const double dx = x1 - x0, dy = y1 - y0;
+    size_t chars = 0;
+    for (const auto& e : entries) {
+        size_t visible = 0;  // rough: TeX commands and braces take little room
+        for (size_t i = 0; i < e.first.size(); ++i) {
+            if (e.first[i] == '\\') {
+                while (i + 1 < e.first.size() && std::isalpha((unsigned char)e.first[i + 1])) ++i;
+                ++visible;
+            } else if (e.first[i] != '{' && e.first[i] != '}' && e.first[i] != '_' && e.first[i] != '^') {
+                ++visible;
+            }
+        }
+        chars = std::max(chars, visible);
+    }
+    const double row = 0.058 * dy, sample = 0.08 * dx, pad = 0.015 * dx;
+    const double w = pad + sample + pad + 0.0125 * dx * double(chars) + pad;
+    const double h = row * double(entries.size()) + 0.6 * row;
+    const double m = 0.025;  // distance from the axes box, as a fraction of the range
+    double left = x0 + m * dx, top = y1 - m * dy;
+    if (p.legend == LegendPlace::TopRight || p.legend == LegendPlace::BottomRight) left = x1 - m * dx - w;
+    if (p.legend == LegendPlace::BottomLeft || p.legend == LegendPlace::BottomRight) top = y0 + m * dy + h;
+    if (std::isfinite(p.legend_x) && std::isfinite(p.legend_y)) {
+        left = x0 + p.legend_x * dx;
+        top = y0 + p.legend_y * dy;
+    }
+    const double right = left + w, bottom = top - h;
+    gr.Face(mglPoint(left, bottom, 0.5), mglPoint(right, bottom, 0.5), mglPoint(left, top, 0.5),
+            mglPoint(right, top, 0.5), "w");
+    const char* frame = "k-1";
+    gr.Line(mglPoint(left, bottom, 0.6), mglPoint(right, bottom, 0.6), frame);
+    gr.Line(mglPoint(right, bottom, 0.6), mglPoint(right, top, 0.6), frame);
+    gr.Line(mglPoint(right, top, 0.6), mglPoint(left, top, 0.6), frame);
+    gr.Line(mglPoint(left, top, 0.6), mglPoint(left, bottom, 0.6), frame);
+    for (size_t i = 0; i < entries.size(); ++i) {
+        const double y = top - 0.8 * row - row * double(i);
+        mglData sx(2), sy(2), sz(2);
+        sx.a[0] = left + pad;
+        sx.a[1] = left + pad + sample;
+        sy.a[0] = sy.a[1] = y;
+        sz.a[0] = sz.a[1] = 0.7;
+        gr.Plot(sx, sy, sz, entries[i].second.c_str());
+        gr.Puts(mglPoint(left + 2 * pad + sample, y, 0.7), entries[i].first.c_str(), ":L", -0.85);
+    }
+}
+
+/// Draws the panel's heatmap (if any) and its colour bar; the ranges are already set.
+void draw_heatmap(mglGraph& gr, const Heatmap& h, double x0, double x1, double y0, double y1) {
+    if (h.nx <= 0) return;
+    const double below = -std::numeric_limits<double>::infinity();  // log of z <= 0
+    mglData z(h.nx, h.ny), x(h.nx), y(h.ny);
+    Bounds bz;
+    for (long k = 0; k < long(h.nx) * h.ny; ++k) {
+        const double raw = h.z[size_t(k)];
+        double v = raw;
+        if (!std::isfinite(raw)) v = NAN;  // a gap
+        else if (h.log_scale) v = raw > 0 ? std::log10(raw) : below;
+        bz.add(v);
+        z.a[k] = v;
+    }
+    auto scaled = [&](double v) { return h.log_scale && std::isfinite(v) ? (v > 0 ? std::log10(v) : below) : v; };
+    double zlo = scaled(h.z_lo), zhi = scaled(h.z_hi);
+    if (!std::isfinite(zlo)) zlo = bz.empty() ? 0.0 : bz.lo;
+    if (!std::isfinite(zhi)) zhi = bz.empty() ? 1.0 : bz.hi;
+    if (!(zhi > zlo)) zhi = zlo + 1.0;
+    for (long k = 0; k < long(h.nx) * h.ny; ++k)
+        if (z.a[k] == below) z.a[k] = zlo;  // drawn at the lower end rather than vanishing
+    for (int i = 0; i < h.nx; ++i) x.a[i] = h.x_lo + (i + 0.5) * (h.x_hi - h.x_lo) / h.nx;
+    for (int j = 0; j < h.ny; ++j) y.a[j] = h.y_lo + (j + 0.5) * (h.y_hi - h.y_lo) / h.ny;
+    gr.SetRange('c', zlo, zhi);
+    gr.Dens(x, y, z, h.scheme.c_str());
+    if (!h.colorbar_label.empty()) {
+        // Outside the axes box, on the right (write_figure leaves room for it).
+        gr.Colorbar((h.scheme + "I>").c_str(), 1.06, 0.0, 1.0, 1.0);
+        const std::string label = h.log_scale ? "log_{10} " + h.colorbar_label : h.colorbar_label;
+        gr.SetCut(false);
+        // Along the bar, right of its tick labels, reading upwards.
+        const double xl = x1 + 0.24 * (x1 - x0), ym = 0.5 * (y0 + y1);
+        gr.Puts(mglPoint(xl, ym), mglPoint(xl, ym + (y1 - y0)), label.c_str(), ":C", -0.9);
+        gr.SetCut(true);
+    }
+}
+
+void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
+    Bounds bx, by;
+    if (p.heatmap.nx > 0) {
+        if (p.heatmap.z.size() != size_t(p.heatmap.nx) * p.heatmap.ny)
+            throw Error("plot '" + p.title + "': heatmap data does not fill its grid");
+        bx.add(p.heatmap.x_lo);
+        bx.add(p.heatmap.x_hi);
+        by.add(p.heatmap.y_lo);
+        by.add(p.heatmap.y_hi);
+    }
+    for (const Curve& c : p.curves) {
+        if (c.x.size() != c.y.size())
+            throw Error("plot '" + p.title + "': curve '" + c.label + "' has " + std::to_string(c.x.size()) +
+                        " x values but " + std::to_string(c.y.size()) + " y values");
+        for (size_t i = 0; i < c.x.size(); ++i)
+            if (std::isfinite(c.x[i]) && std::isfinite(c.y[i])) {
+                bx.add(c.x[i]);
+                by.add(c.y[i]);
+            }
+    }
+    if (bx.empty()) throw Error("plot '" + p.title + "' (panel " + std::to_string(panel_index + 1) + ") has no finite data");
+    double x0, x1, y0, y1;
+    PlotAxis ax = p.x, ay = p.y;
+    if (p.heatmap.nx > 0 && !p.axes) {  // a picture: the whole grid
+        ax.lo = p.heatmap.x_lo;
+        ax.hi = p.heatmap.x_hi;
+        ay.lo = p.heatmap.y_lo;
+        ay.hi = p.heatmap.y_hi;
+    } else if (p.heatmap.nx > 0) {  // a heatmap fills its box: from the first to the last cell centre
+        const Heatmap& h = p.heatmap;
+        const double hx = 0.5 * (h.x_hi - h.x_lo) / h.nx, hy = 0.5 * (h.y_hi - h.y_lo) / h.ny;
+        if (!std::isfinite(ax.lo)) ax.lo = h.x_lo + (h.nx > 1 ? hx : 0.0);
+        if (!std::isfinite(ax.hi)) ax.hi = h.x_hi - (h.nx > 1 ? hx : 0.0);
+        if (!std::isfinite(ay.lo)) ay.lo = h.y_lo + (h.ny > 1 ? hy : 0.0);
+        if (!std::isfinite(ay.hi)) ay.hi = h.y_hi - (h.ny > 1 ? hy : 0.0);
+    }
+    resolve_range(ax, bx, x0, x1);
+    resolve_range(ay, by, y0, y1);
+
+    gr.SetRanges(x0, x1, y0, y1);
+    gr.SetOrigin(x0, y0);
+    if (!p.title.empty()) {
+        gr.SetCut(false);  // the title sits above the axes box, outside the data range
+        gr.Puts(mglPoint(0.5 * (x0 + x1), y1 + 0.05 * (y1 - y0)), p.title.c_str(), ":C", -1.15);
+        gr.SetCut(true);
+    }
+    // Ticks counted from 0 (not from the range's lower end), so that they fall on round values.
+    draw_heatmap(gr, p.heatmap, x0, x1, y0, y1);
+    if (!p.axes) {
+        for (const Curve& c : p.curves) gr.Plot(to_mgl(c.x), to_mgl(c.y), c.style.empty() ? "k-2" : c.style.c_str());
+        return;
+    }
+    gr.SetTicks('x', p.x.tick, 0, 0.0);
+    gr.SetTicks('y', p.y.tick, 0, 0.0);
+    if (p.heatmap.nx == 0) gr.Grid("xy", "{h9}");
+    gr.Box("k", false);
+    gr.Axis("xy");
+    // Axis labels placed by hand, clear of the tick labels (MathGL's Label() overlaps them at
+    // this font size).
+    gr.SetCut(false);
+    const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1), dx = x1 - x0, dy = y1 - y0;
+    if (!p.x.label.empty()) gr.Puts(mglPoint(xm, y0 - 0.13 * dy), p.x.label.c_str(), ":C", -1.0);
+    if (!p.y.label.empty())
+        gr.Puts(mglPoint(x0 - 0.085 * dx, ym), mglPoint(x0 - 0.085 * dx, ym + dy), p.y.label.c_str(), ":C", -1.0);
+    gr.SetCut(true);
+
+    for (const RefLine& l : p.lines) {
+        mglPoint a = l.axis == 'x' ? mglPoint(l.value, y0) : mglPoint(x0, l.value);
+        mglPoint b = l.axis == 'x' ? mglPoint(l.value, y1) : mglPoint(x1, l.value);
+        gr.Line(a, b, "H=1");
+        if (!l.label.empty()) {
+            // Labels of successive lines at staggered heights so that close lines stay legible.
+            const double f = 0.04 + 0.07 * double(&l - p.lines.data());
+            mglPoint at = l.axis == 'x' ? mglPoint(l.value + 0.01 * (x1 - x0), y0 + f * (y1 - y0))
+                                        : mglPoint(x0 + 0.02 * (x1 - x0), l.value + 0.015 * (y1 - y0));
+            gr.Puts(at, l.label.c_str(), ":LH", -0.8);
+        }
+    }
+
+    size_t auto_colour = 0;
+    std::vector<std::pair<std::string, std::string>> entries;  // label, pen
+    for (const Curve& c : p.curves) {
+        std::string style = c.style;
+        if (style.empty()) style = std::string(kPalette[auto_colour++ % (sizeof kPalette / sizeof kPalette[0])]) + "-2";
+        const mglData x = to_mgl(c.x), y = to_mgl(c.y);
+        gr.Plot(x, y, style.c_str());
+        if (!c.label.empty()) entries.emplace_back(c.label, style);
+    }
+    if (p.legend != LegendPlace::None && !entries.empty()) draw_legend(gr, p, entries, x0, x1, y0, y1);
+}
+
+}  // namespace
+
+bool is_plot_path(const std::string& path) { return kind_of(path) != Kind::Unknown; }
+
+void write_figure(const std::string& path, const Figure& figure) {
+    const Kind kind = kind_of(path);
+    if (kind == Kind::Unknown) throw Error("--plot '" + path + "': expected a file name ending in .png or .svg");
+    if (figure.panels.empty()) throw Error("internal error: a figure without panels");
+    const int n = int(figure.panels.size());
+    const int cols = figure.columns > 0 ? std::min(figure.columns, n) : n;
+    const int rows = (n + cols - 1) / cols;
+
+    mglGraph::SuppressWarn(true);  // problems are checked below and reported as errors
+    mglGraph gr(0, figure.panel_width * cols, figure.panel_height * rows);
+    gr.Clf('w');
+    gr.SetQuality(figure.flat ? MGL_DRAW_FAST : MGL_DRAW_NORM);
+    for (int i = 0; i < n; ++i) {
+        // Each panel is a cell of the grid (fractions of the canvas, y upwards); the axes box
+        // leaves room for the y label on the left, the x label below and the title above.
+        const double cw = 1.0 / cols, ch = 1.0 / rows;
+        const double cx = cw * (i % cols), cy = 1.0 - ch * (i / cols + 1);
+        const PlotSpec& panel = figure.panels[size_t(i)];
+        const double right = panel.heatmap.nx > 0 && !panel.heatmap.colorbar_label.empty() ? 0.78 : 0.96;
+        if (panel.axes)
+            gr.InPlot(cx + 0.12 * cw, cx + right * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
+        else  // a picture: only the title needs room
+            gr.InPlot(cx + 0.03 * cw, cx + 0.97 * cw, cy + 0.02 * ch, cy + 0.88 * ch, false);
+        gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
+        gr.SetFontSize(3.0);
+        const PlotSpec& p = figure.panels[size_t(i)];
+        draw_panel(gr, p, size_t(i));
+    }
+    if (gr.Message() && *gr.Message()) {
+        // MathGL reports problems as messages rather than failures; they are not fatal for a plot
+        // but would hide a wrong call, so they reach the user.
+        std::fprintf(stderr, "brdfbake: MathGL: %s\n", gr.Message());
+    }
+
+    // Atomic write: render into a temporary file beside the target, then rename.
+    const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + (kind == Kind::Png ? ".png" : ".svg");
+    // MathGL reports an unwritable file on stderr only; find out first, with the reason.
+    if (FILE* probe = std::fopen(tmp.c_str(), "wb")) {
+        std::fclose(probe);
+    } else {
+        throw Error("cannot write plot '" + path + "': " + std::strerror(errno));
+    }
+    errno = 0;
+    if (kind == Kind::Png)
+        gr.WritePNG(tmp.c_str(), "brdfbake", false);
+    else
+        gr.WriteSVG(tmp.c_str(), "brdfbake");
+    struct stat st {};
+    if (::stat(tmp.c_str(), &st) != 0 || st.st_size == 0) {
+        const std::string why = errno ? std::strerror(errno) : "MathGL wrote nothing";
+        std::remove(tmp.c_str());
+        throw Error("cannot write plot '" + path + "': " + why);
+    }
+    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
+        const std::string why = std::strerror(errno);
+        std::remove(tmp.c_str());
+        throw Error("cannot write plot '" + path + "': " + why);
+    }
+}
+
+void write_plot(const std::string& path, const PlotSpec& panel, int width, int height) {
+    Figure f;
+    f.panels.push_back(panel);
+    f.panel_width = width;
+    f.panel_height = height;
+    write_figure(path, f);
+}
+
+}  // namespace brdfbake

@@ -1,0 +1,57 @@
+// PNG/SVG previews of tables: a heatmap per channel with axes and a colour bar (2D and 3D
+// tables; a 3D table shows its middle z-slice), or curves for a 1D table.
+#include <cstdio>
+
+#include "brdfbake/table.h"
+#include "plot/plot.h"
+
+namespace brdfbake {
+
+void write_table_preview(const Table& t, const std::string& path) {
+    Figure fig;
+    if (t.height() == 1 && t.depth() == 1) {
+        PlotSpec p;
+        p.title = t.kind + " of " + (t.attributes.count("model") ? t.attributes.at("model") : std::string());
+        p.x.label = t.x.name;
+        p.y.label = t.kind;
+        for (size_t c = 0; c < t.channels.size(); ++c) p.curves.push_back({t.channels[c], t.x.parameter, t.values[c], ""});
+        fig.panels.push_back(p);
+    } else {
+        const int slice = t.depth() / 2;
+        for (size_t c = 0; c < t.channels.size(); ++c) {
+            PlotSpec p;
+            std::string name = t.channels[c];  // MathGL reads _ as a subscript
+            for (char& ch : name)
+                if (ch == '_') ch = ' ';
+            p.title = name + " (" + t.kind + ")";
+            if (t.depth() > 1) {
+                char b[64];
+                std::snprintf(b, sizeof b, ", %s = %.3g", t.z.name.c_str(), t.z.parameter[size_t(slice)]);
+                p.title += b;
+            }
+            p.x.label = t.x.name + " (" + t.x.mapping + ")";
+            p.y.label = t.y.name + " (" + t.y.mapping + ")";
+            p.legend = LegendPlace::None;
+            Heatmap& h = p.heatmap;
+            h.nx = t.width();
+            h.ny = t.height();
+            h.x_lo = t.x.lo;
+            h.x_hi = t.x.hi;
+            h.y_lo = t.y.lo;
+            h.y_hi = t.y.hi;
+            const size_t n = size_t(h.nx) * h.ny;
+            h.z.assign(t.values[c].begin() + long(n * size_t(slice)), t.values[c].begin() + long(n * size_t(slice + 1)));
+            h.z_lo = 0.0;
+            h.z_hi = 1.0;
+            h.colorbar_label = t.channels[c];
+            fig.panels.push_back(p);
+        }
+        fig.columns = std::min<int>(int(t.channels.size()), 2);
+        fig.panel_width = 760;
+        fig.panel_height = 640;
+        fig.flat = true;
+    }
+    write_figure(path, fig);
+}
+
+}  // namespace brdfbake
