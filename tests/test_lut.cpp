@@ -70,6 +70,7 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
         CHECK(k->value_channels);
         CHECK(k->integrations);
         CHECK(k->kernel_programs);
+        if (k->eta_axis || k->needs_conductor_fresnel) CHECK(!k->lobe_requirement.empty());
     }
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
@@ -162,7 +163,7 @@ TEST_CASE("each kind's computed table has the axes and channels its registry ent
     for (const TableKind* k : table_kinds()) {
         LutRequest r = request(k->name, 3, k->one_dimensional ? 1 : 2, 1024);
         r.depth = 2;
-        if (k->bakes_lobe_fresnel) r.fresnel = "metal:Au";
+        if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
         INFO(k->name);
         const Table t = compute_lut(testing::engine(), r);
         CHECK(t.kind == k->name);

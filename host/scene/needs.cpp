@@ -19,7 +19,7 @@ const TableKind& lobe_table_kind(const std::string& name, const Lobe& lobe, cons
     const TableKind* kind = find_table_kind(name);
     if (!kind) throw Error(ctx + ": unknown table kind '" + name + "' in 'tables' (known: " + table_kind_names() + ")");
     if (kind->eta_axis && !lobe.eta) throw Error(ctx + ": " + kind->lobe_requirement);
-    if (kind->bakes_lobe_fresnel && !scene_text::is_conductor_fresnel(lobe.fresnel))
+    if (kind->needs_conductor_fresnel && !scene_text::is_conductor_fresnel(lobe.fresnel))
         throw Error(ctx + ": " + kind->lobe_requirement);
     return *kind;
 }

@@ -11,6 +11,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/version.h"
+#include "models/key_reader.h"
 #include "scene/scene.h"
 #include "scene/scene_text.h"
 

@@ -73,6 +73,7 @@ TableKind make_conductor() {
     k.description = "Fresnel-weighted albedo E(mu_o, alpha) of a conductor: --fresnel conductor:eta=,k= (channel E) or "
                     "metal:X / nk:FILE (channels R, G, B at 650, 550, 450 nm, or E at --wavelength)";
     k.bakes_lobe_fresnel = true;
+    k.needs_conductor_fresnel = true;
     k.lobe_requirement = "a conductor table needs a conductor Fresnel (conductor:, metal:, nk:)";
     k.value_channels = channels;
     k.integrations = channels;  // one per RGB wavelength

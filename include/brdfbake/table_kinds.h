@@ -34,8 +34,12 @@ struct TableKind {
     /// The table bakes the lobe's own Fresnel in (conductor); the other kinds hold F = 1, factor
     /// it out, or have eta as an axis, so that one table serves every Fresnel.
     bool bakes_lobe_fresnel = false;
-    std::string plan_fresnel;      // the Fresnel in the table, in words (plan text); empty: the request's
-    std::string lobe_requirement;  // what a lobe must have for this kind (a scene's "tables" error)
+    std::string plan_fresnel;  // the Fresnel in the table, in words (plan text); empty: the request's
+
+    // What a lobe must have for this kind: an index of refraction (every kind with an eta axis),
+    // a conductor Fresnel term; lobe_requirement says it (a scene's "tables" error).
+    bool needs_conductor_fresnel = false;
+    std::string lobe_requirement;
 
     // The planner.
     bool tileable = false;     // `bake` may compute it in tiles along the roughness axis
