@@ -15,6 +15,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <filesystem>
 #include <iomanip>
 #include <iostream>
@@ -26,6 +27,8 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/ggx.h"
 #include "brdfbake/lut.h"
+#include "brdfbake/table_kinds.h"
+#include "integrate/refine.h"
 #include "reference/reference.h"
 #include "support.h"
 
@@ -51,6 +54,127 @@ double ref_albedo(double alpha, double mu, double tol = 1e-9) {
 std::string tmp_path(const std::string& name) { return "/tmp/brdfbake-lut-" + std::to_string(::getpid()) + "-" + name; }
 
 }  // namespace
+
+TEST_CASE("the table-kind registry: every kind once, found by name and id, unknown names listed", "[lut][quick]") {
+    const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms"};
+    REQUIRE(table_kinds().size() == expected.size());
+    for (size_t i = 0; i < expected.size(); ++i) {
+        const TableKind* k = table_kinds()[i];
+        INFO(expected[i]);
+        CHECK(k->name == expected[i]);
+        CHECK(find_table_kind(expected[i]) == k);
+        CHECK(&table_kind(k->id) == k);
+        CHECK(!k->description.empty());
+        CHECK(k->compute);
+        CHECK(k->fresnel);
+        CHECK(k->value_channels);
+        CHECK(k->integrations);
+        CHECK(k->kernel_programs);
+        if (k->eta_axis || k->needs_conductor_fresnel) CHECK(!k->lobe_requirement.empty());
+    }
+    CHECK(find_table_kind("sheen") == nullptr);
+    CHECK_THROWS_WITH(table_kind("sheen"),
+                      "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms");
+}
+
+TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {
+    // A made-up convergence: cell c has error 8^-round / (c + 1) in its first channel and half that
+    // in its second, except cell 0, whose second round is worse than its first.
+    const std::vector<RefineStep> steps = {{Method::Quadrature, 100}, {Method::Importance, 400}, {Method::Importance, 1600}};
+    auto run = [&](bool keep_best, std::vector<std::vector<size_t>>& seen) {
+        RefineOptions o;
+        o.tolerance = 0.01;
+        o.keep_best = keep_best;
+        int round = 0;
+        return refine_to_tolerance(4, steps, o, [&](const RefineStep& step, const std::vector<size_t>& cells) {
+            seen.push_back(cells);
+            RefineRound r;
+            for (size_t c : cells) {
+                AlbedoValue v;
+                v.value = double(round * 10 + int(c));
+                v.error = std::pow(8.0, -round) / double(c + 1);
+                if (c == 0 && round == 1) v.error = 2.0;  // worse than round 0
+                v.samples = step.samples;
+                v.method = step.method;
+                AlbedoValue t = v;
+                t.error = v.error / 2;  // a second channel: the cell's error is the larger
+                r.values.push_back({v, t});
+            }
+            ++round;
+            return r;
+        });
+    };
+    std::vector<std::vector<size_t>> seen_best, seen_latest;
+    const RefineOutcome best = run(true, seen_best), latest = run(false, seen_latest);
+    // Round 0: errors 1, 1/2, 1/3, 1/4 -> all go on; round 1: 2, 1/16, 1/24, 1/32 -> all go on;
+    // round 2: 1/64 = 0.0156, 1/128, 1/192, 1/256 -> cells 1, 2, 3 meet 0.01.
+    REQUIRE(seen_best.size() == 3);
+    CHECK(seen_best[0] == std::vector<size_t>{0, 1, 2, 3});
+    CHECK(seen_best[2] == std::vector<size_t>{0, 1, 2, 3});
+    CHECK(best.rounds == 3);
+    CHECK(best.missed == std::vector<size_t>{0});
+    CHECK(best.met_by.at("importance (1600 points)") == 3);
+    CHECK(best.spent[0] == 2100);
+    CHECK(best.total_samples == 4 * 2100);
+    CHECK(best.last_step_samples == 1600);
+    // Cell 0 keeps its best estimate (round 2: error 1/64 < 1 of round 0 < 2 of round 1).
+    CHECK(best.values[0][0].value == 20.0);
+    CHECK(best.values[0].size() == 2);
+    CHECK(latest.values[0][0].value == 20.0);
+    CHECK(seen_latest == seen_best);
+}
+
+TEST_CASE("refine driver: a cell stops at the first round that meets the tolerance; keep_best keeps the smaller error",
+          "[lut][quick]") {
+    const std::vector<RefineStep> steps = {{Method::Importance, 16}, {Method::Importance, 64}, {Method::Importance, 256}};
+    for (bool keep_best : {true, false}) {
+        RefineOptions o;
+        o.tolerance = 0.1;
+        o.keep_best = keep_best;
+        int round = 0;
+        std::vector<size_t> sizes;
+        // Cell 0 meets the tolerance at once; cell 1 gets worse in round 1 and never meets it.
+        const RefineOutcome r = refine_to_tolerance(2, steps, o, [&](const RefineStep& step, const std::vector<size_t>& cells) {
+            sizes.push_back(cells.size());
+            RefineRound out;
+            for (size_t c : cells) {
+                AlbedoValue v;
+                v.value = round;
+                v.error = c == 0 ? 0.05 : (round == 1 ? 0.9 : 0.5);
+                v.samples = step.samples;
+                out.values.push_back({v});
+            }
+            ++round;
+            return out;
+        });
+        INFO("keep_best " << keep_best);
+        CHECK(sizes == std::vector<size_t>{2, 1, 1});
+        CHECK(r.missed == std::vector<size_t>{1});
+        CHECK(r.values[0][0].value == 0.0);
+        CHECK(r.spent[0] == 16);
+        CHECK(r.spent[1] == 16 + 64 + 256);
+        // Rounds 0 and 2 both have error 0.5: keep_best keeps the first; latest takes round 2.
+        CHECK(r.values[1][0].value == (keep_best ? 0.0 : 2.0));
+        CHECK(r.met_by.at("importance (16 points)") == 1);
+    }
+}
+
+TEST_CASE("each kind's computed table has the axes and channels its registry entry declares", "[lut][device]") {
+    for (const TableKind* k : table_kinds()) {
+        LutRequest r = request(k->name, 3, k->one_dimensional ? 1 : 2, 1024);
+        r.depth = 2;
+        if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        INFO(k->name);
+        const Table t = compute_lut(testing::engine(), r);
+        CHECK(t.kind == k->name);
+        CHECK(int(t.channels.size()) == k->value_channels(r));
+        CHECK(int(t.values.size()) == k->value_channels(r));
+        CHECK(t.height() == (k->one_dimensional ? 1 : 2));
+        CHECK(t.x.name == (k->one_dimensional ? "alpha" : "mu"));
+        CHECK(t.depth() == (k->eta_axis ? 2 : 1));
+        CHECK(t.error.size() == size_t(t.width() * t.height() * t.depth()));
+    }
+}
 
 TEST_CASE("axes sit at texel centres and map as documented", "[lut][quick]") {
     const Axis a = make_axis("mu", "mu = u", 0.0, 1.0, 4);

@@ -119,7 +119,7 @@ TEST_CASE("two GGX metals and a rough glass plan exactly albedo and eavg over th
         CHECK(t.samples_total == t.cells * t.request.samples);
         CHECK(t.hash.size() == 16);
     }
-    if (lut_kind_available("dielectric")) CHECK(plan.warnings.empty());
+    CHECK(plan.warnings.empty());
 }
 
 TEST_CASE("materials that can share a table share it; model, shadowing and kind split them", "[scene][quick]") {
@@ -154,7 +154,7 @@ TEST_CASE("materials that can share a table share it; model, shadowing and kind 
     for (const auto& t : plan.tables) files.insert(t.file);
     CHECK(files.size() == plan.tables.size());
     CHECK(plan.no_table.size() == 1);
-    CHECK(plan.warnings.size() == (lut_kind_available("dielectric") ? 0u : 1u));
+    CHECK(plan.warnings.empty());
 }
 
 TEST_CASE("delta lobes need no table; models without a roughness axis are named in a warning", "[scene][quick]") {
@@ -377,10 +377,6 @@ TEST_CASE("a baked table, computed in tiles, holds what compute_lut gives for th
 }
 
 TEST_CASE("bake a rough glass: the dielectric table over the scene's eta", "[scene][device]") {
-    if (!lut_kind_available("dielectric")) {
-        WARN("this build has no dielectric table kind; plan-only coverage");
-        return;
-    }
     const std::string out = tmp_dir("glass");
     std::system(("rm -rf " + out).c_str());
     const auto r = run_cli("bake " + data("small_glass.json") + " -o " + out);

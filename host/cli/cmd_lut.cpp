@@ -1,4 +1,4 @@
-// `brdfbake lut KIND`: lookup tables (albedo, eavg, dfg, dfg-ms) as OpenEXR, CSV or a C header.
+// `brdfbake lut KIND`: lookup tables of the kinds in brdfbake/table_kinds.h as OpenEXR, CSV or a C header.
 #include <chrono>
 #include <cstdio>
 #include <iostream>
@@ -7,6 +7,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/output.h"
+#include "brdfbake/table_kinds.h"
 #include "cli/cli.h"
 #include "plot/plot.h"
 
@@ -41,13 +42,15 @@ void parse_size(const std::string& text, LutRequest& r) {
         dims.push_back(std::stoi(s));
         start = x + 1;
     }
-    const bool three = r.kind == "dielectric";
+    // An unknown kind is reported by validate_lut; its size is read as 2D meanwhile.
+    const TableKind* kind = find_table_kind(r.kind);
+    const bool three = kind && kind->eta_axis, one = kind && kind->one_dimensional;
     if (dims.size() > (three ? 3u : 2u))
         throw Error("--size: '" + text + "' has too many dimensions for a " + r.kind + " table");
     r.width = dims[0];
-    r.height = dims.size() > 1 ? dims[1] : (r.kind == "eavg" ? 1 : dims[0]);
+    r.height = dims.size() > 1 ? dims[1] : (one ? 1 : dims[0]);
     if (three) r.depth = dims.size() > 2 ? dims[2] : r.height;
-    if (r.kind == "eavg" && r.height != 1) throw Error("--size: an eavg table is 1D; give N or Nx1");
+    if (one && r.height != 1) throw Error("--size: an " + r.kind + " table is 1D; give N or Nx1");
 }
 
 int run_lut(LutOptions& o, const GlobalOptions& g) {
@@ -92,7 +95,7 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
 void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     auto o = std::make_shared<LutOptions>();
     std::string kinds;
-    for (const auto& k : lut_kinds()) kinds += "\n  " + k.first + ": " + k.second;
+    for (const TableKind* k : table_kinds()) kinds += "\n  " + k->name + ": " + k->description;
     CLI::App* cmd = app.add_subcommand("lut", "write a lookup table (OpenEXR, CSV or C header by the -o extension)");
     cmd->add_option("kind", o->request.kind, "table kind:" + kinds)->required();
     cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable")

@@ -228,8 +228,8 @@ private:
 
 /// The tiles of a table along its roughness axis (rows of a 2D table, texels of eavg): each tile
 /// is the same request over a sub-range whose texel centres are the full table's.
-std::vector<LutRequest> tiles_of(const LutRequest& r, int max_tiles) {
-    const bool along_x = r.kind == "eavg";
+std::vector<LutRequest> tiles_of(const TableKind& kind, const LutRequest& r, int max_tiles) {
+    const bool along_x = kind.one_dimensional;
     const int n = along_x ? r.width : r.height;
     const int tiles = std::max(1, std::min(n, max_tiles));
     std::vector<LutRequest> out;
@@ -245,9 +245,9 @@ std::vector<LutRequest> tiles_of(const LutRequest& r, int max_tiles) {
 }
 
 /// Joins tiles computed by tiles_of back into the table of the full request.
-Table stitch(const LutRequest& r, std::vector<Table>& parts) {
+Table stitch(const TableKind& kind, const LutRequest& r, std::vector<Table>& parts) {
     Table t = std::move(parts.front());
-    const bool along_x = r.kind == "eavg";
+    const bool along_x = kind.one_dimensional;
     Axis& axis = along_x ? t.x : t.y;
     for (size_t k = 1; k < parts.size(); ++k) {
         const Table& p = parts[k];
@@ -265,8 +265,6 @@ Table stitch(const LutRequest& r, std::vector<Table>& parts) {
     axis.size = int(axis.coordinate.size());
     return t;
 }
-
-bool tileable(const std::string& kind) { return kind == "albedo" || kind == "eavg" || kind == "dfg" || kind == "dfg-ms"; }
 
 std::string join_path(const std::string& dir, const std::string& file) {
     return dir.empty() || dir.back() == '/' ? dir + file : dir + "/" + file;
@@ -301,7 +299,7 @@ json axis_json(const Axis& a) {
 
 json lobe_json(const Lobe& l) {
     json j = {{"role", l.role}, {"model", l.model}, {"fresnel", l.fresnel}, {"alpha_range", {l.alpha.lo, l.alpha.hi}},
-              {"kinds", l.kinds}};
+              {"kinds", kind_names(l.kinds)}};
     if (l.eta) j["eta_range"] = {l.eta->lo, l.eta->hi};
     if (l.wavelength_nm > 0) j["wavelength_nm"] = l.wavelength_nm;
     return j;
@@ -428,21 +426,22 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         const auto t1 = Clock::now();
         LutRequest r = t.request;
         apply_eta_axis(t, r);
+        const TableKind& kind = *t.kind;
         char detail[160];
         std::snprintf(detail, sizeof detail, "%s table %dx%d%s, %llu samples per cell (estimate %.1f s)", r.kind.c_str(),
-                      r.width, r.height, r.kind == "dielectric" ? ("x" + std::to_string(t.depth)).c_str() : "",
+                      r.width, r.height, kind.eta_axis ? ("x" + std::to_string(t.depth)).c_str() : "",
                       static_cast<unsigned long long>(r.samples), t.est_seconds);
         progress.start(t.file, n, to_compute, detail);
         Table table;
-        if (tileable(r.kind)) {
-            const std::vector<LutRequest> tiles = tiles_of(r, 16);
+        if (kind.tileable) {
+            const std::vector<LutRequest> tiles = tiles_of(kind, r, 16);
             std::vector<Table> parts;
             for (const auto& tile : tiles) {
                 parts.push_back(compute_lut(*engine, tile));
-                progress.advance(double(t.samples_total) * (tile.kind == "eavg" ? tile.width : tile.height) /
-                                 (r.kind == "eavg" ? r.width : r.height));
+                progress.advance(double(t.samples_total) * (kind.one_dimensional ? tile.width : tile.height) /
+                                 (kind.one_dimensional ? r.width : r.height));
             }
-            table = stitch(r, parts);
+            table = stitch(kind, r, parts);
         } else {
             table = compute_lut(*engine, r);
             progress.advance(double(t.samples_total));
@@ -454,15 +453,15 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         max_error = std::max(max_error, table.max_error());
 
         json axes = json::array({axis_json(table.x)});
-        if (table.height() > 1 || r.kind != "eavg") axes.push_back(axis_json(table.y));
-        if (table.depth() > 1 || r.kind == "dielectric") axes.push_back(axis_json(table.z));
+        if (table.height() > 1 || !kind.one_dimensional) axes.push_back(axis_json(table.y));
+        if (table.depth() > 1 || kind.eta_axis) axes.push_back(axis_json(table.z));
         json e = {{"file", t.file},
                   {"kind", r.kind},
                   {"quantity", table.quantity},
                   {"model", r.model},
                   {"fresnel", r.fresnel},
                   {"size", std::to_string(table.width()) + "x" + std::to_string(table.height()) +
-                               (r.kind == "dielectric" ? "x" + std::to_string(table.depth()) : "")},
+                               (kind.eta_axis ? "x" + std::to_string(table.depth()) : "")},
                   {"layout", table.depth() > 1 ? "z-slices stacked along y" : "2D"},
                   {"axes", axes},
                   {"channels", table.channels},

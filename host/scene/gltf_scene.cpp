@@ -170,7 +170,7 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
         l.model_name = "ggx";
         l.fresnel = "schlick:f0=baseColor";
         l.alpha = alpha;
-        l.kinds = {"albedo", "eavg"};
+        l.kinds = default_lobe_kinds(l);
         out.lobes.push_back(l);
     }
 
@@ -209,13 +209,13 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
             l.fresnel = "dielectric:eta=" + fmt(ior);
             l.alpha = alpha;
             l.eta = Interval{ior, ior};
-            l.kinds = {"dielectric"};
+            l.kinds = default_lobe_kinds(l);
             if (specular != 1.0 || specular_tex)
                 out.notes.push_back("KHR_materials_specular: specularFactor " + range_text(factor_range(specular, specular_tex)) +
                                     " scales the reflection albedo (linear in F), same table");
             if (tinted) {
                 // A tinted F0 makes F Schlick with a per-channel f0: E = f0 A + B (split-sum terms).
-                l.kinds.push_back("dfg");
+                l.kinds.push_back(&table_kind(TableKindId::Dfg));
                 out.notes.push_back("KHR_materials_specular: specularColor tints F0 (Schlick), E = f0 A + B from dfg");
             }
             if (transmissive) {
@@ -254,7 +254,7 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
             const Interval r = factor_range(cr, has_texture(*c, "clearcoatRoughnessTexture"));
             l.alpha = square(r);
             l.eta = Interval{1.5, 1.5};
-            l.kinds = {"dielectric"};
+            l.kinds = default_lobe_kinds(l);
             out.notes.push_back("KHR_materials_clearcoat: GGX coat, eta 1.5, roughness " + range_text(r));
             out.lobes.push_back(l);
         }

@@ -4,7 +4,11 @@
 // the same list of materials, each a list of lobes with the model, Fresnel and parameter ranges
 // that decide its tables. make_plan() turns that into the minimal set of LutRequests: one per
 // (kind, model, Fresnel-in-the-table), with the roughness (and eta) ranges of every lobe that
-// shares it merged. docs/scenes.md documents the schema, the glTF mapping and the rules.
+// shares it merged. The kinds and their rules come from the table-kind registry
+// (brdfbake/table_kinds.h). docs/scenes.md documents the schema, the glTF mapping and the rules.
+//
+// The code by responsibility: scene_parse.cpp (scene files), gltf_scene.cpp (glTF), needs.cpp
+// (which tables a lobe needs), planner.cpp (make_plan), plan_report.cpp (plan_text, plan_json).
 #pragma once
 
 #include <cstdint>
@@ -14,6 +18,7 @@
 
 #include "brdfbake/engine.h"
 #include "brdfbake/lut.h"
+#include "brdfbake/table_kinds.h"
 
 namespace brdfbake {
 
@@ -33,7 +38,7 @@ struct Lobe {
     double wavelength_nm = 0.0;      // for measured metals (metal:Au, nk:FILE)
     Interval alpha;                  // alpha (= roughness^2) range the material uses
     std::optional<Interval> eta;     // relative index of refraction range (dielectric lobes)
-    std::vector<std::string> kinds;  // table kinds the lobe needs
+    std::vector<const TableKind*> kinds;  // table kinds the lobe needs (registry entries)
 };
 
 struct SceneMaterial {
@@ -82,11 +87,23 @@ std::string model_without_alpha(const std::string& spec);
 /// Checks every setting's range (after the scene file and the command line set them); throws Error.
 void check_settings(const SceneSettings& s);
 
+/// The tables a lobe needs unless the scene names them: the dielectric table for a lobe with an
+/// index of refraction, else albedo and eavg.
+std::vector<const TableKind*> default_lobe_kinds(const Lobe& lobe);
+
+/// The kind a scene's "tables" list names for `lobe`, checked against what the lobe has (an index
+/// of refraction, a conductor Fresnel); throws Error prefixed with `ctx`.
+const TableKind& lobe_table_kind(const std::string& name, const Lobe& lobe, const std::string& ctx);
+
+/// The kinds' names, in order.
+std::vector<std::string> kind_names(const std::vector<const TableKind*>& kinds);
+
 /// One table of the plan.
 struct PlannedTable {
+    const TableKind* kind = nullptr;     // the registry entry of request.kind
     std::string file;                    // file name inside the bake folder
     LutRequest request;                  // eta axis: see eta_lo, eta_hi, depth and apply_eta_axis
-    double eta_lo = 0.0, eta_hi = 0.0;   // eta axis of 3D kinds (dielectric)
+    double eta_lo = 0.0, eta_hi = 0.0;   // eta axis of kinds with one (TableKind::eta_axis)
     int depth = 1;
     Interval alpha;                      // the scene's merged alpha range (before texel padding)
     std::optional<Interval> eta;         // the scene's merged eta range
@@ -124,10 +141,7 @@ Plan make_plan(const Scene& scene);
 std::string plan_text(const Plan& plan);
 std::string plan_json(const Plan& plan);
 
-/// Copies the eta axis of a planned dielectric table into its request.
+/// Copies the eta axis of a planned table of a kind with one (dielectric) into its request.
 void apply_eta_axis(const PlannedTable& t, LutRequest& request);
-
-/// Whether this build's compute_lut knows `kind`.
-bool lut_kind_available(const std::string& kind);
 
 }  // namespace brdfbake

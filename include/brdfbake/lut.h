@@ -13,7 +13,7 @@
 namespace brdfbake {
 
 struct LutRequest {
-    std::string kind;             // albedo | eavg | dfg | dfg-ms | dielectric | conductor
+    std::string kind;             // a TableKind's name (brdfbake/table_kinds.h): albedo, eavg, dfg, ...
     std::string model;            // model spec without the swept alpha, e.g. "ggx:shadowing=correlated"
     std::string fresnel = "none"; // albedo and eavg only
     double wavelength_nm = 0.0;   // conductor with a measured metal: 0 gives R, G, B at 650, 550, 450 nm
@@ -30,10 +30,8 @@ struct LutRequest {
     Precision precision = Precision::Float;
 };
 
-/// The table kinds and what they hold, for help texts.
-std::vector<std::pair<std::string, std::string>> lut_kinds();
-
-/// Checks a request without touching the device (kind, model, ranges, sizes); throws Error.
+/// Checks a request without touching the device (kind, model, ranges, sizes, and the kind's own
+/// checks in its registry entry, brdfbake/table_kinds.h); throws Error.
 void validate_lut(const LutRequest& request);
 
 /// Computes the table. Throws Error for bad input or non-finite results.

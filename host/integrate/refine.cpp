@@ -1,0 +1,150 @@
+#include "integrate/refine.h"
+
+#include <algorithm>
+#include <cmath>
+#include <iostream>
+#include <sstream>
+
+#include "brdfbake/error.h"
+
+namespace brdfbake {
+
+namespace {
+
+double cell_error(const std::vector<AlbedoValue>& channels) {
+    double e = channels.front().error;
+    for (const auto& v : channels) e = std::max(e, v.error);
+    return e;
+}
+
+}  // namespace
+
+RefineOutcome refine_to_tolerance(size_t n_cells, const std::vector<RefineStep>& steps, const RefineOptions& options,
+                                  const RefineIntegrate& integrate) {
+    RefineOutcome out;
+    out.values.assign(n_cells, std::vector<AlbedoValue>{});
+    out.spent.assign(n_cells, 0);
+    std::vector<bool> done(n_cells, false);
+    std::vector<double> best_error(n_cells, INFINITY);
+    for (const auto& step : steps) {
+        std::vector<size_t> todo;
+        for (size_t c = 0; c < n_cells; ++c)
+            if (!done[c]) todo.push_back(c);
+        if (todo.empty()) break;
+        const RefineRound part = integrate(step, todo);
+        if (part.values.size() != todo.size()) throw Error("internal error: a refinement round lost cells");
+        if (options.verbose)
+            std::cerr << "brdfbake: round " << out.rounds + 1 << ": " << todo.size() << " cells, " << part.method
+                      << ", kernel " << part.kernel_seconds * 1e3 << " ms\n";
+        out.rounds++;
+        out.kernel_seconds += part.kernel_seconds;
+        out.vector_width = std::max(out.vector_width, part.vector_width);
+        out.last_step_samples = step.samples;
+        for (size_t i = 0; i < todo.size(); ++i) {
+            const size_t c = todo[i];
+            const std::vector<AlbedoValue>& v = part.values[i];
+            const double error = cell_error(v);
+            out.spent[c] += v.front().samples;
+            out.total_samples += v.front().samples;
+            if (out.values[c].empty()) out.values[c].assign(v.size(), AlbedoValue{});
+            // Keep the better estimate so far (or the latest); a cell is done when it meets the tolerance.
+            if (!options.keep_best || error < best_error[c]) {
+                best_error[c] = error;
+                out.values[c] = v;
+            }
+            if (error <= options.tolerance) {
+                done[c] = true;
+                std::ostringstream key;
+                key << method_name(step.method) << " (" << v.front().samples << " points)";
+                out.met_by[key.str()]++;
+            }
+        }
+    }
+    for (size_t c = 0; c < n_cells; ++c)
+        if (!done[c]) out.missed.push_back(c);
+    return out;
+}
+
+AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
+    if (!(tol.tolerance > 0.0) || !std::isfinite(tol.tolerance))
+        throw Error("--tolerance must be a positive number");
+    const double floor = tolerance_floor(req.precision);
+    if (tol.tolerance < 2.0 * floor)
+        throw Error("--tolerance " + std::to_string(tol.tolerance) + " is below what " + precision_name(req.precision) +
+                    " arithmetic can certify (about " + std::to_string(2.0 * floor) + ")" +
+                    (req.precision == Precision::Float ? "; use --precision double" : ""));
+    if (req.cells.empty()) throw Error("no directions to integrate");
+
+    // The plan: (method, samples) steps, each a round over the cells still above the tolerance.
+    // Quadrature first (auto): its error falls exponentially for smooth lobes; importance
+    // sampling, whose error falls like N^-0.9 with randomised QMC, takes the cells where the
+    // rule stalls (kinks such as Torrance-Sparrow's V-groove min()). Work grows 4x per step.
+    std::vector<RefineStep> steps;
+    const bool quad_first = tol.auto_method || req.method == Method::Quadrature;
+    if (quad_first)
+        for (std::uint64_t s = 4 * 16 * 16; s <= std::min<std::uint64_t>(tol.max_samples, 4ull * 512 * 512); s *= 4)
+            steps.push_back({Method::Quadrature, s});
+    if (tol.auto_method || req.method != Method::Quadrature) {
+        const Method sampler = tol.auto_method ? Method::Importance : req.method;
+        for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples; s *= 4) steps.push_back({sampler, s});
+    }
+    if (steps.empty()) throw Error("--max-samples is too small for a first round");
+
+    RefineOptions options;
+    options.tolerance = tol.tolerance;
+    options.keep_best = true;
+    options.verbose = engine.verbose();
+    const RefineOutcome o =
+        refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
+            AlbedoRequest r = req;
+            r.method = step.method;
+            r.samples = step.samples;
+            r.cells.clear();
+            for (size_t c : todo) r.cells.push_back(req.cells[c]);
+            const AlbedoResult part = compute_albedo(engine, r);
+            RefineRound round;
+            for (const auto& v : part.values) round.values.push_back({v});
+            round.method = part.method;
+            round.kernel_seconds = part.kernel_seconds;
+            round.vector_width = part.vector_width;
+            return round;
+        });
+
+    AlbedoResult result;
+    result.tolerance = tol.tolerance;
+    result.rounds = o.rounds;
+    result.kernel_seconds = o.kernel_seconds;
+    result.vector_width = o.vector_width;
+    result.total_samples = o.total_samples;
+    result.values.assign(req.cells.size(), AlbedoValue{});
+    for (size_t c = 0; c < req.cells.size(); ++c) {
+        if (!o.values[c].empty()) result.values[c] = o.values[c].front();
+        result.values[c].samples = o.spent[c];  // every round's samples, not just the kept one's
+        result.samples_per_cell = std::max(result.samples_per_cell, o.spent[c]);
+    }
+    std::ostringstream m;
+    m << "tolerance " << tol.tolerance << ": ";
+    bool first = true;
+    for (const auto& kv : o.met_by) {
+        m << (first ? "" : ", ") << kv.second << (kv.second == 1 ? " cell" : " cells") << " by " << kv.first;
+        first = false;
+    }
+    m << "; " << result.rounds << (result.rounds == 1 ? " round" : " rounds");
+    result.method = m.str();
+
+    if (!o.missed.empty()) {
+        size_t worst = o.missed.front();
+        for (size_t c : o.missed)
+            if (result.values[c].error > result.values[worst].error) worst = c;
+        std::ostringstream e;
+        e << "--tolerance " << tol.tolerance << " not met at " << o.missed.size() << " of " << req.cells.size()
+          << " cells within " << tol.max_samples << " samples per cell; worst: mu = " << req.cells[worst].mu
+          << ", error estimate " << result.values[worst].error << " (" << method_name(result.values[worst].method)
+          << "). Raise --max-samples, " << (req.precision == Precision::Float ? "use --precision double, " : "")
+          << "or loosen the tolerance";
+        throw Error(e.str(), kExitViolation);
+    }
+    return result;
+}
+
+}  // namespace brdfbake

@@ -1,0 +1,59 @@
+// Refinement to a tolerance: integrate every cell with a sequence of (method, samples) steps,
+// each step over only the cells whose error estimate is still above the tolerance. The albedo
+// (compute_albedo_to_tolerance) and the rough dielectric table refine through this one driver.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <map>
+#include <string>
+#include <vector>
+
+#include "brdfbake/albedo.h"
+
+namespace brdfbake {
+
+/// One round of refinement: the method and the samples per cell it spends.
+struct RefineStep {
+    Method method = Method::Importance;
+    std::uint64_t samples = 0;
+};
+
+/// What one round returns for the cells it was given, in their order: per cell one value per
+/// channel (e.g. the dielectric's R and T). A cell's error is the largest of its channels'.
+struct RefineRound {
+    std::vector<std::vector<AlbedoValue>> values;  // [cell of the round][channel]
+    std::string method;                            // what the round did, in words (for --verbose)
+    double kernel_seconds = 0.0;
+    unsigned vector_width = 1;
+};
+
+/// Integrates `cells` (indices into the caller's cell list) with `step`.
+using RefineIntegrate = std::function<RefineRound(const RefineStep& step, const std::vector<size_t>& cells)>;
+
+struct RefineOptions {
+    double tolerance = 0.0;
+    /// Keep each cell's estimate with the smallest error over the rounds (true), or the latest.
+    bool keep_best = true;
+    /// Log each round to stderr ("brdfbake: round N: ...").
+    bool verbose = false;
+};
+
+struct RefineOutcome {
+    std::vector<std::vector<AlbedoValue>> values;  // [cell][channel]: the kept estimate
+    std::vector<std::uint64_t> spent;              // [cell]: samples of channel 0 over all rounds
+    std::vector<size_t> missed;                    // cells still above the tolerance, ascending
+    std::map<std::string, size_t> met_by;          // "quadrature (1024 points)" -> cells it finished
+    unsigned rounds = 0;
+    double kernel_seconds = 0.0;
+    unsigned vector_width = 1;
+    std::uint64_t total_samples = 0;     // channel 0's samples over all cells and rounds
+    std::uint64_t last_step_samples = 0; // the samples of the last step that ran
+};
+
+/// Runs `steps` in order until every cell's error is at most options.tolerance or the steps
+/// run out; never throws for missed cells (the caller words that error).
+RefineOutcome refine_to_tolerance(size_t n_cells, const std::vector<RefineStep>& steps, const RefineOptions& options,
+                                  const RefineIntegrate& integrate);
+
+}  // namespace brdfbake

@@ -1,0 +1,33 @@
+// Which tables a lobe needs: its default kinds, and the kinds a scene names in "tables", checked
+// against what the lobe has (the registry entry's requirement).
+#include <algorithm>
+
+#include "brdfbake/error.h"
+#include "scene/scene.h"
+#include "scene/scene_text.h"
+
+namespace brdfbake {
+
+std::vector<const TableKind*> default_lobe_kinds(const Lobe& lobe) {
+    // A dielectric interface: its reflection and transmission over (mu, alpha, eta). Any other
+    // lobe: the albedo with F = 1 and its average, which serve every Fresnel at render time.
+    if (lobe.eta) return {&table_kind(TableKindId::Dielectric)};
+    return {&table_kind(TableKindId::Albedo), &table_kind(TableKindId::Eavg)};
+}
+
+const TableKind& lobe_table_kind(const std::string& name, const Lobe& lobe, const std::string& ctx) {
+    const TableKind* kind = find_table_kind(name);
+    if (!kind) throw Error(ctx + ": unknown table kind '" + name + "' in 'tables' (known: " + table_kind_names() + ")");
+    if (kind->eta_axis && !lobe.eta) throw Error(ctx + ": " + kind->lobe_requirement);
+    if (kind->needs_conductor_fresnel && !scene_text::is_conductor_fresnel(lobe.fresnel))
+        throw Error(ctx + ": " + kind->lobe_requirement);
+    return *kind;
+}
+
+std::vector<std::string> kind_names(const std::vector<const TableKind*>& kinds) {
+    std::vector<std::string> names;
+    for (const TableKind* k : kinds) names.push_back(k->name);
+    return names;
+}
+
+}  // namespace brdfbake

@@ -1,0 +1,212 @@
+// The plan as text (brdfbake plan --format table) and as JSON (--format json).
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <set>
+#include <sstream>
+
+#include "brdfbake/spec.h"
+#include "scene/scene.h"
+#include "scene/scene_text.h"
+
+namespace brdfbake {
+
+namespace {
+
+using scene_text::join;
+
+/// The table's registry entry.
+const TableKind& kind_of(const PlannedTable& t) { return t.kind ? *t.kind : table_kind(t.request.kind); }
+
+std::string human_bytes(double b) {
+    char s[32];
+    if (b < 1024) std::snprintf(s, sizeof s, "%.0f B", b);
+    else if (b < 1024 * 1024) std::snprintf(s, sizeof s, "%.1f KiB", b / 1024);
+    else if (b < 1024.0 * 1024 * 1024) std::snprintf(s, sizeof s, "%.1f MiB", b / 1024 / 1024);
+    else std::snprintf(s, sizeof s, "%.2f GiB", b / 1024 / 1024 / 1024);
+    return s;
+}
+
+std::string human_count(double n) {
+    char s[32];
+    if (n < 1e4) std::snprintf(s, sizeof s, "%.0f", n);
+    else if (n < 1e9) std::snprintf(s, sizeof s, "%.1f M", n / 1e6);
+    else std::snprintf(s, sizeof s, "%.2f G", n / 1e9);
+    return s;
+}
+
+std::string human_seconds(double t) {
+    char s[32];
+    if (t < 0.1) std::snprintf(s, sizeof s, "%.2f s", t);
+    else if (t < 120) std::snprintf(s, sizeof s, "%.1f s", t);
+    else if (t < 7200) std::snprintf(s, sizeof s, "%.1f min", t / 60);
+    else std::snprintf(s, sizeof s, "%.1f h", t / 3600);
+    return s;
+}
+
+std::string short_num(double v) {
+    char s[32];
+    std::snprintf(s, sizeof s, "%.4g", v);
+    return s;
+}
+
+std::string alpha_axis_name(const std::string& map) { return map == "roughness" ? "roughness" : "alpha"; }
+
+std::string size_text(const PlannedTable& t) {
+    std::string s = std::to_string(t.request.width) + "x" + std::to_string(t.request.height);
+    if (kind_of(t).eta_axis) s += "x" + std::to_string(t.depth);
+    return s;
+}
+
+}  // namespace
+
+std::string plan_text(const Plan& p) {
+    std::ostringstream o;
+    size_t n_mat = p.no_table.size();
+    std::set<std::string> served;
+    for (const auto& t : p.tables)
+        for (const auto& m : t.materials) served.insert(m);
+    n_mat += served.size();
+    std::vector<std::string> all_models = model_names();
+    o << "plan for " << p.scene << " (" << p.source << "): " << n_mat << " material" << (n_mat == 1 ? "" : "s") << ", "
+      << p.tables.size() << " table" << (p.tables.size() == 1 ? "" : "s");
+    if (!p.models.empty())
+        o << "; kernels built for " << join(p.models) << " only (" << p.models.size() << " of " << all_models.size()
+          << " models)";
+    o << "\n";
+    double total_s = 0, total_samples = 0, peak_mem = 0, disk = 0;
+    for (const auto& t : p.tables) {
+        const LutRequest& r = t.request;
+        const TableKind& kind = kind_of(t);
+        o << "\n  " << t.file << "   " << r.kind << ", " << r.model << ", Fresnel ";
+        if (!kind.plan_fresnel.empty()) o << kind.plan_fresnel;
+        else o << r.fresnel << (r.wavelength_nm > 0 ? " at " + short_num(r.wavelength_nm) + " nm" : "");
+        o << "\n";
+        o << "      axes      ";
+        const std::string an = alpha_axis_name(r.alpha_map);
+        const std::string alpha_axis = an + " " + short_num(r.alpha_lo) + ".." + short_num(r.alpha_hi) + " (" +
+                                       std::to_string(kind.one_dimensional ? r.width : r.height) + ")";
+        if (kind.one_dimensional) o << alpha_axis;
+        else o << "mu 0..1 (" << r.width << ", " << r.mu_map << ") x " << alpha_axis;
+        if (kind.eta_axis)
+            o << " x eta " << short_num(t.eta_lo) << ".." << short_num(t.eta_hi) << " (" << t.depth << ")";
+        auto range = [](Interval v) {
+            return v.lo == v.hi ? short_num(v.lo) : short_num(v.lo) + ".." + short_num(v.hi);
+        };
+        o << "\n      scene     alpha " << range(t.alpha);
+        if (t.eta) o << ", eta " << range(*t.eta);
+        o << (t.alpha.lo == t.alpha.hi && (!t.eta || t.eta->lo == t.eta->hi)
+                  ? " (one texel centred on each value)\n"
+                  : " (the first and last texel centres sit on the scene's extremes)\n");
+        o << "      serves    " << join(t.serves) << "\n";
+        o << "      estimate  " << size_text(t) << ", " << human_count(double(t.samples_total)) << " samples ("
+          << r.samples << " per cell), " << human_seconds(t.est_seconds) << ", memory "
+          << human_bytes(double(t.est_memory)) << ", file " << human_bytes(double(t.file_bytes)) << "\n";
+        if (!t.unavailable.empty()) o << "      NOT AVAILABLE " << t.unavailable << "\n";
+        total_s += t.est_seconds;
+        total_samples += double(t.samples_total);
+        peak_mem = std::max(peak_mem, double(t.est_memory));
+        disk += double(t.file_bytes);
+    }
+    o << "\nmaterials:\n";
+    for (const auto& m : p.materials) {
+        if (m.lobes.empty()) continue;
+        o << "  " << m.name << ":";
+        for (const auto& l : m.lobes) {
+            o << " " << l.role << " (" << l.model_name << ", alpha " << short_num(l.alpha.lo)
+              << (l.alpha.lo == l.alpha.hi ? "" : ".." + short_num(l.alpha.hi));
+            if (l.eta) o << ", eta " << short_num(l.eta->lo) << (l.eta->lo == l.eta->hi ? "" : ".." + short_num(l.eta->hi));
+            o << ", Fresnel " << l.fresnel << ")";
+            if (&l != &m.lobes.back()) o << ";";
+        }
+        o << "\n";
+        for (const auto& n : m.notes) o << "      " << n << "\n";
+    }
+    if (!p.no_table.empty()) {
+        o << "\nno table needed:\n";
+        for (const auto& m : p.no_table) o << "  " << m << "\n";
+    }
+    if (!p.warnings.empty()) {
+        o << "\nwarnings:\n";
+        for (const auto& w : p.warnings) o << "  warning: " << w << "\n";
+    }
+    o << "\ntotal: " << p.tables.size() << " tables, " << human_count(total_samples) << " samples, about "
+      << human_seconds(total_s + p.build_seconds) << " (" << human_seconds(total_s) << " integrating at "
+      << human_count(p.samples_per_second) << " samples/s: " << p.throughput_basis << "; "
+      << human_seconds(p.build_seconds) << " for " << p.programs << " kernel build" << (p.programs == 1 ? "" : "s")
+      << ", cached by PoCL after the first run), peak memory " << human_bytes(peak_mem) << ", " << human_bytes(disk)
+      << " on disk\n";
+    return o.str();
+}
+
+std::string plan_json(const Plan& p) {
+    nlohmann::ordered_json j;
+    j["command"] = "plan";
+    j["scene"] = p.scene;
+    j["source"] = p.source;
+    j["models"] = p.models;
+    j["all_models"] = model_names();
+    j["tables"] = nlohmann::ordered_json::array();
+    double total_s = 0, total_samples = 0;
+    for (const auto& t : p.tables) {
+        const LutRequest& r = t.request;
+        const TableKind& kind = kind_of(t);
+        nlohmann::ordered_json a = nlohmann::ordered_json::array();
+        if (!kind.one_dimensional) a.push_back({{"name", "mu"}, {"mapping", r.mu_map}, {"lo", 0.0}, {"hi", 1.0}, {"size", r.width}});
+        a.push_back({{"name", alpha_axis_name(r.alpha_map)},
+                     {"mapping", r.alpha_map == "roughness" ? "alpha = r^2" : "alpha = v"},
+                     {"lo", r.alpha_lo},
+                     {"hi", r.alpha_hi},
+                     {"size", kind.one_dimensional ? r.width : r.height}});
+        if (kind.eta_axis)
+            a.push_back({{"name", "eta"}, {"mapping", "eta = e"}, {"lo", t.eta_lo}, {"hi", t.eta_hi}, {"size", t.depth}});
+        nlohmann::ordered_json e = {{"file", t.file},
+                  {"kind", r.kind},
+                  {"model", r.model},
+                  {"fresnel", r.fresnel},
+                  {"axes", a},
+                  {"size", size_text(t)},
+                  {"alpha_range", {t.alpha.lo, t.alpha.hi}},
+                  {"samples_per_cell", r.samples},
+                  {"precision", precision_name(r.precision)},
+                  {"cells", t.cells},
+                  {"samples_total", t.samples_total},
+                  {"estimated_seconds", t.est_seconds},
+                  {"estimated_memory_bytes", t.est_memory},
+                  {"estimated_file_bytes", t.file_bytes},
+                  {"serves", t.serves},
+                  {"materials", t.materials},
+                  {"request_hash", t.hash},
+                  {"available", t.unavailable.empty()}};
+        if (r.wavelength_nm > 0) e["wavelength_nm"] = r.wavelength_nm;
+        if (t.eta) e["eta_range"] = {t.eta->lo, t.eta->hi};
+        if (!t.unavailable.empty()) e["unavailable"] = t.unavailable;
+        j["tables"].push_back(e);
+        total_s += t.est_seconds;
+        total_samples += double(t.samples_total);
+    }
+    j["materials"] = nlohmann::ordered_json::array();
+    for (const auto& m : p.materials) {
+        nlohmann::ordered_json lobes = nlohmann::ordered_json::array();
+        for (const auto& l : m.lobes) {
+            nlohmann::ordered_json x = {{"role", l.role}, {"model", l.model}, {"fresnel", l.fresnel},
+                                        {"alpha_range", {l.alpha.lo, l.alpha.hi}}, {"kinds", kind_names(l.kinds)}};
+            if (l.eta) x["eta_range"] = {l.eta->lo, l.eta->hi};
+            lobes.push_back(x);
+        }
+        j["materials"].push_back({{"name", m.name}, {"lobes", lobes}, {"notes", m.notes}});
+    }
+    j["no_table"] = p.no_table;
+    j["warnings"] = p.warnings;
+    j["estimate"] = {{"seconds", total_s + p.build_seconds},
+                     {"integration_seconds", total_s},
+                     {"kernel_programs", p.programs},
+                     {"kernel_build_seconds", p.build_seconds},
+                     {"samples", total_samples},
+                     {"samples_per_second", p.samples_per_second},
+                     {"basis", p.throughput_basis}};
+    return j.dump(2) + "\n";
+}
+
+}  // namespace brdfbake

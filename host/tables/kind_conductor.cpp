@@ -1,0 +1,95 @@
+// The Fresnel-weighted albedo of a conductor: one channel E at a given Fresnel term, or R, G, B
+// at 650, 550 and 450 nm for a measured metal without a wavelength.
+#include <algorithm>
+
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/error.h"
+#include "tables/lut_common.h"
+
+namespace brdfbake {
+namespace tables {
+namespace {
+
+constexpr double kRgbNm[3] = {650.0, 550.0, 450.0};
+const char* const kRgbNames[3] = {"R", "G", "B"};
+
+/// A measured metal without --wavelength: one channel per RGB wavelength.
+bool rgb(const LutRequest& r) { return r.wavelength_nm == 0.0 && is_measured_metal(r.fresnel); }
+
+int channels(const LutRequest& r) { return rgb(r) ? 3 : 1; }
+
+FresnelConfig conductor_fresnel(const LutRequest& r) {
+    return resolve_fresnel(r.fresnel, rgb(r) ? kRgbNm[0] : r.wavelength_nm);
+}
+
+std::vector<std::string> conductor_program(const LutRequest& r) {
+    return {"albedo|" + r.model + "|" + r.fresnel.substr(0, r.fresnel.find(':'))};
+}
+
+Table compute_conductor(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    if (!rgb(r)) {
+        t.quantity = "Fresnel-weighted directional albedo E(mu_o, alpha) of a conductor";
+        const AlbedoResult res = integrate(engine, r, m, f, g.cells);
+        t.channels = {"E"};
+        t.values.assign(1, {});
+        for (const auto& v : res.values) {
+            t.values[0].push_back(v.value);
+            t.error.push_back(v.error);
+        }
+        describe(t, r, m, f.canonical, res, g.clamped);
+        return t;
+    }
+    t.quantity = "Fresnel-weighted directional albedo E(mu_o, alpha) of a measured conductor at 650, 550 and 450 nm";
+    t.channels = {"R", "G", "B"};
+    t.error.assign(g.cells.size(), 0.0);
+    std::string fresnel_text;
+    AlbedoResult last;
+    for (int c = 0; c < 3; ++c) {
+        const FresnelConfig fc = resolve_fresnel(r.fresnel, kRgbNm[c]);
+        last = integrate(engine, r, m, fc, g.cells);
+        std::vector<double> v;
+        for (size_t k = 0; k < g.cells.size(); ++k) {
+            v.push_back(last.values[k].value);
+            t.error[k] = std::max(t.error[k], last.values[k].error);
+        }
+        t.values.push_back(v);
+        fresnel_text += std::string(c ? "; " : "") + kRgbNames[c] + ": " + fc.canonical;
+    }
+    describe(t, r, m, fresnel_text, last, g.clamped);
+    return t;
+}
+
+void validate_conductor(const LutRequest& r, const ModelConfig&, const FresnelConfig& f) {
+    if (!(f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX || is_measured_metal(r.fresnel)))
+        throw Error("the conductor table needs a conductor Fresnel term: --fresnel conductor:eta=E,k=K, metal:Al or nk:FILE");
+}
+
+TableKind make_conductor() {
+    TableKind k;
+    k.id = TableKindId::Conductor;
+    k.name = "conductor";
+    k.description = "Fresnel-weighted albedo E(mu_o, alpha) of a conductor: --fresnel conductor:eta=,k= (channel E) or "
+                    "metal:X / nk:FILE (channels R, G, B at 650, 550, 450 nm, or E at --wavelength)";
+    k.bakes_lobe_fresnel = true;
+    k.needs_conductor_fresnel = true;
+    k.lobe_requirement = "a conductor table needs a conductor Fresnel (conductor:, metal:, nk:)";
+    k.value_channels = channels;
+    k.integrations = channels;  // one per RGB wavelength
+    k.kernel_programs = conductor_program;
+    k.fresnel = conductor_fresnel;
+    k.validate = validate_conductor;
+    k.compute = compute_conductor;
+    return k;
+}
+
+}  // namespace
+
+const TableKind& conductor_kind() {
+    static const TableKind k = make_conductor();
+    return k;
+}
+
+}  // namespace tables
+}  // namespace brdfbake

@@ -1,0 +1,39 @@
+// The table-kind registry: the list of kinds and the look-ups by name and id.
+#include "brdfbake/table_kinds.h"
+
+#include "brdfbake/error.h"
+#include "tables/lut_common.h"
+
+namespace brdfbake {
+
+const std::vector<const TableKind*>& table_kinds() {
+    static const std::vector<const TableKind*> kinds = {&tables::albedo_kind(),     &tables::eavg_kind(),
+                                                        &tables::dfg_kind(),        &tables::dielectric_kind(),
+                                                        &tables::conductor_kind(),  &tables::dfg_ms_kind()};
+    return kinds;
+}
+
+const TableKind* find_table_kind(const std::string& name) {
+    for (const TableKind* k : table_kinds())
+        if (k->name == name) return k;
+    return nullptr;
+}
+
+std::string table_kind_names() {
+    std::string list;
+    for (const TableKind* k : table_kinds()) list += (list.empty() ? "" : ", ") + k->name;
+    return list;
+}
+
+const TableKind& table_kind(const std::string& name) {
+    if (const TableKind* k = find_table_kind(name)) return *k;
+    throw Error("unknown table kind '" + name + "'; known: " + table_kind_names());
+}
+
+const TableKind& table_kind(TableKindId id) {
+    for (const TableKind* k : table_kinds())
+        if (k->id == id) return *k;
+    throw Error("internal error: a table kind without a registry entry");
+}
+
+}  // namespace brdfbake

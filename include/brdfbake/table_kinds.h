@@ -1,0 +1,72 @@
+// The table kinds: one registry entry per kind with everything the rest of brdfbake asks about
+// it (its axes and channels, the Fresnel term it holds, how it is validated and computed, and how
+// the scene planner sizes and merges it). `brdfbake lut`, `plan`, `bake` and the bake index
+// query this registry; none of them compares kind names.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "brdfbake/engine.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/spec.h"
+#include "brdfbake/table.h"
+
+namespace brdfbake {
+
+enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs };
+
+struct TableKind {
+    TableKindId id;
+    std::string name;         // the command-line and file spelling: "albedo", "dfg-ms", ...
+    std::string description;  // one line for help texts
+
+    // Axes. A 2D kind has x = mu and y = the roughness axis; a 1D kind has x = the roughness
+    // axis only; eta_axis adds z = eta (3D, z-slices stacked along y).
+    bool one_dimensional = false;
+    bool eta_axis = false;
+    /// Integration cells per texel: 48 mu nodes (32 + 16 Gauss-Legendre) for the average albedo,
+    /// 2 sides of the interface for the dielectric.
+    int cells_per_texel = 1;
+
+    // The Fresnel term.
+    bool fresnel_factored_out = false;  // the table takes no --fresnel (the split-sum kinds)
+    /// The table bakes the lobe's own Fresnel in (conductor); the other kinds hold F = 1, factor
+    /// it out, or have eta as an axis, so that one table serves every Fresnel.
+    bool bakes_lobe_fresnel = false;
+    std::string plan_fresnel;  // the Fresnel in the table, in words (plan text); empty: the request's
+
+    // What a lobe must have for this kind: an index of refraction (every kind with an eta axis),
+    // a conductor Fresnel term; lobe_requirement says it (a scene's "tables" error).
+    bool needs_conductor_fresnel = false;
+    std::string lobe_requirement;
+
+    // The planner.
+    bool tileable = false;     // `bake` may compute it in tiles along the roughness axis
+    double sample_cost = 1.0;  // the cost of one sample relative to an albedo sample
+
+    /// Value channels (the error channel comes on top).
+    int (*value_channels)(const LutRequest&) = nullptr;
+    /// Integrations per cell (the split-sum kinds integrate twice, a measured conductor per RGB wavelength).
+    int (*integrations)(const LutRequest&) = nullptr;
+    /// The kernel programs the table builds ("albedo|MODEL|FRESNEL-KIND", "dielectric|MODEL").
+    std::vector<std::string> (*kernel_programs)(const LutRequest&) = nullptr;
+    /// The Fresnel term validation resolves (a measured conductor without --wavelength: at 650 nm).
+    FresnelConfig (*fresnel)(const LutRequest&) = nullptr;
+    /// The kind's own checks, after the common ones of validate_lut; throws Error.
+    void (*validate)(const LutRequest&, const ModelConfig& swept_model, const FresnelConfig&) = nullptr;
+    /// Computes the table of a validated request.
+    Table (*compute)(Engine&, const LutRequest&, const ModelConfig& swept_model, const FresnelConfig&) = nullptr;
+};
+
+/// Every kind, in help order.
+const std::vector<const TableKind*>& table_kinds();
+/// The kind of that name, or nullptr.
+const TableKind* find_table_kind(const std::string& name);
+/// The kind of that name; throws Error "unknown table kind 'X'; known: ...".
+const TableKind& table_kind(const std::string& name);
+const TableKind& table_kind(TableKindId id);
+/// "albedo, eavg, ...": the kinds' names for messages.
+std::string table_kind_names();
+
+}  // namespace brdfbake
