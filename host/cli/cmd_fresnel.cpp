@@ -231,23 +231,25 @@ Curve host_curve(const std::string& label, const std::string& style, const std::
     return c;
 }
 
-PlotAxis theta_axis() {
+/// F, R_s and R_p of one term as three curves labelled PREFIX + "F", "R_s", "R_p".
+void add_components(PlotSpec& p, const std::string& prefix, const HostFresnel& h, const std::vector<double>& thetas,
+                    const char* f_style, const char* rs_style, const char* rp_style) {
+    p.curves.push_back(host_curve(prefix + "F", f_style, thetas, [&](double mu) { return h.f(mu); }));
+    p.curves.push_back(host_curve(prefix + "R_s", rs_style, thetas, [&](double mu) { return h.rs(mu); }));
+    p.curves.push_back(host_curve(prefix + "R_p", rp_style, thetas, [&](double mu) { return h.rp(mu); }));
+}
+
+PlotAxis axis(const std::string& label, double lo, double hi, double tick) {
     PlotAxis a;
-    a.label = "angle of incidence \\theta  (degrees)";
-    a.lo = 0.0;
-    a.hi = 90.0;
-    a.tick = 15.0;
+    a.label = label;
+    a.lo = lo;
+    a.hi = hi;
+    a.tick = tick;
     return a;
 }
 
-PlotAxis reflectance_axis() {
-    PlotAxis a;
-    a.label = "reflectance";
-    a.lo = 0.0;
-    a.hi = 1.0;
-    a.tick = 0.2;
-    return a;
-}
+PlotAxis theta_axis() { return axis("angle of incidence \\theta  (degrees)", 0.0, 90.0, 15.0); }
+PlotAxis reflectance_axis() { return axis("reflectance", 0.0, 1.0, 0.2); }
 
 /// The panel for one Fresnel term: F, Rs, Rp and, where an exact form exists, the approximate
 /// conductor formula and Schlick with F0 = F(0).
@@ -258,11 +260,10 @@ PlotSpec single_panel(const FresnelConfig& f) {
     p.x = theta_axis();
     p.y = reflectance_axis();
     const HostFresnel h(f);
-    p.curves.push_back(host_curve("F", "b-4", th, [&](double mu) { return h.f(mu); }));
-    if (f.kind != BB_FRESNEL_NONE && f.kind != BB_FRESNEL_SCHLICK) {
-        p.curves.push_back(host_curve("R_s", "r;2", th, [&](double mu) { return h.rs(mu); }));
-        p.curves.push_back(host_curve("R_p", "g;2", th, [&](double mu) { return h.rp(mu); }));
-    }
+    if (f.kind != BB_FRESNEL_NONE && f.kind != BB_FRESNEL_SCHLICK)
+        add_components(p, "", h, th, "b-4", "r;2", "g;2");
+    else
+        p.curves.push_back(host_curve("F", "b-4", th, [&](double mu) { return h.f(mu); }));
     HostFresnel exact(BB_FRESNEL_NONE, 0.0, 0.0);
     if (exact_reference(f, exact)) {
         if (f.kind != BB_FRESNEL_CONDUCTOR)
@@ -308,9 +309,7 @@ Figure comparison_figure(const FresnelConfig& metal) {
     const double eta = exact.p.v[BB_FRESNEL_ETA], k = exact.p.v[BB_FRESNEL_K];
     const HostFresnel approx(BB_FRESNEL_CONDUCTOR_APPROX, eta, k);
     const HostFresnel sch = schlick(exact.f(1.0));
-    a.curves.push_back(host_curve("exact F", "b-4", th, [&](double mu) { return exact.f(mu); }));
-    a.curves.push_back(host_curve("exact R_s", "r;2", th, [&](double mu) { return exact.rs(mu); }));
-    a.curves.push_back(host_curve("exact R_p", "g;2", th, [&](double mu) { return exact.rp(mu); }));
+    add_components(a, "exact ", exact, th, "b-4", "r;2", "g;2");
     a.curves.push_back(host_curve("approximate conductor F", "m|2", th, [&](double mu) { return approx.f(mu); }));
     a.curves.push_back(host_curve("Schlick F, F_0 = F(0)", "q:3", th, [&](double mu) { return sch.f(mu); }));
     a.legend = LegendPlace::BottomLeft;
@@ -322,12 +321,8 @@ Figure comparison_figure(const FresnelConfig& metal) {
     b.y = reflectance_axis();
     const HostFresnel out(BB_FRESNEL_DIELECTRIC, 1.5, 0.0), in(BB_FRESNEL_DIELECTRIC, 1.0 / 1.5, 0.0);
     const HostFresnel sch_out = schlick(out.f(1.0));
-    b.curves.push_back(host_curve("outside F", "b-4", th, [&](double mu) { return out.f(mu); }));
-    b.curves.push_back(host_curve("outside R_s", "r;2", th, [&](double mu) { return out.rs(mu); }));
-    b.curves.push_back(host_curve("outside R_p", "g;2", th, [&](double mu) { return out.rp(mu); }));
-    b.curves.push_back(host_curve("inside F", "k-4", th, [&](double mu) { return in.f(mu); }));
-    b.curves.push_back(host_curve("inside R_s", "r:2", th, [&](double mu) { return in.rs(mu); }));
-    b.curves.push_back(host_curve("inside R_p", "g:2", th, [&](double mu) { return in.rp(mu); }));
+    add_components(b, "outside ", out, th, "b-4", "r;2", "g;2");
+    add_components(b, "inside ", in, th, "k-4", "r:2", "g:2");
     b.curves.push_back(host_curve("Schlick F_0 = 0.04", "q|2", th, [&](double mu) { return sch_out.f(mu); }));
     char text[64];
     std::snprintf(text, sizeof text, "Brewster %.1f\\degree", std::atan(1.5) / kDeg);
