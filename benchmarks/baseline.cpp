@@ -69,7 +69,12 @@ Result albedo_table(const Request& req) {
         double ss = 0.0;
         for (unsigned k = 0; k < R; ++k) ss += (means[c * R + k] - mean) * (means[c * R + k] - mean);
         r.value.push_back(mean);
-        r.error.push_back(3.0 * std::sqrt(ss / (R - 1) / R) + 8.0 * eps * std::max(std::fabs(mean), 1e-3));
+        // As compute_albedo's estimate (summarize in host/integrate/albedo.cpp): 3 standard errors
+        // of the replica means, 3 |E| / N for the mass the N points may not have seen, and the
+        // floating-point bound 8 eps max(|E|, 1e-3).
+        const double n_total = double(points * R);
+        r.error.push_back(3.0 * std::sqrt(ss / (R - 1) / R) + 3.0 * std::fabs(mean) / n_total +
+                          8.0 * eps * std::max(std::fabs(mean), 1e-3));
     }
     return r;
 }

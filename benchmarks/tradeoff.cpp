@@ -31,6 +31,7 @@
 #include "brdfbake/version.h"
 #include "plot/plot.h"
 #include "reference/tradeoff_refs.h"
+#include "report_options.h"
 
 namespace {
 
@@ -612,15 +613,17 @@ void write_tradeoff_plot(const json& j, const Options& o, const std::string& pat
 int main(int argc, char** argv) {
     CLI::App app{"brdfbake-tradeoff: error against time of every albedo method and precision (issue 7)"};
     bool quick = false;
-    std::string out_dir = BRDFBAKE_BENCH_RESULTS_DIR, name, plot, device, only;
+    ReportOptions report;
+    std::string only;
     app.add_flag("--quick", quick, "a small grid, two sample counts, one run each (what CI runs)");
-    app.add_option("--out-dir", out_dir, "directory for NAME.json and NAME.md")->capture_default_str();
-    app.add_option("--name", name, "file name stem (default: tradeoff-<machine>, -quick with --quick)");
-    app.add_option("--plot", plot, "also draw max true error against time per cell (.png or .svg)");
-    app.add_option("--device", device, "OpenCL device selector (see `brdfbake devices`)");
+    add_report_options(app, report, "file name stem (default: tradeoff-<machine>, -quick with --quick)",
+                       "also draw max true error against time per cell (.png or .svg)");
     app.add_option("--families", only, "comma-separated family keys to run (ggx, beckmann, ts-ggx, ts-blinn, oren-nayar)");
     CLI11_PARSE(app, argc, argv);
-    try {
+    return run_reporting_errors("brdfbake-tradeoff", [&] {
+        std::string name = report.name;
+        const std::string& out_dir = report.out_dir;
+        const std::string& plot = report.plot;
         const double t_start = now();
         Options o = quick ? quick_options() : full_options();
         if (!only.empty()) {
@@ -639,7 +642,7 @@ int main(int argc, char** argv) {
         j["name"] = name;
         j["mode"] = quick ? "quick" : "full";
         j["brdfbake_version"] = BRDFBAKE_VERSION;
-        Engine engine(device);
+        Engine engine(report.device);
         const DeviceInfo& dev = engine.device();
         j["machine"] = {{"cpu", bench_cpu_model()},
                         {"cores", std::thread::hardware_concurrency()},
@@ -714,11 +717,5 @@ int main(int argc, char** argv) {
         std::cerr << "brdfbake-tradeoff: wrote " << out_dir << "/" << name << ".json and .md in "
                   << fixed(j["seconds"].get<double>(), 1) << " s\n";
         return 0;
-    } catch (const Error& e) {
-        std::cerr << "brdfbake-tradeoff: error: " << e.what() << "\n";
-        return e.exit_code();
-    } catch (const std::exception& e) {
-        std::cerr << "brdfbake-tradeoff: error: " << e.what() << "\n";
-        return 2;
-    }
+    });
 }

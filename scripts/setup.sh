@@ -8,6 +8,7 @@ packages=(
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers clinfo
   libopenexr-dev catch2 libcli11-dev nlohmann-json3-dev librandom123-dev
   libboost-math-dev libmgl-dev libyaml-cpp-dev libtinygltf-dev
+  pkg-config  # the install_consumer test checks brdfbake.pc
 )
 
 missing=()

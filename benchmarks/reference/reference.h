@@ -57,6 +57,23 @@ inline Dir reflect(Dir w, Dir m) {
     return {c * m.x - w.x, c * m.y - w.y, c * m.z - w.z};
 }
 
+/// Smith's masking G1 = 1 / (1 + Lambda) (Heitz 2014 eq. 43), 0 below the horizon, for a
+/// distribution's Lambda.
+template <class Lambda>
+inline ld smith_g1(Dir w, ld ax, ld ay, Lambda lambda) { return w.z <= 0 ? 0 : 1 / (1 + lambda(w, ax, ay)); }
+
+/// A Smith microfacet BRDF without Fresnel, D G2 / (4 cos_o cos_i) (Walter et al. 2007 eq. 20),
+/// for a distribution D and its Lambda: G2 height-correlated 1 / (1 + Lambda_o + Lambda_i)
+/// (Heitz 2014 eq. 99) or separable G1(wo) G1(wi) (eq. 98).
+template <class Distribution, class Lambda>
+inline ld smith_f(Dir wo, Dir wi, ld ax, ld ay, bool correlated, Distribution d, Lambda lambda) {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    Dir wh = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
+    ld g2 = correlated ? 1 / (1 + lambda(wo, ax, ay) + lambda(wi, ax, ay))
+                       : smith_g1(wo, ax, ay, lambda) * smith_g1(wi, ax, ay, lambda);
+    return d(wh, ax, ay) * g2 / (4 * wo.z * wi.z);
+}
+
 /// GGX / Trowbridge-Reitz D in the slope form of Walter et al. 2007 eq. 33, anisotropic as in
 /// Heitz 2014 eq. 85: 1 / (pi ax ay cos^4 (1 + tan^2 (cos^2 phi / ax^2 + sin^2 phi / ay^2))^2).
 inline ld ggx_d(Dir m, ld ax, ld ay) {
@@ -76,15 +93,11 @@ inline ld ggx_lambda(Dir w, ld ax, ld ay) {
     ld tan2 = sin2 / cos2;
     return (-1 + std::sqrt(1 + alpha2 * tan2)) / 2;
 }
-inline ld ggx_g1(Dir w, ld ax, ld ay) { return w.z <= 0 ? 0 : 1 / (1 + ggx_lambda(w, ax, ay)); }
+inline ld ggx_g1(Dir w, ld ax, ld ay) { return smith_g1(w, ax, ay, ggx_lambda); }
 
 /// The GGX BRDF without Fresnel (F = 1): D G2 / (4 cos_o cos_i).
 inline ld ggx_f(Dir wo, Dir wi, ld ax, ld ay, bool correlated) {
-    if (wo.z <= 0 || wi.z <= 0) return 0;
-    Dir wh = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
-    ld g2 = correlated ? 1 / (1 + ggx_lambda(wo, ax, ay) + ggx_lambda(wi, ax, ay))
-                       : ggx_g1(wo, ax, ay) * ggx_g1(wi, ax, ay);
-    return ggx_d(wh, ax, ay) * g2 / (4 * wo.z * wi.z);
+    return smith_f(wo, wi, ax, ay, correlated, ggx_d, ggx_lambda);
 }
 
 /// Integral of g(theta_m, phi_m) sin(theta_m) over the microfacet normals m facing wo
@@ -196,15 +209,11 @@ inline ld beckmann_lambda(Dir w, ld ax, ld ay) {
     ld a = 1 / (alpha * std::sqrt(sin2 / cos2));
     return (std::erf(a) - 1) / 2 + std::exp(-a * a) / (2 * a * std::sqrt(kPi));
 }
-inline ld beckmann_g1(Dir w, ld ax, ld ay) { return w.z <= 0 ? 0 : 1 / (1 + beckmann_lambda(w, ax, ay)); }
+inline ld beckmann_g1(Dir w, ld ax, ld ay) { return smith_g1(w, ax, ay, beckmann_lambda); }
 
 /// The Beckmann BRDF without Fresnel: D G2 / (4 cos_o cos_i).
 inline ld beckmann_f(Dir wo, Dir wi, ld ax, ld ay, bool correlated) {
-    if (wo.z <= 0 || wi.z <= 0) return 0;
-    Dir wh = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
-    ld g2 = correlated ? 1 / (1 + beckmann_lambda(wo, ax, ay) + beckmann_lambda(wi, ax, ay))
-                       : beckmann_g1(wo, ax, ay) * beckmann_g1(wi, ax, ay);
-    return beckmann_d(wh, ax, ay) * g2 / (4 * wo.z * wi.z);
+    return smith_f(wo, wi, ax, ay, correlated, beckmann_d, beckmann_lambda);
 }
 
 /// Normalised Blinn distribution (Blinn 1977; Walter et al. 2007 eq. 30): (n+2)/(2 pi) cos^n.
