@@ -188,3 +188,33 @@ TEST_CASE("battery: finite and non-negative at the extremes", "[battery][quick]"
         }
     }
 }
+
+TEST_CASE("battery: the vector paths the registry gives a model agree with its scalar kernel", "[battery][device]") {
+    // DISK or VSAMPLE: importance sampling on W lanes; VEVAL: qmc's uniform weights on W lanes.
+    // The same points and the same shared functions as the scalar kernel: the same sums up to
+    // rounding, in float.
+    const bool cpu = testing::engine().device().type == "cpu";
+    const std::vector<double> mus = {0.02, 0.3, 1.0};
+    for (const ModelTraits& t : model_registry()) {
+        std::vector<Method> methods;
+        if (t.samples_disk || t.samples_vector) methods.push_back(Method::Importance);
+        if (t.evals_vector) methods.push_back(Method::QuasiMonteCarlo);
+        const ModelConfig m = resolve_model(t.example);
+        for (Method method : methods) {
+            AlbedoRequest req = testing::albedo_request(t.example, mus, method, Precision::Float, 1u << 14);
+            req.cells = cells_for(mus, 0.3, m.params);
+            req.vector_width = 1;
+            const AlbedoResult s = compute_albedo(testing::engine(), req);
+            req.vector_width = 0;
+            const AlbedoResult v = compute_albedo(testing::engine(), req);
+            CHECK(s.vector_width == 1);
+            CHECK((v.vector_width > 1) == cpu);
+            for (size_t c = 0; c < mus.size(); ++c) {
+                INFO(t.name << " " << method_name(method) << " mu " << mus[c] << ": scalar " << s.values[c].value
+                            << " +- " << s.values[c].error << ", vector " << v.values[c].value);
+                CHECK(std::fabs(s.values[c].value - v.values[c].value) <= s.values[c].error);
+                CHECK(std::fabs(s.values[c].value - v.values[c].value) <= 2e-5);
+            }
+        }
+    }
+}

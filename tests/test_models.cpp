@@ -513,3 +513,17 @@ TEST_CASE("delta lobes: analytic albedo and transmission", "[models][quick]") {
     CHECK(eval(mirror, bb_dir_from_mu_phi(0.5, 0), bb_dir_from_mu_phi(0.5, M_PI)) == 0.0);
     CHECK(eval(glass, bb_dir_from_mu_phi(0.5, 0), bb_dir_from_mu_phi(0.5, M_PI)) == 0.0);
 }
+
+TEST_CASE("roughness_slots: the swept alpha slots of the registry, and the refusals", "[models][quick]") {
+    CHECK(roughness_slots(resolve_model("ggx:alpha=0.5")) == std::vector<int>{BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y});
+    CHECK(roughness_slots(resolve_model("beckmann:alpha=0.5")) ==
+          std::vector<int>{BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y});
+    CHECK(roughness_slots(resolve_model("torrance-sparrow:d=ggx,alpha=0.5")) ==
+          std::vector<int>{BB_TORRANCE_SPARROW_ALPHA_X, BB_TORRANCE_SPARROW_ALPHA_Y});
+    CHECK_THROWS_WITH(roughness_slots(resolve_model("torrance-sparrow:d=blinn,n=30")),
+                      "torrance-sparrow with d=blinn has an exponent, not alpha, to sweep; use d=beckmann or d=ggx");
+    CHECK_THROWS_WITH(roughness_slots(resolve_model("lambert")),
+                      "model 'lambert' has no roughness alpha to sweep; tables need a microfacet model");
+    CHECK_THROWS_WITH(roughness_slots(resolve_model("blinn-phong:n=20")),
+                      "model 'blinn-phong' has no roughness alpha to sweep; tables need a microfacet model");
+}
