@@ -646,7 +646,7 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     kernel.setArg(a++, b_t);
     kernel.setArg(a++, b_bad);
     cl::Event done;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, 8), cl::NDRange(8), nullptr,
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize), cl::NDRange(kLocalSize), nullptr,
                                         &done);
     const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
     std::vector<cl_uint> bad(n_items);

@@ -1,5 +1,5 @@
 /* The integrands of the albedo methods other than a model's own importance sampler
- * (kernels/albedo.cl, host/albedo.cpp). Shared by host and kernels like the models.
+ * (kernels/albedo.cl, host/integrate/albedo.cpp). Shared by host and kernels like the models.
  *
  * E(wo) = integral over the upper hemisphere of f(wo, wi) cos(theta_i) dwi is computed as
  *

@@ -182,9 +182,6 @@
 #define BB_TRAIT_CASE_COSINE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
     case BB_MODEL_##NAME:                                                                                    \
         return CO;
-#define BB_TRAIT_CASE_QUAD(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    case BB_MODEL_##NAME:                                                                                  \
-        return BB_QUAD_SPACE_##QUAD;
 
 /* True for the delta lobes (DELTA): eval is 0, the albedo is analytic. */
 BB_FN int bb_model_is_delta(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_DELTA) }
@@ -202,8 +199,5 @@ BB_FN int bb_model_evals_vector(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRA
 
 /* The sampler is the cosine warp (COSINE): the sampler-space rule runs in cos(theta_i). */
 BB_FN int bb_quad_sampler_is_cosine(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_COSINE) }
-
-/* The space of the model's albedo quadrature (QUAD): BB_QUAD_SPACE_*. */
-BB_FN int bb_model_quad_space(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_QUAD) }
 
 #endif /* BRDFBAKE_BRDF_MODEL_REGISTRY_H */
