@@ -114,7 +114,7 @@ TEST_CASE("GGX visible-normal samples have the density the weight assumes", "[mi
 
 TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/G1 weight", "[microfacet][quick]") {
     // bb_ggx_disk_weight against F(wo.m) G2(wo, wi) / G1(wo) evaluated in long double from the
-    // reference Lambda (tests/reference.h), on the visible normal m of the same disk point:
+    // reference Lambda (benchmarks/reference/reference.h), on the visible normal m of the same disk point:
     // anisotropic, grazing, both shadowing forms, with and without a Fresnel term.
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);

@@ -1,5 +1,5 @@
 // The models of issue 3 on the host (double): spec registry, published values, normalisation
-// identities, the shared functions against the textbook forms of tests/reference.h,
+// identities, the shared functions against the textbook forms of benchmarks/reference/reference.h,
 // reciprocity, non-negativity and finiteness down to grazing, and the analytic delta lobes.
 #include <catch2/catch.hpp>
 
