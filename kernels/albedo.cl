@@ -120,11 +120,7 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(__global const real* cell_mu,    /* cos(t
             u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
             u2 = bb_rotate(bb_hammersley_u2(i), s2);
         }
-        real w;
-        if (method == BB_METHOD_IMPORTANCE)
-            w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2).weight;
-        else
-            w = bb_uniform_hemisphere_weight(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
+        const real w = bb_albedo_point_weight(method, BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
         const int ok = isfinite(w);
         bad += ok ? 0u : 1u;
         BB_KAHAN_ADD(sum, comp, ok ? w : BB_R(0.0));

@@ -36,6 +36,7 @@
 #ifndef BRDFBAKE_BRDF_INTEGRANDS_H
 #define BRDFBAKE_BRDF_INTEGRANDS_H
 
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/quad_dist.h"
@@ -50,6 +51,16 @@ BB_FN real bb_uniform_hemisphere_weight(int model, bb_params p, int fkind, bb_pa
     real phi = BB_2PI * u2;
     bb_vec3 wi = bb_v3(s * bb_cos(phi), s * bb_sin(phi), mu);
     return BB_2PI * mu * bb_model_eval(model, p, fkind, fp, wo, wi);
+}
+
+/* The sampling methods' estimator at the point (u1, u2) of a replica (the sum over its points,
+ * divided by their number, is the replica's estimate of E(wo)): the model's importance-sample
+ * weight f cos / pdf for BB_METHOD_IMPORTANCE, the uniform hemisphere weight for BB_METHOD_QMC
+ * and BB_METHOD_MC (kernel_abi.h), which differ only in where (u1, u2) come from. */
+BB_FN real bb_albedo_point_weight(int method, int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1,
+                                  real u2) {
+    if (method == BB_METHOD_IMPORTANCE) return bb_model_sample(model, p, fkind, fp, wo, u1, u2).weight;
+    return bb_uniform_hemisphere_weight(model, p, fkind, fp, wo, u1, u2);
 }
 
 /* ------------------------------------------------------ half-vector space */
