@@ -35,6 +35,7 @@
  * [-D BB_ISOTROPIC=1 | -D BB_VECTOR_POINTS=1 [-D BB_VECTOR_UNIFORM=1]]]
  * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
  * alone, a smaller program to build]. */
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
 
@@ -72,14 +73,9 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
 #include <Random123/philox.h>
 #endif
 
-/* The sampling methods' point source and warp (kernel argument `method`). */
-#define BB_METHOD_IMPORTANCE 0
-#define BB_METHOD_QMC 1
-#define BB_METHOD_MC 2
-
 #ifndef BB_QUADRATURE
 
-__kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) per cell */
+__kernel void BB_ENTRY_ALBEDO_REPLICAS(__global const real* cell_mu,    /* cos(theta_o) per cell */
                               __global const real* cell_phi,   /* phi_o (radians) per cell */
                               __global const real* model_p,    /* BB_MAX_PARAMS per cell */
                               __global const real* fresnel_p,  /* BB_MAX_PARAMS */
@@ -124,11 +120,7 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
             u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
             u2 = bb_rotate(bb_hammersley_u2(i), s2);
         }
-        real w;
-        if (method == BB_METHOD_IMPORTANCE)
-            w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2).weight;
-        else
-            w = bb_uniform_hemisphere_weight(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
+        const real w = bb_albedo_point_weight(method, BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
         const int ok = isfinite(w);
         bad += ok ? 0u : 1u;
         BB_KAHAN_ADD(sum, comp, ok ? w : BB_R(0.0));
@@ -147,7 +139,7 @@ __kernel void albedo_replicas(__global const real* cell_mu,    /* cos(theta_o) p
  * then its weights (summing to 1), then the same for the coarse and the coarsest rule. Writes
  * the piece's share
  * of E; the host adds the pieces. */
-__kernel void albedo_quadrature(__global const real* cell_mu,
+__kernel void BB_ENTRY_ALBEDO_QUADRATURE(__global const real* cell_mu,
                                 __global const real* cell_phi,
                                 __global const real* model_p,
                                 __global const real* fresnel_p,
@@ -156,13 +148,14 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
                                 const unsigned int n_coarse,
                                 const unsigned int n_coarsest,
                                 const unsigned int n_cells,
-                                __global real* piece_sum,         /* n_cells * 3 * 8 */
-                                __global unsigned int* bad_count) /* n_cells * 3 * 8 */
+                                __global real* piece_sum,         /* n_cells * BB_QUAD_SLOTS */
+                                __global unsigned int* bad_count) /* n_cells * BB_QUAD_SLOTS */
 {
     const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * 24u)
+    if (gid >= n_cells * BB_QUAD_SLOTS)
         return;
-    const unsigned int cell = gid / 24u, rule = (gid / 8u) % 3u, piece = gid & 7u, q = piece >> 1;
+    const unsigned int cell = gid / BB_QUAD_SLOTS, rule = (gid / BB_QUAD_PIECES) % BB_QUAD_RULES,
+                       piece = gid % BB_QUAD_PIECES, q = piece >> 1;
     const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);
     __global const real* x = nodes + (rule == 0u ? 0u : (rule == 1u ? 2u * n_fine : 2u * (n_fine + n_coarse)));
     __global const real* wt = x + n;
@@ -255,7 +248,7 @@ __kernel void albedo_quadrature(__global const real* cell_mu,
  * same nodes, weights and functions as the scalar kernel, so the same sum to rounding. `nodes`
  * holds each rule's abscissae and weights padded to a multiple of W, the padding with weight 0
  * (and abscissa 1/2): such lanes are neither summed nor counted. */
-__kernel void albedo_quadrature_rows(__global const bb_scalar* cell_mu,
+__kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(__global const bb_scalar* cell_mu,
                                      __global const bb_scalar* cell_phi,
                                      __global const bb_scalar* model_p,
                                      __global const bb_scalar* fresnel_p,
@@ -264,13 +257,14 @@ __kernel void albedo_quadrature_rows(__global const bb_scalar* cell_mu,
                                      const unsigned int n_coarse,
                                      const unsigned int n_coarsest,
                                      const unsigned int n_cells,
-                                     __global bb_scalar* piece_sum,     /* n_cells * 3 * 8 */
-                                     __global unsigned int* bad_count) /* n_cells * 3 * 8 */
+                                     __global bb_scalar* piece_sum,     /* n_cells * BB_QUAD_SLOTS */
+                                     __global unsigned int* bad_count) /* n_cells * BB_QUAD_SLOTS */
 {
     const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * 24u)
+    if (gid >= n_cells * BB_QUAD_SLOTS)
         return;
-    const unsigned int cell = gid / 24u, rule = (gid / 8u) % 3u, piece = gid & 7u, q = piece >> 1;
+    const unsigned int cell = gid / BB_QUAD_SLOTS, rule = (gid / BB_QUAD_PIECES) % BB_QUAD_RULES,
+                       piece = gid % BB_QUAD_PIECES, q = piece >> 1;
     const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);
 #define BB_PAD(m) (((m) + BB_VECTOR_WIDTH - 1u) / BB_VECTOR_WIDTH * BB_VECTOR_WIDTH)
     __global const bb_scalar* x =
@@ -327,11 +321,11 @@ __kernel void albedo_quadrature_rows(__global const bb_scalar* cell_mu,
  *                           bb_model_samples_vector) the table holds W u1, W u2 of the rotated
  *                           Hammersley points per step and the weight is bb_model_sample's. */
 #ifdef BB_VECTOR_POINTS
-#define BB_VECTOR_KERNEL albedo_replicas_points
-#define BB_STEP (2 * BB_VECTOR_WIDTH)
+#define BB_VECTOR_KERNEL BB_ENTRY_ALBEDO_REPLICAS_POINTS
+#define BB_STEP (BB_POINTS_VALUES * BB_VECTOR_WIDTH)
 #else
-#define BB_VECTOR_KERNEL albedo_replicas_disk
-#define BB_STEP (3 * BB_VECTOR_WIDTH)
+#define BB_VECTOR_KERNEL BB_ENTRY_ALBEDO_REPLICAS_DISK
+#define BB_STEP (BB_DISK_VALUES * BB_VECTOR_WIDTH)
 #endif
 
 __kernel void BB_VECTOR_KERNEL(__global const bb_scalar* cell_mu,

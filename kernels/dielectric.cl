@@ -7,12 +7,13 @@
  *                             for all cells (host/albedo.cpp, disk_table: W x, W y, W h per
  *                             step; h is not used here), as albedo_replicas_disk does.
  * Build options: [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W]. */
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/brdf/sampling.h"
 
 #ifndef BB_VECTOR_WIDTH
 
-__kernel void dielectric_replicas(__global const real* cell_mu, __global const real* cell_alpha,
+__kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const real* cell_mu, __global const real* cell_alpha,
                                   __global const real* cell_eta, __global const real* shifts,
                                   const unsigned int n_points, const unsigned int n_replicas,
                                   const unsigned int n_cells, const int correlated,
@@ -55,7 +56,7 @@ __kernel void dielectric_replicas(__global const real* cell_mu, __global const r
  * pass that cannot apply it (as kernels/albedo.cl). */
 #pragma clang diagnostic ignored "-Wpass-failed"
 
-__kernel void dielectric_replicas_disk(__global const bb_scalar* cell_mu, __global const bb_scalar* cell_alpha,
+__kernel void BB_ENTRY_DIELECTRIC_REPLICAS_DISK(__global const bb_scalar* cell_mu, __global const bb_scalar* cell_alpha,
                                        __global const bb_scalar* cell_eta,
                                        __global const bb_scalar* disk, /* per replica: n_points / W steps
                                                                           of W x, W y, W h */
@@ -74,12 +75,12 @@ __kernel void dielectric_replicas_disk(__global const bb_scalar* cell_mu, __glob
     real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_steps = n_points / BB_VECTOR_WIDTH;
-    __global const bb_scalar* d = disk + (size_t)rep * n_steps * (3 * BB_VECTOR_WIDTH);
+    __global const bb_scalar* d = disk + (size_t)rep * n_steps * (BB_DISK_VALUES * BB_VECTOR_WIDTH);
     for (unsigned int c0 = 0; c0 < n_steps; c0 += BB_VECTOR_BLOCK) {
         const unsigned int c1 = min(n_steps, c0 + BB_VECTOR_BLOCK);
         real br = BB_R(0.0), bt = BB_R(0.0);
         __attribute__((opencl_unroll_hint(2)))
-        for (unsigned int c = c0; c < c1; ++c, d += 3 * BB_VECTOR_WIDTH) {
+        for (unsigned int c = c0; c < c1; ++c, d += BB_DISK_VALUES * BB_VECTOR_WIDTH) {
             const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
             const bb_rt s = bb_rough_dielectric_sample_disk(wo, alpha, alpha, eta, correlated, pt);
             const bb_mask ok = isfinite(s.r) && isfinite(s.t);

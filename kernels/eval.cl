@@ -3,6 +3,7 @@
  * and non-finite scans and by the host-vs-device parity tests.
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE]. */
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
 
 BB_FN bb_params load_params(__global const real* src) {
@@ -15,7 +16,7 @@ BB_FN bb_vec3 load_vec3(__global const real* src, unsigned int i) {
     return bb_v3(src[3 * i], src[3 * i + 1], src[3 * i + 2]);
 }
 
-__kernel void model_eval(__global const real* wo, __global const real* wi, __global const real* model_p,
+__kernel void BB_ENTRY_MODEL_EVAL(__global const real* wo, __global const real* wi, __global const real* model_p,
                          __global const real* fresnel_p, const unsigned int n, __global real* out) {
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)
@@ -24,7 +25,7 @@ __kernel void model_eval(__global const real* wo, __global const real* wi, __glo
                            load_vec3(wo, i), load_vec3(wi, i));
 }
 
-__kernel void model_sample(__global const real* wo, __global const real* u, __global const real* model_p,
+__kernel void BB_ENTRY_MODEL_SAMPLE(__global const real* wo, __global const real* u, __global const real* model_p,
                            __global const real* fresnel_p, const unsigned int n, __global real* out_wi,
                            __global real* out_weight) {
     const unsigned int i = (unsigned int)get_global_id(0);

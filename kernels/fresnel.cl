@@ -5,9 +5,10 @@
  * relative precision instead of the rounding error of a float angle.
  *
  * Build options: -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE]. */
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/fresnel.h"
 
-__kernel void fresnel_curve(__global const real* cos_theta, /* n values in [-1, 1] */
+__kernel void BB_ENTRY_FRESNEL_CURVE(__global const real* cos_theta, /* n values in [-1, 1] */
                             __global const real* fresnel_p, /* BB_MAX_PARAMS */
                             const unsigned int n,
                             __global real* out)             /* 3 per value: F, Rs, Rp */

@@ -7,9 +7,10 @@
  * violation). Pairs where both values are 0 have error 0.
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE]. */
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
 
-__kernel void reciprocity_scan(__global const real* theta, const unsigned int n_theta, const unsigned int n_phi,
+__kernel void BB_ENTRY_RECIPROCITY_SCAN(__global const real* theta, const unsigned int n_theta, const unsigned int n_phi,
                                const unsigned int n_phi_o, __global const real* model_p,
                                __global const real* fresnel_p,
                                __global real* max_rel,        /* n_theta * n_theta */

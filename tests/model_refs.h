@@ -1,5 +1,5 @@
 // Independent reference albedos for every model of issue 3, keyed by the model spec's
-// parameters (tests/reference.h holds the formulas). Shared by test_models_device.cpp.
+// parameters (benchmarks/reference/reference.h holds the formulas). Shared by test_models_device.cpp.
 #pragma once
 
 #include <cmath>

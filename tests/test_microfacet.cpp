@@ -114,7 +114,7 @@ TEST_CASE("GGX visible-normal samples have the density the weight assumes", "[mi
 
 TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/G1 weight", "[microfacet][quick]") {
     // bb_ggx_disk_weight against F(wo.m) G2(wo, wi) / G1(wo) evaluated in long double from the
-    // reference Lambda (tests/reference.h), on the visible normal m of the same disk point:
+    // reference Lambda (benchmarks/reference/reference.h), on the visible normal m of the same disk point:
     // anisotropic, grazing, both shadowing forms, with and without a Fresnel term.
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -138,7 +138,8 @@ TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/
                             const bb_ggx_disk_cell cell = bb_ggx_disk_cell_make(p, wo, 0);
                             const bb_ggx_disk_cell cell_iso = bb_ggx_disk_cell_make(p, wo, 1);
                             for (int k = 0; k < 64; ++k) {
-                                const bb_vec2 d = bb_disk_polar(u(rng), u(rng));
+                                const double u1 = u(rng), u2 = u(rng);
+                                const bb_vec2 d = bb_disk_polar(u1, u2);
                                 const double h = std::sqrt(1.0 - d.x * d.x);
                                 const bb_vec3 m = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
                                 const ref::Dir mr{m.x, m.y, m.z};
@@ -154,7 +155,7 @@ TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/
                                 CHECK(std::isfinite(w));
                                 CHECK(w == Approx(expect).epsilon(1e-11).margin(1e-13));
                                 // and the shared sampler's own weight, the scalar kernel's
-                                const bb_sample s = bb_ggx_sample_disk(p, fkind, cond, wo, d);
+                                const bb_sample s = bb_ggx_sample(p, fkind, cond, wo, u1, u2);
                                 CHECK(w == Approx(s.weight).epsilon(1e-11).margin(1e-13));
                                 if (iso) {
                                     // the isotropic form: wo rotated into the x-z plane, same point
@@ -169,4 +170,29 @@ TEST_CASE("GGX closed-form disk weight (the vector kernel's) is the textbook G2/
                         }
     CHECK(compared > 10000);
     CHECK(compared_iso > 4000);
+}
+
+TEST_CASE("Smith lobe: a sample above the horizon has wo.wh > 0 (the shared validity rule)", "[microfacet][quick]") {
+    // smith.h drops Beckmann's former extra test cos_oh > 0 from the sample weight: wi.z > 0
+    // with G1(wo) > 0 implies wo.wh > 0 in floating point. Checked on both distributions,
+    // grazing and anisotropic, where rounding is worst.
+    std::mt19937_64 rng(11);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    long live = 0, violations = 0;
+    for (const int dist : {BB_SMITH_GGX, BB_SMITH_BECKMANN})
+        for (const double ax : {1e-4, 0.01, 0.3, 1.0, 3.0})
+            for (const double ay : {ax, 0.05})
+                for (const double mu : {1e-6, 1e-3, 0.2, 0.9, 1.0})
+                    for (int k = 0; k < 200; ++k) {
+                        const double phi = 2 * M_PI * u(rng);
+                        const bb_vec3 wo = bb_dir_from_mu_phi(mu, phi);
+                        const double u1 = u(rng), u2 = u(rng);
+                        const bb_vec3 wh = bb_smith_sample_vndf(dist, wo, ax, ay, u1, u2);
+                        const bb_vec3 wi = bb_reflect(wo, wh);
+                        if (!(wi.z > 0.0 && bb_smith_g1(dist, wo, ax, ay) > 0.0)) continue;
+                        ++live;
+                        violations += !(bb_dot(wo, wh) > 0.0);
+                    }
+    CHECK(live > 10000);
+    CHECK(violations == 0);
 }

@@ -1,5 +1,5 @@
 // The models of issue 3 on the host (double): spec registry, published values, normalisation
-// identities, the shared functions against the textbook forms of tests/reference.h,
+// identities, the shared functions against the textbook forms of benchmarks/reference/reference.h,
 // reciprocity, non-negativity and finiteness down to grazing, and the analytic delta lobes.
 #include <catch2/catch.hpp>
 
@@ -10,6 +10,7 @@
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
+#include "models/params.h"
 #include "model_refs.h"
 #include "reference/reference.h"
 
@@ -19,16 +20,10 @@ namespace {
 
 bb_vec3 v3(ref::Dir d) { return bb_v3(double(d.x), double(d.y), double(d.z)); }
 
-bb_params block(const ParamBlock& a) {
-    bb_params p;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = a[k];
-    return p;
-}
-
 const bb_params kNoFresnel = {{0}};
 
 double eval(const ModelConfig& m, bb_vec3 wo, bb_vec3 wi) {
-    return bb_model_eval(m.id, block(m.params), BB_FRESNEL_NONE, kNoFresnel, wo, wi);
+    return bb_model_eval(m.id, to_bb_params(m.params), BB_FRESNEL_NONE, kNoFresnel, wo, wi);
 }
 
 // Integral of D(m) cos(theta_m) over the hemisphere (Heitz 2014 eq. 4), split at theta_split
@@ -199,11 +194,11 @@ TEST_CASE("the (n+2)/(2 pi) normalisation of Blinn-Phong and Phong", "[models][q
     // blinn-phong normalized=1 is K = (n+2)/(2 pi): K cos^n(theta_h) is a normalised distribution.
     for (double n : {0.0, 3.0, 50.0, 1e4}) {
         const ModelConfig m = resolve_model("blinn-phong:n=" + modelref::num(n) + ",normalized=1");
-        const double k = bb_blinn_phong_k(block(m.params));
+        const double k = bb_blinn_phong_k(to_bb_params(m.params));
         CHECK(k == Approx((n + 2) / (2 * M_PI)).epsilon(1e-15));
         CHECK(projected_area([&](bb_vec3 h) { return h.z > 0 ? k * std::pow(h.z, n) : 0.0; },
                              std::fmin(0.3, 8 / std::sqrt(n + 1))) == Approx(1.0).margin(1e-8));
-        CHECK(bb_blinn_phong_k(block(resolve_model("blinn-phong:n=" + modelref::num(n) + ",ks=0.5").params)) == 0.5);
+        CHECK(bb_blinn_phong_k(to_bb_params(resolve_model("blinn-phong:n=" + modelref::num(n) + ",ks=0.5").params)) == 0.5);
     }
     // phong normalized=1: the albedo at normal incidence is exactly ks (the lobe about the
     // normal integrates K cos^(n+1)).
@@ -385,7 +380,7 @@ TEST_CASE("Fresnel multiplies the microfacet models at wo.wh", "[models][quick]"
     for (const char* s : {"beckmann:alpha=0.4", "torrance-sparrow:d=ggx,alpha=0.4", "ggx:alpha=0.4"}) {
         const ModelConfig m = resolve_model(s);
         INFO(s);
-        CHECK(bb_model_eval(m.id, block(m.params), f.kind, block(f.params), wo, wi) ==
+        CHECK(bb_model_eval(m.id, to_bb_params(m.params), f.kind, to_bb_params(f.params), wo, wi) ==
               Approx(fr * eval(m, wo, wi)).epsilon(1e-14));
     }
 }
@@ -424,7 +419,7 @@ TEST_CASE("every model is non-negative and finite down to mu = 1e-5 (host, doubl
     mus.push_back(-0.3);  // below the horizon: must give 0
     for (const auto& s : kAllSpecs) {
         const ModelConfig m = resolve_model(s);
-        const bb_params p = block(m.params);
+        const bb_params p = to_bb_params(m.params);
         int bad = 0, negative_below = 0;
         for (double mo : mus)
             for (double mi : mus)
@@ -470,7 +465,7 @@ TEST_CASE("the estimator weights are those of f cos / pdf", "[models][quick]") {
             double sum = 0;
             for (int i = 0; i < n; ++i)
                 for (int j = 0; j < n; ++j)
-                    sum += bb_model_sample(m.id, block(m.params), BB_FRESNEL_NONE, kNoFresnel, wo, (i + 0.5) / n,
+                    sum += bb_model_sample(m.id, to_bb_params(m.params), BB_FRESNEL_NONE, kNoFresnel, wo, (i + 0.5) / n,
                                            (j + 0.5) / n).weight;
             INFO(c.spec << " mu " << mu);
             CHECK(sum / (n * n) == Approx(c.albedo(mu)).margin(2e-3));
@@ -517,4 +512,18 @@ TEST_CASE("delta lobes: analytic albedo and transmission", "[models][quick]") {
     // The delta lobes have no finite value anywhere: eval is 0 for every pair.
     CHECK(eval(mirror, bb_dir_from_mu_phi(0.5, 0), bb_dir_from_mu_phi(0.5, M_PI)) == 0.0);
     CHECK(eval(glass, bb_dir_from_mu_phi(0.5, 0), bb_dir_from_mu_phi(0.5, M_PI)) == 0.0);
+}
+
+TEST_CASE("roughness_slots: the swept alpha slots of the registry, and the refusals", "[models][quick]") {
+    CHECK(roughness_slots(resolve_model("ggx:alpha=0.5")) == std::vector<int>{BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y});
+    CHECK(roughness_slots(resolve_model("beckmann:alpha=0.5")) ==
+          std::vector<int>{BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y});
+    CHECK(roughness_slots(resolve_model("torrance-sparrow:d=ggx,alpha=0.5")) ==
+          std::vector<int>{BB_TORRANCE_SPARROW_ALPHA_X, BB_TORRANCE_SPARROW_ALPHA_Y});
+    CHECK_THROWS_WITH(roughness_slots(resolve_model("torrance-sparrow:d=blinn,n=30")),
+                      "torrance-sparrow with d=blinn has an exponent, not alpha, to sweep; use d=beckmann or d=ggx");
+    CHECK_THROWS_WITH(roughness_slots(resolve_model("lambert")),
+                      "model 'lambert' has no roughness alpha to sweep; tables need a microfacet model");
+    CHECK_THROWS_WITH(roughness_slots(resolve_model("blinn-phong:n=20")),
+                      "model 'blinn-phong' has no roughness alpha to sweep; tables need a microfacet model");
 }

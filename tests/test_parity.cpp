@@ -6,17 +6,12 @@
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/evaluate.h"
+#include "models/params.h"
 #include "support.h"
 
 using namespace brdfbake;
 
 namespace {
-
-bb_params block(const ParamBlock& a) {
-    bb_params p;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = a[k];
-    return p;
-}
 
 Vec3 random_dir(std::mt19937& rng, double mu_min) {
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -45,9 +40,9 @@ void check_parity(const std::string& spec) {
         int bad_eval = 0, bad_sample = 0;
         for (size_t i = 0; i < wo.size(); ++i) {
             const bb_vec3 o = bb_v3(wo[i][0], wo[i][1], wo[i][2]), in = bb_v3(wi[i][0], wi[i][1], wi[i][2]);
-            const double host = bb_model_eval(m.id, block(m.params), f.kind, block(f.params), o, in);
+            const double host = bb_model_eval(m.id, to_bb_params(m.params), f.kind, to_bb_params(f.params), o, in);
             bad_eval += !(std::fabs(dev[i] - host) <= tol * std::fmax(1.0, std::fabs(host)));
-            const bb_sample hs = bb_model_sample(m.id, block(m.params), f.kind, block(f.params), o, u[i][0], u[i][1]);
+            const bb_sample hs = bb_model_sample(m.id, to_bb_params(m.params), f.kind, to_bb_params(f.params), o, u[i][0], u[i][1]);
             bad_sample += !(std::fabs(ds[i].weight - hs.weight) <= tol * std::fmax(1.0, hs.weight) &&
                             std::fabs(ds[i].wi[2] - hs.wi.z) <= tol);
         }

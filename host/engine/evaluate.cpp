@@ -1,6 +1,7 @@
 #include "brdfbake/evaluate.h"
 
 #include "brdfbake/error.h"
+#include "brdfbake/brdf/kernel_abi.h"
 #include "engine/device_buffer.h"
 
 namespace brdfbake {
@@ -40,7 +41,7 @@ std::vector<double> evaluate_on_device(Engine& engine, const ModelConfig& model,
     cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
     cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
     cl::Buffer b_out = bufs.output(wo.size());
-    cl::Kernel k(eval_program(engine, model, fresnel, precision), "model_eval");
+    cl::Kernel k(eval_program(engine, model, fresnel, precision), BB_ENTRY_NAME(BB_ENTRY_MODEL_EVAL));
     k.setArg(0, b_wo);
     k.setArg(1, b_wi);
     k.setArg(2, b_p);
@@ -61,7 +62,7 @@ std::vector<DeviceSample> sample_on_device(Engine& engine, const ModelConfig& mo
     cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
     cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
     cl::Buffer b_wi = bufs.output(3 * wo.size()), b_w = bufs.output(wo.size());
-    cl::Kernel k(eval_program(engine, model, fresnel, precision), "model_sample");
+    cl::Kernel k(eval_program(engine, model, fresnel, precision), BB_ENTRY_NAME(BB_ENTRY_MODEL_SAMPLE));
     k.setArg(0, b_wo);
     k.setArg(1, b_u);
     k.setArg(2, b_p);

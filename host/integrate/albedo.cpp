@@ -12,12 +12,14 @@
 #include <sstream>
 #include <type_traits>
 
-#include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/integrands.h"
+#include "brdfbake/brdf/kernel_abi.h"
+#include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
 #include "brdfbake/error.h"
 #include "engine/device_buffer.h"
+#include "models/params.h"
 
 namespace brdfbake {
 
@@ -91,7 +93,8 @@ std::string method_text(Method method, unsigned replicas, std::uint64_t points) 
 
 std::string quadrature_text(int model, unsigned n) {
     std::ostringstream m;
-    m << "Gauss-Legendre product rule in " << (bb_model_quad_dist(model, bb_params{}).kind == BB_QUAD_SAMPLER ? "the sampler's unit square" : "half-vector space")
+    m << "Gauss-Legendre product rule in "
+      << (model_traits(model).halfvector_quadrature ? "half-vector space" : "the sampler's unit square")
       << ", " << n << " x " << n << " nodes per azimuth piece (2 to 8 pieces), error from the " << n / 2
       << "- and " << n / 4 << "-node rules";
     return m.str();
@@ -157,7 +160,7 @@ constexpr size_t kLocalSize = 8;
 // scalar kernel does.
 std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
                                unsigned lanes, Precision precision) {
-    std::vector<double> table(size_t(replicas) * points * 3);
+    std::vector<double> table(size_t(replicas) * points * BB_DISK_VALUES);
     const unsigned n = unsigned(points);
     for (unsigned r = 0; r < replicas; ++r) {
         double s1 = shifts[2 * r], s2 = shifts[2 * r + 1];
@@ -165,10 +168,10 @@ std::vector<double> disk_table(const std::vector<double>& shifts, unsigned repli
             s1 = double(float(s1));
             s2 = double(float(s2));
         }
-        double* out = table.data() + size_t(r) * points * 3;
+        double* out = table.data() + size_t(r) * points * BB_DISK_VALUES;
         for (unsigned i = 0; i < n; ++i) {
             const bb_vec2 d = bb_disk_polar(bb_rotate(bb_hammersley_u1(i, n), s1), bb_rotate(bb_hammersley_u2(i), s2));
-            const size_t base = size_t(i / lanes) * 3 * lanes + i % lanes;
+            const size_t base = size_t(i / lanes) * BB_DISK_VALUES * lanes + i % lanes;
             out[base] = d.x;
             out[base + lanes] = d.y;
             out[base + 2 * lanes] = bb_safe_sqrt(1.0 - d.x * d.x);
@@ -188,7 +191,7 @@ void fill_point_table(std::vector<double>& table, const std::vector<double>& shi
     const unsigned n = unsigned(points);
     for (unsigned r = 0; r < replicas; ++r) {
         const T s1 = T(shifts[2 * r]), s2 = T(shifts[2 * r + 1]);
-        double* out = table.data() + size_t(r) * points * 2;
+        double* out = table.data() + size_t(r) * points * BB_POINTS_VALUES;
         for (unsigned i = 0; i < n; ++i) {
             T u1 = (T(i) + T(0.5)) / T(n) + s1;
             u1 = u1 >= T(1) ? u1 - T(1) : u1;
@@ -196,7 +199,7 @@ void fill_point_table(std::vector<double>& table, const std::vector<double>& shi
             T u2 = (std::is_same<T, float>::value ? T(bits >> 8) * T(5.9604644775390625e-8)
                                                    : T(bits) * T(2.3283064365386963e-10)) + s2;
             u2 = u2 >= T(1) ? u2 - T(1) : u2;
-            const size_t base = size_t(i / lanes) * 2 * lanes + i % lanes;
+            const size_t base = size_t(i / lanes) * BB_POINTS_VALUES * lanes + i % lanes;
             out[base] = double(u1);
             out[base + lanes] = double(u2);
         }
@@ -205,7 +208,7 @@ void fill_point_table(std::vector<double>& table, const std::vector<double>& shi
 
 std::vector<double> point_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
                                 unsigned lanes, Precision precision) {
-    std::vector<double> table(size_t(replicas) * points * 2);
+    std::vector<double> table(size_t(replicas) * points * BB_POINTS_VALUES);
     if (precision == Precision::Float)
         fill_point_table<float>(table, shifts, replicas, points, lanes);
     else
@@ -244,18 +247,15 @@ std::string nonfinite_where(const AlbedoRequest& req, size_t c) {
 // trade-off study: Beckmann alpha = 1e-3 from 256 samples gives 0 +- 1e-9 against 1.0).
 // Such a result is reported with an error of max(1, |E|): the method cannot tell.
 bool uniform_resolves_lobe(int model, const AlbedoCell& cell, std::uint64_t samples) {
-    bb_params p;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = cell.params[k];
-    const bb_quad_dist d = bb_model_quad_dist(model, p);
+    const bb_quad_dist d = bb_model_quad_dist(model, to_bb_params(cell.params));
+    const int exponent_slot = model_traits(model).exponent_slot;
     double width = 1.0;
     if (d.kind == BB_QUAD_BLINN)
         width = std::sqrt(2.0 / (d.n + 2.0));
     else if (d.kind != BB_QUAD_SAMPLER)
         width = std::min(d.ax, d.ay);
-#if BB_HAS_MODEL(BB_MODEL_PHONG)
-    else if (model == BB_MODEL_PHONG || model == BB_MODEL_PHONG_ORIGINAL)
-        width = std::sqrt(2.0 / (p.v[BB_PHONG_N] + 2.0));
-#endif
+    else if (exponent_slot >= 0)
+        width = std::sqrt(2.0 / (cell.params[exponent_slot] + 2.0));
     return double(samples) * std::min(1.0, 2.0 * width * width) >= 64.0;
 }
 
@@ -273,10 +273,11 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     build.random123 = req.method == Method::MonteCarlo;
     // The vector paths: importance sampling (GGX's disk path, or the model's own branch-free
     // sampler) and qmc's uniform hemisphere weights for models with a branch-free evaluation.
+    const ModelTraits& traits = model_traits(req.model);
     const bool uniform = req.method == Method::QuasiMonteCarlo;
-    const bool disk = !uniform && bb_model_samples_disk(req.model) != 0;
-    build.has_vector_path = (req.method == Method::Importance && (disk || bb_model_samples_vector(req.model) != 0)) ||
-                            (uniform && bb_model_evals_vector(req.model) != 0);
+    const bool disk = !uniform && traits.samples_disk;
+    build.has_vector_path = (req.method == Method::Importance && (disk || traits.samples_vector)) ||
+                            (uniform && traits.evals_vector);
     build.vector_width = req.vector_width;
     unsigned lanes = engine.vector_width(build);
     if (lanes > 1 && points % lanes != 0) {
@@ -289,11 +290,8 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
         // A launch whose cells are all isotropic gets the disk weight without the terms that
         // vanish then (bb_model_disk_isotropic): a program of its own, cached as any other.
         bool isotropic = true;
-        for (const AlbedoCell& c : req.cells) {
-            bb_params p;
-            for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = c.params[k];
-            isotropic = isotropic && bb_model_disk_isotropic(req.model, p);
-        }
+        for (const AlbedoCell& c : req.cells)
+            isotropic = isotropic && bb_model_disk_isotropic(req.model, to_bb_params(c.params));
         if (isotropic) build.defines.push_back({"BB_ISOTROPIC", "1"});
     }
     cl::Program& program = engine.program(build);
@@ -311,7 +309,9 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     cl::Buffer b_mean = bufs.output(n_items);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
 
-    cl::Kernel kernel(program, lanes == 1 ? "albedo_replicas" : (disk ? "albedo_replicas_disk" : "albedo_replicas_points"));
+    cl::Kernel kernel(program, lanes == 1 ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS)
+                               : disk     ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_DISK)
+                                          : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_POINTS));
     int a = 0;
     kernel.setArg(a++, b_mu);
     kernel.setArg(a++, b_phi);
@@ -322,7 +322,9 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     kernel.setArg(a++, cl_uint(req.replicas));
     kernel.setArg(a++, cl_uint(n_cells));
     if (lanes == 1) {
-        const int method = req.method == Method::Importance ? 0 : (req.method == Method::QuasiMonteCarlo ? 1 : 2);
+        const int method = req.method == Method::Importance        ? BB_METHOD_IMPORTANCE
+                           : req.method == Method::QuasiMonteCarlo ? BB_METHOD_QMC
+                                                                   : BB_METHOD_MC;
         kernel.setArg(a++, cl_int(method));
         kernel.setArg(a++, cl_uint(req.seed));
         kernel.setArg(a++, cl_uint(req.seed >> 32));
@@ -404,7 +406,7 @@ unsigned quadrature_order(std::uint64_t samples) {
 AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     if (req.samples == 0) throw Error("--samples must be positive");
     const unsigned n = quadrature_order(req.samples), m = n / 2, l = std::max(1u, n / 4);
-    const size_t n_cells = req.cells.size(), n_items = n_cells * 24;
+    const size_t n_cells = req.cells.size(), n_items = n_cells * BB_QUAD_SLOTS;
 
     BuildRequest build;
     build.kernel_file = "albedo.cl";
@@ -414,7 +416,7 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
                      {"BB_QUADRATURE", "1"}};
     // The vector path (albedo_quadrature_rows, one row of the rule per lane) for the half-vector
     // rule; the sampler's square keeps the scalar kernel.
-    build.has_vector_path = bb_model_quad_dist(req.model, bb_params{}).kind != BB_QUAD_SAMPLER;
+    build.has_vector_path = model_traits(req.model).halfvector_quadrature;
     build.vector_width = req.vector_width;
     const unsigned lanes = engine.vector_width(build);
     cl::Program& program = engine.program(build);
@@ -431,7 +433,8 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     cl::Buffer b_sum = bufs.output(n_items);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
 
-    cl::Kernel kernel(program, lanes > 1 ? "albedo_quadrature_rows" : "albedo_quadrature");
+    cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_QUADRATURE_ROWS)
+                                         : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_QUADRATURE));
     int a = 0;
     kernel.setArg(a++, b_mu);
     kernel.setArg(a++, b_phi);
@@ -460,11 +463,14 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     for (size_t c = 0; c < n_cells; ++c) {
         double fine = 0.0, coarse = 0.0, coarsest = 0.0;
         std::uint64_t n_bad = 0;
-        for (int q = 0; q < 8; ++q) {
-            fine += sums[c * 24 + q];
-            coarse += sums[c * 24 + 8 + q];
-            coarsest += sums[c * 24 + 16 + q];
-            n_bad += bad[c * 24 + q] + bad[c * 24 + 8 + q] + bad[c * 24 + 16 + q];
+        // Slot rule * BB_QUAD_PIECES + piece of the cell (kernel_abi.h): rules fine, coarse, coarsest.
+        static_assert(BB_QUAD_RULES == 3, "the error estimate takes three rules");
+        const size_t base = c * BB_QUAD_SLOTS;
+        for (int q = 0; q < BB_QUAD_PIECES; ++q) {
+            fine += sums[base + q];
+            coarse += sums[base + BB_QUAD_PIECES + q];
+            coarsest += sums[base + 2 * BB_QUAD_PIECES + q];
+            n_bad += bad[base + q] + bad[base + BB_QUAD_PIECES + q] + bad[base + 2 * BB_QUAD_PIECES + q];
         }
         if (n_bad > 0)
             throw NonFiniteError(nonfinite_where(req, c) + " (" + std::to_string(n_bad) +
@@ -472,10 +478,10 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
                                  c, n_bad);
         AlbedoValue v;
         v.value = fine;
-        v.error = quadrature_error(fine, coarse, coarsest, req.model == BB_MODEL_TORRANCE_SPARROW) + fp_bound * std::max(std::fabs(fine), 1e-3);
-        bb_params p;
-        for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = req.cells[c].params[k];
-        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(bb_model_quad_dist(req.model, p), req.cells[c].phi));
+        v.error = quadrature_error(fine, coarse, coarsest, model_traits(req.model).kinked_quadrature) +
+                  fp_bound * std::max(std::fabs(fine), 1e-3);
+        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(
+                                    bb_model_quad_dist(req.model, to_bb_params(req.cells[c].params)), req.cells[c].phi));
         result.samples_per_cell = std::max(result.samples_per_cell, v.samples);
         result.total_samples += v.samples;
         v.method = Method::Quadrature;
@@ -529,7 +535,8 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
                b_shift = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
     cl::Buffer b_r = bufs.output(n_items), b_t = bufs.output(n_items);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
-    cl::Kernel kernel(program, lanes > 1 ? "dielectric_replicas_disk" : "dielectric_replicas");
+    cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS_DISK)
+                                         : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
     int a = 0;
     kernel.setArg(a++, b_mu);
     kernel.setArg(a++, b_alpha);
@@ -543,7 +550,7 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     kernel.setArg(a++, b_t);
     kernel.setArg(a++, b_bad);
     cl::Event done;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, 8), cl::NDRange(8), nullptr,
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize), cl::NDRange(kLocalSize), nullptr,
                                         &done);
     const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
     std::vector<cl_uint> bad(n_items);

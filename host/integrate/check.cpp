@@ -5,7 +5,7 @@
 
 #include "brdfbake/albedo.h"
 #include "brdfbake/analytic.h"
-#include "brdfbake/brdf/params.h"
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/error.h"
 #include "engine/device_buffer.h"
 
@@ -35,7 +35,7 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
     cl::Buffer b_rel = bufs.output(cells), b_phi = bufs.output(cells), b_min = bufs.output(cells);
     cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, cells * sizeof(cl_uint));
-    cl::Kernel k(program, "reciprocity_scan");
+    cl::Kernel k(program, BB_ENTRY_NAME(BB_ENTRY_RECIPROCITY_SCAN));
     int a = 0;
     k.setArg(a++, b_theta);
     k.setArg(a++, cl_uint(n_theta));

@@ -5,15 +5,10 @@
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "models/params.h"
 
 namespace brdfbake {
 namespace {
-
-bb_params block(const ParamBlock& a) {
-    bb_params p;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = a[k];
-    return p;
-}
 
 void check_mu(double mu) {
     if (!(mu > 0.0 && mu <= 1.0)) throw Error("mu must lie in (0, 1]; got " + std::to_string(mu));
@@ -21,21 +16,17 @@ void check_mu(double mu) {
 
 }  // namespace
 
-bool has_analytic_albedo(const ModelConfig& model) { return bb_model_is_delta(model.id) != 0; }
+bool has_analytic_albedo(const ModelConfig& model) { return model.traits().delta; }
 
+// A delta lobe's sampler is deterministic (the mirror direction) and its weight is the
+// reflected fraction of energy: the albedo itself (brdf/specular.h), whatever u.
 bool analytic_albedo(const ModelConfig& model, const FresnelConfig& fresnel, double mu, double& value) {
-    switch (model.id) {
-    case BB_MODEL_MIRROR:
-        check_mu(mu);
-        value = bb_mirror_albedo(fresnel.kind, block(fresnel.params), mu);
-        return true;
-    case BB_MODEL_DIELECTRIC_SPECULAR:
-        check_mu(mu);
-        value = bb_dielectric_specular_reflectance(block(model.params), mu);
-        return true;
-    default:
-        return false;
-    }
+    if (!has_analytic_albedo(model)) return false;
+    check_mu(mu);
+    value = bb_model_sample(model.id, to_bb_params(model.params), fresnel.kind, to_bb_params(fresnel.params),
+                            bb_dir_from_mu_phi(mu, 0.0), 0.0, 0.0)
+                .weight;
+    return true;
 }
 
 double analytic_albedo_error(double value) {
@@ -47,7 +38,7 @@ bool analytic_transmission(const ModelConfig& model, double mu, SpecularTransmis
     if (model.id != BB_MODEL_DIELECTRIC_SPECULAR) return false;
     check_mu(mu);
     const double eta = model.params[BB_DIELECTRIC_SPECULAR_ETA];
-    out.energy = bb_dielectric_specular_transmittance(block(model.params), mu);
+    out.energy = bb_dielectric_specular_transmittance(to_bb_params(model.params), mu);
     out.radiance_factor = eta * eta;
     return true;
 }

@@ -1,12 +1,12 @@
-// Spec parsing and the model registry: which models exist, their keys, ranges and defaults,
-// and how their parameters map onto the slots of the shared headers.
+// Spec parsing and the host's side of the model registry (brdf/model_registry.h): each model's
+// resolver resolve_<name> (its keys, ranges and defaults, and how its parameters map onto the
+// slots of its header), and the traits of the registry's table as ModelTraits.
 #include "brdfbake/spec.h"
 
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <functional>
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
@@ -119,7 +119,6 @@ void read_alpha(KeyReader& keys, ModelConfig& m, int slot_x, int slot_y) {
 
 ModelConfig resolve_lambert(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_LAMBERT;
     const double rho = keys.number("rho", 1.0, {0.0, 1e6});
     m.params[BB_LAMBERT_RHO] = rho;
     m.canonical = "lambert:rho=" + format_number(rho);
@@ -128,8 +127,6 @@ ModelConfig resolve_lambert(KeyReader& keys) {
 
 ModelConfig resolve_ggx(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_GGX;
-    m.uses_fresnel = true;
     m.canonical = "ggx";
     read_alpha(keys, m, BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y);
     m.params[BB_GGX_SHADOWING] = read_shadowing(keys, m.canonical);
@@ -138,7 +135,6 @@ ModelConfig resolve_ggx(KeyReader& keys) {
 
 ModelConfig resolve_oren_nayar(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_OREN_NAYAR;
     const double sigma = keys.required_number("sigma", kSigma, "facet slope deviation in radians");
     const double rho = keys.number("rho", 1.0, {0.0, 1e6});
     m.params[BB_OREN_NAYAR_SIGMA] = sigma;
@@ -149,7 +145,6 @@ ModelConfig resolve_oren_nayar(KeyReader& keys) {
 
 ModelConfig resolve_phong(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_PHONG;
     const double n = keys.required_number("n", kExponent, "the lobe exponent");
     const double ks = keys.number("ks", 1.0, kSpecular);
     m.params[BB_PHONG_N] = n;
@@ -161,7 +156,6 @@ ModelConfig resolve_phong(KeyReader& keys) {
 
 ModelConfig resolve_phong_original(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_PHONG_ORIGINAL;
     const double n = keys.required_number("n", kExponent, "the lobe exponent");
     const double ks = keys.number("ks", 1.0, kSpecular);
     m.params[BB_PHONG_N] = n;
@@ -172,7 +166,6 @@ ModelConfig resolve_phong_original(KeyReader& keys) {
 
 ModelConfig resolve_blinn_phong(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_BLINN_PHONG;
     const double n = keys.required_number("n", kExponent, "the lobe exponent");
     const double ks = keys.number("ks", 1.0, kSpecular);
     m.params[BB_BLINN_PHONG_N] = n;
@@ -184,8 +177,6 @@ ModelConfig resolve_blinn_phong(KeyReader& keys) {
 
 ModelConfig resolve_torrance_sparrow(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_TORRANCE_SPARROW;
-    m.uses_fresnel = true;
     const std::string d = keys.choice("d", "beckmann", {"blinn", "beckmann", "ggx"});
     m.canonical = "torrance-sparrow:d=" + d;
     if (d == "blinn") {
@@ -205,8 +196,6 @@ ModelConfig resolve_torrance_sparrow(KeyReader& keys) {
 
 ModelConfig resolve_beckmann(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_BECKMANN;
-    m.uses_fresnel = true;
     m.canonical = "beckmann";
     read_alpha(keys, m, BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y);
     m.params[BB_BECKMANN_SHADOWING] = read_shadowing(keys, m.canonical);
@@ -215,58 +204,90 @@ ModelConfig resolve_beckmann(KeyReader& keys) {
 
 ModelConfig resolve_mirror(KeyReader&) {
     ModelConfig m;
-    m.id = BB_MODEL_MIRROR;
-    m.uses_fresnel = true;  // albedo = F(mu) of --fresnel
     m.canonical = "mirror";
     return m;
 }
 
 ModelConfig resolve_dielectric_specular(KeyReader& keys) {
     ModelConfig m;
-    m.id = BB_MODEL_DIELECTRIC_SPECULAR;
     const double eta = keys.required_number("eta", kEta, "relative index of refraction, e.g. 1.5");
     m.params[BB_DIELECTRIC_SPECULAR_ETA] = eta;
     m.canonical = "dielectric-specular:eta=" + format_number(eta);
     return m;
 }
 
+/// Torrance-Sparrow's roughness axis exists only for the distributions with an alpha.
+const char* torrance_sparrow_roughness_refusal(const ParamBlock& params) {
+    return params[BB_TORRANCE_SPARROW_DIST] == BB_TS_D_BLINN
+               ? "torrance-sparrow with d=blinn has an exponent, not alpha, to sweep; use d=beckmann or d=ggx"
+               : nullptr;
+}
+
+/// The hooks a few models add to their registry entry: roughness_refusal.
+const char* (*roughness_refusal_of(int id))(const ParamBlock&) {
+    return id == BB_MODEL_TORRANCE_SPARROW ? torrance_sparrow_roughness_refusal : nullptr;
+}
+
+using Resolver = ModelConfig (*)(KeyReader&);
+
 struct ModelEntry {
-    const char* name;
-    std::function<ModelConfig(KeyReader&)> resolve;
+    ModelTraits traits;
+    Resolver resolve;
 };
 
+#define BB_HOST_MODEL_ENTRY(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE)      \
+    {ModelTraits{BB_MODEL_##NAME, SPEC, EXAMPLE, FR != 0, BB_QUAD_SPACE_##QUAD == BB_QUAD_SPACE_HALFVECTOR, CO != 0, \
+                 DE != 0, DI != 0, VS != 0, VE != 0, RE != 0, AX, AY, EX, KI != 0, FU != 0,                        \
+                 roughness_refusal_of(BB_MODEL_##NAME)},                                                            \
+     resolve_##name},
+
 const std::vector<ModelEntry>& registry() {
-    static const std::vector<ModelEntry> entries = {
-        {"lambert", resolve_lambert},
-        {"ggx", resolve_ggx},
-        {"beckmann", resolve_beckmann},
-        {"oren-nayar", resolve_oren_nayar},
-        {"phong", resolve_phong},
-        {"phong-original", resolve_phong_original},
-        {"blinn-phong", resolve_blinn_phong},
-        {"torrance-sparrow", resolve_torrance_sparrow},
-        {"mirror", resolve_mirror},
-        {"dielectric-specular", resolve_dielectric_specular},
-    };
+    static const std::vector<ModelEntry> entries = {BB_MODEL_REGISTRY(BB_HOST_MODEL_ENTRY)};
     return entries;
 }
 
 }  // namespace
 
+const std::vector<ModelTraits>& model_registry() {
+    static const std::vector<ModelTraits> traits = [] {
+        std::vector<ModelTraits> t;
+        for (const auto& e : registry()) t.push_back(e.traits);
+        return t;
+    }();
+    return traits;
+}
+
+const ModelTraits& model_traits(int id) {
+    for (const auto& e : registry())
+        if (e.traits.id == id) return e.traits;
+    throw Error("internal error: no model with id " + std::to_string(id));
+}
+
+std::vector<int> roughness_slots(const ModelConfig& model) {
+    const ModelTraits& t = model.traits();
+    if (t.alpha_x_slot < 0)
+        throw Error("model '" + model.name + "' has no roughness alpha to sweep; tables need a microfacet model");
+    if (t.roughness_refusal)
+        if (const char* why = t.roughness_refusal(model.params)) throw Error(why);
+    return {t.alpha_x_slot, t.alpha_y_slot};
+}
+
 std::vector<std::string> model_names() {
     std::vector<std::string> names;
-    for (const auto& e : registry()) names.push_back(e.name);
+    for (const auto& e : registry()) names.push_back(e.traits.name);
     return names;
 }
 
 ModelConfig resolve_model(const std::string& text) {
     const Spec spec = parse_spec(text);
     for (const auto& e : registry()) {
-        if (spec.name != e.name) continue;
+        if (spec.name != e.traits.name) continue;
         KeyReader keys(spec, "model");
         ModelConfig m = e.resolve(keys);
         keys.finish();
-        m.name = e.name;
+        m.id = e.traits.id;
+        m.name = e.traits.name;
+        m.uses_fresnel = e.traits.uses_fresnel;
         return m;
     }
     std::string list;

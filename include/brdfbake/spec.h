@@ -21,6 +21,35 @@ Spec parse_spec(const std::string& text);
 /// Parameters as the shared BRDF headers take them (bb_params): BB_MAX_PARAMS slots.
 using ParamBlock = std::array<double, 8>;
 
+/// A model's entry in the model registry (brdf/model_registry.h, one row of its table), as the
+/// host sees it.
+struct ModelTraits {
+    int id;                        // BB_MODEL_* of brdf/model_registry.h
+    const char* name;              // spec name, e.g. "ggx"
+    const char* example;           // an example spec, for the generic tests
+    bool uses_fresnel;             // multiplies by the Fresnel term of --fresnel
+    bool halfvector_quadrature;    // the quadrature runs in half-vector space (else the sampler's square)
+    bool cosine_sampler;           // the sampler is the cosine warp
+    bool delta;                    // a delta lobe: the albedo is analytic
+    bool samples_disk;             // the vector path albedo_replicas_disk
+    bool samples_vector;           // the vector path albedo_replicas_points (importance)
+    bool evals_vector;             // the vector path albedo_replicas_points (qmc)
+    bool reciprocal;               // f(wo, wi) = f(wi, wo)
+    int alpha_x_slot, alpha_y_slot;  // the slots a roughness axis sweeps; -1: none
+    int exponent_slot;             // a sampler-space cosine-power lobe's exponent N; -1: none
+    bool kinked_quadrature;        // the quadrature's error estimate never assumes geometric convergence
+    bool energy_conserving_example;  // the example's albedo is at most 1
+    /// Why these parameters have no roughness to sweep although the model has alpha slots
+    /// (torrance-sparrow with d=blinn), or nullptr.
+    const char* (*roughness_refusal)(const ParamBlock& params);
+};
+
+/// Every registered model, in the order of the registry's table.
+const std::vector<ModelTraits>& model_registry();
+
+/// The registry entry of a model id; throws Error for an unknown id.
+const ModelTraits& model_traits(int id);
+
 /// A model spec resolved against the registry.
 struct ModelConfig {
     int id = 0;                 // BB_MODEL_* of brdf/models.h
@@ -29,7 +58,14 @@ struct ModelConfig {
     ParamBlock params{};        // slots as the model header defines them
     bool anisotropic = false;   // albedo depends on phi_o
     bool uses_fresnel = false;  // the model multiplies by a Fresnel term
+
+    /// The model's registry entry.
+    const ModelTraits& traits() const { return model_traits(id); }
 };
+
+/// The parameter slots that a roughness axis (a table's alpha) sweeps: alpha_x's and alpha_y's.
+/// Throws Error when the model has none ("model 'lambert' has no roughness alpha to sweep; ...").
+std::vector<int> roughness_slots(const ModelConfig& model);
 
 /// A Fresnel spec resolved against the registry.
 struct FresnelConfig {

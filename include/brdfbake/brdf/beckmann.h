@@ -6,40 +6,27 @@
 #ifndef BRDFBAKE_BRDF_BECKMANN_H
 #define BRDFBAKE_BRDF_BECKMANN_H
 
-#include "brdfbake/brdf/fresnel.h"
-#include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/smith.h"
 
-/* Parameter slots (the same layout as ggx.h). */
-#define BB_BECKMANN_ALPHA_X 0
-#define BB_BECKMANN_ALPHA_Y 1
-#define BB_BECKMANN_SHADOWING 2 /* 0: separable, 1: height-correlated */
+/* Parameter slots: those of every Smith lobe (smith.h). */
+#define BB_BECKMANN_ALPHA_X BB_SMITH_ALPHA_X
+#define BB_BECKMANN_ALPHA_Y BB_SMITH_ALPHA_Y
+#define BB_BECKMANN_SHADOWING BB_SMITH_SHADOWING /* 0: separable, 1: height-correlated */
 
-BB_FN real bb_beckmann_g2(bb_params p, bb_vec3 wo, bb_vec3 wi) {
-    real ax = p.v[BB_BECKMANN_ALPHA_X], ay = p.v[BB_BECKMANN_ALPHA_Y];
-    return bb_select(bb_beckmann_g2_separable(wo, wi, ax, ay), bb_beckmann_g2_correlated(wo, wi, ax, ay),
-                     p.v[BB_BECKMANN_SHADOWING] > BB_R(0.5));
-}
-
+/* The Smith lobe (smith.h) with the Beckmann distribution; visible normals [HD14, J14]. */
 BB_FN real bb_beckmann_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
-    bb_vec3 wh = bb_normalize(bb_add(wo, wi));
-    real d = bb_beckmann_d(wh, p.v[BB_BECKMANN_ALPHA_X], p.v[BB_BECKMANN_ALPHA_Y]);
-    real f = bb_fresnel_eval(fkind, fp, bb_clamp_cos(bb_dot(wo, wh)));
-    real den = BB_R(4.0) * wo.z * wi.z;
-    real v = d * bb_beckmann_g2(p, wo, wi) * f / bb_select(BB_R(1.0), den, den > BB_R(0.0));
-    return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0));
+    return bb_smith_eval(BB_SMITH_BECKMANN, p, fkind, fp, wo, wi);
 }
 
-/* Importance sampling of the visible normals [HD14, J14]: with pdf(wi) = D_wo(wh) / (4 wo.wh)
- * the weight f cos_theta_i / pdf reduces to F(wo.wh) G2(wo, wi) / G1(wo) <= F [HD14 eq. 9]. */
 BB_FN bb_sample bb_beckmann_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
-    real ax = p.v[BB_BECKMANN_ALPHA_X], ay = p.v[BB_BECKMANN_ALPHA_Y];
-    bb_vec3 wh = bb_beckmann_sample_vndf(wo, ax, ay, u1, u2);
-    real cos_oh = bb_clamp_cos(bb_dot(wo, wh));
-    bb_vec3 wi = bb_reflect(wo, wh);
-    real g1o = bb_beckmann_g1(wo, ax, ay);
-    real w = bb_fresnel_eval(fkind, fp, cos_oh) * bb_beckmann_g2(p, wo, wi) /
-             bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
-    return bb_make_sample(wi, bb_select(BB_R(0.0), w, wi.z > BB_R(0.0) && g1o > BB_R(0.0) && cos_oh > BB_R(0.0)));
+    return bb_smith_sample(BB_SMITH_BECKMANN, p, fkind, fp, wo, u1, u2);
+}
+
+BB_FN bb_quad_dist bb_beckmann_quad_dist(bb_params p) { return bb_smith_quad_dist(BB_SMITH_BECKMANN, p); }
+
+BB_FN real bb_beckmann_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co, real ch,
+                                         real djc) {
+    return bb_smith_halfvector_weight(BB_SMITH_BECKMANN, p, f_oh, wo, wi, oh, co, ch, djc);
 }
 
 #endif /* BRDFBAKE_BRDF_BECKMANN_H */

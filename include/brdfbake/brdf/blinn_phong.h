@@ -13,6 +13,7 @@
 #define BRDFBAKE_BRDF_BLINN_PHONG_H
 
 #include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/quad_dist.h"
 
 /* Parameter slots. */
 #define BB_BLINN_PHONG_N 0
@@ -38,6 +39,19 @@ BB_FN bb_sample bb_blinn_phong_sample(bb_params p, bb_vec3 wo, real u1, real u2)
     bb_vec3 wi = bb_reflect(wo, wh);
     real w = bb_blinn_phong_k(p) * (BB_R(4.0) * BB_2PI) * cos_oh * wi.z / (n + BB_R(1.0));
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && cos_oh > BB_R(0.0)));
+}
+
+/* The half-vector quadrature (integrands.h) in the radial CDF of the cos^(N+1) density. */
+BB_FN bb_quad_dist bb_blinn_phong_quad_dist(bb_params p) {
+    return bb_make_quad_dist(BB_QUAD_BLINN, BB_R(1.0), BB_R(1.0), p.v[BB_BLINN_PHONG_N]);
+}
+
+/* Its integrand f cos_theta_i 4 (wo.h) / (D cos_theta_h) times djc = D J cos(theta_h)
+ * (bb_quad_halfvector_point): f = K cos^N = K 2 pi/(N + 2) D. */
+BB_FN real bb_blinn_phong_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co,
+                                            real ch, real djc) {
+    (void)f_oh, (void)wo, (void)co;
+    return bb_blinn_phong_k(p) * (BB_R(4.0) * BB_2PI) / (p.v[BB_BLINN_PHONG_N] + BB_R(2.0)) * wi.z * oh / ch * djc;
 }
 
 #endif /* BRDFBAKE_BRDF_BLINN_PHONG_H */

@@ -4,41 +4,29 @@
 #ifndef BRDFBAKE_BRDF_GGX_H
 #define BRDFBAKE_BRDF_GGX_H
 
-#include "brdfbake/brdf/fresnel.h"
-#include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/smith.h"
 
-/* Parameter slots. */
-#define BB_GGX_ALPHA_X 0
-#define BB_GGX_ALPHA_Y 1
-#define BB_GGX_SHADOWING 2 /* 0: separable, 1: height-correlated */
+/* Parameter slots: those of every Smith lobe (smith.h). */
+#define BB_GGX_ALPHA_X BB_SMITH_ALPHA_X
+#define BB_GGX_ALPHA_Y BB_SMITH_ALPHA_Y
+#define BB_GGX_SHADOWING BB_SMITH_SHADOWING /* 0: separable, 1: height-correlated */
 
-BB_FN real bb_ggx_g2(bb_params p, bb_vec3 wo, bb_vec3 wi) {
-    real ax = p.v[BB_GGX_ALPHA_X], ay = p.v[BB_GGX_ALPHA_Y];
-    return bb_select(bb_ggx_g2_separable(wo, wi, ax, ay), bb_ggx_g2_correlated(wo, wi, ax, ay),
-                     p.v[BB_GGX_SHADOWING] > BB_R(0.5));
-}
-
+/* The Smith lobe (smith.h) with the GGX distribution. Its importance sample takes the visible
+ * normal [H18] of the disk point bb_disk_polar(u1, u2), which the fast kernels tabulate
+ * (bb_ggx_disk_* below). */
 BB_FN real bb_ggx_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
-    bb_vec3 wh = bb_normalize(bb_add(wo, wi));
-    real d = bb_ggx_d(wh, p.v[BB_GGX_ALPHA_X], p.v[BB_GGX_ALPHA_Y]);
-    real f = bb_fresnel_eval(fkind, fp, bb_clamp_cos(bb_dot(wo, wh)));
-    real den = BB_R(4.0) * wo.z * wi.z;
-    real v = d * bb_ggx_g2(p, wo, wi) * f / bb_select(BB_R(1.0), den, den > BB_R(0.0));
-    return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0));
+    return bb_smith_eval(BB_SMITH_GGX, p, fkind, fp, wo, wi);
 }
 
-/* Importance sampling of the visible normals [H18]: with pdf(wi) = D_wo(wh) / (4 wo.wh) the
- * estimator weight f cos_theta_i / pdf reduces to F(wo.wh) G2(wo, wi) / G1(wo) [H18 eq. 19].
- * d is the disk point bb_disk_polar(u1, u2) (cell-independent: the fast kernels tabulate it). */
-BB_FN bb_sample bb_ggx_sample_disk(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec2 d) {
-    real ax = p.v[BB_GGX_ALPHA_X], ay = p.v[BB_GGX_ALPHA_Y];
-    bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
-    real cos_oh = bb_clamp_cos(bb_dot(wo, wh));
-    bb_vec3 wi = bb_reflect(wo, wh);
-    real g1o = bb_ggx_g1(wo, ax, ay);
-    real w = bb_fresnel_eval(fkind, fp, cos_oh) * bb_ggx_g2(p, wo, wi) /
-             bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
-    return bb_make_sample(wi, bb_select(BB_R(0.0), w, wi.z > BB_R(0.0) && g1o > BB_R(0.0)));
+BB_FN bb_sample bb_ggx_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
+    return bb_smith_sample(BB_SMITH_GGX, p, fkind, fp, wo, u1, u2);
+}
+
+BB_FN bb_quad_dist bb_ggx_quad_dist(bb_params p) { return bb_smith_quad_dist(BB_SMITH_GGX, p); }
+
+BB_FN real bb_ggx_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co, real ch,
+                                    real djc) {
+    return bb_smith_halfvector_weight(BB_SMITH_GGX, p, f_oh, wo, wi, oh, co, ch, djc);
 }
 
 /* The same estimator weight, F(wo.wh) G2(wo, wi) / G1(wo), in the two halves the vector kernel
@@ -52,8 +40,8 @@ BB_FN bb_sample bb_ggx_sample_disk(bb_params p, int fkind, bb_params fp, bb_vec3
  * c0 = 1/G1(wo) = 1 + Lambda(wo) for height-correlated G2 [H14 eq. 99], c0 = 1 for separable
  * G2 (the weight is then G1(wi)). Every term of the denominator is >= 0 (c0 >= 1): no
  * cancellation, however small alpha. Per sample: two square roots and one division, where
- * bb_ggx_sample_disk's normalise, reflect, G1(wi), G2 and / G1(wo) take four of each; a Fresnel
- * term adds F((wo.n) / sqrt(L)). Algebraically bb_ggx_sample_disk's weight (tests/test_microfacet.cpp
+ * bb_ggx_sample's normalise, reflect, G1(wi), G2 and / G1(wo) take four of each; a Fresnel
+ * term adds F((wo.n) / sqrt(L)). Algebraically bb_ggx_sample's weight (tests/test_microfacet.cpp
  * compares them). */
 typedef struct {
     bb_vec3 wo;             /* the view; (sin, 0, cos) when isotropic */
@@ -130,10 +118,6 @@ BB_FN real bb_ggx_disk_weight(bb_ggx_disk_cell c, int fkind, bb_params fp, bb_ve
     if (fkind != BB_FRESNEL_NONE)
         w = w * bb_fresnel_eval(fkind, fp, bb_clamp_cos(on / bb_sqrt(len2)));
     return bb_select(BB_R(0.0), w, wz > BB_R(0.0) && c.live > BB_R(0.0));
-}
-
-BB_FN bb_sample bb_ggx_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
-    return bb_ggx_sample_disk(p, fkind, fp, wo, bb_disk_polar(u1, u2));
 }
 
 #endif /* BRDFBAKE_BRDF_GGX_H */

@@ -1,5 +1,5 @@
 /* The integrands of the albedo methods other than a model's own importance sampler
- * (kernels/albedo.cl, host/albedo.cpp). Shared by host and kernels like the models.
+ * (kernels/albedo.cl, host/integrate/albedo.cpp). Shared by host and kernels like the models.
  *
  * E(wo) = integral over the upper hemisphere of f(wo, wi) cos(theta_i) dwi is computed as
  *
@@ -36,8 +36,10 @@
 #ifndef BRDFBAKE_BRDF_INTEGRANDS_H
 #define BRDFBAKE_BRDF_INTEGRANDS_H
 
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/quad_dist.h"
 
 /* ------------------------------------------------------- uniform hemisphere */
 
@@ -51,50 +53,31 @@ BB_FN real bb_uniform_hemisphere_weight(int model, bb_params p, int fkind, bb_pa
     return BB_2PI * mu * bb_model_eval(model, p, fkind, fp, wo, wi);
 }
 
+/* The sampling methods' estimator at the point (u1, u2) of a replica (the sum over its points,
+ * divided by their number, is the replica's estimate of E(wo)): the model's importance-sample
+ * weight f cos / pdf for BB_METHOD_IMPORTANCE, the uniform hemisphere weight for BB_METHOD_QMC
+ * and BB_METHOD_MC (kernel_abi.h), which differ only in where (u1, u2) come from. */
+BB_FN real bb_albedo_point_weight(int method, int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1,
+                                  real u2) {
+    if (method == BB_METHOD_IMPORTANCE) return bb_model_sample(model, p, fkind, fp, wo, u1, u2).weight;
+    return bb_uniform_hemisphere_weight(model, p, fkind, fp, wo, u1, u2);
+}
+
 /* ------------------------------------------------------ half-vector space */
 
-#define BB_QUAD_SAMPLER 0 /* sampler space */
-#define BB_QUAD_GGX 1     /* half-vector space, radial CDF of GGX D cos */
-#define BB_QUAD_BECKMANN 2
-#define BB_QUAD_BLINN 3   /* cos^(N+1) density */
-
-/* The coordinate system of the quadrature for a model, and its distribution's parameters. */
-typedef struct {
-    int kind;
-    real ax, ay, n;
-} bb_quad_dist;
-
-BB_FN bb_quad_dist bb_make_quad_dist(int kind, real ax, real ay, real n) {
-    bb_quad_dist d;
-    d.kind = kind;
-    d.ax = ax;
-    d.ay = ay;
-    d.n = n;
-    return d;
-}
+/* The coordinate system of the quadrature for a model, and its distribution's parameters
+ * (quad_dist.h): each half-vector model's own bb_<name>_quad_dist, the sampler's square for the
+ * others (the QUAD column of model_registry.h). */
+#define BB_QUAD_DIST_CASE_SAMPLER(NAME, name)
+#define BB_QUAD_DIST_CASE_HALFVECTOR(NAME, name) \
+    case BB_MODEL_##NAME:                        \
+        return bb_##name##_quad_dist(p);
+#define BB_QUAD_DIST_CASE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
+    BB_IF_COMPILED(NAME)(BB_PP_CAT(BB_QUAD_DIST_CASE_, QUAD)(NAME, name))
 
 BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
     switch (model) {
-#if BB_HAS_MODEL(BB_MODEL_GGX)
-    case BB_MODEL_GGX:
-        return bb_make_quad_dist(BB_QUAD_GGX, p.v[BB_GGX_ALPHA_X], p.v[BB_GGX_ALPHA_Y], BB_R(0.0));
-#endif
-#if BB_HAS_MODEL(BB_MODEL_BECKMANN)
-    case BB_MODEL_BECKMANN:
-        return bb_make_quad_dist(BB_QUAD_BECKMANN, p.v[BB_BECKMANN_ALPHA_X], p.v[BB_BECKMANN_ALPHA_Y], BB_R(0.0));
-#endif
-#if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
-    case BB_MODEL_TORRANCE_SPARROW: {
-        int d = (int)bb_first(p.v[BB_TORRANCE_SPARROW_DIST]);
-        int kind = d == BB_TS_D_GGX ? BB_QUAD_GGX : (d == BB_TS_D_BECKMANN ? BB_QUAD_BECKMANN : BB_QUAD_BLINN);
-        return bb_make_quad_dist(kind, p.v[BB_TORRANCE_SPARROW_ALPHA_X], p.v[BB_TORRANCE_SPARROW_ALPHA_Y],
-                                 p.v[BB_TORRANCE_SPARROW_N]);
-    }
-#endif
-#if BB_HAS_MODEL(BB_MODEL_BLINN_PHONG)
-    case BB_MODEL_BLINN_PHONG:
-        return bb_make_quad_dist(BB_QUAD_BLINN, BB_R(1.0), BB_R(1.0), p.v[BB_BLINN_PHONG_N]);
-#endif
+        BB_MODEL_REGISTRY(BB_QUAD_DIST_CASE)
     default:
         return bb_make_quad_dist(BB_QUAD_SAMPLER, BB_R(1.0), BB_R(1.0), BB_R(0.0));
     }
@@ -172,13 +155,11 @@ BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, real phi_o, unsigned 
     return a;
 }
 
-/* Sampler space for the cosine samplers (Lambert, Oren-Nayar: sin^2(theta_i) = u1): the rule
- * runs over c = cos(theta_i) instead, u1 = 1 - c^2 with Jacobian 2c, which removes the 1/c of
+/* Sampler space for the cosine samplers (Lambert, Oren-Nayar: sin^2(theta_i) = u1; the
+ * COSINE column of model_registry.h, bb_quad_sampler_is_cosine): the rule runs over
+ * c = cos(theta_i) instead, u1 = 1 - c^2 with Jacobian 2c, which removes the 1/c of
  * Oren-Nayar's tan(theta_i), and in two pieces, [0, cos(theta_o)] and [cos(theta_o), 1], where
  * its max(theta_i, theta_o) and min(...) switch. */
-BB_FN int bb_quad_sampler_is_cosine(int model) {
-    return model == BB_MODEL_LAMBERT || model == BB_MODEL_OREN_NAYAR;
-}
 
 /* The roughness of an anisotropic distribution along azimuth phi, squared:
  * a^2 = ax^2 ay^2 / (ay^2 cos^2 phi + ax^2 sin^2 phi). */
@@ -243,7 +224,16 @@ BB_FN bb_quad_row bb_make_quad_row(bb_quad_dist d, bb_vec3 wo, real phi_o, real 
 }
 
 /* The integrand f cos(theta_i) 4 (wo.h) times the map's Jacobian at t in [0, t_max): the
- * models' closed forms, written so that the narrow D enters only through the slope density. */
+ * models' closed forms bb_<name>_halfvector_weight, written so that the narrow D enters only
+ * through the slope density (djc = D J cos(theta_h)). */
+#define BB_HALFVECTOR_CASE_SAMPLER(NAME, name)
+#define BB_HALFVECTOR_CASE_HALFVECTOR(NAME, name)                        \
+    case BB_MODEL_##NAME:                                                \
+        w = bb_##name##_halfvector_weight(p, f, wo, wi, oh, co, ch, djc); \
+        break;
+#define BB_HALFVECTOR_CASE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
+    BB_IF_COMPILED(NAME)(BB_PP_CAT(BB_HALFVECTOR_CASE_, QUAD)(NAME, name))
+
 BB_FN real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_quad_dist d,
                                     bb_quad_row row, real t) {
     real em1 = bb_expm1(t);
@@ -263,26 +253,7 @@ BB_FN real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_params
     real f = bb_fresnel_eval(fkind, fp, oh);
     real w = BB_R(0.0);
     switch (model) {
-#if BB_HAS_MODEL(BB_MODEL_GGX)
-    case BB_MODEL_GGX: /* f = D G2 F / (4 co ci) */
-        w = f * bb_ggx_g2(p, wo, wi) * oh / (co * ch) * djc;
-        break;
-#endif
-#if BB_HAS_MODEL(BB_MODEL_BECKMANN)
-    case BB_MODEL_BECKMANN:
-        w = f * bb_beckmann_g2(p, wo, wi) * oh / (co * ch) * djc;
-        break;
-#endif
-#if BB_HAS_MODEL(BB_MODEL_TORRANCE_SPARROW)
-    case BB_MODEL_TORRANCE_SPARROW: /* G = min(1, 2 hz co/oh, 2 hz ci/oh), see torrance_sparrow.h */
-        w = f * djc * bb_min(bb_min(oh / (co * ch), BB_R(2.0)), BB_R(2.0) * wi.z / co);
-        break;
-#endif
-#if BB_HAS_MODEL(BB_MODEL_BLINN_PHONG)
-    case BB_MODEL_BLINN_PHONG: /* f = K cos^N = K 2 pi/(N + 2) D */
-        w = bb_blinn_phong_k(p) * (BB_R(4.0) * BB_2PI) / (p.v[BB_BLINN_PHONG_N] + BB_R(2.0)) * wi.z * oh / ch * djc;
-        break;
-#endif
+        BB_MODEL_REGISTRY(BB_HALFVECTOR_CASE)
     default:
         break;
     }

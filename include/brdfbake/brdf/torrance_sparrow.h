@@ -21,6 +21,7 @@
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/quad_dist.h"
 
 /* Parameter slots. */
 #define BB_TORRANCE_SPARROW_DIST 0 /* one of BB_TS_D_* */
@@ -88,6 +89,23 @@ BB_FN bb_sample bb_torrance_sparrow_sample(bb_params p, int fkind, bb_params fp,
     real g = bb_min(bb_min(oh / (co * hz), BB_R(2.0)), BB_R(2.0) * wi.z / co);
     real w = g * bb_fresnel_eval(fkind, fp, oh);
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, ok));
+}
+
+/* The half-vector quadrature (integrands.h) in the radial CDF of the chosen D. */
+BB_FN bb_quad_dist bb_torrance_sparrow_quad_dist(bb_params p) {
+    int d = (int)bb_first(p.v[BB_TORRANCE_SPARROW_DIST]);
+    int kind = d == BB_TS_D_GGX ? BB_QUAD_GGX : (d == BB_TS_D_BECKMANN ? BB_QUAD_BECKMANN : BB_QUAD_BLINN);
+    return bb_make_quad_dist(kind, p.v[BB_TORRANCE_SPARROW_ALPHA_X], p.v[BB_TORRANCE_SPARROW_ALPHA_Y],
+                             p.v[BB_TORRANCE_SPARROW_N]);
+}
+
+/* Its integrand f cos_theta_i 4 (wo.h) / (D cos_theta_h) times djc = D J cos(theta_h)
+ * (bb_quad_halfvector_point): with f = D G F / (4 co ci) and
+ * G = min(1, 2 hz co/oh, 2 hz ci/oh) it is F djc min(oh/(co ch), 2, 2 ci/co). */
+BB_FN real bb_torrance_sparrow_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co,
+                                                 real ch, real djc) {
+    (void)p, (void)wo;
+    return f_oh * djc * bb_min(bb_min(oh / (co * ch), BB_R(2.0)), BB_R(2.0) * wi.z / co);
 }
 
 #endif /* BRDFBAKE_BRDF_TORRANCE_SPARROW_H */

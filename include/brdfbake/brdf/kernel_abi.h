@@ -1,0 +1,65 @@
+/* The interface between the host and the kernels (the .cl files of kernels/): entry point names, argument
+ * codes and buffer layouts, shared so that neither side holds a number the other must match by
+ * convention. Compiled as C++ (the host) and OpenCL C (the kernels).
+ *
+ * Kernel entry points are written with these names (`__kernel void BB_ENTRY_...(...)`); the host
+ * creates them with BB_ENTRY_NAME(BB_ENTRY_...), the same name as a string. */
+#ifndef BRDFBAKE_BRDF_KERNEL_ABI_H
+#define BRDFBAKE_BRDF_KERNEL_ABI_H
+
+#include "brdfbake/brdf/params.h"
+
+#define BB_ENTRY_NAME_(entry) #entry
+#define BB_ENTRY_NAME(entry) BB_ENTRY_NAME_(entry)
+
+/* -------------------------------------------------------------- kernels/albedo.cl */
+
+/* Sampling methods: the scalar entry point, all three methods. */
+#define BB_ENTRY_ALBEDO_REPLICAS albedo_replicas
+/* -D BB_VECTOR_WIDTH: importance sampling from the tabulated disk points (BB_DISK_STEP). */
+#define BB_ENTRY_ALBEDO_REPLICAS_DISK albedo_replicas_disk
+/* -D BB_VECTOR_WIDTH -D BB_VECTOR_POINTS: from the tabulated Hammersley points (BB_POINTS_STEP). */
+#define BB_ENTRY_ALBEDO_REPLICAS_POINTS albedo_replicas_points
+/* -D BB_QUADRATURE: the scalar rule, and with -D BB_VECTOR_WIDTH one row per lane. */
+#define BB_ENTRY_ALBEDO_QUADRATURE albedo_quadrature
+#define BB_ENTRY_ALBEDO_QUADRATURE_ROWS albedo_quadrature_rows
+
+/* The `method` argument of BB_ENTRY_ALBEDO_REPLICAS: the point source and the warp. */
+#define BB_METHOD_IMPORTANCE 0 /* the model's sampler, randomised Hammersley points */
+#define BB_METHOD_QMC 1        /* uniform hemisphere, randomised Hammersley points */
+#define BB_METHOD_MC 2         /* uniform hemisphere, Philox4x32-10 (-D BB_PHILOX) */
+
+/* Model and Fresnel parameters: BB_MAX_PARAMS values per cell (params.h), in the slots of the
+ * model's header; the Fresnel term's BB_MAX_PARAMS once per launch. */
+
+/* The vector paths' point tables, values per step of W points: the disk points' x, y and
+ * sqrt(1 - x^2) (albedo and dielectric), or the rotated Hammersley points' u1, u2. */
+#define BB_DISK_VALUES 3
+#define BB_POINTS_VALUES 2
+
+/* The quadrature's output: per cell BB_QUAD_SLOTS sums, slot = rule * BB_QUAD_PIECES + piece,
+ * rule 0 the fine rule (n nodes per axis), 1 the coarse (n/2), 2 the coarsest (n/4), piece
+ * 2k + h the half h of quarter k of the azimuth (integrands.h). */
+#define BB_QUAD_RULES 3
+#define BB_QUAD_PIECES 8
+#define BB_QUAD_SLOTS (BB_QUAD_RULES * BB_QUAD_PIECES)
+
+/* ---------------------------------------------------------- kernels/dielectric.cl */
+
+#define BB_ENTRY_DIELECTRIC_REPLICAS dielectric_replicas
+#define BB_ENTRY_DIELECTRIC_REPLICAS_DISK dielectric_replicas_disk
+
+/* ------------------------------------------------------------------ kernels/eval.cl */
+
+#define BB_ENTRY_MODEL_EVAL model_eval
+#define BB_ENTRY_MODEL_SAMPLE model_sample
+
+/* ------------------------------------------------------------------ kernels/scan.cl */
+
+#define BB_ENTRY_RECIPROCITY_SCAN reciprocity_scan
+
+/* --------------------------------------------------------------- kernels/fresnel.cl */
+
+#define BB_ENTRY_FRESNEL_CURVE fresnel_curve
+
+#endif /* BRDFBAKE_BRDF_KERNEL_ABI_H */

@@ -1,0 +1,105 @@
+/* The Smith microfacet reflection lobe, parameterised by its distribution of normals, as
+ * Mitsuba 3 (MicrofacetDistribution) and Cycles (bsdf_microfacet.h) do: one body for the
+ * evaluation, the visible-normal importance sample, and the half-vector quadrature weight, the
+ * distributions differing only in D, the Smith G1 (from Lambda) and the visible-normal sampler
+ * (microfacet.h):
+ *   f = D(wh) G2(wo, wi) F(wo.wh) / (4 cos_theta_o cos_theta_i)      [WMLT07 eq. 20]
+ *   sample: wh from the visible normals of wo, wi = reflect(wo, wh), weight
+ *   f cos_theta_i / pdf = F(wo.wh) G2(wo, wi) / G1(wo)                [HD14 eq. 9; H18 eq. 19]
+ * with G2 separable G1(wo) G1(wi) [H14 eq. 98] or height-correlated [H14 eq. 99].
+ * The distribution is a constant of the model (ggx.h, beckmann.h), so each branch on it below
+ * is resolved when the call is inlined.
+ *
+ * Validity of the sample weight, one rule for every distribution: the weight is 0 unless
+ * wi.z > 0 and G1(wo) > 0 (so wo.z > 0). A visible-normal sampler draws wh with wo.wh > 0 and
+ * wh.z >= 0 [HD14 sec. 4], and wi.z > 0 implies wo.wh > 0 in floating point too:
+ * wi.z = 2 (wo.wh) wh.z - wo.z, and 2 (wo.wh) wh.z <= 0 (its sign survives rounding) would give
+ * wi.z <= -wo.z < 0. So no separate test of wo.wh is needed (tests/test_microfacet.cpp checks
+ * it on samples of both distributions).
+ *
+ * [WMLT07], [H14], [HD14], [H18]: see microfacet.h. */
+#ifndef BRDFBAKE_BRDF_SMITH_H
+#define BRDFBAKE_BRDF_SMITH_H
+
+#include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/quad_dist.h"
+
+/* The distributions. */
+#define BB_SMITH_GGX 0
+#define BB_SMITH_BECKMANN 1
+
+/* Parameter slots of every Smith lobe. */
+#define BB_SMITH_ALPHA_X 0
+#define BB_SMITH_ALPHA_Y 1
+#define BB_SMITH_SHADOWING 2 /* 0: separable, 1: height-correlated */
+
+/* D(m) of the distribution. */
+BB_FN real bb_smith_d(int dist, bb_vec3 m, real ax, real ay) {
+    if (dist == BB_SMITH_BECKMANN) return bb_beckmann_d(m, ax, ay);
+    return bb_ggx_d(m, ax, ay);
+}
+
+/* Smith G1 = 1 / (1 + Lambda) of the distribution. */
+BB_FN real bb_smith_g1(int dist, bb_vec3 w, real ax, real ay) {
+    if (dist == BB_SMITH_BECKMANN) return bb_beckmann_g1(w, ax, ay);
+    return bb_ggx_g1(w, ax, ay);
+}
+
+/* A visible normal of the distribution seen from wo (wo.z > 0). */
+BB_FN bb_vec3 bb_smith_sample_vndf(int dist, bb_vec3 wo, real ax, real ay, real u1, real u2) {
+    if (dist == BB_SMITH_BECKMANN) return bb_beckmann_sample_vndf(wo, ax, ay, u1, u2);
+    return bb_ggx_sample_vndf(wo, ax, ay, u1, u2);
+}
+
+/* G2 as the shadowing slot chooses. */
+BB_FN real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
+    real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
+    real separable, correlated;
+    if (dist == BB_SMITH_BECKMANN) {
+        separable = bb_beckmann_g2_separable(wo, wi, ax, ay);
+        correlated = bb_beckmann_g2_correlated(wo, wi, ax, ay);
+    } else {
+        separable = bb_ggx_g2_separable(wo, wi, ax, ay);
+        correlated = bb_ggx_g2_correlated(wo, wi, ax, ay);
+    }
+    return bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] > BB_R(0.5));
+}
+
+/* f(wo, wi) without the cosine; 0 unless wo, wi and wh are above the horizon. */
+BB_FN real bb_smith_eval(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
+    bb_vec3 wh = bb_normalize(bb_add(wo, wi));
+    real d = bb_smith_d(dist, wh, p.v[BB_SMITH_ALPHA_X], p.v[BB_SMITH_ALPHA_Y]);
+    real f = bb_fresnel_eval(fkind, fp, bb_clamp_cos(bb_dot(wo, wh)));
+    real den = BB_R(4.0) * wo.z * wi.z;
+    real v = d * bb_smith_g2(dist, p, wo, wi) * f / bb_select(BB_R(1.0), den, den > BB_R(0.0));
+    return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0));
+}
+
+/* The visible-normal importance sample and its weight F(wo.wh) G2(wo, wi) / G1(wo). */
+BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
+    real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
+    bb_vec3 wh = bb_smith_sample_vndf(dist, wo, ax, ay, u1, u2);
+    real cos_oh = bb_clamp_cos(bb_dot(wo, wh));
+    bb_vec3 wi = bb_reflect(wo, wh);
+    real g1o = bb_smith_g1(dist, wo, ax, ay);
+    real w = bb_fresnel_eval(fkind, fp, cos_oh) * bb_smith_g2(dist, p, wo, wi) /
+             bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
+    return bb_make_sample(wi, bb_select(BB_R(0.0), w, wi.z > BB_R(0.0) && g1o > BB_R(0.0)));
+}
+
+/* The coordinate system of the half-vector quadrature (integrands.h): the radial CDF of D cos. */
+BB_FN bb_quad_dist bb_smith_quad_dist(int dist, bb_params p) {
+    return bb_make_quad_dist(dist == BB_SMITH_BECKMANN ? BB_QUAD_BECKMANN : BB_QUAD_GGX, p.v[BB_SMITH_ALPHA_X],
+                             p.v[BB_SMITH_ALPHA_Y], BB_R(0.0));
+}
+
+/* The half-vector quadrature's integrand f cos_theta_i 4 (wo.h) / (D cos_theta_h) times
+ * djc = D J cos(theta_h) (integrands.h, bb_quad_halfvector_point): with f = D G2 F / (4 co ci)
+ * it is F G2 oh / (co ch) djc. f_oh = F(wo.h), oh = wo.h, co = cos_theta_o, ch = cos_theta_h. */
+BB_FN real bb_smith_halfvector_weight(int dist, bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co,
+                                      real ch, real djc) {
+    return f_oh * bb_smith_g2(dist, p, wo, wi) * oh / (co * ch) * djc;
+}
+
+#endif /* BRDFBAKE_BRDF_SMITH_H */
