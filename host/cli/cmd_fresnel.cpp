@@ -15,6 +15,7 @@
 #include <sstream>
 
 #include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/engine.h"
 #include "brdfbake/error.h"
 #include "brdfbake/output.h"
@@ -195,7 +196,7 @@ Curves evaluate_on_device(Engine& engine, const FresnelConfig& f, Precision prec
     cl::Buffer b_cos = bufs.input(cosines);
     cl::Buffer b_p = bufs.input(std::vector<double>(f.params.begin(), f.params.end()));
     cl::Buffer b_out = bufs.output(3 * n);
-    cl::Kernel kernel(program, "fresnel_curve");
+    cl::Kernel kernel(program, BB_ENTRY_NAME(BB_ENTRY_FRESNEL_CURVE));
     kernel.setArg(0, b_cos);
     kernel.setArg(1, b_p);
     kernel.setArg(2, cl_uint(n));

@@ -5,10 +5,7 @@
 #include <boost/math/special_functions/legendre.hpp>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
-#include <iostream>
-#include <map>
 #include <sstream>
 #include <type_traits>
 

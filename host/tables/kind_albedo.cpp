@@ -54,7 +54,7 @@ Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig&
     };
     add_rule(G32::abscissa(), G32::weights(), true);
     add_rule(G16::abscissa(), G16::weights(), false);
-    const std::vector<int> slots = sweep_slots(m);
+    const std::vector<int> slots = roughness_slots(m);
     std::vector<AlbedoCell> cells;
     for (double alpha : t.x.parameter)
         for (double mu : nodes) cells.push_back({mu, 0.0, with_alpha(m.params, slots, alpha)});

@@ -52,7 +52,7 @@ MuAlphaGrid mu_alpha_grid(const LutRequest& r, const ModelConfig& m) {
     g.table.kind = r.kind;
     g.table.x = mu_axis(r, r.width);
     g.table.y = alpha_axis(r, r.height, g.clamped);
-    const std::vector<int> slots = sweep_slots(m);
+    const std::vector<int> slots = roughness_slots(m);
     for (double alpha : g.table.y.parameter)
         for (double mu : g.table.x.parameter) g.cells.push_back({mu, 0.0, with_alpha(m.params, slots, alpha)});
     return g;

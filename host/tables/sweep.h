@@ -1,5 +1,6 @@
-// The roughness sweep of a table: which parameter slots of a model hold the alpha that a table's
-// roughness axis overwrites per texel. One place for `brdfbake lut` and the scene planner.
+// The roughness sweep of a table: a model spec resolved without its roughness, which a table's
+// roughness axis sets per texel in the slots the model registry names (roughness_slots in
+// brdfbake/spec.h). One place for `brdfbake lut` and the scene planner.
 #pragma once
 
 #include <optional>
@@ -9,11 +10,6 @@
 #include "brdfbake/spec.h"
 
 namespace brdfbake {
-
-/// The parameter slots that hold alpha_x and alpha_y of a model whose roughness tables sweep.
-/// Throws Error saying why a model has none (not a microfacet model; Torrance-Sparrow with the
-/// Blinn distribution has an exponent instead).
-std::vector<int> sweep_slots(const ModelConfig& model);
 
 /// A model spec without its roughness, resolved with a placeholder alpha that a table overwrites
 /// per texel; `canonical` leaves the placeholder out ("ggx" -> "ggx:shadowing=correlated").
