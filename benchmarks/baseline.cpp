@@ -18,7 +18,7 @@
 namespace brdfbake {
 namespace baseline {
 
-// The same Philox4x32-10 stream as host/albedo.cpp's replica_shifts: counter (r, "albd", 0, 0),
+// The same Philox4x32-10 stream as host/integrate/albedo.cpp's replica_shifts: counter (r, "albd", 0, 0),
 // key = the seed's two halves, 53-bit doubles from two words each.
 std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed) {
     using Philox = r123::Philox4x32;

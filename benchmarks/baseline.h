@@ -77,7 +77,7 @@ Peak fma_peak(double seconds = 0.25);
 /// What the baseline was compiled with, for the report.
 std::string compile_flags();
 
-/// Flops per sample of the inner loop, counted from its source as host/bench.cpp counts the
+/// Flops per sample of the inner loop, counted from its source as benchmarks/harness/bench.cpp counts the
 /// kernel's (+, -, *, /, sqrt, min/max and compare-select 1, fma 2; the tabulated work and the
 /// per-cell work left out; the plain loop's sin and cos left out too, baseline.cpp).
 double flops_per_sample(bool kernel_arithmetic, bool plain = false);

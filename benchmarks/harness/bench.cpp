@@ -436,7 +436,7 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
        << " samples; median of timed runs after a warm-up. Ratios: time of the strict tuned baseline "
           "(benchmarks/baseline_impl.h) and of the -ffast-math plain baseline (benchmarks/baseline_plain_impl.h, "
           "the issue's yardstick) over the row's time. Flops per sample counted from each implementation's source "
-          "(host/bench.cpp, benchmarks/baseline.cpp; the plain loop's sin and cos not counted).\n\n";
+          "(benchmarks/harness/bench.cpp, benchmarks/baseline.cpp; the plain loop's sin and cos not counted).\n\n";
     md << "| precision | implementation | time (s) | M samples/s | vs tuned baseline (strict) | "
           "vs plain baseline (-ffast-math) | "
           "flops/sample | GFLOP/s | of peak |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";

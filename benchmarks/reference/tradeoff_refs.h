@@ -1,5 +1,5 @@
 // Independent reference albedos for brdfbake-tradeoff: the textbook BRDF formulas of
-// tests/reference.h (long double, angle form, written afresh from the papers) integrated with
+// benchmarks/reference/reference.h (long double, angle form, written afresh from the papers) integrated with
 // Boost.Math's 31-point Gauss-Kronrod rule, adaptively bisected to an absolute error target. Nothing here calls the engine or its shared BRDF
 // headers.
 //

@@ -97,7 +97,7 @@
  *               the unit square) or HALFVECTOR (half-vector space, integrands.h).
  *   COSINE      1: its sampler is the cosine warp (sin^2 theta_i = u1), which the sampler-space
  *               rule runs in cos(theta_i) instead (bb_quad_sampler_is_cosine).
- *   DELTA       1: a delta lobe (eval is 0, the albedo is analytic; host/models/analytic.cpp).
+ *   DELTA       1: a delta lobe (eval is 0, the albedo is analytic; host/integrate/analytic.cpp).
  *   DISK        1: its sample is a function of the disk point bb_disk_polar(u1, u2) alone and
  *               it has the closed-form disk weight of the vector path (albedo_replicas_disk).
  *   VSAMPLE     1: its sampler is branch-free (the generic vector path albedo_replicas_points).

@@ -10,7 +10,7 @@
  *                         E_T(mu) = 1 - E_R(mu) of the energy; the transmitted radiance is
  *                         scaled by eta^2 (light entering the far side; 1/eta^2 leaving it),
  *                         because L/n^2 is invariant across the interface [PBR4 sec. 9.5.2].
- * The host reports these values directly (host/analytic.cpp); delta lobes are never integrated
+ * The host reports these values directly (host/integrate/analytic.cpp); delta lobes are never integrated
  * by Monte Carlo. The sample functions return the one direction the lobe reflects into with the
  * exact weight E(mu), so that a kernel that does sample them (the albedo kernel, point sampling
  * for parity tests) gets the closed form too, with zero variance.
