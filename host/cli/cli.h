@@ -8,6 +8,7 @@
 #include <functional>
 #include <memory>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "brdfbake/albedo.h"
@@ -48,14 +49,17 @@ void add_format_option(CLI::App* cmd, std::string& format, const std::vector<std
 /// What main() runs once the command line is parsed; returns the exit status.
 using Action = std::function<int()>;
 
-/// Adds the subcommand `name`: the caller adds its options into *options, and once the command
-/// line is parsed main() runs run(*options, global).
+/// Adds the subcommand `name` with a fresh set of options (`initial`), which the caller
+/// registers on the returned subcommand; once the command line is parsed main() runs
+/// run(options, global).
 template <typename Options, typename Run>
-CLI::App* add_command(CLI::App& app, const std::string& name, const std::string& description,
-                      const GlobalOptions& global, Action& action, std::shared_ptr<Options> options, Run run) {
+std::pair<CLI::App*, std::shared_ptr<Options>> add_command(CLI::App& app, const std::string& name,
+                                                           const std::string& description, const GlobalOptions& global,
+                                                           Action& action, Run run, Options initial = Options()) {
+    auto options = std::make_shared<Options>(std::move(initial));
     CLI::App* cmd = app.add_subcommand(name, description);
     cmd->callback([options, &global, &action, run] { action = [options, &global, run] { return run(*options, global); }; });
-    return cmd;
+    return {cmd, options};
 }
 
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action);

@@ -204,9 +204,8 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<AlbedoOptions>();
-    CLI::App* cmd = add_command(app, "albedo", "directional albedo E(mu_o) = integral of f cos(theta_i) dwi", global,
-                                action, o, run_albedo);
+    const auto [cmd, o] = add_command<AlbedoOptions>(
+        app, "albedo", "directional albedo E(mu_o) = integral of f cos(theta_i) dwi", global, action, run_albedo);
     cmd->add_option("--model", o->models,
                     "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8; repeat it to compare models")
         ->required();

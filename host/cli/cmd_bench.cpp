@@ -52,10 +52,9 @@ int run_bench_command(const BenchCmdOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<BenchCmdOptions>();
-    CLI::App* cmd = add_command(
+    const auto [cmd, o] = add_command<BenchCmdOptions>(
         app, "bench", "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak", global,
-        action, o, run_bench_command);
+        action, run_bench_command);
     cmd->add_flag("--full", o->full, "the whole suite (as brdfbake-bench): larger tables, repeated runs, sweeps");
     cmd->add_option("--table", o->table, "throughput table side N (N x N cells)");
     cmd->add_option("--samples", o->samples, "samples per cell of the throughput table");

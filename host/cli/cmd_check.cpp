@@ -185,10 +185,10 @@ void add_model_options(CLI::App* cmd, std::string& model, std::string& fresnel, 
 }  // namespace
 
 void add_check_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto a = std::make_shared<CheckArgs>();
-    CLI::App* cmd = add_command(
-        app, "check", "white furnace, reciprocity and NaN/Inf/negative scans; exit 0 passes, 1 a violation, 2 bad input",
-        global, action, a, run_check_command);
+    const auto [cmd, a] = add_command<CheckArgs>(
+        app, "check",
+        "white furnace, reciprocity and NaN/Inf/negative scans; exit 0 passes, 1 a violation, 2 bad input", global,
+        action, run_check_command);
     add_model_options(cmd, a->model, a->fresnel, a->wavelength_nm);
     cmd->add_option("--directions", a->options.directions, "furnace: outgoing theta values")->capture_default_str();
     cmd->add_option("--phis", a->options.phis, "furnace: outgoing phi values (anisotropic models)")->capture_default_str();
@@ -208,10 +208,9 @@ void add_check_command(CLI::App& app, const GlobalOptions& global, Action& actio
 }
 
 void add_reciprocity_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto a = std::make_shared<ReciprocityArgs>();
-    CLI::App* cmd = add_command(app, "reciprocity",
-                                "reciprocity-error map over (theta_i, theta_o) as EXR and heatmap", global, action, a,
-                                run_reciprocity);
+    const auto [cmd, a] = add_command<ReciprocityArgs>(
+        app, "reciprocity", "reciprocity-error map over (theta_i, theta_o) as EXR and heatmap", global, action,
+        run_reciprocity);
     add_model_options(cmd, a->model, a->fresnel, a->wavelength_nm);
     cmd->add_option("--resolution", a->resolution, "theta values per axis")->capture_default_str();
     cmd->add_option("--phi-resolution", a->phi_resolution, "azimuth differences per pair")->capture_default_str();

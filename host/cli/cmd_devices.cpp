@@ -60,9 +60,9 @@ int run_devices(const std::string& format_text, const GlobalOptions& g) {
 }  // namespace
 
 void add_devices_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto format = std::make_shared<std::string>("table");
-    CLI::App* cmd = add_command(app, "devices", "list OpenCL platforms and devices with their facts", global, action,
-                                format, run_devices);
+    const auto [cmd, format] =
+        add_command<std::string>(app, "devices", "list OpenCL platforms and devices with their facts", global, action,
+                                 run_devices, std::string("table"));
     cmd->add_option("--format", *format, "output format: table or json")
         ->check(CLI::IsMember({"table", "json"}))
         ->capture_default_str();

@@ -477,9 +477,8 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
 }  // namespace
 
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<FresnelOptions>();
-    CLI::App* cmd = add_command(app, "fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence", global,
-                                action, o, run_fresnel);
+    const auto [cmd, o] = add_command<FresnelOptions>(
+        app, "fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence", global, action, run_fresnel);
     cmd->add_option("--fresnel", o->fresnel,
                     "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
                     "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml");

@@ -113,10 +113,9 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
 }  // namespace
 
 void add_furnace_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto a = std::make_shared<FurnaceArgs>();
-    CLI::App* cmd = add_command(app, "furnace",
-                                "white-furnace picture: spheres under uniform white light, one per model", global,
-                                action, a, run_furnace);
+    const auto [cmd, a] = add_command<FurnaceArgs>(
+        app, "furnace", "white-furnace picture: spheres under uniform white light, one per model", global, action,
+        run_furnace);
     cmd->add_option("--model", a->models, "model spec (repeatable), or a model without alpha with --roughness")->required();
     cmd->add_option("--roughness", a->roughness, "comma-separated roughness values (alpha = roughness^2)");
     cmd->add_option("--fresnel", a->fresnel, "Fresnel spec")->capture_default_str();

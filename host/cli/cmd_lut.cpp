@@ -89,11 +89,10 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<LutOptions>();
     std::string kinds;
     for (const TableKind* k : table_kinds()) kinds += "\n  " + k->name + ": " + k->description;
-    CLI::App* cmd = add_command(app, "lut", "write a lookup table (OpenEXR, CSV or C header by the -o extension)",
-                                global, action, o, run_lut);
+    const auto [cmd, o] = add_command<LutOptions>(
+        app, "lut", "write a lookup table (OpenEXR, CSV or C header by the -o extension)", global, action, run_lut);
     cmd->add_option("kind", o->request.kind, "table kind:" + kinds)->required();
     cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable")
         ->required();

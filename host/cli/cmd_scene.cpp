@@ -511,10 +511,9 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_plan_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<PlanOptions>();
-    CLI::App* cmd = add_command(app, "plan",
-                                "list the tables a scene needs (kinds, ranges, sizes, materials, estimates)", global,
-                                action, o, run_plan);
+    const auto [cmd, o] = add_command<PlanOptions>(
+        app, "plan", "list the tables a scene needs (kinds, ranges, sizes, materials, estimates)", global, action,
+        run_plan);
     add_scene_options(cmd, o->scene);
     add_format_option(cmd, o->format, {"table", "json"});
     cmd->add_flag("--measure-kernels", o->measure,
@@ -523,9 +522,8 @@ void add_plan_command(CLI::App& app, const GlobalOptions& global, Action& action
 }
 
 void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<BakeOptions>();
-    CLI::App* cmd = add_command(app, "bake", "compute the tables a scene needs into a folder, with an index.json",
-                                global, action, o, run_bake);
+    const auto [cmd, o] = add_command<BakeOptions>(
+        app, "bake", "compute the tables a scene needs into a folder, with an index.json", global, action, run_bake);
     add_scene_options(cmd, o->scene);
     cmd->add_option("-o,--output", o->output, "output folder")->capture_default_str();
     cmd->add_flag("--force", o->force, "recompute tables that are up to date");

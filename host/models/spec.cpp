@@ -125,12 +125,19 @@ ModelConfig resolve_lambert(KeyReader& keys) {
     return m;
 }
 
-ModelConfig resolve_ggx(KeyReader& keys) {
+// The microfacet lobes with a Smith shadowing choice: alpha in (slot_x, slot_y), the shadowing
+// in shadowing_slot.
+ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, int slot_x, int slot_y,
+                                     int shadowing_slot) {
     ModelConfig m;
-    m.canonical = "ggx";
-    read_alpha(keys, m, BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y);
-    m.params[BB_GGX_SHADOWING] = read_shadowing(keys, m.canonical);
+    m.canonical = name;
+    read_alpha(keys, m, slot_x, slot_y);
+    m.params[shadowing_slot] = read_shadowing(keys, m.canonical);
     return m;
+}
+
+ModelConfig resolve_ggx(KeyReader& keys) {
+    return resolve_smith_microfacet(keys, "ggx", BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, BB_GGX_SHADOWING);
 }
 
 ModelConfig resolve_oren_nayar(KeyReader& keys) {
@@ -189,11 +196,7 @@ ModelConfig resolve_torrance_sparrow(KeyReader& keys) {
 }
 
 ModelConfig resolve_beckmann(KeyReader& keys) {
-    ModelConfig m;
-    m.canonical = "beckmann";
-    read_alpha(keys, m, BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y);
-    m.params[BB_BECKMANN_SHADOWING] = read_shadowing(keys, m.canonical);
-    return m;
+    return resolve_smith_microfacet(keys, "beckmann", BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y, BB_BECKMANN_SHADOWING);
 }
 
 ModelConfig resolve_mirror(KeyReader&) {

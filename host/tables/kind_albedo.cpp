@@ -68,22 +68,18 @@ Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig&
 }  // namespace
 
 TableKind albedo_kind() {
-    TableKind k = kind_entry(TableKindId::Albedo, "albedo",
-                             "directional albedo E(mu_o, alpha) = integral of f cos(theta_i) dwi (2D)", albedo_program,
-                             compute_albedo_table);
+    TableKind k(TableKindId::Albedo, "albedo", "directional albedo E(mu_o, alpha) = integral of f cos(theta_i) dwi (2D)",
+                albedo_program, compute_albedo_table);
     k.plan_fresnel = "none (F = 1: each lobe's Fresnel enters at render time)";
     k.tileable = true;
     return k;
 }
 
 TableKind eavg_kind() {
-    TableKind k = albedo_kind();
-    k.id = TableKindId::Eavg;
-    k.name = "eavg";
-    k.description = "average albedo Eavg(alpha) = 2 integral of E(mu) mu dmu (1D)";
+    TableKind k = variant_of(albedo_kind(), TableKindId::Eavg, "eavg",
+                             "average albedo Eavg(alpha) = 2 integral of E(mu) mu dmu (1D)", compute_eavg_table);
     k.one_dimensional = true;
     k.cells_per_texel = 48;  // 32 + 16 Gauss-Legendre nodes in mu
-    k.compute = compute_eavg_table;
     return k;
 }
 

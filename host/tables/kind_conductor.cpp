@@ -60,11 +60,10 @@ void validate_conductor(const LutRequest& r, const ModelConfig&, const FresnelCo
 }  // namespace
 
 TableKind conductor_kind() {
-    TableKind k = kind_entry(TableKindId::Conductor, "conductor",
-                             "Fresnel-weighted albedo E(mu_o, alpha) of a conductor: --fresnel conductor:eta=,k= "
-                             "(channel E) or metal:X / nk:FILE (channels R, G, B at 650, 550, 450 nm, or E at "
-                             "--wavelength)",
-                             conductor_program, compute_conductor);
+    TableKind k(TableKindId::Conductor, "conductor",
+                "Fresnel-weighted albedo E(mu_o, alpha) of a conductor: --fresnel conductor:eta=,k= (channel E) or "
+                "metal:X / nk:FILE (channels R, G, B at 650, 550, 450 nm, or E at --wavelength)",
+                conductor_program, compute_conductor);
     k.bakes_lobe_fresnel = true;
     k.needs_conductor_fresnel = true;
     k.lobe_requirement = "a conductor table needs a conductor Fresnel (conductor:, metal:, nk:)";

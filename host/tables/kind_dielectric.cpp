@@ -114,11 +114,10 @@ std::vector<std::string> dielectric_program(const LutRequest& r) { return {"diel
 }  // namespace
 
 TableKind dielectric_kind() {
-    TableKind k = kind_entry(TableKindId::Dielectric, "dielectric",
-                             "rough dielectric (GGX) reflected and transmitted energy R, T from outside (eta) and "
-                             "R_inside, T_inside from inside (1/eta) over (mu_o, alpha, eta) (3D, slices stacked "
-                             "along y)",
-                             dielectric_program, compute_dielectric_table);
+    TableKind k(TableKindId::Dielectric, "dielectric",
+                "rough dielectric (GGX) reflected and transmitted energy R, T from outside (eta) and "
+                "R_inside, T_inside from inside (1/eta) over (mu_o, alpha, eta) (3D, slices stacked along y)",
+                dielectric_program, compute_dielectric_table);
     k.eta_axis = true;
     k.cells_per_texel = 2;  // both sides of the interface
     k.plan_fresnel = "exact dielectric at each eta";

@@ -53,10 +53,10 @@ Table compute_dfg_ms(Engine& engine, const LutRequest& r, const ModelConfig& m, 
 }  // namespace
 
 TableKind dfg_kind() {
-    TableKind k = kind_entry(TableKindId::Dfg, "dfg",
-                             "split-sum terms A, B over (mu_o, alpha): f/F weighted by 1 - (1 - wo.wh)^5 and "
-                             "(1 - wo.wh)^5 (Karis 2013)",
-                             split_sum_programs, compute_dfg);
+    TableKind k(TableKindId::Dfg, "dfg",
+                "split-sum terms A, B over (mu_o, alpha): f/F weighted by 1 - (1 - wo.wh)^5 and (1 - wo.wh)^5 "
+                "(Karis 2013)",
+                split_sum_programs, compute_dfg);
     k.fresnel_factored_out = true;
     k.plan_fresnel = "factored out (split sum)";
     k.tileable = true;
@@ -66,13 +66,10 @@ TableKind dfg_kind() {
 }
 
 TableKind dfg_ms_kind() {
-    TableKind k = dfg_kind();
-    k.id = TableKindId::DfgMs;
-    k.name = "dfg-ms";
-    k.description = "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
-                    "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)";
-    k.compute = compute_dfg_ms;
-    return k;
+    return variant_of(dfg_kind(), TableKindId::DfgMs, "dfg-ms",
+                      "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
+                      "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)",
+                      compute_dfg_ms);
 }
 
 }  // namespace tables

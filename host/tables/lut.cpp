@@ -110,26 +110,20 @@ void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::st
     }
 }
 
-FresnelConfig request_fresnel(const LutRequest& r) { return resolve_fresnel(r.fresnel, r.wavelength_nm); }
-
-int constant_one(const LutRequest&) { return 1; }
-
-TableKind kind_entry(TableKindId id, const std::string& name, const std::string& description,
-                     std::vector<std::string> (*kernel_programs)(const LutRequest&),
-                     Table (*compute)(Engine&, const LutRequest&, const ModelConfig&, const FresnelConfig&)) {
-    TableKind k;
-    k.id = id;
-    k.name = name;
-    k.description = description;
-    k.value_channels = constant_one;
-    k.integrations = constant_one;
-    k.kernel_programs = kernel_programs;
-    k.fresnel = request_fresnel;
-    k.compute = compute;
-    return k;
+TableKind variant_of(TableKind base, TableKindId id, const std::string& name, const std::string& description,
+                     TableKind::Compute compute) {
+    base.id = id;
+    base.name = name;
+    base.description = description;
+    base.compute = compute;
+    return base;
 }
 
 }  // namespace tables
+
+int one_per_request(const LutRequest&) { return 1; }
+
+FresnelConfig request_fresnel(const LutRequest& r) { return resolve_fresnel(r.fresnel, r.wavelength_nm); }
 
 namespace {
 

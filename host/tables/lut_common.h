@@ -52,17 +52,10 @@ Table directional_albedo_table(Engine& engine, const LutRequest& r, const ModelC
 void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::string& fresnel,
               const std::string& method, std::uint64_t samples_per_cell, bool clamped);
 
-/// The request's Fresnel term at its wavelength (most kinds' TableKind::fresnel).
-FresnelConfig request_fresnel(const LutRequest& r);
-
-/// 1 whatever the request: the value channels and integrations per cell of most kinds.
-int constant_one(const LutRequest&);
-
-/// A registry entry with what most kinds share (one value channel, one integration per cell,
-/// the request's Fresnel term); each kind then sets only what differs.
-TableKind kind_entry(TableKindId id, const std::string& name, const std::string& description,
-                     std::vector<std::string> (*kernel_programs)(const LutRequest&),
-                     Table (*compute)(Engine&, const LutRequest&, const ModelConfig&, const FresnelConfig&));
+/// A kind that is `base` in all but its id, name, description and computation (eavg of albedo,
+/// dfg-ms of dfg).
+TableKind variant_of(TableKind base, TableKindId id, const std::string& name, const std::string& description,
+                     TableKind::Compute compute);
 
 // The entries of the registry, one per kind (host/tables/registry.cpp lists them).
 TableKind albedo_kind();
