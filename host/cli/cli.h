@@ -41,6 +41,9 @@ struct MethodChoice {
 /// Throws Error for a sample count, tolerance or --max-samples that is not positive.
 MethodChoice resolve_method_choice(const MethodOptions& o);
 
+/// The help text of --fresnel: the Fresnel spec forms.
+extern const char* const kFresnelSpecHelp;
+
 /// --precision float|double (the kernels' arithmetic), described by `description`.
 void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description = "kernel arithmetic");
 /// --format, one of `formats` ("table", "json", "csv").

@@ -42,6 +42,10 @@ MethodChoice resolve_method_choice(const MethodOptions& o) {
     return c;
 }
 
+const char* const kFresnelSpecHelp =
+    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, conductor-approx:eta=E,k=K, "
+    "metal:Al|Au|Ag|Cu, nk:FILE.yml";
+
 void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description) {
     cmd->add_option("--precision", precision, description)
         ->check(CLI::IsMember({"float", "double"}))

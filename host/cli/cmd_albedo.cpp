@@ -209,10 +209,7 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
     cmd->add_option("--model", o->models,
                     "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8; repeat it to compare models")
         ->required();
-    cmd->add_option("--fresnel", o->fresnel,
-                    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
-                    "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml")
-        ->capture_default_str();
+    cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp)->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
     cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
     cmd->add_option("--phi", o->phi, "comma-separated phi_o in degrees (anisotropic models)")->capture_default_str();

@@ -479,9 +479,7 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     const auto [cmd, o] = add_command<FresnelOptions>(
         app, "fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence", global, action, run_fresnel);
-    cmd->add_option("--fresnel", o->fresnel,
-                    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
-                    "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml");
+    cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp);
     cmd->add_option("--theta", o->theta, "comma-separated angles of incidence in degrees, in [0, 90]")
         ->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured data (metal:, nk:)");
