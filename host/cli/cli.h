@@ -6,7 +6,10 @@
 
 #include <cstdint>
 #include <functional>
+#include <memory>
 #include <string>
+#include <utility>
+#include <vector>
 
 #include "brdfbake/albedo.h"
 
@@ -19,19 +22,48 @@ struct GlobalOptions {
 };
 
 /// --samples, --method, --tolerance and --max-samples, shared by the integrating commands.
-void add_method_options(CLI::App* cmd, std::int64_t& samples, std::string& method, double& tolerance,
-                        std::int64_t& max_samples, const std::string& per);
+struct MethodOptions {
+    std::int64_t samples = 1 << 18;
+    std::string method = "auto";
+    double tolerance = 0.0;
+    std::int64_t max_samples = std::int64_t(1) << 26;
+};
+/// Adds the MethodOptions to `cmd`; `per` names what the samples are spent on ("texel").
+void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per);
 
-/// The method and tolerance the options ask for: "auto" with a sample count is the default
-/// method (importance sampling); with a tolerance, auto lets the engine choose per cell.
+/// The sample count, method and tolerance the options ask for: "auto" with a sample count is the
+/// default method (importance sampling); with a tolerance, auto lets the engine choose per cell.
 struct MethodChoice {
+    std::uint64_t samples = 0;
     Method method = Method::Importance;
     ToleranceRequest tolerance;  // tolerance.tolerance == 0: a fixed sample count
 };
-MethodChoice resolve_method_choice(const std::string& method, double tolerance, std::int64_t max_samples);
+/// Throws Error for a sample count, tolerance or --max-samples that is not positive.
+MethodChoice resolve_method_choice(const MethodOptions& o);
+
+/// The help text of --fresnel: the Fresnel spec forms.
+extern const char* const kFresnelSpecHelp;
+
+/// --precision float|double (the kernels' arithmetic), described by `description`.
+void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description = "kernel arithmetic");
+/// --format, one of `formats` ("table", "json", "csv").
+void add_format_option(CLI::App* cmd, std::string& format, const std::vector<std::string>& formats);
 
 /// What main() runs once the command line is parsed; returns the exit status.
 using Action = std::function<int()>;
+
+/// Adds the subcommand `name` with a fresh set of options (`initial`), which the caller
+/// registers on the returned subcommand; once the command line is parsed main() runs
+/// run(options, global).
+template <typename Options, typename Run>
+std::pair<CLI::App*, std::shared_ptr<Options>> add_command(CLI::App& app, const std::string& name,
+                                                           const std::string& description, const GlobalOptions& global,
+                                                           Action& action, Run run, Options initial = Options()) {
+    auto options = std::make_shared<Options>(std::move(initial));
+    CLI::App* cmd = app.add_subcommand(name, description);
+    cmd->callback([options, &global, &action, run] { action = [options, &global, run] { return run(*options, global); }; });
+    return {cmd, options};
+}
 
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_devices_command(CLI::App& app, const GlobalOptions& global, Action& action);

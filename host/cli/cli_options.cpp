@@ -1,5 +1,5 @@
-// Options shared by the commands that integrate: how much work, by which method, or to which
-// tolerance.
+// Options shared by the commands: how much work an integration does, by which method, or to
+// which tolerance; the kernels' arithmetic; the output format.
 #include <cmath>
 
 #include "brdfbake/error.h"
@@ -7,38 +7,53 @@
 
 namespace brdfbake {
 
-void add_method_options(CLI::App* cmd, std::int64_t& samples, std::string& method, double& tolerance,
-                        std::int64_t& max_samples, const std::string& per) {
-    CLI::Option* s = cmd->add_option("--samples", samples,
+void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per) {
+    CLI::Option* s = cmd->add_option("--samples", o.samples,
                                      "samples per " + per + " (quadrature: n = sqrt(samples/4) nodes per axis of the finer rule, n^2 per azimuth piece)")
                          ->capture_default_str();
-    cmd->add_option("--method", method,
+    cmd->add_option("--method", o.method,
                     "integration method: importance (the model's sampler, randomised Hammersley), qmc and mc "
                     "(uniform hemisphere, randomised Hammersley or Philox), quadrature (Gauss-Legendre, in "
                     "half-vector space for microfacet lobes); auto: importance with --samples, the engine's "
                     "per-cell choice with --tolerance")
         ->check(CLI::IsMember({"auto", "importance", "qmc", "mc", "quadrature"}))
         ->capture_default_str();
-    cmd->add_option("--tolerance", tolerance,
+    cmd->add_option("--tolerance", o.tolerance,
                     "absolute error to reach in every " + per + " instead of a fixed sample count: each is refined "
                     "until its error estimate is at most this")
         ->excludes(s);
-    cmd->add_option("--max-samples", max_samples, "with --tolerance: the most samples to spend on one " + per)
+    cmd->add_option("--max-samples", o.max_samples, "with --tolerance: the most samples to spend on one " + per)
         ->capture_default_str();
 }
 
-MethodChoice resolve_method_choice(const std::string& method, double tolerance, std::int64_t max_samples) {
+MethodChoice resolve_method_choice(const MethodOptions& o) {
+    if (o.samples <= 0) throw Error("--samples must be positive");
     MethodChoice c;
-    const bool is_auto = method == "auto";
-    c.method = is_auto ? Method::Importance : parse_method(method);
-    if (tolerance != 0.0) {
-        if (!(tolerance > 0.0) || !std::isfinite(tolerance)) throw Error("--tolerance must be a positive number");
-        if (max_samples <= 0) throw Error("--max-samples must be positive");
-        c.tolerance.tolerance = tolerance;
+    c.samples = std::uint64_t(o.samples);
+    const bool is_auto = o.method == "auto";
+    c.method = is_auto ? Method::Importance : parse_method(o.method);
+    if (o.tolerance != 0.0) {
+        if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance)) throw Error("--tolerance must be a positive number");
+        if (o.max_samples <= 0) throw Error("--max-samples must be positive");
+        c.tolerance.tolerance = o.tolerance;
         c.tolerance.auto_method = is_auto;
-        c.tolerance.max_samples = std::uint64_t(max_samples);
+        c.tolerance.max_samples = std::uint64_t(o.max_samples);
     }
     return c;
+}
+
+const char* const kFresnelSpecHelp =
+    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, conductor-approx:eta=E,k=K, "
+    "metal:Al|Au|Ag|Cu, nk:FILE.yml";
+
+void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description) {
+    cmd->add_option("--precision", precision, description)
+        ->check(CLI::IsMember({"float", "double"}))
+        ->capture_default_str();
+}
+
+void add_format_option(CLI::App* cmd, std::string& format, const std::vector<std::string>& formats) {
+    cmd->add_option("--format", format, "output format")->check(CLI::IsMember(formats))->capture_default_str();
 }
 
 }  // namespace brdfbake

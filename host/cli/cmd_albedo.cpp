@@ -29,10 +29,7 @@ struct AlbedoOptions {
     double wavelength_nm = 0.0;
     std::string mu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
     std::string phi = "0";
-    std::int64_t samples = 1 << 18;
-    double tolerance = 0.0;
-    std::int64_t max_samples = std::int64_t(1) << 26;
-    std::string method = "auto";
+    MethodOptions integration;
     std::string precision = "float";
     std::string format = "table";
     std::string output;
@@ -169,8 +166,7 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
         if (!(mu > 0.0 && mu <= 1.0))
             throw Error("--mu: " + format_number(mu) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
     const std::vector<double> phis = parse_number_list(o.phi, "--phi");
-    if (o.samples <= 0) throw Error("--samples must be positive");
-    const MethodChoice choice = resolve_method_choice(o.method, o.tolerance, o.max_samples);
+    const MethodChoice choice = resolve_method_choice(o.integration);
     std::vector<Run> runs;
     for (const std::string& spec : o.models) {
         Run r;
@@ -179,7 +175,7 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
             throw Error("model '" + r.model.name + "' has no Fresnel term; drop --fresnel");
         r.request.model = r.model.id;
         r.request.fresnel = fresnel;
-        r.request.samples = std::uint64_t(o.samples);
+        r.request.samples = choice.samples;
         r.request.method = choice.method;
         r.request.precision = o.precision == "double" ? Precision::Double : Precision::Float;
         r.request.seed = o.seed;
@@ -208,29 +204,21 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<AlbedoOptions>();
-    CLI::App* cmd = app.add_subcommand("albedo", "directional albedo E(mu_o) = integral of f cos(theta_i) dwi");
+    const auto [cmd, o] = add_command<AlbedoOptions>(
+        app, "albedo", "directional albedo E(mu_o) = integral of f cos(theta_i) dwi", global, action, run_albedo);
     cmd->add_option("--model", o->models,
                     "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8; repeat it to compare models")
         ->required();
-    cmd->add_option("--fresnel", o->fresnel,
-                    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
-                    "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml")
-        ->capture_default_str();
+    cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp)->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
     cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
     cmd->add_option("--phi", o->phi, "comma-separated phi_o in degrees (anisotropic models)")->capture_default_str();
-    add_method_options(cmd, o->samples, o->method, o->tolerance, o->max_samples, "direction");
-    cmd->add_option("--precision", o->precision, "kernel arithmetic")
-        ->check(CLI::IsMember({"float", "double"}))
-        ->capture_default_str();
-    cmd->add_option("--format", o->format, "output format")
-        ->check(CLI::IsMember({"table", "json", "csv"}))
-        ->capture_default_str();
+    add_method_options(cmd, o->integration, "direction");
+    add_precision_option(cmd, o->precision);
+    add_format_option(cmd, o->format, {"table", "json", "csv"});
     cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
     cmd->add_option("--plot", o->plot, "draw E(mu) curves, one per model (and phi), into FILE.png or .svg");
     cmd->add_option("--seed", o->seed, "seed of the randomised point sets")->capture_default_str();
-    cmd->callback([o, &global, &action] { action = [o, &global] { return run_albedo(*o, global); }; });
 }
 
 }  // namespace brdfbake

@@ -52,16 +52,15 @@ int run_bench_command(const BenchCmdOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<BenchCmdOptions>();
-    CLI::App* cmd = app.add_subcommand(
-        "bench", "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak");
+    const auto [cmd, o] = add_command<BenchCmdOptions>(
+        app, "bench", "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak", global,
+        action, run_bench_command);
     cmd->add_flag("--full", o->full, "the whole suite (as brdfbake-bench): larger tables, repeated runs, sweeps");
     cmd->add_option("--table", o->table, "throughput table side N (N x N cells)");
     cmd->add_option("--samples", o->samples, "samples per cell of the throughput table");
     cmd->add_option("--json", o->json, "write the report as JSON");
     cmd->add_option("--markdown", o->markdown, "write the tables as Markdown");
     cmd->add_option("--plot", o->plot, "plot time against cells x samples (.png or .svg)");
-    cmd->callback([o, &global, &action] { action = [o, &global] { return run_bench_command(*o, global); }; });
 }
 
 }  // namespace brdfbake

@@ -185,16 +185,15 @@ void add_model_options(CLI::App* cmd, std::string& model, std::string& fresnel, 
 }  // namespace
 
 void add_check_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto a = std::make_shared<CheckArgs>();
-    CLI::App* cmd = app.add_subcommand(
-        "check", "white furnace, reciprocity and NaN/Inf/negative scans; exit 0 passes, 1 a violation, 2 bad input");
+    const auto [cmd, a] = add_command<CheckArgs>(
+        app, "check",
+        "white furnace, reciprocity and NaN/Inf/negative scans; exit 0 passes, 1 a violation, 2 bad input", global,
+        action, run_check_command);
     add_model_options(cmd, a->model, a->fresnel, a->wavelength_nm);
     cmd->add_option("--directions", a->options.directions, "furnace: outgoing theta values")->capture_default_str();
     cmd->add_option("--phis", a->options.phis, "furnace: outgoing phi values (anisotropic models)")->capture_default_str();
     cmd->add_option("--samples", a->samples, "furnace: samples per direction")->capture_default_str();
-    cmd->add_option("--precision", a->precision, "furnace kernel arithmetic")
-        ->check(CLI::IsMember({"float", "double"}))
-        ->capture_default_str();
+    add_precision_option(cmd, a->precision, "furnace kernel arithmetic");
     cmd->add_option("--energy-tolerance", a->options.energy_tolerance,
                     "allowed albedo above 1 beyond the error estimate")
         ->capture_default_str();
@@ -204,23 +203,20 @@ void add_check_command(CLI::App& app, const GlobalOptions& global, Action& actio
     cmd->add_option("--reciprocity-tolerance", a->options.reciprocity_tolerance,
                     "allowed relative reciprocity error (at least 1e-3 on a device without double)")
         ->capture_default_str();
-    cmd->add_option("--format", a->format, "output format")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
+    add_format_option(cmd, a->format, {"table", "json"});
     cmd->add_option("-o,--output", a->output, "write the report to FILE");
-    cmd->callback([a, &global, &action] { action = [a, &global] { return run_check_command(*a, global); }; });
 }
 
 void add_reciprocity_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto a = std::make_shared<ReciprocityArgs>();
-    CLI::App* cmd = app.add_subcommand("reciprocity", "reciprocity-error map over (theta_i, theta_o) as EXR and heatmap");
+    const auto [cmd, a] = add_command<ReciprocityArgs>(
+        app, "reciprocity", "reciprocity-error map over (theta_i, theta_o) as EXR and heatmap", global, action,
+        run_reciprocity);
     add_model_options(cmd, a->model, a->fresnel, a->wavelength_nm);
     cmd->add_option("--resolution", a->resolution, "theta values per axis")->capture_default_str();
     cmd->add_option("--phi-resolution", a->phi_resolution, "azimuth differences per pair")->capture_default_str();
-    cmd->add_option("--precision", a->precision, "kernel arithmetic")
-        ->check(CLI::IsMember({"float", "double"}))
-        ->capture_default_str();
+    add_precision_option(cmd, a->precision);
     cmd->add_option("-o,--output", a->output, "map as .exr, .csv or .h");
     cmd->add_option("--plot", a->plot, "heatmap as .png or .svg");
-    cmd->callback([a, &global, &action] { action = [a, &global] { return run_reciprocity(*a, global); }; });
 }
 
 }  // namespace brdfbake

@@ -60,12 +60,12 @@ int run_devices(const std::string& format_text, const GlobalOptions& g) {
 }  // namespace
 
 void add_devices_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto format = std::make_shared<std::string>("table");
-    CLI::App* cmd = app.add_subcommand("devices", "list OpenCL platforms and devices with their facts");
+    const auto [cmd, format] =
+        add_command<std::string>(app, "devices", "list OpenCL platforms and devices with their facts", global, action,
+                                 run_devices, std::string("table"));
     cmd->add_option("--format", *format, "output format: table or json")
         ->check(CLI::IsMember({"table", "json"}))
         ->capture_default_str();
-    cmd->callback([format, &global, &action] { action = [format, &global] { return run_devices(*format, global); }; });
 }
 
 }  // namespace brdfbake

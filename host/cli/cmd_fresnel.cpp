@@ -477,24 +477,19 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
 }  // namespace
 
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<FresnelOptions>();
-    CLI::App* cmd = app.add_subcommand("fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence");
-    cmd->add_option("--fresnel", o->fresnel,
-                    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, "
-                    "conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml");
+    const auto [cmd, o] = add_command<FresnelOptions>(
+        app, "fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence", global, action, run_fresnel);
+    cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp);
     cmd->add_option("--theta", o->theta, "comma-separated angles of incidence in degrees, in [0, 90]")
         ->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured data (metal:, nk:)");
-    cmd->add_option("--precision", o->precision, "kernel arithmetic")->capture_default_str()
-        ->check(CLI::IsMember({"float", "double"}));
-    cmd->add_option("--format", o->format, "output format")->capture_default_str()
-        ->check(CLI::IsMember({"table", "json", "csv"}));
+    add_precision_option(cmd, o->precision);
+    add_format_option(cmd, o->format, {"table", "json", "csv"});
     cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
     cmd->add_option("--plot", o->plot, "draw the curves into FILE.png or FILE.svg");
     cmd->add_flag("--compare", o->compare,
                   "draw the comparison figure: exact vs approximate vs Schlick for a metal (default metal:Al at "
                   "550 nm) beside eta = 1.5 seen from outside and inside; needs --plot");
-    cmd->callback([o, &global, &action] { action = [o, &global] { return run_fresnel(*o, global); }; });
 }
 
 }  // namespace brdfbake

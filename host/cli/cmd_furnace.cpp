@@ -113,8 +113,9 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
 }  // namespace
 
 void add_furnace_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto a = std::make_shared<FurnaceArgs>();
-    CLI::App* cmd = app.add_subcommand("furnace", "white-furnace picture: spheres under uniform white light, one per model");
+    const auto [cmd, a] = add_command<FurnaceArgs>(
+        app, "furnace", "white-furnace picture: spheres under uniform white light, one per model", global, action,
+        run_furnace);
     cmd->add_option("--model", a->models, "model spec (repeatable), or a model without alpha with --roughness")->required();
     cmd->add_option("--roughness", a->roughness, "comma-separated roughness values (alpha = roughness^2)");
     cmd->add_option("--fresnel", a->fresnel, "Fresnel spec")->capture_default_str();
@@ -123,7 +124,6 @@ void add_furnace_command(CLI::App& app, const GlobalOptions& global, Action& act
     cmd->add_option("--nodes", a->nodes, "mu values at which E is integrated")->capture_default_str();
     cmd->add_option("--samples", a->samples, "samples per mu value")->capture_default_str();
     cmd->add_option("-o,--output", a->output, "picture: .png or .svg")->required();
-    cmd->callback([a, &global, &action] { action = [a, &global] { return run_furnace(*a, global); }; });
 }
 
 }  // namespace brdfbake

@@ -19,11 +19,8 @@ struct LutOptions {
     std::string size = "32x32";
     std::string alpha_range = "0,1";
     std::string eta_range = "1,3";
-    std::int64_t samples = 1 << 18;
-    double tolerance = 0.0;
-    std::int64_t max_samples = std::int64_t(1) << 26;
+    MethodOptions integration;
     std::string precision = "float";
-    std::string method = "auto";
     bool half = false;
     std::string preview;  // default: the output's name with .png
     bool no_preview = false;
@@ -65,9 +62,8 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     if (eta.size() != 2) throw Error("--eta-range needs two numbers: LO,HI");
     r.eta_lo = eta[0];
     r.eta_hi = eta[1];
-    if (o.samples <= 0) throw Error("--samples must be positive");
-    r.samples = std::uint64_t(o.samples);
-    const MethodChoice choice = resolve_method_choice(o.method, o.tolerance, o.max_samples);
+    const MethodChoice choice = resolve_method_choice(o.integration);
+    r.samples = choice.samples;
     r.method = choice.method;
     r.tolerance = choice.tolerance;
     r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
@@ -93,10 +89,10 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<LutOptions>();
     std::string kinds;
     for (const TableKind* k : table_kinds()) kinds += "\n  " + k->name + ": " + k->description;
-    CLI::App* cmd = app.add_subcommand("lut", "write a lookup table (OpenEXR, CSV or C header by the -o extension)");
+    const auto [cmd, o] = add_command<LutOptions>(
+        app, "lut", "write a lookup table (OpenEXR, CSV or C header by the -o extension)", global, action, run_lut);
     cmd->add_option("kind", o->request.kind, "table kind:" + kinds)->required();
     cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable")
         ->required();
@@ -111,15 +107,12 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->capture_default_str();
     cmd->add_option("--alpha-range", o->alpha_range, "LO,HI of the roughness axis coordinate")->capture_default_str();
     cmd->add_option("--eta-range", o->eta_range, "LO,HI of the eta axis (dielectric)")->capture_default_str();
-    add_method_options(cmd, o->samples, o->method, o->tolerance, o->max_samples, "texel");
-    cmd->add_option("--precision", o->precision, "kernel arithmetic")
-        ->check(CLI::IsMember({"float", "double"}))
-        ->capture_default_str();
+    add_method_options(cmd, o->integration, "texel");
+    add_precision_option(cmd, o->precision);
     cmd->add_flag("--half", o->half, "store half-float EXR channels instead of float32");
     cmd->add_option("-o,--output", o->output, "output file: .exr, .csv or .h")->required();
     cmd->add_option("--preview", o->preview, "preview picture (.png or .svg); default: the output name with .png");
     cmd->add_flag("--no-preview", o->no_preview, "write no preview picture");
-    cmd->callback([o, &global, &action] { action = [o, &global] { return run_lut(*o, global); }; });
 }
 
 }  // namespace brdfbake

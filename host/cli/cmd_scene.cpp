@@ -511,23 +511,22 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
 }  // namespace
 
 void add_plan_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<PlanOptions>();
-    CLI::App* cmd = app.add_subcommand("plan", "list the tables a scene needs (kinds, ranges, sizes, materials, estimates)");
+    const auto [cmd, o] = add_command<PlanOptions>(
+        app, "plan", "list the tables a scene needs (kinds, ranges, sizes, materials, estimates)", global, action,
+        run_plan);
     add_scene_options(cmd, o->scene);
-    cmd->add_option("--format", o->format, "output format")->check(CLI::IsMember({"table", "json"}))->capture_default_str();
+    add_format_option(cmd, o->format, {"table", "json"});
     cmd->add_flag("--measure-kernels", o->measure,
                   "build the kernels for the scene's models and for every model on the device; report build time and "
                   "binary size");
-    cmd->callback([o, &global, &action] { action = [o, &global] { return run_plan(*o, global); }; });
 }
 
 void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    auto o = std::make_shared<BakeOptions>();
-    CLI::App* cmd = app.add_subcommand("bake", "compute the tables a scene needs into a folder, with an index.json");
+    const auto [cmd, o] = add_command<BakeOptions>(
+        app, "bake", "compute the tables a scene needs into a folder, with an index.json", global, action, run_bake);
     add_scene_options(cmd, o->scene);
     cmd->add_option("-o,--output", o->output, "output folder")->capture_default_str();
     cmd->add_flag("--force", o->force, "recompute tables that are up to date");
-    cmd->callback([o, &global, &action] { action = [o, &global] { return run_bake(*o, global); }; });
 }
 
 }  // namespace brdfbake

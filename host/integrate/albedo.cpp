@@ -145,9 +145,39 @@ void check_sampling(std::uint64_t samples, unsigned replicas) {
     if (samples / replicas > 0xffffffffu) throw Error("--samples is too large (at most 2^32 per replica)");
 }
 
-cl::NDRange global_range(size_t items, size_t local) { return cl::NDRange((items + local - 1) / local * local); }
-
 constexpr size_t kLocalSize = 8;
+
+/// Sets the kernel's arguments from index `first` on, in order; returns the index after them.
+template <typename... Args>
+cl_uint set_args(cl::Kernel& kernel, cl_uint first, const Args&... args) {
+    (kernel.setArg(first++, args), ...);
+    return first;
+}
+
+/// Runs an integration kernel over n_items work-items and returns its event. An explicit small
+/// work-group: the default could give PoCL two groups for two cores, or one, whatever the table
+/// size (issue 9).
+cl::Event run_items(Engine& engine, cl::Kernel& kernel, size_t n_items) {
+    cl::Event done;
+    const size_t global = (n_items + kLocalSize - 1) / kLocalSize * kLocalSize;
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(kLocalSize), nullptr,
+                                        &done);
+    return done;
+}
+
+/// The per-item counts of non-finite samples, the last output of every integration kernel.
+struct NonFiniteCounts {
+    NonFiniteCounts(Engine& engine, size_t n_items)
+        : buffer(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint)), size(n_items) {}
+    /// Reads the counts back (blocking).
+    std::vector<cl_uint> read(Engine& engine) const {
+        std::vector<cl_uint> counts(size);
+        engine.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, size * sizeof(cl_uint), counts.data());
+        return counts;
+    }
+    cl::Buffer buffer;
+    size_t size;
+};
 
 // The cell-independent half of the vector path: the disk point bb_disk_polar(u1, u2) of every
 // point of every replica (the rotated Hammersley point, as the scalar kernel forms it) and
@@ -304,39 +334,23 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
                                      : disk   ? disk_table(shifts, req.replicas, points, lanes, req.precision)
                                               : point_table(shifts, req.replicas, points, lanes, req.precision));
     cl::Buffer b_mean = bufs.output(n_items);
-    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+    const NonFiniteCounts bad_counts(engine, n_items);
 
     cl::Kernel kernel(program, lanes == 1 ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS)
                                : disk     ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_DISK)
                                           : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_POINTS));
-    int a = 0;
-    kernel.setArg(a++, b_mu);
-    kernel.setArg(a++, b_phi);
-    kernel.setArg(a++, b_p);
-    kernel.setArg(a++, b_fp);
-    kernel.setArg(a++, b_points);
-    kernel.setArg(a++, cl_uint(points));
-    kernel.setArg(a++, cl_uint(req.replicas));
-    kernel.setArg(a++, cl_uint(n_cells));
+    cl_uint a = set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_points, cl_uint(points), cl_uint(req.replicas),
+                         cl_uint(n_cells));
     if (lanes == 1) {
         const int method = req.method == Method::Importance        ? BB_METHOD_IMPORTANCE
                            : req.method == Method::QuasiMonteCarlo ? BB_METHOD_QMC
                                                                    : BB_METHOD_MC;
-        kernel.setArg(a++, cl_int(method));
-        kernel.setArg(a++, cl_uint(req.seed));
-        kernel.setArg(a++, cl_uint(req.seed >> 32));
+        a = set_args(kernel, a, cl_int(method), cl_uint(req.seed), cl_uint(req.seed >> 32));
     }
-    kernel.setArg(a++, b_mean);
-    kernel.setArg(a++, b_bad);
-
-    // An explicit small work-group: the default could give PoCL two groups for two cores, or
-    // one, whatever the table size (issue 9).
-    cl::Event done;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize),
-                                        cl::NDRange(kLocalSize), nullptr, &done);
+    set_args(kernel, a, b_mean, bad_counts.buffer);
+    const cl::Event done = run_items(engine, kernel, n_items);
     const std::vector<double> means = bufs.read(b_mean, n_items);
-    std::vector<cl_uint> bad(n_items);
-    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+    const std::vector<cl_uint> bad = bad_counts.read(engine);
 
     AlbedoResult result;
     result.samples_per_cell = points * req.replicas;
@@ -428,28 +442,15 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
                b_fp = bufs.input(fparams), b_nodes = bufs.input(nodes);
     cl::Buffer b_sum = bufs.output(n_items);
-    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+    const NonFiniteCounts bad_counts(engine, n_items);
 
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_QUADRATURE_ROWS)
                                          : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_QUADRATURE));
-    int a = 0;
-    kernel.setArg(a++, b_mu);
-    kernel.setArg(a++, b_phi);
-    kernel.setArg(a++, b_p);
-    kernel.setArg(a++, b_fp);
-    kernel.setArg(a++, b_nodes);
-    kernel.setArg(a++, cl_uint(n));
-    kernel.setArg(a++, cl_uint(m));
-    kernel.setArg(a++, cl_uint(l));
-    kernel.setArg(a++, cl_uint(n_cells));
-    kernel.setArg(a++, b_sum);
-    kernel.setArg(a++, b_bad);
-    cl::Event done;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize),
-                                        cl::NDRange(kLocalSize), nullptr, &done);
+    set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_nodes, cl_uint(n), cl_uint(m), cl_uint(l), cl_uint(n_cells), b_sum,
+             bad_counts.buffer);
+    const cl::Event done = run_items(engine, kernel, n_items);
     const std::vector<double> sums = bufs.read(b_sum, n_items);
-    std::vector<cl_uint> bad(n_items);
-    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+    const std::vector<cl_uint> bad = bad_counts.read(engine);
 
     AlbedoResult result;
     const std::uint64_t per_piece = std::uint64_t(n) * n + std::uint64_t(m) * m + std::uint64_t(l) * l;
@@ -531,27 +532,14 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     cl::Buffer b_mu = bufs.input(mus), b_alpha = bufs.input(alphas), b_eta = bufs.input(etas),
                b_shift = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
     cl::Buffer b_r = bufs.output(n_items), b_t = bufs.output(n_items);
-    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, n_items * sizeof(cl_uint));
+    const NonFiniteCounts bad_counts(engine, n_items);
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS_DISK)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
-    int a = 0;
-    kernel.setArg(a++, b_mu);
-    kernel.setArg(a++, b_alpha);
-    kernel.setArg(a++, b_eta);
-    kernel.setArg(a++, b_shift);
-    kernel.setArg(a++, cl_uint(points));
-    kernel.setArg(a++, cl_uint(req.replicas));
-    kernel.setArg(a++, cl_uint(n_cells));
-    kernel.setArg(a++, cl_int(req.correlated ? 1 : 0));
-    kernel.setArg(a++, b_r);
-    kernel.setArg(a++, b_t);
-    kernel.setArg(a++, b_bad);
-    cl::Event done;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, global_range(n_items, kLocalSize), cl::NDRange(kLocalSize), nullptr,
-                                        &done);
+    set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(points), cl_uint(req.replicas), cl_uint(n_cells),
+             cl_int(req.correlated ? 1 : 0), b_r, b_t, bad_counts.buffer);
+    const cl::Event done = run_items(engine, kernel, n_items);
     const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
-    std::vector<cl_uint> bad(n_items);
-    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, n_items * sizeof(cl_uint), bad.data());
+    const std::vector<cl_uint> bad = bad_counts.read(engine);
 
     DielectricResult result;
     result.samples_per_cell = points * req.replicas;

@@ -29,6 +29,34 @@ void run_1d(Engine& engine, cl::Kernel& kernel, size_t n) {
                                         cl::NDRange(local));
 }
 
+/// Runs the eval.cl entry point `entry` over n items. Its arguments: the n directions wo, a second
+/// per-item input (wi, or the unit-square points u), the model's and the Fresnel term's
+/// parameters, n, and then one output per entry of `output_sizes` (in reals); returns the outputs.
+std::vector<std::vector<double>> run_eval_entry(Engine& engine, const char* entry, const ModelConfig& model,
+                                                const FresnelConfig& fresnel, Precision precision, size_t n,
+                                                const std::vector<double>& wo, const std::vector<double>& second,
+                                                const std::vector<size_t>& output_sizes) {
+    RealBuffers bufs(engine, precision);
+    cl::Buffer b_wo = bufs.input(wo), b_second = bufs.input(second);
+    cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
+    cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
+    cl::Kernel k(eval_program(engine, model, fresnel, precision), entry);
+    k.setArg(0, b_wo);
+    k.setArg(1, b_second);
+    k.setArg(2, b_p);
+    k.setArg(3, b_fp);
+    k.setArg(4, cl_uint(n));
+    std::vector<cl::Buffer> outputs;
+    for (size_t size : output_sizes) {
+        outputs.push_back(bufs.output(size));
+        k.setArg(cl_uint(4 + outputs.size()), outputs.back());
+    }
+    run_1d(engine, k, n);
+    std::vector<std::vector<double>> out;
+    for (size_t i = 0; i < outputs.size(); ++i) out.push_back(bufs.read(outputs[i], output_sizes[i]));
+    return out;
+}
+
 }  // namespace
 
 std::vector<double> evaluate_on_device(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
@@ -36,20 +64,8 @@ std::vector<double> evaluate_on_device(Engine& engine, const ModelConfig& model,
                                        const std::vector<Vec3>& wi) {
     if (wo.size() != wi.size()) throw Error("internal error: evaluate_on_device needs as many wo as wi");
     if (wo.empty()) return {};
-    RealBuffers bufs(engine, precision);
-    cl::Buffer b_wo = bufs.input(flatten(wo)), b_wi = bufs.input(flatten(wi));
-    cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
-    cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
-    cl::Buffer b_out = bufs.output(wo.size());
-    cl::Kernel k(eval_program(engine, model, fresnel, precision), BB_ENTRY_NAME(BB_ENTRY_MODEL_EVAL));
-    k.setArg(0, b_wo);
-    k.setArg(1, b_wi);
-    k.setArg(2, b_p);
-    k.setArg(3, b_fp);
-    k.setArg(4, cl_uint(wo.size()));
-    k.setArg(5, b_out);
-    run_1d(engine, k, wo.size());
-    return bufs.read(b_out, wo.size());
+    return run_eval_entry(engine, BB_ENTRY_NAME(BB_ENTRY_MODEL_EVAL), model, fresnel, precision, wo.size(),
+                          flatten(wo), flatten(wi), {wo.size()})[0];
 }
 
 std::vector<DeviceSample> sample_on_device(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
@@ -57,21 +73,11 @@ std::vector<DeviceSample> sample_on_device(Engine& engine, const ModelConfig& mo
                                            const std::vector<std::array<double, 2>>& u) {
     if (wo.size() != u.size()) throw Error("internal error: sample_on_device needs as many wo as u");
     if (wo.empty()) return {};
-    RealBuffers bufs(engine, precision);
-    cl::Buffer b_wo = bufs.input(flatten(wo)), b_u = bufs.input(flatten(u));
-    cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
-    cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
-    cl::Buffer b_wi = bufs.output(3 * wo.size()), b_w = bufs.output(wo.size());
-    cl::Kernel k(eval_program(engine, model, fresnel, precision), BB_ENTRY_NAME(BB_ENTRY_MODEL_SAMPLE));
-    k.setArg(0, b_wo);
-    k.setArg(1, b_u);
-    k.setArg(2, b_p);
-    k.setArg(3, b_fp);
-    k.setArg(4, cl_uint(wo.size()));
-    k.setArg(5, b_wi);
-    k.setArg(6, b_w);
-    run_1d(engine, k, wo.size());
-    const std::vector<double> wi = bufs.read(b_wi, 3 * wo.size()), w = bufs.read(b_w, wo.size());
+    const std::vector<std::vector<double>> outputs =
+        run_eval_entry(engine, BB_ENTRY_NAME(BB_ENTRY_MODEL_SAMPLE), model, fresnel, precision, wo.size(),
+                       flatten(wo), flatten(u), {3 * wo.size(), wo.size()});
+    const std::vector<double>& wi = outputs[0];
+    const std::vector<double>& w = outputs[1];
     std::vector<DeviceSample> out(wo.size());
     for (size_t i = 0; i < wo.size(); ++i) out[i] = {{wi[3 * i], wi[3 * i + 1], wi[3 * i + 2]}, w[i]};
     return out;

@@ -125,12 +125,19 @@ ModelConfig resolve_lambert(KeyReader& keys) {
     return m;
 }
 
-ModelConfig resolve_ggx(KeyReader& keys) {
+// The microfacet lobes with a Smith shadowing choice: alpha in (slot_x, slot_y), the shadowing
+// in shadowing_slot.
+ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, int slot_x, int slot_y,
+                                     int shadowing_slot) {
     ModelConfig m;
-    m.canonical = "ggx";
-    read_alpha(keys, m, BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y);
-    m.params[BB_GGX_SHADOWING] = read_shadowing(keys, m.canonical);
+    m.canonical = name;
+    read_alpha(keys, m, slot_x, slot_y);
+    m.params[shadowing_slot] = read_shadowing(keys, m.canonical);
     return m;
+}
+
+ModelConfig resolve_ggx(KeyReader& keys) {
+    return resolve_smith_microfacet(keys, "ggx", BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, BB_GGX_SHADOWING);
 }
 
 ModelConfig resolve_oren_nayar(KeyReader& keys) {
@@ -143,36 +150,30 @@ ModelConfig resolve_oren_nayar(KeyReader& keys) {
     return m;
 }
 
-ModelConfig resolve_phong(KeyReader& keys) {
+// The Phong-family lobes: the exponent n and the specular weight ks in the model's slots, and
+// the normalization key where the model has a slot for it (normalized_slot >= 0).
+ModelConfig resolve_phong_lobe(KeyReader& keys, const std::string& name, int n_slot, int ks_slot,
+                               int normalized_slot) {
     ModelConfig m;
     const double n = keys.required_number("n", kExponent, "the lobe exponent");
     const double ks = keys.number("ks", 1.0, kSpecular);
-    m.params[BB_PHONG_N] = n;
-    m.params[BB_PHONG_KS] = ks;
-    m.canonical = "phong:n=" + fmt(n) + ",ks=" + format_number(ks);
-    m.params[BB_PHONG_NORMALIZED] = read_normalized(keys, m.canonical);
+    m.params[n_slot] = n;
+    m.params[ks_slot] = ks;
+    m.canonical = name + ":n=" + fmt(n) + ",ks=" + format_number(ks);
+    if (normalized_slot >= 0) m.params[normalized_slot] = read_normalized(keys, m.canonical);
     return m;
+}
+
+ModelConfig resolve_phong(KeyReader& keys) {
+    return resolve_phong_lobe(keys, "phong", BB_PHONG_N, BB_PHONG_KS, BB_PHONG_NORMALIZED);
 }
 
 ModelConfig resolve_phong_original(KeyReader& keys) {
-    ModelConfig m;
-    const double n = keys.required_number("n", kExponent, "the lobe exponent");
-    const double ks = keys.number("ks", 1.0, kSpecular);
-    m.params[BB_PHONG_N] = n;
-    m.params[BB_PHONG_KS] = ks;
-    m.canonical = "phong-original:n=" + fmt(n) + ",ks=" + format_number(ks);
-    return m;
+    return resolve_phong_lobe(keys, "phong-original", BB_PHONG_N, BB_PHONG_KS, -1);
 }
 
 ModelConfig resolve_blinn_phong(KeyReader& keys) {
-    ModelConfig m;
-    const double n = keys.required_number("n", kExponent, "the lobe exponent");
-    const double ks = keys.number("ks", 1.0, kSpecular);
-    m.params[BB_BLINN_PHONG_N] = n;
-    m.params[BB_BLINN_PHONG_KS] = ks;
-    m.canonical = "blinn-phong:n=" + fmt(n) + ",ks=" + format_number(ks);
-    m.params[BB_BLINN_PHONG_NORMALIZED] = read_normalized(keys, m.canonical);
-    return m;
+    return resolve_phong_lobe(keys, "blinn-phong", BB_BLINN_PHONG_N, BB_BLINN_PHONG_KS, BB_BLINN_PHONG_NORMALIZED);
 }
 
 ModelConfig resolve_torrance_sparrow(KeyReader& keys) {
@@ -195,11 +196,7 @@ ModelConfig resolve_torrance_sparrow(KeyReader& keys) {
 }
 
 ModelConfig resolve_beckmann(KeyReader& keys) {
-    ModelConfig m;
-    m.canonical = "beckmann";
-    read_alpha(keys, m, BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y);
-    m.params[BB_BECKMANN_SHADOWING] = read_shadowing(keys, m.canonical);
-    return m;
+    return resolve_smith_microfacet(keys, "beckmann", BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y, BB_BECKMANN_SHADOWING);
 }
 
 ModelConfig resolve_mirror(KeyReader&) {

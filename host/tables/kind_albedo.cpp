@@ -11,23 +11,11 @@ namespace brdfbake {
 namespace tables {
 namespace {
 
-int one(const LutRequest&) { return 1; }
-
 std::vector<std::string> albedo_program(const LutRequest& r) { return {"albedo|" + r.model + "|none"}; }
 
 Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
-    MuAlphaGrid g = mu_alpha_grid(r, m);
-    Table& t = g.table;
-    t.quantity = "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi";
-    const AlbedoResult res = integrate(engine, r, m, f, g.cells);
-    t.channels = {"E"};
-    t.values.assign(1, {});
-    for (const auto& v : res.values) {
-        t.values[0].push_back(v.value);
-        t.error.push_back(v.error);
-    }
-    describe(t, r, m, f.canonical, res, g.clamped);
-    return t;
+    return directional_albedo_table(engine, r, m, f,
+                                    "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi");
 }
 
 // Eavg = 2 int_0^1 E(mu) mu dmu by Gauss-Legendre in mu with 32 nodes; the 16-node rule on the
@@ -72,46 +60,26 @@ Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig&
         t.values[0].push_back(e32);
         t.error.push_back(err + std::fabs(e32 - e16));
     }
-    describe(t, r, m, f.canonical, res, clamped);
+    describe(t, r, m, f.canonical, res.method, res.samples_per_cell, clamped);
     t.attributes["mu_quadrature"] = "Gauss-Legendre, 32 nodes (16-node rule for the error estimate)";
     return t;
 }
 
-TableKind make_albedo() {
-    TableKind k;
-    k.id = TableKindId::Albedo;
-    k.name = "albedo";
-    k.description = "directional albedo E(mu_o, alpha) = integral of f cos(theta_i) dwi (2D)";
-    k.plan_fresnel = "none (F = 1: each lobe's Fresnel enters at render time)";
-    k.tileable = true;
-    k.value_channels = one;
-    k.integrations = one;
-    k.kernel_programs = albedo_program;
-    k.fresnel = request_fresnel;
-    k.compute = compute_albedo_table;
-    return k;
-}
-
-TableKind make_eavg() {
-    TableKind k = make_albedo();
-    k.id = TableKindId::Eavg;
-    k.name = "eavg";
-    k.description = "average albedo Eavg(alpha) = 2 integral of E(mu) mu dmu (1D)";
-    k.one_dimensional = true;
-    k.cells_per_texel = 48;  // 32 + 16 Gauss-Legendre nodes in mu
-    k.compute = compute_eavg_table;
-    return k;
-}
-
 }  // namespace
 
-const TableKind& albedo_kind() {
-    static const TableKind k = make_albedo();
+TableKind albedo_kind() {
+    TableKind k(TableKindId::Albedo, "albedo", "directional albedo E(mu_o, alpha) = integral of f cos(theta_i) dwi (2D)",
+                albedo_program, compute_albedo_table);
+    k.plan_fresnel = "none (F = 1: each lobe's Fresnel enters at render time)";
+    k.tileable = true;
     return k;
 }
 
-const TableKind& eavg_kind() {
-    static const TableKind k = make_eavg();
+TableKind eavg_kind() {
+    TableKind k = variant_of(albedo_kind(), TableKindId::Eavg, "eavg",
+                             "average albedo Eavg(alpha) = 2 integral of E(mu) mu dmu (1D)", compute_eavg_table);
+    k.one_dimensional = true;
+    k.cells_per_texel = 48;  // 32 + 16 Gauss-Legendre nodes in mu
     return k;
 }
 

@@ -27,20 +27,11 @@ std::vector<std::string> conductor_program(const LutRequest& r) {
 }
 
 Table compute_conductor(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    if (!rgb(r))
+        return directional_albedo_table(engine, r, m, f,
+                                        "Fresnel-weighted directional albedo E(mu_o, alpha) of a conductor");
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
-    if (!rgb(r)) {
-        t.quantity = "Fresnel-weighted directional albedo E(mu_o, alpha) of a conductor";
-        const AlbedoResult res = integrate(engine, r, m, f, g.cells);
-        t.channels = {"E"};
-        t.values.assign(1, {});
-        for (const auto& v : res.values) {
-            t.values[0].push_back(v.value);
-            t.error.push_back(v.error);
-        }
-        describe(t, r, m, f.canonical, res, g.clamped);
-        return t;
-    }
     t.quantity = "Fresnel-weighted directional albedo E(mu_o, alpha) of a measured conductor at 650, 550 and 450 nm";
     t.channels = {"R", "G", "B"};
     t.error.assign(g.cells.size(), 0.0);
@@ -57,7 +48,7 @@ Table compute_conductor(Engine& engine, const LutRequest& r, const ModelConfig& 
         t.values.push_back(v);
         fresnel_text += std::string(c ? "; " : "") + kRgbNames[c] + ": " + fc.canonical;
     }
-    describe(t, r, m, fresnel_text, last, g.clamped);
+    describe(t, r, m, fresnel_text, last.method, last.samples_per_cell, g.clamped);
     return t;
 }
 
@@ -66,28 +57,20 @@ void validate_conductor(const LutRequest& r, const ModelConfig&, const FresnelCo
         throw Error("the conductor table needs a conductor Fresnel term: --fresnel conductor:eta=E,k=K, metal:Al or nk:FILE");
 }
 
-TableKind make_conductor() {
-    TableKind k;
-    k.id = TableKindId::Conductor;
-    k.name = "conductor";
-    k.description = "Fresnel-weighted albedo E(mu_o, alpha) of a conductor: --fresnel conductor:eta=,k= (channel E) or "
-                    "metal:X / nk:FILE (channels R, G, B at 650, 550, 450 nm, or E at --wavelength)";
+}  // namespace
+
+TableKind conductor_kind() {
+    TableKind k(TableKindId::Conductor, "conductor",
+                "Fresnel-weighted albedo E(mu_o, alpha) of a conductor: --fresnel conductor:eta=,k= (channel E) or "
+                "metal:X / nk:FILE (channels R, G, B at 650, 550, 450 nm, or E at --wavelength)",
+                conductor_program, compute_conductor);
     k.bakes_lobe_fresnel = true;
     k.needs_conductor_fresnel = true;
     k.lobe_requirement = "a conductor table needs a conductor Fresnel (conductor:, metal:, nk:)";
     k.value_channels = channels;
     k.integrations = channels;  // one per RGB wavelength
-    k.kernel_programs = conductor_program;
     k.fresnel = conductor_fresnel;
     k.validate = validate_conductor;
-    k.compute = compute_conductor;
-    return k;
-}
-
-}  // namespace
-
-const TableKind& conductor_kind() {
-    static const TableKind k = make_conductor();
     return k;
 }
 

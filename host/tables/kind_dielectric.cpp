@@ -90,16 +90,10 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
         t.error[k] = std::max({res.reflected[k].error, res.transmitted[k].error, res.reflected[n + k].error,
                                res.transmitted[n + k].error});
     }
-    t.attributes["model"] = m.canonical;
-    t.attributes["fresnel"] = "dielectric (exact, unpolarised) at each texel's eta";
-    t.attributes["method"] = res.method;
-    t.attributes["samples"] = std::to_string(res.samples_per_cell);
-    t.attributes["precision"] = precision_name(r.precision);
-    if (r.tolerance.tolerance > 0.0) {
-        std::ostringstream tol;
-        tol << r.tolerance.tolerance;
-        t.attributes["tolerance"] = tol.str();
-    }
+    // The dielectric table has never carried the alpha floor note: it is left out here too, so
+    // that its files stay as they were.
+    describe(t, r, m, "dielectric (exact, unpolarised) at each texel's eta", res.method, res.samples_per_cell,
+             false);
     return t;
 }
 
@@ -115,15 +109,15 @@ void validate_dielectric(const LutRequest& r, const ModelConfig& m, const Fresne
 }
 
 int four(const LutRequest&) { return 4; }
-int one(const LutRequest&) { return 1; }
 std::vector<std::string> dielectric_program(const LutRequest& r) { return {"dielectric|" + r.model}; }
 
-TableKind make_dielectric() {
-    TableKind k;
-    k.id = TableKindId::Dielectric;
-    k.name = "dielectric";
-    k.description = "rough dielectric (GGX) reflected and transmitted energy R, T from outside (eta) and "
-                    "R_inside, T_inside from inside (1/eta) over (mu_o, alpha, eta) (3D, slices stacked along y)";
+}  // namespace
+
+TableKind dielectric_kind() {
+    TableKind k(TableKindId::Dielectric, "dielectric",
+                "rough dielectric (GGX) reflected and transmitted energy R, T from outside (eta) and "
+                "R_inside, T_inside from inside (1/eta) over (mu_o, alpha, eta) (3D, slices stacked along y)",
+                dielectric_program, compute_dielectric_table);
     k.eta_axis = true;
     k.cells_per_texel = 2;  // both sides of the interface
     k.plan_fresnel = "exact dielectric at each eta";
@@ -133,18 +127,7 @@ TableKind make_dielectric() {
     // samples in 0.7 s on the same machine).
     k.sample_cost = 3.5;
     k.value_channels = four;
-    k.integrations = one;
-    k.kernel_programs = dielectric_program;
-    k.fresnel = request_fresnel;
     k.validate = validate_dielectric;
-    k.compute = compute_dielectric_table;
-    return k;
-}
-
-}  // namespace
-
-const TableKind& dielectric_kind() {
-    static const TableKind k = make_dielectric();
     return k;
 }
 

@@ -13,83 +13,63 @@ std::vector<std::string> split_sum_programs(const LutRequest& r) {
     return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick"};
 }
 
-/// E with F = 1 and B with F = (1 - wo.wh)^5 (Schlick with f0 = 0), each to half the tolerance;
-/// A = E - B.
-struct SplitSum {
-    Table table;
-    std::vector<double> a, b, e;
-};
-
-SplitSum split_sum(Engine& engine, const LutRequest& r, const ModelConfig& m) {
+/// The split-sum table: E with F = 1 and B with F = (1 - wo.wh)^5 (Schlick with f0 = 0), each to
+/// half the tolerance, A = E - B; channels A, B, or B, E in the multiple-scattering layout.
+Table split_sum_table(Engine& engine, const LutRequest& r, const ModelConfig& m, bool multiple_scattering_layout) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
-    SplitSum s;
+    Table& t = g.table;
     const AlbedoResult e = integrate(engine, r, m, resolve_fresnel("none"), g.cells, 0.5);
     const AlbedoResult b = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), g.cells, 0.5);
+    std::vector<double> a_values, b_values, e_values;
     for (size_t i = 0; i < g.cells.size(); ++i) {
-        s.e.push_back(e.values[i].value);
-        s.b.push_back(b.values[i].value);
-        s.a.push_back(e.values[i].value - b.values[i].value);
-        g.table.error.push_back(e.values[i].error + b.values[i].error);
+        e_values.push_back(e.values[i].value);
+        b_values.push_back(b.values[i].value);
+        a_values.push_back(e.values[i].value - b.values[i].value);
+        t.error.push_back(e.values[i].error + b.values[i].error);
     }
-    describe(g.table, r, m, "factored out (split sum)", e, g.clamped);
-    s.table = std::move(g.table);
-    return s;
+    describe(t, r, m, "factored out (split sum)", e.method, e.samples_per_cell, g.clamped);
+    if (multiple_scattering_layout) {
+        t.quantity = "split-sum terms, multiple-scattering layout: B = integral of (f/F)(1 - wo.wh)^5 cos and "
+                     "E = A + B; F_ss = mix(B, E, f0), energy compensation 1 + f0 (1/E - 1)";
+        t.channels = {"B", "E"};
+        t.values = {b_values, e_values};
+    } else {
+        t.quantity = "split-sum terms: A = integral of (f/F)(1 - (1 - wo.wh)^5) cos, B = integral of (f/F)(1 - wo.wh)^5 "
+                     "cos; specular = F0 A + B";
+        t.channels = {"A", "B"};
+        t.values = {a_values, b_values};
+    }
+    return std::move(g.table);
 }
 
 Table compute_dfg(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
-    SplitSum s = split_sum(engine, r, m);
-    s.table.quantity = "split-sum terms: A = integral of (f/F)(1 - (1 - wo.wh)^5) cos, B = integral of (f/F)(1 - wo.wh)^5 cos; "
-                       "specular = F0 A + B";
-    s.table.channels = {"A", "B"};
-    s.table.values = {s.a, s.b};
-    return std::move(s.table);
+    return split_sum_table(engine, r, m, false);
 }
 
 Table compute_dfg_ms(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
-    SplitSum s = split_sum(engine, r, m);
-    s.table.quantity = "split-sum terms, multiple-scattering layout: B = integral of (f/F)(1 - wo.wh)^5 cos and "
-                       "E = A + B; F_ss = mix(B, E, f0), energy compensation 1 + f0 (1/E - 1)";
-    s.table.channels = {"B", "E"};
-    s.table.values = {s.b, s.e};
-    return std::move(s.table);
+    return split_sum_table(engine, r, m, true);
 }
 
-TableKind make_dfg() {
-    TableKind k;
-    k.id = TableKindId::Dfg;
-    k.name = "dfg";
-    k.description = "split-sum terms A, B over (mu_o, alpha): f/F weighted by 1 - (1 - wo.wh)^5 and (1 - wo.wh)^5 (Karis 2013)";
+}  // namespace
+
+TableKind dfg_kind() {
+    TableKind k(TableKindId::Dfg, "dfg",
+                "split-sum terms A, B over (mu_o, alpha): f/F weighted by 1 - (1 - wo.wh)^5 and (1 - wo.wh)^5 "
+                "(Karis 2013)",
+                split_sum_programs, compute_dfg);
     k.fresnel_factored_out = true;
     k.plan_fresnel = "factored out (split sum)";
     k.tileable = true;
     k.value_channels = two;
     k.integrations = two;
-    k.kernel_programs = split_sum_programs;
-    k.fresnel = request_fresnel;
-    k.compute = compute_dfg;
     return k;
 }
 
-TableKind make_dfg_ms() {
-    TableKind k = make_dfg();
-    k.id = TableKindId::DfgMs;
-    k.name = "dfg-ms";
-    k.description = "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
-                    "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)";
-    k.compute = compute_dfg_ms;
-    return k;
-}
-
-}  // namespace
-
-const TableKind& dfg_kind() {
-    static const TableKind k = make_dfg();
-    return k;
-}
-
-const TableKind& dfg_ms_kind() {
-    static const TableKind k = make_dfg_ms();
-    return k;
+TableKind dfg_ms_kind() {
+    return variant_of(dfg_kind(), TableKindId::DfgMs, "dfg-ms",
+                      "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
+                      "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)",
+                      compute_dfg_ms);
 }
 
 }  // namespace tables

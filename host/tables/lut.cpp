@@ -75,12 +75,28 @@ AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m
     return compute_albedo(engine, req);
 }
 
+Table directional_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
+                               const std::string& quantity) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    t.quantity = quantity;
+    const AlbedoResult res = integrate(engine, r, m, f, g.cells);
+    t.channels = {"E"};
+    t.values.assign(1, {});
+    for (const auto& v : res.values) {
+        t.values[0].push_back(v.value);
+        t.error.push_back(v.error);
+    }
+    describe(t, r, m, f.canonical, res.method, res.samples_per_cell, g.clamped);
+    return std::move(g.table);
+}
+
 void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::string& fresnel,
-              const AlbedoResult& res, bool clamped) {
+              const std::string& method, std::uint64_t samples_per_cell, bool clamped) {
     t.attributes["model"] = m.canonical;
     t.attributes["fresnel"] = fresnel;
-    t.attributes["method"] = res.method;
-    t.attributes["samples"] = std::to_string(res.samples_per_cell);
+    t.attributes["method"] = method;
+    t.attributes["samples"] = std::to_string(samples_per_cell);
     t.attributes["precision"] = precision_name(r.precision);
     if (r.tolerance.tolerance > 0.0) {
         std::ostringstream tol;
@@ -94,9 +110,20 @@ void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::st
     }
 }
 
-FresnelConfig request_fresnel(const LutRequest& r) { return resolve_fresnel(r.fresnel, r.wavelength_nm); }
+TableKind variant_of(TableKind base, TableKindId id, const std::string& name, const std::string& description,
+                     TableKind::Compute compute) {
+    base.id = id;
+    base.name = name;
+    base.description = description;
+    base.compute = compute;
+    return base;
+}
 
 }  // namespace tables
+
+int one_per_request(const LutRequest&) { return 1; }
+
+FresnelConfig request_fresnel(const LutRequest& r) { return resolve_fresnel(r.fresnel, r.wavelength_nm); }
 
 namespace {
 

@@ -3,6 +3,7 @@
 // each kind's registry entry (one .cpp per kind or family under host/tables).
 #pragma once
 
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -40,21 +41,29 @@ ParamBlock with_alpha(ParamBlock p, const std::vector<int>& slots, double alpha)
 AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
                        std::vector<AlbedoCell> cells, double share = 1.0);
 
-/// The attributes of an albedo-based table: model, Fresnel, method, samples, precision, tolerance,
-/// and the alpha floor note.
-void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::string& fresnel,
-              const AlbedoResult& res, bool clamped);
+/// The one-channel table E(mu_o, alpha) of the albedo at Fresnel term f (the albedo kind, and
+/// the conductor kind at one wavelength), described by `quantity`.
+Table directional_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
+                               const std::string& quantity);
 
-/// The request's Fresnel term at its wavelength (most kinds' TableKind::fresnel).
-FresnelConfig request_fresnel(const LutRequest& r);
+/// The attributes of a computed table: model, Fresnel, the method and samples per texel of its
+/// integration, precision, the tolerance where the request has one, and the alpha floor note
+/// where `clamped`.
+void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::string& fresnel,
+              const std::string& method, std::uint64_t samples_per_cell, bool clamped);
+
+/// A kind that is `base` in all but its id, name, description and computation (eavg of albedo,
+/// dfg-ms of dfg).
+TableKind variant_of(TableKind base, TableKindId id, const std::string& name, const std::string& description,
+                     TableKind::Compute compute);
 
 // The entries of the registry, one per kind (host/tables/registry.cpp lists them).
-const TableKind& albedo_kind();
-const TableKind& eavg_kind();
-const TableKind& dfg_kind();
-const TableKind& dfg_ms_kind();
-const TableKind& dielectric_kind();
-const TableKind& conductor_kind();
+TableKind albedo_kind();
+TableKind eavg_kind();
+TableKind dfg_kind();
+TableKind dfg_ms_kind();
+TableKind dielectric_kind();
+TableKind conductor_kind();
 
 }  // namespace tables
 }  // namespace brdfbake

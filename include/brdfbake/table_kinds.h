@@ -5,6 +5,7 @@
 #pragma once
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "brdfbake/engine.h"
@@ -16,7 +17,21 @@ namespace brdfbake {
 
 enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs };
 
+/// 1 whatever the request: the value channels and integrations per cell of most kinds.
+int one_per_request(const LutRequest&);
+/// The request's Fresnel term at its wavelength: the Fresnel term of most kinds.
+FresnelConfig request_fresnel(const LutRequest& r);
+
 struct TableKind {
+    using Programs = std::vector<std::string> (*)(const LutRequest&);
+    using Compute = Table (*)(Engine&, const LutRequest&, const ModelConfig& swept_model, const FresnelConfig&);
+
+    /// An entry with what most kinds share (one value channel, one integration per cell, the
+    /// request's Fresnel term, no checks of its own); each kind then sets what differs.
+    TableKind(TableKindId id, std::string name, std::string description, Programs kernel_programs, Compute compute)
+        : id(id), name(std::move(name)), description(std::move(description)), kernel_programs(kernel_programs),
+          compute(compute) {}
+
     TableKindId id;
     std::string name;         // the command-line and file spelling: "albedo", "dfg-ms", ...
     std::string description;  // one line for help texts
@@ -46,17 +61,17 @@ struct TableKind {
     double sample_cost = 1.0;  // the cost of one sample relative to an albedo sample
 
     /// Value channels (the error channel comes on top).
-    int (*value_channels)(const LutRequest&) = nullptr;
+    int (*value_channels)(const LutRequest&) = one_per_request;
     /// Integrations per cell (the split-sum kinds integrate twice, a measured conductor per RGB wavelength).
-    int (*integrations)(const LutRequest&) = nullptr;
+    int (*integrations)(const LutRequest&) = one_per_request;
     /// The kernel programs the table builds ("albedo|MODEL|FRESNEL-KIND", "dielectric|MODEL").
-    std::vector<std::string> (*kernel_programs)(const LutRequest&) = nullptr;
+    Programs kernel_programs;
     /// The Fresnel term validation resolves (a measured conductor without --wavelength: at 650 nm).
-    FresnelConfig (*fresnel)(const LutRequest&) = nullptr;
+    FresnelConfig (*fresnel)(const LutRequest&) = request_fresnel;
     /// The kind's own checks, after the common ones of validate_lut; throws Error.
     void (*validate)(const LutRequest&, const ModelConfig& swept_model, const FresnelConfig&) = nullptr;
     /// Computes the table of a validated request.
-    Table (*compute)(Engine&, const LutRequest&, const ModelConfig& swept_model, const FresnelConfig&) = nullptr;
+    Compute compute;
 };
 
 /// Every kind, in help order.
