@@ -103,22 +103,14 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
 #define BB_QUAD_PADDED(m) (m)
 #endif
 
-/* The empty pieces of a quadrature work-item (bb_quad_mirrored): quarters 2 and 3 of a mirrored
- * cell (quarters 0 and 1 count twice), and the empty halves h = 1 (in the sampler's square,
- * and where bb_quad_azimuth_node gives no width). */
-BB_FN int bb_quad_piece_is_empty(bb_quad_dist dist, real phi_o, int mirrored, unsigned int piece) {
-    const unsigned int q = piece >> 1;
-    return (mirrored && q >= 2u) ||
-           ((piece & 1u) && (dist.kind == BB_QUAD_SAMPLER ||
-                             bb_all(bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5)).ddelta == BB_R(0.0))));
-}
-
 /* The prologue of the quadrature kernels: work-item gid is (cell, rule, piece) (returns beyond
  * the last): rule 0 has n_fine nodes per axis, rule 1 n_coarse, rule 2 n_coarsest (the error
  * estimate compares the three); piece 2k + h is half h of the quarter q = k of azimuth offsets
  * (bb_quad_azimuth_node; in the sampler's square the quarter of u2). Declares gid, cell, piece,
  * q, the rule's n abscissae x and weights wt, the cell's p, fp (params_ok), phi_o, wo, dist
- * and copies (2 for the mirrored quarters); writes 0 for an empty piece and returns. */
+ * and copies. Mirror symmetry (bb_quad_mirrored): quarters 0 and 1 count twice (copies = 2),
+ * 2 and 3 are empty; so are the halves h = 1 in the sampler's square and where
+ * bb_quad_azimuth_node gives no width. An empty piece writes 0 and returns. */
 #define BB_QUADRATURE_PROLOGUE                                                                    \
     const unsigned int gid = (unsigned int)get_global_id(0);                                      \
     if (gid >= n_cells * BB_QUAD_SLOTS)                                                           \
@@ -137,7 +129,9 @@ BB_FN int bb_quad_piece_is_empty(bb_quad_dist dist, real phi_o, int mirrored, un
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], phi_o);                            \
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \
     const int mirrored = bb_quad_mirrored(dist, phi_o);                                           \
-    if (bb_quad_piece_is_empty(dist, phi_o, mirrored, piece)) {                                   \
+    if ((mirrored && q >= 2u) ||                                                                  \
+        ((piece & 1u) && (dist.kind == BB_QUAD_SAMPLER ||                                         \
+                          bb_all(bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5)).ddelta == BB_R(0.0))))) { \
         piece_sum[gid] = 0;                                                                       \
         bad_count[gid] = 0u;                                                                      \
         return;                                                                                   \

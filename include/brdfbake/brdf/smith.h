@@ -52,12 +52,20 @@ BB_FN bb_vec3 bb_smith_sample_vndf(int dist, bb_vec3 wo, real ax, real ay, real 
     return bb_ggx_sample_vndf(wo, ax, ay, u1, u2);
 }
 
-/* G2 as the shadowing slot chooses. */
+/* G2 as the shadowing slot chooses, from the distribution's G1 (microfacet.h). Each form takes
+ * its own pair of G1 calls, which the compiler merges: the form the kernels were tuned with
+ * (one named pair, or a call through bb_smith_g1, changes the code the compiler lays out). */
 BB_FN real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
     real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
-    real g1o = bb_smith_g1(dist, wo, ax, ay), g1i = bb_smith_g1(dist, wi, ax, ay);
-    return bb_select(bb_g2_separable_from_g1(g1o, g1i), bb_g2_correlated_from_g1(g1o, g1i),
-                     p.v[BB_SMITH_SHADOWING] > BB_R(0.5));
+    real separable, correlated;
+    if (dist == BB_SMITH_BECKMANN) {
+        separable = bb_g2_separable_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
+        correlated = bb_g2_correlated_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
+    } else {
+        separable = bb_g2_separable_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
+        correlated = bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
+    }
+    return bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] > BB_R(0.5));
 }
 
 /* f(wo, wi) without the cosine; 0 unless wo, wi and wh are above the horizon. */
