@@ -33,7 +33,7 @@
 //     compensated (loop-carried) sum, which -ffast-math would remove anyway.
 // BASELINE_KERNEL_ARITHMETIC instead evaluates the weight with the operations of the shared
 // headers (bb_ggx_sample_vndf_disk: normalise; bb_reflect; bb_ggx_g1's closed form;
-// bb_ggx_g2_correlated; / G1(wo); the clamps and guards) from the (x, y) table alone: the
+// bb_g2_correlated_from_g1; / G1(wo); the clamps and guards) from the (x, y) table alone: the
 // kernel's arithmetic, vectorised by g++, to tell the compiler's share from the arithmetic's.
 #include <algorithm>
 #include <cmath>
@@ -138,7 +138,7 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
                 const real zi = max0(iz), r2 = a2 * (ix * ix + iy * iy);  // bb_ggx_g1(wi)
                 const real ga = real(2) * zi * (std::sqrt(zi * zi + r2) + zi);
                 const real g1i = iz > real(0) ? ga / (ga + r2) : real(0);
-                const real p = g1o * g1i, den = g1o + g1i - p;  // bb_ggx_g2_correlated
+                const real p = g1o * g1i, den = g1o + g1i - p;  // bb_g2_correlated_from_g1
                 const real g2c = p > real(0) ? p / (den <= real(0) ? real(1) : den) : real(0);
                 const real g2 = corr > real(0) ? g2c : p;
                 const real v = iz > real(0) ? g2 / g1o : real(0);

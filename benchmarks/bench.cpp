@@ -10,18 +10,18 @@
 int main(int argc, char** argv) {
     using namespace brdfbake;
     CLI::App app{"brdfbake-bench: GGX albedo kernel vs the OpenMP baseline and the FMA peak"};
-    bool quick = false, no_build = false;
+    bool no_build = false;
     ReportOptions report;
     int table = 0;
     std::int64_t samples = 0;
-    app.add_flag("--quick", quick, "tiny sizes, one run each (a few seconds)");
+    add_report_options(app, report, "tiny sizes, one run each (a few seconds)",
+                       "file name stem (default: the machine, e.g. amd-epyc-2c-avx512)",
+                       "also plot time against cells x samples (.png or .svg)");
     app.add_option("--table", table, "throughput table side N (N x N cells; default 64, quick 8)");
     app.add_option("--samples", samples, "samples per cell of the throughput table (default 65536)");
-    add_report_options(app, report, "file name stem (default: the machine, e.g. amd-epyc-2c-avx512)",
-                       "also plot time against cells x samples (.png or .svg)");
     app.add_flag("--no-build-times", no_build, "skip the cold/warm kernel build figures");
-    CLI11_PARSE(app, argc, argv);
-    return run_reporting_errors("brdfbake-bench", [&] {
+    return parse_and_run(app, argc, argv, "brdfbake-bench", [&] {
+        const bool quick = report.quick;
         BenchOptions o = quick ? BenchOptions::quick_options() : BenchOptions();
         o.device = report.device;
         o.build_times = !no_build;

@@ -17,24 +17,23 @@ namespace {
 
 constexpr int kChains = 12;
 
+// The float and double vector types of BITS-bit registers, and their FMA and broadcast, from
+// the intrinsics' common naming (_mm512_fmadd_ps, _mm256_set1_pd, ...).
+#define FMA_PROBE_REGISTERS(BITS)                                                             \
+    using VF = __m##BITS;                                                                     \
+    using VD = __m##BITS##d;                                                                  \
+    constexpr int kBits = BITS;                                                               \
+    inline VF fma_f(VF a, VF b, VF c) { return _mm##BITS##_fmadd_ps(a, b, c); }               \
+    inline VD fma_d(VD a, VD b, VD c) { return _mm##BITS##_fmadd_pd(a, b, c); }               \
+    inline VF set_f(float x) { return _mm##BITS##_set1_ps(x); }                               \
+    inline VD set_d(double x) { return _mm##BITS##_set1_pd(x); }
+
 #if defined(__AVX512F__)
-using VF = __m512;
-using VD = __m512d;
-constexpr int kBits = 512;
-inline VF fma_f(VF a, VF b, VF c) { return _mm512_fmadd_ps(a, b, c); }
-inline VD fma_d(VD a, VD b, VD c) { return _mm512_fmadd_pd(a, b, c); }
-inline VF set_f(float x) { return _mm512_set1_ps(x); }
-inline VD set_d(double x) { return _mm512_set1_pd(x); }
+FMA_PROBE_REGISTERS(512)
 inline float sum_f(VF v) { return _mm512_reduce_add_ps(v); }
 inline double sum_d(VD v) { return _mm512_reduce_add_pd(v); }
 #elif defined(__FMA__)
-using VF = __m256;
-using VD = __m256d;
-constexpr int kBits = 256;
-inline VF fma_f(VF a, VF b, VF c) { return _mm256_fmadd_ps(a, b, c); }
-inline VD fma_d(VD a, VD b, VD c) { return _mm256_fmadd_pd(a, b, c); }
-inline VF set_f(float x) { return _mm256_set1_ps(x); }
-inline VD set_d(double x) { return _mm256_set1_pd(x); }
+FMA_PROBE_REGISTERS(256)
 inline float sum_f(VF v) {
     alignas(32) float t[8];
     _mm256_store_ps(t, v);

@@ -612,15 +612,14 @@ void write_tradeoff_plot(const json& j, const Options& o, const std::string& pat
 
 int main(int argc, char** argv) {
     CLI::App app{"brdfbake-tradeoff: error against time of every albedo method and precision (issue 7)"};
-    bool quick = false;
     ReportOptions report;
     std::string only;
-    app.add_flag("--quick", quick, "a small grid, two sample counts, one run each (what CI runs)");
-    add_report_options(app, report, "file name stem (default: tradeoff-<machine>, -quick with --quick)",
+    add_report_options(app, report, "a small grid, two sample counts, one run each (what CI runs)",
+                       "file name stem (default: tradeoff-<machine>, -quick with --quick)",
                        "also draw max true error against time per cell (.png or .svg)");
     app.add_option("--families", only, "comma-separated family keys to run (ggx, beckmann, ts-ggx, ts-blinn, oren-nayar)");
-    CLI11_PARSE(app, argc, argv);
-    return run_reporting_errors("brdfbake-tradeoff", [&] {
+    return parse_and_run(app, argc, argv, "brdfbake-tradeoff", [&] {
+        const bool quick = report.quick;
         std::string name = report.name;
         const std::string& out_dir = report.out_dir;
         const std::string& plot = report.plot;

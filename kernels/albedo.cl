@@ -67,6 +67,79 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     return ok;
 }
 
+/* The first arguments of every albedo kernel: per cell cos(theta_o), phi_o (radians) and
+ * BB_MAX_PARAMS model parameters; the BB_MAX_PARAMS Fresnel parameters of the launch. */
+#define BB_CELL_ARGS                                                                              \
+    __global const bb_scalar *cell_mu, __global const bb_scalar *cell_phi,                        \
+        __global const bb_scalar *model_p, __global const bb_scalar *fresnel_p
+
+/* The prologue of the replica kernels: work-item gid is replica `rep` of cell `cell` (returns
+ * beyond the last); declares gid, cell, rep, the cell's parameters p, fp (params_ok) and wo. */
+#define BB_REPLICA_PROLOGUE                                                                       \
+    const unsigned int gid = (unsigned int)get_global_id(0);                                      \
+    if (gid >= n_cells * n_replicas)                                                              \
+        return;                                                                                   \
+    const unsigned int cell = gid / n_replicas;                                                   \
+    const unsigned int rep = gid - cell * n_replicas;                                             \
+    bb_params p, fp;                                                                              \
+    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
+    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], (real)cell_phi[cell])
+
+#ifdef BB_QUADRATURE
+
+/* The arguments of both quadrature kernels (albedo_quadrature, albedo_quadrature_rows): `nodes`
+ * holds the fine rule's n_fine abscissae in [0, 1], then its weights (summing to 1), then the
+ * same for the coarse and the coarsest rule, each array padded to BB_QUAD_PADDED of its length;
+ * piece_sum and bad_count have n_cells * BB_QUAD_SLOTS entries. */
+#define BB_QUADRATURE_ARGS                                                                        \
+    BB_CELL_ARGS, __global const bb_scalar *nodes, const unsigned int n_fine,                     \
+        const unsigned int n_coarse, const unsigned int n_coarsest, const unsigned int n_cells,   \
+        __global bb_scalar *piece_sum, __global unsigned int *bad_count
+
+/* The length of a rule's array of nodes: padded to a multiple of the vector width. */
+#ifdef BB_VECTOR_WIDTH
+#define BB_QUAD_PADDED(m) (((m) + BB_VECTOR_WIDTH - 1u) / BB_VECTOR_WIDTH * BB_VECTOR_WIDTH)
+#else
+#define BB_QUAD_PADDED(m) (m)
+#endif
+
+/* The prologue of the quadrature kernels: work-item gid is (cell, rule, piece) (returns beyond
+ * the last): rule 0 has n_fine nodes per axis, rule 1 n_coarse, rule 2 n_coarsest (the error
+ * estimate compares the three); piece 2k + h is half h of the quarter q = k of azimuth offsets
+ * (bb_quad_azimuth_node; in the sampler's square the quarter of u2). Declares gid, cell, piece,
+ * q, the rule's n abscissae x and weights wt, the cell's p, fp (params_ok), phi_o, wo, dist
+ * and copies. Mirror symmetry (bb_quad_mirrored): quarters 0 and 1 count twice (copies = 2),
+ * 2 and 3 are empty; so are the halves h = 1 in the sampler's square and where
+ * bb_quad_azimuth_node gives no width. An empty piece writes 0 and returns. */
+#define BB_QUADRATURE_PROLOGUE                                                                    \
+    const unsigned int gid = (unsigned int)get_global_id(0);                                      \
+    if (gid >= n_cells * BB_QUAD_SLOTS)                                                           \
+        return;                                                                                   \
+    const unsigned int cell = gid / BB_QUAD_SLOTS, rule = (gid / BB_QUAD_PIECES) % BB_QUAD_RULES, \
+                       piece = gid % BB_QUAD_PIECES, q = piece >> 1;                              \
+    const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);           \
+    __global const bb_scalar* x =                                                                 \
+        nodes + (rule == 0u ? 0u                                                                  \
+                            : (rule == 1u ? 2u * BB_QUAD_PADDED(n_fine)                           \
+                                          : 2u * (BB_QUAD_PADDED(n_fine) + BB_QUAD_PADDED(n_coarse)))); \
+    __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                         \
+    bb_params p, fp;                                                                              \
+    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
+    const real phi_o = (real)cell_phi[cell];                                                      \
+    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], phi_o);                            \
+    const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \
+    const int mirrored = bb_quad_mirrored(dist, phi_o);                                           \
+    if ((mirrored && q >= 2u) ||                                                                  \
+        ((piece & 1u) && (dist.kind == BB_QUAD_SAMPLER ||                                         \
+                          bb_all(bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5)).ddelta == BB_R(0.0))))) { \
+        piece_sum[gid] = 0;                                                                       \
+        bad_count[gid] = 0u;                                                                      \
+        return;                                                                                   \
+    }                                                                                             \
+    const bb_scalar copies = mirrored ? 2 : 1
+
+#endif /* BB_QUADRATURE */
+
 #ifndef BB_VECTOR_WIDTH
 
 #ifdef BB_PHILOX
@@ -75,10 +148,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
 
 #ifndef BB_QUADRATURE
 
-__kernel void BB_ENTRY_ALBEDO_REPLICAS(__global const real* cell_mu,    /* cos(theta_o) per cell */
-                              __global const real* cell_phi,   /* phi_o (radians) per cell */
-                              __global const real* model_p,    /* BB_MAX_PARAMS per cell */
-                              __global const real* fresnel_p,  /* BB_MAX_PARAMS */
+__kernel void BB_ENTRY_ALBEDO_REPLICAS(BB_CELL_ARGS,
                               __global const real* shifts,     /* 2 per replica */
                               const unsigned int n_points,     /* points per replica */
                               const unsigned int n_replicas,
@@ -89,15 +159,7 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(__global const real* cell_mu,    /* cos(t
                               __global real* replica_mean,     /* n_cells * n_replicas */
                               __global unsigned int* bad_count) /* n_cells * n_replicas */
 {
-    const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * n_replicas)
-        return;
-    const unsigned int cell = gid / n_replicas;
-    const unsigned int rep = gid - cell * n_replicas;
-
-    bb_params p, fp;
-    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
-    const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], cell_phi[cell]);
+    BB_REPLICA_PROLOGUE;
     const real s1 = shifts[2 * rep], s2 = shifts[2 * rep + 1];
 #ifdef BB_PHILOX
     philox4x32_key_t key = {{seed_lo, seed_hi}};
@@ -131,51 +193,10 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(__global const real* cell_mu,    /* cos(t
 
 #else /* BB_QUADRATURE */
 
-/* Gauss-Legendre product quadrature (integrands.h). Work-item (cell, rule, piece): rule 0 has
- * n_fine nodes per axis, rule 1 n_coarse, rule 2 n_coarsest (the error estimate compares the
- * three); piece 2k + h is
- * half h of the quarter k of azimuth offsets (bb_quad_azimuth_node; in the sampler's square the
- * quarter of u2, and h = 1 is empty). `nodes` holds the fine rule's n_fine abscissae in [0, 1],
- * then its weights (summing to 1), then the same for the coarse and the coarsest rule. Writes
- * the piece's share
- * of E; the host adds the pieces. */
-__kernel void BB_ENTRY_ALBEDO_QUADRATURE(__global const real* cell_mu,
-                                __global const real* cell_phi,
-                                __global const real* model_p,
-                                __global const real* fresnel_p,
-                                __global const real* nodes,
-                                const unsigned int n_fine,
-                                const unsigned int n_coarse,
-                                const unsigned int n_coarsest,
-                                const unsigned int n_cells,
-                                __global real* piece_sum,         /* n_cells * BB_QUAD_SLOTS */
-                                __global unsigned int* bad_count) /* n_cells * BB_QUAD_SLOTS */
-{
-    const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * BB_QUAD_SLOTS)
-        return;
-    const unsigned int cell = gid / BB_QUAD_SLOTS, rule = (gid / BB_QUAD_PIECES) % BB_QUAD_RULES,
-                       piece = gid % BB_QUAD_PIECES, q = piece >> 1;
-    const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);
-    __global const real* x = nodes + (rule == 0u ? 0u : (rule == 1u ? 2u * n_fine : 2u * (n_fine + n_coarse)));
-    __global const real* wt = x + n;
-
-    bb_params p, fp;
-    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
-    const real phi_o = cell_phi[cell];
-    const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], phi_o);
-    const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);
-
-    /* Mirror symmetry (bb_quad_mirrored): quarters 0 and 1 count twice, 2 and 3 are skipped;
-     * so are the empty halves (h = 1 in the sampler's square, and see bb_quad_azimuth_node). */
-    const int mirrored = bb_quad_mirrored(dist, phi_o);
-    const int is_sampler = dist.kind == BB_QUAD_SAMPLER;
-    if ((mirrored && q >= 2u) || ((piece & 1u) && (is_sampler || bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5)).ddelta == BB_R(0.0)))) {
-        piece_sum[gid] = BB_R(0.0);
-        bad_count[gid] = 0u;
-        return;
-    }
-    const real copies = mirrored ? BB_R(2.0) : BB_R(1.0);
+/* Gauss-Legendre product quadrature (integrands.h), one work-item per (cell, rule, piece)
+ * (BB_QUADRATURE_PROLOGUE). Writes the piece's share of E; the host adds the pieces. */
+__kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
+    BB_QUADRATURE_PROLOGUE;
 
     real sum = BB_R(0.0), comp = BB_R(0.0);
     unsigned int bad = 0;
@@ -245,48 +266,11 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(__global const real* cell_mu,
  * one row of the rule per lane: work-item (cell, rule, piece) as there, its rows j taken W at a
  * time (lane l is row j0 + l: its azimuth node, bb_quad_azimuth_node and bb_make_quad_row in
  * vector form), and the radial nodes k one at a time for all W rows (t = t_max(row) x[k]). The
- * same nodes, weights and functions as the scalar kernel, so the same sum to rounding. `nodes`
- * holds each rule's abscissae and weights padded to a multiple of W, the padding with weight 0
- * (and abscissa 1/2): such lanes are neither summed nor counted. */
-__kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(__global const bb_scalar* cell_mu,
-                                     __global const bb_scalar* cell_phi,
-                                     __global const bb_scalar* model_p,
-                                     __global const bb_scalar* fresnel_p,
-                                     __global const bb_scalar* nodes,
-                                     const unsigned int n_fine,
-                                     const unsigned int n_coarse,
-                                     const unsigned int n_coarsest,
-                                     const unsigned int n_cells,
-                                     __global bb_scalar* piece_sum,     /* n_cells * BB_QUAD_SLOTS */
-                                     __global unsigned int* bad_count) /* n_cells * BB_QUAD_SLOTS */
-{
-    const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * BB_QUAD_SLOTS)
-        return;
-    const unsigned int cell = gid / BB_QUAD_SLOTS, rule = (gid / BB_QUAD_PIECES) % BB_QUAD_RULES,
-                       piece = gid % BB_QUAD_PIECES, q = piece >> 1;
-    const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);
-#define BB_PAD(m) (((m) + BB_VECTOR_WIDTH - 1u) / BB_VECTOR_WIDTH * BB_VECTOR_WIDTH)
-    __global const bb_scalar* x =
-        nodes + (rule == 0u ? 0u : (rule == 1u ? 2u * BB_PAD(n_fine) : 2u * (BB_PAD(n_fine) + BB_PAD(n_coarse))));
-    __global const bb_scalar* wt = x + BB_PAD(n);
-#undef BB_PAD
-
-    bb_params p, fp;
-    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
-    const real phi_o = (real)cell_phi[cell];
-    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], phi_o);
-    const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);
-
-    /* As albedo_quadrature (every lane the same cell): mirrored quarters, empty halves. */
-    const int mirrored = bb_quad_mirrored(dist, phi_o);
-    if ((mirrored && q >= 2u) ||
-        ((piece & 1u) && bb_all(bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5)).ddelta == BB_R(0.0)))) {
-        piece_sum[gid] = 0;
-        bad_count[gid] = 0u;
-        return;
-    }
-    const bb_scalar copies = mirrored ? 2 : 1;
+ * same nodes, weights and functions as the scalar kernel, so the same sum to rounding. Each
+ * array of `nodes` is padded to a multiple of W (BB_QUAD_PADDED), the padding with weight 0 (and
+ * abscissa 1/2): such lanes are neither summed nor counted. */
+__kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
+    BB_QUADRATURE_PROLOGUE;
 
     real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
@@ -328,27 +312,14 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(__global const bb_scalar* cell_mu,
 #define BB_STEP (BB_DISK_VALUES * BB_VECTOR_WIDTH)
 #endif
 
-__kernel void BB_VECTOR_KERNEL(__global const bb_scalar* cell_mu,
-                                   __global const bb_scalar* cell_phi,
-                                   __global const bb_scalar* model_p,
-                                   __global const bb_scalar* fresnel_p,
-                                   __global const bb_scalar* disk,   /* per replica: n_points / W
-                                                                        steps of BB_STEP values */
-                                   const unsigned int n_points,      /* a multiple of W */
-                                   const unsigned int n_replicas,
-                                   const unsigned int n_cells,
-                                   __global bb_scalar* replica_mean,
-                                   __global unsigned int* bad_count)
-{
-    const unsigned int gid = (unsigned int)get_global_id(0);
-    if (gid >= n_cells * n_replicas)
-        return;
-    const unsigned int cell = gid / n_replicas;
-    const unsigned int rep = gid - cell * n_replicas;
-
-    bb_params p, fp;
-    const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);
-    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], (real)cell_phi[cell]);
+__kernel void BB_VECTOR_KERNEL(BB_CELL_ARGS,
+                               __global const bb_scalar* disk, /* per replica: n_points / W steps of BB_STEP values */
+                               const unsigned int n_points,    /* a multiple of W */
+                               const unsigned int n_replicas,
+                               const unsigned int n_cells,
+                               __global bb_scalar* replica_mean,
+                               __global unsigned int* bad_count) {
+    BB_REPLICA_PROLOGUE;
 #ifndef BB_VECTOR_POINTS
     const bb_disk_cell dc = bb_model_disk_cell(BB_MODEL, p, wo, BB_ISOTROPIC);
 #endif
@@ -380,10 +351,7 @@ __kernel void BB_VECTOR_KERNEL(__global const bb_scalar* cell_mu,
             bad += bb_select((bb_mask)1, (bb_mask)0, ok);
             block += bb_select(BB_R(0.0), w, ok);
         }
-        const real y = block - comp;
-        const real t = sum + y;
-        comp = (t - sum) - y;
-        sum = t;
+        BB_KAHAN_ADD(sum, comp, block);
     }
     const unsigned int n_bad = bb_lane_count(bad);
     replica_mean[gid] = bb_lane_sum(sum, comp) / (bb_scalar)n_points;

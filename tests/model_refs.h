@@ -10,16 +10,6 @@
 
 namespace modelref {
 
-/// Textbook exact dielectric Fresnel (Born & Wolf 1.5.2 eq. 21), unpolarised, for eta > 0.
-inline double fresnel_dielectric(double cos_i, double eta) {
-    const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1) return 1.0;
-    const double cos_t = std::sqrt(1 - sin2_t);
-    const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
 /// One model configuration of the accuracy grid: its spec and its reference albedo E(mu).
 struct Case {
     std::string spec;

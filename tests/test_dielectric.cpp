@@ -15,16 +15,6 @@ using namespace brdfbake;
 
 namespace {
 
-// Unpolarised Fresnel reflectance of a dielectric (Born & Wolf 1.5.2), textbook form.
-double fresnel(double cos_i, double eta) {
-    const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
-    if (sin2_t >= 1) return 1.0;
-    const double cos_t = std::sqrt(1 - sin2_t);
-    const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
-    const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
-    return 0.5 * (rs * rs + rp * rp);
-}
-
 DielectricResult run(const std::vector<DielectricCell>& cells, std::uint64_t samples = 1 << 18) {
     DielectricRequest r;
     r.cells = cells;
@@ -42,7 +32,7 @@ void reference_rt(double mu, double alpha, double eta, double& r, double& t) {
             [&](double th, double ph) -> double {
                 const ref::Dir h = ref::dir(th, ph);
                 const double c = double(ref::dot(wo, h));
-                const double F = fresnel(c, eta);
+                const double F = ref::fresnel_dielectric(c, eta);
                 const double lo = double(ref::ggx_lambda(wo, alpha, alpha));
                 const double vis = double(ref::ggx_d(h, alpha, alpha)) * c / mu;  // D (wo.h) / cos_o
                 if (!transmit) {
@@ -74,7 +64,7 @@ TEST_CASE("a nearly smooth dielectric reflects F and transmits 1 - F from both s
         for (double mu : mus) cells.push_back({mu, 1e-3, eta});
     const DielectricResult res = run(cells, 1 << 16);
     for (size_t k = 0; k < cells.size(); ++k) {
-        const double F = fresnel(cells[k].mu, cells[k].eta);
+        const double F = ref::fresnel_dielectric(cells[k].mu, cells[k].eta);
         INFO("mu " << cells[k].mu << " eta " << cells[k].eta << " R " << res.reflected[k].value << " T "
                    << res.transmitted[k].value << " F " << F);
         // Roughness 1e-3 changes the result by far less than 1e-3.

@@ -318,10 +318,9 @@ TEST_CASE("extremes: D, Lambda, G1, G2 finite at alpha = 1e-4 and mu = 1e-5 on t
                 CHECK(gb == Approx(1.0 / (1.0 + lb)).epsilon(1e-10));
                 for (double mi : mus) {
                     const bb_vec3 wi = dir(mi, phi + 1.0);
-                    for (double g2 : {bb_ggx_g2_separable(w, wi, a.first, a.second),
-                                      bb_ggx_g2_correlated(w, wi, a.first, a.second),
-                                      bb_beckmann_g2_separable(w, wi, a.first, a.second),
-                                      bb_beckmann_g2_correlated(w, wi, a.first, a.second)}) {
+                    const double ggi = bb_ggx_g1(wi, a.first, a.second), gbi = bb_beckmann_g1(wi, a.first, a.second);
+                    for (double g2 : {bb_g2_separable_from_g1(gg, ggi), bb_g2_correlated_from_g1(gg, ggi),
+                                      bb_g2_separable_from_g1(gb, gbi), bb_g2_correlated_from_g1(gb, gbi)}) {
                         INFO("wi mu = " << mi << ": G2 " << g2);
                         CHECK(unit_interval(g2));
                     }

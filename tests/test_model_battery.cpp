@@ -16,6 +16,7 @@
 #include "brdfbake/evaluate.h"
 #include "brdfbake/spec.h"
 #include "models/params.h"
+#include "parity.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -24,12 +25,7 @@ namespace {
 
 const bb_params kNoFresnel = {{0}};
 
-Vec3 random_dir(std::mt19937& rng, double mu_min) {
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    const double mu = mu_min + (1.0 - mu_min) * u(rng), phi = 2 * M_PI * u(rng);
-    const double s = std::sqrt(1 - mu * mu);
-    return {s * std::cos(phi), s * std::sin(phi), mu};
-}
+using testing::random_dir;
 
 bb_vec3 v3(const Vec3& d) { return bb_v3(d[0], d[1], d[2]); }
 
@@ -84,33 +80,7 @@ TEST_CASE("battery: reciprocity where the registry claims it, and only there", "
 TEST_CASE("battery: host and kernel evaluate and sample alike, float and double", "[battery][parity][device]") {
     for (const ModelTraits& t : model_registry()) {
         const ModelConfig m = resolve_model(t.example);
-        const FresnelConfig f = resolve_fresnel("none");
-        std::mt19937 rng(42);
-        std::uniform_real_distribution<double> uni(0.0, 1.0);
-        std::vector<Vec3> wo, wi;
-        std::vector<std::array<double, 2>> u;
-        for (int i = 0; i < 1000; ++i) {
-            wo.push_back(random_dir(rng, 1e-3));
-            wi.push_back(random_dir(rng, 1e-3));
-            u.push_back({uni(rng), uni(rng)});
-        }
-        for (Precision p : {Precision::Float, Precision::Double}) {
-            const double tol = p == Precision::Double ? 1e-11 : 2e-4;
-            const std::vector<double> dev = evaluate_on_device(testing::engine(), m, f, p, wo, wi);
-            const std::vector<DeviceSample> ds = sample_on_device(testing::engine(), m, f, p, wo, u);
-            int bad_eval = 0, bad_sample = 0;
-            for (size_t i = 0; i < wo.size(); ++i) {
-                const double host = host_eval(m, wo[i], wi[i]);
-                bad_eval += !(std::fabs(dev[i] - host) <= tol * std::fmax(1.0, std::fabs(host)));
-                const bb_sample hs = bb_model_sample(m.id, to_bb_params(m.params), f.kind, to_bb_params(f.params),
-                                                     v3(wo[i]), u[i][0], u[i][1]);
-                bad_sample += !(std::fabs(ds[i].weight - hs.weight) <= tol * std::fmax(1.0, hs.weight) &&
-                                std::fabs(ds[i].wi[2] - hs.wi.z) <= tol);
-            }
-            INFO(t.name << " " << precision_name(p));
-            CHECK(bad_eval == 0);
-            CHECK(bad_sample == 0);
-        }
+        testing::check_host_device_parity(m, t.name, 1000);
     }
 }
 

@@ -13,6 +13,7 @@
 #include "models/params.h"
 #include "model_refs.h"
 #include "reference/reference.h"
+#include "spec_checks.h"
 
 using namespace brdfbake;
 
@@ -75,25 +76,18 @@ TEST_CASE("every model of the course notes is registered", "[models][quick]") {
 }
 
 TEST_CASE("model specs resolve to slots, defaults and canonical strings", "[models][quick]") {
-    const ModelConfig on = resolve_model("oren-nayar:sigma=0.3");
-    CHECK(on.id == BB_MODEL_OREN_NAYAR);
-    CHECK(on.params[BB_OREN_NAYAR_RHO] == 1.0);
-    CHECK(on.canonical == "oren-nayar:sigma=0.3,rho=1");
+    using testing::check_resolves;
+    const ModelConfig on = check_resolves("oren-nayar:sigma=0.3", BB_MODEL_OREN_NAYAR, {{BB_OREN_NAYAR_RHO, 1.0}},
+                                          "oren-nayar:sigma=0.3,rho=1");
     CHECK_FALSE(on.uses_fresnel);
 
-    const ModelConfig ph = resolve_model("phong:n=20,normalized=1");
-    CHECK(ph.id == BB_MODEL_PHONG);
-    CHECK(ph.params[BB_PHONG_N] == 20.0);
-    CHECK(ph.params[BB_PHONG_KS] == 1.0);
-    CHECK(ph.params[BB_PHONG_NORMALIZED] == 1.0);
-    CHECK(ph.canonical == "phong:n=20,ks=1,normalized=1");
+    check_resolves("phong:n=20,normalized=1", BB_MODEL_PHONG,
+                   {{BB_PHONG_N, 20.0}, {BB_PHONG_KS, 1.0}, {BB_PHONG_NORMALIZED, 1.0}}, "phong:n=20,ks=1,normalized=1");
     CHECK(resolve_model("phong-original:n=5,ks=0.5").canonical == "phong-original:n=5,ks=0.5");
     CHECK(resolve_model("blinn-phong:n=8").canonical == "blinn-phong:n=8,ks=1,normalized=0");
 
-    const ModelConfig ts = resolve_model("torrance-sparrow:d=blinn,n=50");
-    CHECK(ts.id == BB_MODEL_TORRANCE_SPARROW);
-    CHECK(ts.params[BB_TORRANCE_SPARROW_DIST] == BB_TS_D_BLINN);
-    CHECK(ts.canonical == "torrance-sparrow:d=blinn,n=50");
+    const ModelConfig ts = check_resolves("torrance-sparrow:d=blinn,n=50", BB_MODEL_TORRANCE_SPARROW,
+                                          {{BB_TORRANCE_SPARROW_DIST, BB_TS_D_BLINN}}, "torrance-sparrow:d=blinn,n=50");
     CHECK(ts.uses_fresnel);
     const ModelConfig tsd = resolve_model("torrance-sparrow:roughness=0.5");
     CHECK(tsd.params[BB_TORRANCE_SPARROW_DIST] == BB_TS_D_BECKMANN);
@@ -103,9 +97,8 @@ TEST_CASE("model specs resolve to slots, defaults and canonical strings", "[mode
     CHECK(tsa.anisotropic);
     CHECK(tsa.canonical == "torrance-sparrow:d=ggx,alpha_x=0.1,alpha_y=0.2");
 
-    const ModelConfig b = resolve_model("beckmann:alpha=0.2");
-    CHECK(b.id == BB_MODEL_BECKMANN);
-    CHECK(b.canonical == "beckmann:alpha=0.2,shadowing=correlated");
+    const ModelConfig b =
+        check_resolves("beckmann:alpha=0.2", BB_MODEL_BECKMANN, {}, "beckmann:alpha=0.2,shadowing=correlated");
     CHECK(b.uses_fresnel);
     CHECK_FALSE(b.anisotropic);
     const ModelConfig ba = resolve_model("beckmann:alpha_x=0.1,alpha_y=0.4,shadowing=separable");
@@ -116,10 +109,8 @@ TEST_CASE("model specs resolve to slots, defaults and canonical strings", "[mode
     const ModelConfig mi = resolve_model("mirror");
     CHECK(mi.id == BB_MODEL_MIRROR);
     CHECK(mi.uses_fresnel);
-    const ModelConfig ds = resolve_model("dielectric-specular:eta=1.5");
-    CHECK(ds.id == BB_MODEL_DIELECTRIC_SPECULAR);
-    CHECK(ds.params[BB_DIELECTRIC_SPECULAR_ETA] == 1.5);
-    CHECK(ds.canonical == "dielectric-specular:eta=1.5");
+    const ModelConfig ds = check_resolves("dielectric-specular:eta=1.5", BB_MODEL_DIELECTRIC_SPECULAR,
+                                          {{BB_DIELECTRIC_SPECULAR_ETA, 1.5}}, "dielectric-specular:eta=1.5");
     CHECK_FALSE(ds.uses_fresnel);
     // Canonical strings resolve to themselves.
     for (const auto& s : kAllSpecs) {
@@ -487,13 +478,13 @@ TEST_CASE("delta lobes: analytic albedo and transmission", "[models][quick]") {
     REQUIRE(analytic_albedo(mirror, resolve_fresnel("schlick:f0=0.04"), 1.0, v));
     CHECK(v == Approx(0.04).epsilon(1e-14));
     REQUIRE(analytic_albedo(mirror, resolve_fresnel("dielectric:eta=1.5"), 0.5, v));
-    CHECK(v == Approx(modelref::fresnel_dielectric(0.5, 1.5)).epsilon(1e-13));
+    CHECK(v == Approx(ref::fresnel_dielectric(0.5, 1.5)).epsilon(1e-13));
     // Known values from physics: F = 0.04 at normal incidence for eta = 1.5.
     REQUIRE(analytic_albedo(glass, resolve_fresnel("none"), 1.0, v));
     CHECK(v == Approx(0.04).epsilon(1e-14));
     for (double mu : {1.0, 0.7, 0.3, 0.05, 0.001}) {
         REQUIRE(analytic_albedo(glass, resolve_fresnel("none"), mu, v));
-        CHECK(v == Approx(modelref::fresnel_dielectric(mu, 1.5)).epsilon(1e-12));
+        CHECK(v == Approx(ref::fresnel_dielectric(mu, 1.5)).epsilon(1e-12));
         SpecularTransmission t;
         REQUIRE(analytic_transmission(glass, mu, t));
         CHECK(t.energy == Approx(1 - v).epsilon(1e-14));

@@ -62,6 +62,14 @@ Worst check_grid(const std::vector<modelref::Case>& cases, Precision precision =
     return worst;
 }
 
+/// check_grid over the cases make(v) of every value v (an exponent, a roughness).
+template <typename Make>
+void check_grid_of(const std::vector<double>& values, Make make) {
+    std::vector<modelref::Case> cases;
+    for (double v : values) cases.push_back(make(v));
+    check_grid(cases);
+}
+
 }  // namespace
 
 TEST_CASE("grid: beckmann albedo within 2e-4 of quadrature", "[models][device][grid]") {
@@ -79,35 +87,24 @@ TEST_CASE("grid: ggx albedo within 2e-4 of quadrature", "[models][device][grid]"
 }
 
 TEST_CASE("grid: torrance-sparrow albedo within 2e-4 of quadrature", "[models][device][grid][slow]") {
-    for (ref::Dist d : {ref::Dist::Blinn, ref::Dist::Beckmann, ref::Dist::Ggx}) {
-        std::vector<modelref::Case> cases;
-        for (double a : kGridAlpha) cases.push_back(modelref::torrance_sparrow(d, a));
-        check_grid(cases);
-    }
+    for (ref::Dist d : {ref::Dist::Blinn, ref::Dist::Beckmann, ref::Dist::Ggx})
+        check_grid_of(kGridAlpha, [d](double a) { return modelref::torrance_sparrow(d, a); });
 }
 
 TEST_CASE("grid: blinn-phong albedo within 2e-4 of quadrature", "[models][device][grid]") {
-    std::vector<modelref::Case> cases;
-    for (double n : kGridExponent) cases.push_back(modelref::blinn_phong(n));
-    check_grid(cases);
+    check_grid_of(kGridExponent, [](double n) { return modelref::blinn_phong(n); });
 }
 
 TEST_CASE("grid: phong albedo within 2e-4 of quadrature", "[models][device][grid]") {
-    std::vector<modelref::Case> cases;
-    for (double n : kGridExponent) cases.push_back(modelref::phong(n));
-    check_grid(cases);
+    check_grid_of(kGridExponent, [](double n) { return modelref::phong(n); });
 }
 
 TEST_CASE("grid: phong-original albedo within 2e-4 of quadrature", "[models][device][grid]") {
-    std::vector<modelref::Case> cases;
-    for (double n : kGridExponent) cases.push_back(modelref::phong_original(n));
-    check_grid(cases);
+    check_grid_of(kGridExponent, [](double n) { return modelref::phong_original(n); });
 }
 
 TEST_CASE("grid: oren-nayar albedo within 2e-4 of quadrature", "[models][device][grid]") {
-    std::vector<modelref::Case> cases;
-    for (double s : {0.0, 0.25, 0.5, 1.0}) cases.push_back(modelref::oren_nayar(s, 1.0));
-    check_grid(cases);
+    check_grid_of({0.0, 0.25, 0.5, 1.0}, [](double s) { return modelref::oren_nayar(s, 1.0); });
 }
 
 TEST_CASE("every model is finite and non-negative down to mu = 1e-5 on the device", "[models][device]") {

@@ -42,14 +42,25 @@ const PlannedTable* find_kind(const Plan& p, const std::string& kind, const std:
 /// Texel-centre coordinate i of an axis of n texels over [lo, hi].
 double centre(double lo, double hi, int n, int i) { return lo + (hi - lo) * (i + 0.5) / n; }
 
-std::string tmp_dir(const std::string& name) {
-    return "/tmp/brdfbake-scene-" + std::to_string(::getpid()) + "-" + name;
+/// A scratch directory of this test process, removed if it exists.
+std::string fresh_tmp_dir(const std::string& name) {
+    const std::string dir = "/tmp/brdfbake-scene-" + std::to_string(::getpid()) + "-" + name;
+    std::system(("rm -rf " + dir).c_str());
+    return dir;
 }
 
 double mtime(const std::string& path) {
     struct stat st;
     if (::stat(path.c_str(), &st) != 0) return -1;
     return double(st.st_mtim.tv_sec) + 1e-9 * double(st.st_mtim.tv_nsec);
+}
+
+/// Bakes the scene file `scene` of tests/data into `out`, which must succeed; returns its index.
+nlohmann::json bake_index(const std::string& scene, const std::string& out) {
+    const auto r = run_cli("bake " + data(scene) + " -o " + out);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    return nlohmann::json::parse(testing::slurp(out + "/index.json"));
 }
 
 bool contains(const std::vector<std::string>& v, const std::string& part) {
@@ -272,7 +283,7 @@ TEST_CASE("malformed scene files and unknown material features give clear errors
 }
 
 TEST_CASE("plan and bake reject bad scenes with one line and exit status 2, writing nothing", "[scene][cli]") {
-    const std::string out = tmp_dir("bad");
+    const std::string out = fresh_tmp_dir("bad");
     for (const char* f : {"bad_syntax.json", "unknown_model.json", "missing_model.json", "unknown_feature.json", "bad.gltf",
                           "truncated.glb"}) {
         INFO(f);
@@ -308,12 +319,8 @@ TEST_CASE("plan --format json lists the tables with their ranges, sizes, materia
 }
 
 TEST_CASE("bake writes the tables and an index; a second bake does no work", "[scene][device]") {
-    const std::string out = tmp_dir("bake");
-    std::system(("rm -rf " + out).c_str());
-    const auto first = run_cli("bake " + data("small_bake.json") + " -o " + out);
-    INFO(first.err);
-    REQUIRE(first.status == 0);
-    const auto index = nlohmann::json::parse(testing::slurp(out + "/index.json"));
+    const std::string out = fresh_tmp_dir("bake");
+    const auto index = bake_index("small_bake.json", out);
     REQUIRE(index.at("tables").size() == 2);
     std::map<std::string, double> times;
     for (const auto& t : index["tables"]) {
@@ -351,8 +358,7 @@ TEST_CASE("bake writes the tables and an index; a second bake does no work", "[s
 }
 
 TEST_CASE("a baked table, computed in tiles, holds what compute_lut gives for the whole request", "[scene][device]") {
-    const std::string out = tmp_dir("tiles");
-    std::system(("rm -rf " + out).c_str());
+    const std::string out = fresh_tmp_dir("tiles");
     REQUIRE(run_cli("bake " + data("small_bake.json") + " -o " + out).status == 0);
     const Plan plan = make_plan(load_scene(data("small_bake.json")));
     const PlannedTable* a = find_kind(plan, "albedo");
@@ -377,12 +383,8 @@ TEST_CASE("a baked table, computed in tiles, holds what compute_lut gives for th
 }
 
 TEST_CASE("bake a rough glass: the dielectric table over the scene's eta", "[scene][device]") {
-    const std::string out = tmp_dir("glass");
-    std::system(("rm -rf " + out).c_str());
-    const auto r = run_cli("bake " + data("small_glass.json") + " -o " + out);
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    const auto index = nlohmann::json::parse(testing::slurp(out + "/index.json"));
+    const std::string out = fresh_tmp_dir("glass");
+    const auto index = bake_index("small_glass.json", out);
     REQUIRE(index.at("tables").size() == 1);
     const auto& t = index["tables"][0];
     CHECK(t.at("kind") == "dielectric");

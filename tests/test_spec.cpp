@@ -4,6 +4,7 @@
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
+#include "spec_checks.h"
 
 using namespace brdfbake;
 
@@ -21,12 +22,9 @@ TEST_CASE("specs split into name and keys", "[spec][quick]") {
 }
 
 TEST_CASE("model specs resolve to parameter slots", "[spec][quick]") {
-    const ModelConfig g = resolve_model("ggx:roughness=0.5");
-    CHECK(g.id == BB_MODEL_GGX);
-    CHECK(g.params[BB_GGX_ALPHA_X] == 0.25);
-    CHECK(g.params[BB_GGX_ALPHA_Y] == 0.25);
-    CHECK(g.params[BB_GGX_SHADOWING] == 1.0);
-    CHECK(g.canonical == "ggx:alpha=0.25,shadowing=correlated");
+    const ModelConfig g = testing::check_resolves("ggx:roughness=0.5", BB_MODEL_GGX,
+                                                  {{BB_GGX_ALPHA_X, 0.25}, {BB_GGX_ALPHA_Y, 0.25}, {BB_GGX_SHADOWING, 1.0}},
+                                                  "ggx:alpha=0.25,shadowing=correlated");
     CHECK_FALSE(g.anisotropic);
     const ModelConfig a = resolve_model("ggx:alpha_x=0.1,alpha_y=0.3,shadowing=separable");
     CHECK(a.anisotropic);

@@ -15,6 +15,17 @@ namespace ref {
 using ld = long double;
 constexpr ld kPi = 3.141592653589793238462643383279502884L;
 
+/// Textbook exact dielectric Fresnel (Born & Wolf 1.5.2 eq. 21), unpolarised, for eta > 0:
+/// 1 beyond the critical angle (total internal reflection).
+inline double fresnel_dielectric(double cos_i, double eta) {
+    const double sin2_t = (1 - cos_i * cos_i) / (eta * eta);
+    if (sin2_t >= 1) return 1.0;
+    const double cos_t = std::sqrt(1 - sin2_t);
+    const double rs = (cos_i - eta * cos_t) / (cos_i + eta * cos_t);
+    const double rp = (eta * cos_i - cos_t) / (eta * cos_i + cos_t);
+    return 0.5 * (rs * rs + rp * rp);
+}
+
 /// Adaptive 31-point Gauss-Kronrod on [a, b] to a relative tolerance.
 inline double integrate(const std::function<double(double)>& f, double a, double b, double tol = 1e-11) {
     double err = 0.0;

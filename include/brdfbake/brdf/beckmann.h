@@ -14,19 +14,6 @@
 #define BB_BECKMANN_SHADOWING BB_SMITH_SHADOWING /* 0: separable, 1: height-correlated */
 
 /* The Smith lobe (smith.h) with the Beckmann distribution; visible normals [HD14, J14]. */
-BB_FN real bb_beckmann_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
-    return bb_smith_eval(BB_SMITH_BECKMANN, p, fkind, fp, wo, wi);
-}
-
-BB_FN bb_sample bb_beckmann_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
-    return bb_smith_sample(BB_SMITH_BECKMANN, p, fkind, fp, wo, u1, u2);
-}
-
-BB_FN bb_quad_dist bb_beckmann_quad_dist(bb_params p) { return bb_smith_quad_dist(BB_SMITH_BECKMANN, p); }
-
-BB_FN real bb_beckmann_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co, real ch,
-                                         real djc) {
-    return bb_smith_halfvector_weight(BB_SMITH_BECKMANN, p, f_oh, wo, wi, oh, co, ch, djc);
-}
+BB_SMITH_LOBE(beckmann, BB_SMITH_BECKMANN)
 
 #endif /* BRDFBAKE_BRDF_BECKMANN_H */

@@ -131,9 +131,7 @@ typedef struct {
 } bb_vec2;
 
 BB_FN bb_vec2 bb_v2(real x, real y) {
-    bb_vec2 v;
-    v.x = x;
-    v.y = y;
+    bb_vec2 v = {x, y};
     return v;
 }
 
@@ -144,10 +142,7 @@ typedef struct {
 } bb_vec3;
 
 BB_FN bb_vec3 bb_v3(real x, real y, real z) {
-    bb_vec3 v;
-    v.x = x;
-    v.y = y;
-    v.z = z;
+    bb_vec3 v = {x, y, z};
     return v;
 }
 BB_FN real bb_dot(bb_vec3 a, bb_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }

@@ -58,9 +58,7 @@ typedef struct {
 } bb_fresnel_sp;
 
 BB_FN bb_fresnel_sp bb_make_fresnel_sp(real rs, real rp) {
-    bb_fresnel_sp r;
-    r.rs = rs;
-    r.rp = rp;
+    bb_fresnel_sp r = {rs, rp};
     return r;
 }
 
@@ -139,13 +137,6 @@ typedef struct {
     real re, im;
 } bb_complex;
 
-BB_FN bb_complex bb_make_complex(real re, real im) {
-    bb_complex z;
-    z.re = re;
-    z.im = im;
-    return z;
-}
-
 /* The square root of z = a + ib on the branch with Im >= 0 (and Re >= 0), the physical one for
  * the transmitted wave n cos_t in an absorbing medium (it decays into the metal) [BW 14.2].
  * For Im(z) >= 0 this is the principal root; taking |b| makes a signed zero in b (a negative
@@ -160,7 +151,8 @@ BB_FN bb_complex bb_complex_sqrt_upper(real a, real b) {
     real t = bb_sqrt(BB_R(0.5) * (mag + bb_fabs(a)));
     real other = bb_ratio_or(ab, BB_R(2.0) * t, BB_R(0.0));
     bb_mask pos = a >= BB_R(0.0);
-    return bb_make_complex(bb_select(other, t, pos), bb_select(t, other, pos));
+    bb_complex root = {bb_select(other, t, pos), bb_select(t, other, pos)};
+    return root;
 }
 
 /* Rs and Rp of a conductor with complex relative index n = eta + ik (eta > 0, k >= 0)

@@ -14,20 +14,7 @@
 /* The Smith lobe (smith.h) with the GGX distribution. Its importance sample takes the visible
  * normal [H18] of the disk point bb_disk_polar(u1, u2), which the fast kernels tabulate
  * (bb_ggx_disk_* below). */
-BB_FN real bb_ggx_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
-    return bb_smith_eval(BB_SMITH_GGX, p, fkind, fp, wo, wi);
-}
-
-BB_FN bb_sample bb_ggx_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
-    return bb_smith_sample(BB_SMITH_GGX, p, fkind, fp, wo, u1, u2);
-}
-
-BB_FN bb_quad_dist bb_ggx_quad_dist(bb_params p) { return bb_smith_quad_dist(BB_SMITH_GGX, p); }
-
-BB_FN real bb_ggx_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co, real ch,
-                                    real djc) {
-    return bb_smith_halfvector_weight(BB_SMITH_GGX, p, f_oh, wo, wi, oh, co, ch, djc);
-}
+BB_SMITH_LOBE(ggx, BB_SMITH_GGX)
 
 /* The same estimator weight, F(wo.wh) G2(wo, wi) / G1(wo), in the two halves the vector kernel
  * uses (kernels/albedo.cl, albedo_replicas_disk): what depends on the cell alone, once per cell

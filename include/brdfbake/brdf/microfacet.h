@@ -110,6 +110,20 @@ BB_FN bb_vec3 bb_to_frame(bb_vec3 n, bb_vec3 d) {
     return bb_add(bb_add(bb_scale(t1, d.x), bb_scale(t2, d.y)), bb_scale(n, d.z));
 }
 
+/* Smith masking-shadowing G2 from the two G1 = 1 / (1 + Lambda) [H14 eq. 43] of any
+ * distribution (bb_ggx_g1, bb_beckmann_g1 below): G1o = G1(wo), G1i = G1(wi).
+ * Separable G2 = G1(wo) G1(wi) [H14 eq. 98]. */
+BB_FN real bb_g2_separable_from_g1(real g1o, real g1i) { return g1o * g1i; }
+
+/* Height-correlated G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) [H14 eq. 99], written as
+ * 1/(1/G1o + 1/G1i - 1) so that it reaches 0, not NaN, at the horizon. */
+BB_FN real bb_g2_correlated_from_g1(real g1o, real g1i) {
+    real p = g1o * g1i;
+    real den = g1o + g1i - p;
+    real g = p / bb_select(den, BB_R(1.0), den <= BB_R(0.0));
+    return bb_select(BB_R(0.0), g, p > BB_R(0.0));
+}
+
 /* Below this alpha a float kernel cannot resolve the lobe (D ~ 1/(pi alpha^2) overflows the
  * sample weights' useful range); the host refuses smaller values. */
 #define BB_ALPHA_MIN BB_R(1e-4)
@@ -143,21 +157,6 @@ BB_FN real bb_ggx_g1(bb_vec3 w, real ax, real ay) {
     real a = BB_R(2.0) * z * (bb_sqrt(z * z + r2) + z);
     real g = a / (a + r2);
     return bb_select(BB_R(0.0), g, w.z > BB_R(0.0));
-}
-
-/* Separable masking-shadowing G2 = G1(wo) G1(wi) [H14 eq. 98]. */
-BB_FN real bb_ggx_g2_separable(bb_vec3 wo, bb_vec3 wi, real ax, real ay) {
-    return bb_ggx_g1(wo, ax, ay) * bb_ggx_g1(wi, ax, ay);
-}
-
-/* Height-correlated masking-shadowing G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) [H14 eq. 99],
- * written as 1/(1/G1o + 1/G1i - 1) so that it reaches 0, not NaN, at the horizon. */
-BB_FN real bb_ggx_g2_correlated(bb_vec3 wo, bb_vec3 wi, real ax, real ay) {
-    real g1o = bb_ggx_g1(wo, ax, ay), g1i = bb_ggx_g1(wi, ax, ay);
-    real p = g1o * g1i;
-    real den = g1o + g1i - p;
-    real g = p / bb_select(den, BB_R(1.0), den <= BB_R(0.0));
-    return bb_select(BB_R(0.0), g, p > BB_R(0.0));
 }
 
 /* Sample a visible normal of GGX seen from wo (wo.z > 0) [H18, listing 1], from the point d of
@@ -244,21 +243,6 @@ BB_FN real bb_beckmann_g1(bb_vec3 w, real ax, real ay) {
     real ea = bb_exp(-(z * z) / r2) * rr / bb_select(z, BB_R(1.0), z <= BB_R(0.0));
     real g = BB_R(2.0) * BB_SQRT_PI / (BB_SQRT_PI * (BB_R(1.0) + bb_erf(a)) + ea);
     return bb_select(BB_R(0.0), g, w.z > BB_R(0.0));
-}
-
-/* Separable G2 = G1(wo) G1(wi) [H14 eq. 98]. */
-BB_FN real bb_beckmann_g2_separable(bb_vec3 wo, bb_vec3 wi, real ax, real ay) {
-    return bb_beckmann_g1(wo, ax, ay) * bb_beckmann_g1(wi, ax, ay);
-}
-
-/* Height-correlated G2 = 1 / (1 + Lambda(wo) + Lambda(wi)) [H14 eq. 99], as
- * 1/(1/G1o + 1/G1i - 1) so that it reaches 0, not NaN, at the horizon. */
-BB_FN real bb_beckmann_g2_correlated(bb_vec3 wo, bb_vec3 wi, real ax, real ay) {
-    real g1o = bb_beckmann_g1(wo, ax, ay), g1i = bb_beckmann_g1(wi, ax, ay);
-    real p = g1o * g1i;
-    real den = g1o + g1i - p;
-    real g = p / bb_select(den, BB_R(1.0), den <= BB_R(0.0));
-    return bb_select(BB_R(0.0), g, p > BB_R(0.0));
 }
 
 /* Sample a Beckmann microfacet normal with density D(m) cos(theta_m) [WMLT07 eq. 28], through

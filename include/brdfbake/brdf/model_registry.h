@@ -167,21 +167,16 @@
         return 0;                                  \
     }
 
-#define BB_TRAIT_CASE_DELTA(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    case BB_MODEL_##NAME:                                                                                   \
-        return DE;
-#define BB_TRAIT_CASE_DISK(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    case BB_MODEL_##NAME:                                                                                  \
-        return DI;
-#define BB_TRAIT_CASE_VSAMPLE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    case BB_MODEL_##NAME:                                                                                     \
-        return VS;
-#define BB_TRAIT_CASE_VEVAL(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    case BB_MODEL_##NAME:                                                                                   \
-        return VE;
-#define BB_TRAIT_CASE_COSINE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    case BB_MODEL_##NAME:                                                                                    \
-        return CO;
+/* The case of one row for the trait switch, its value the row's COLUMN: one generator per
+ * column, each naming the columns up to its own. */
+#define BB_TRAIT_CASE(NAME, value) \
+    case BB_MODEL_##NAME:          \
+        return value;
+#define BB_TRAIT_CASE_COSINE(NAME, name, SPEC, FR, QUAD, CO, ...) BB_TRAIT_CASE(NAME, CO)
+#define BB_TRAIT_CASE_DELTA(NAME, name, SPEC, FR, QUAD, CO, DE, ...) BB_TRAIT_CASE(NAME, DE)
+#define BB_TRAIT_CASE_DISK(NAME, name, SPEC, FR, QUAD, CO, DE, DI, ...) BB_TRAIT_CASE(NAME, DI)
+#define BB_TRAIT_CASE_VSAMPLE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, ...) BB_TRAIT_CASE(NAME, VS)
+#define BB_TRAIT_CASE_VEVAL(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, ...) BB_TRAIT_CASE(NAME, VE)
 
 /* True for the delta lobes (DELTA): eval is 0, the albedo is analytic. */
 BB_FN int bb_model_is_delta(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_DELTA) }

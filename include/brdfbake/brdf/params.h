@@ -22,9 +22,7 @@ typedef struct {
 } bb_sample;
 
 BB_FN bb_sample bb_make_sample(bb_vec3 wi, real weight) {
-    bb_sample s;
-    s.wi = wi;
-    s.weight = weight;
+    bb_sample s = {wi, weight};
     return s;
 }
 

@@ -90,7 +90,9 @@ BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real e
     real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
 
     bb_vec3 wr = bb_reflect(wo, wh);
-    real g2r = bb_select(bb_ggx_g2_separable(wo, wr, ax, ay), bb_ggx_g2_correlated(wo, wr, ax, ay), correlated != 0);
+    /* each G2 from its own G1 calls, merged by the compiler (as bb_smith_g2) */
+    real g2r = bb_select(bb_g2_separable_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wr, ax, ay)),
+                         bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wr, ax, ay)), correlated != 0);
     out.r = bb_select(BB_R(0.0), f * g2r * inv_g1o, wr.z > BB_R(0.0) && g1o > BB_R(0.0));
 
     bb_vec3 wt = bb_refract(wo, wh, c, eta);

@@ -52,16 +52,18 @@ BB_FN bb_vec3 bb_smith_sample_vndf(int dist, bb_vec3 wo, real ax, real ay, real 
     return bb_ggx_sample_vndf(wo, ax, ay, u1, u2);
 }
 
-/* G2 as the shadowing slot chooses. */
+/* G2 as the shadowing slot chooses, from the distribution's G1 (microfacet.h). Each form takes
+ * its own pair of G1 calls, which the compiler merges: the form the kernels were tuned with
+ * (one named pair, or a call through bb_smith_g1, changes the code the compiler lays out). */
 BB_FN real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
     real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
     real separable, correlated;
     if (dist == BB_SMITH_BECKMANN) {
-        separable = bb_beckmann_g2_separable(wo, wi, ax, ay);
-        correlated = bb_beckmann_g2_correlated(wo, wi, ax, ay);
+        separable = bb_g2_separable_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
+        correlated = bb_g2_correlated_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
     } else {
-        separable = bb_ggx_g2_separable(wo, wi, ax, ay);
-        correlated = bb_ggx_g2_correlated(wo, wi, ax, ay);
+        separable = bb_g2_separable_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
+        correlated = bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
     }
     return bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] > BB_R(0.5));
 }
@@ -101,5 +103,22 @@ BB_FN real bb_smith_halfvector_weight(int dist, bb_params p, real f_oh, bb_vec3 
                                       real ch, real djc) {
     return f_oh * bb_smith_g2(dist, p, wo, wi) * oh / (co * ch) * djc;
 }
+
+/* The functions a Smith lobe model registers (model_registry.h: bb_<name>_eval, _sample,
+ * _quad_dist and _halfvector_weight), those of the body above with the distribution `dist`:
+ * BB_SMITH_LOBE(ggx, BB_SMITH_GGX) in ggx.h, BB_SMITH_LOBE(beckmann, BB_SMITH_BECKMANN) in
+ * beckmann.h. */
+#define BB_SMITH_LOBE(name, dist)                                                                                \
+    BB_FN real bb_##name##_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {                 \
+        return bb_smith_eval(dist, p, fkind, fp, wo, wi);                                                        \
+    }                                                                                                            \
+    BB_FN bb_sample bb_##name##_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {     \
+        return bb_smith_sample(dist, p, fkind, fp, wo, u1, u2);                                                  \
+    }                                                                                                            \
+    BB_FN bb_quad_dist bb_##name##_quad_dist(bb_params p) { return bb_smith_quad_dist(dist, p); }                \
+    BB_FN real bb_##name##_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co,   \
+                                             real ch, real djc) {                                                \
+        return bb_smith_halfvector_weight(dist, p, f_oh, wo, wi, oh, co, ch, djc);                               \
+    }
 
 #endif /* BRDFBAKE_BRDF_SMITH_H */
