@@ -69,16 +69,15 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
     check_table_path(o.output);
     if (!o.preview.empty() && !is_plot_path(o.preview)) throw Error("--preview must end in .png or .svg");
+    std::string preview = o.preview;
+    if (preview.empty()) preview = o.output.substr(0, o.output.find_last_of('.')) + ".png";
+    if (!o.no_preview) check_output_path(preview);
     validate_lut(r);  // every input checked before the device is touched
 
     Engine engine(g.device, g.verbose);
     const Table table = compute_lut(engine, r);
     write_table(table, o.output, o.half);
-    if (!o.no_preview) {
-        std::string preview = o.preview;
-        if (preview.empty()) preview = o.output.substr(0, o.output.find_last_of('.')) + ".png";
-        write_table_preview(table, preview);
-    }
+    if (!o.no_preview) write_table_preview(table, preview);
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "brdfbake: wrote %s: %s table %dx%dx%d (%s), max error %.2e, %.2f s\n", o.output.c_str(),
                  table.kind.c_str(), table.width(), table.height(), table.depth(), table.attributes.at("model").c_str(),

@@ -132,19 +132,16 @@ void write_exr(const Table& t, const std::string& path, bool half) {
         }
         fb.insert(names[c], Imf::Slice(type, base, size, size * size_t(w)));
     }
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + ".exr";
+    const OutputFile out = prepare_output(path);
     try {
-        Imf::OutputFile file(tmp.c_str(), header);
+        Imf::OutputFile file(out.temporary.c_str(), header);
         file.setFrameBuffer(fb);
         file.writePixels(h);
     } catch (const std::exception& e) {
-        std::remove(tmp.c_str());
+        std::remove(out.temporary.c_str());
         throw Error("cannot write '" + path + "': " + e.what());
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        std::remove(tmp.c_str());
-        throw Error("cannot write '" + path + "': rename failed");
-    }
+    commit_output(out, path);
 }
 
 std::string table_csv(const Table& t) {
@@ -207,6 +204,7 @@ void check_table_path(const std::string& path) {
     const std::string ext = extension(path);
     if (ext != "exr" && ext != "csv" && ext != "h" && ext != "hpp")
         throw Error("cannot tell the table format from '" + path + "': use .exr, .csv or .h");
+    check_output_path(path);
 }
 
 void write_table(const Table& t, const std::string& path, bool half) {

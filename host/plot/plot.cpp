@@ -11,6 +11,7 @@
 #include <unistd.h>
 
 #include "brdfbake/error.h"
+#include "brdfbake/output.h"
 
 namespace brdfbake {
 
@@ -283,7 +284,8 @@ void write_figure(const std::string& path, const Figure& figure) {
     }
 
     // Atomic write: render into a temporary file beside the target, then rename.
-    const std::string tmp = path + ".tmp-" + std::to_string(::getpid()) + (kind == Kind::Png ? ".png" : ".svg");
+    const OutputFile out = prepare_output(path);
+    const std::string& tmp = out.temporary;
     // MathGL reports an unwritable file on stderr only; find out first, with the reason.
     if (FILE* probe = std::fopen(tmp.c_str(), "wb")) {
         std::fclose(probe);
@@ -301,11 +303,7 @@ void write_figure(const std::string& path, const Figure& figure) {
         std::remove(tmp.c_str());
         throw Error("cannot write plot '" + path + "': " + why);
     }
-    if (std::rename(tmp.c_str(), path.c_str()) != 0) {
-        const std::string why = std::strerror(errno);
-        std::remove(tmp.c_str());
-        throw Error("cannot write plot '" + path + "': " + why);
-    }
+    commit_output(out, path);
 }
 
 void write_plot(const std::string& path, const PlotSpec& panel, int width, int height) {
