@@ -145,3 +145,21 @@ TEST_CASE("temporary files match no output glob and the next run removes those o
     }
     std::system(("rm -rf '" + dir + "'").c_str());
 }
+
+TEST_CASE("a result that cannot be written to standard output is an error", "[cli][output]") {
+    const std::string err = "/tmp/brdfbake-outpaths-" + std::to_string(::getpid()) + "-stdout.err";
+    for (const std::string& redirect : {std::string(">/dev/full"), std::string(">&-")}) {
+        for (const std::string& args : {std::string("albedo --model lambert --mu 0.5 --samples 4096"),
+                                        std::string("fresnel --fresnel dielectric:eta=1.5 --theta 0,45")}) {
+            const std::string cmd = std::string(BRDFBAKE_EXE) + " " + args + " " + redirect + " 2>" + err;
+            const int raw = std::system(cmd.c_str());
+            const std::string message = testing::slurp(err);
+            INFO(cmd << ": " << message);
+            CHECK(WIFEXITED(raw));
+            CHECK(WEXITSTATUS(raw) == 2);
+            CHECK(message.find("brdfbake: error: cannot write standard output") == 0);
+            CHECK(testing::count_lines(message) == 1);
+        }
+    }
+    std::remove(err.c_str());
+}

@@ -1,5 +1,8 @@
 // brdfbake: integrate BRDFs in OpenCL kernels and emit lookup tables and plots.
 // Library code throws brdfbake::Error; this is the one place that turns errors into exit codes.
+#include <cerrno>
+#include <cstdio>
+#include <cstring>
 #include <iostream>
 
 #include "brdfbake/engine.h"
@@ -68,7 +71,18 @@ int main(int argc, char** argv) {
     }
 
     try {
-        return action ? action() : kExitError;
+        const int status = action ? action() : kExitError;
+        // What a command printed is its result: a full disk or a closed pipe must not pass as
+        // success (stdout is buffered, so a failed write shows at the flush).
+        std::cout.flush();
+        errno = 0;
+        if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+            const int err = errno;
+            std::cerr << "brdfbake: error: cannot write standard output"
+                      << (err ? std::string(": ") + std::strerror(err) : std::string()) << "\n";
+            return kExitError;
+        }
+        return status;
     } catch (const Error& e) {
         std::cerr << "brdfbake: error: " << e.what() << "\n";
         return e.exit_code();
