@@ -107,3 +107,27 @@ TEST_CASE("devices lists PoCL with its facts", "[cli]") {
     CHECK(d.contains("fp64"));
     CHECK(d.at("global_mem_bytes").get<double>() > 0);
 }
+
+TEST_CASE("an option whose 0 means 'not given' refuses a given 0 or a negative value", "[cli]") {
+    // Before, each of these ran with the option's default and exited 0.
+    const std::string here = __FILE__;
+    const std::string scene = here.substr(0, here.find_last_of('/')) + "/data/small_bake.json";
+    const std::string cases[] = {
+        "albedo --model lambert --mu 0.5 --tolerance 0",
+        "albedo --model lambert --mu 0.5 --tolerance -0",
+        "lut albedo --model ggx --size 2x2 --tolerance 0 -o /tmp/never-written.exr",
+        "plan " + scene + " --samples 0",
+        "plan " + scene + " --mu-texels 0",
+        "plan " + scene + " --alpha-texels -1",
+        "bench --table 0",
+        "bench --samples -1",
+    };
+    for (const std::string& args : cases) {
+        const auto r = run_cli(args);
+        INFO(args << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(r.err.find("brdfbake: error: --") == 0);
+        CHECK(r.err.find("must be a positive number") != std::string::npos);
+    }
+    CHECK(::access("/tmp/never-written.exr", F_OK) != 0);
+}

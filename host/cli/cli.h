@@ -15,6 +15,10 @@
 
 namespace brdfbake {
 
+/// Checks that an option's value is a finite number > 0 (for options whose 0 means "not given":
+/// given, 0 is refused rather than silently taken for the default).
+extern const CLI::Validator kPositive;
+
 /// Options that every command shares.
 struct GlobalOptions {
     std::string device;  // device selector (see choose_device); empty: $BRDFBAKE_DEVICE or PoCL

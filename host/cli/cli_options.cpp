@@ -1,11 +1,22 @@
 // Options shared by the commands: how much work an integration does, by which method, or to
 // which tolerance; the kernels' arithmetic; the output format.
 #include <cmath>
+#include <cstdlib>
 
 #include "brdfbake/error.h"
 #include "cli/cli.h"
 
 namespace brdfbake {
+
+const CLI::Validator kPositive(
+    [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !(v > 0.0) || !std::isfinite(v))
+            return "must be a positive number, got '" + text + "'";
+        return "";
+    },
+    "POSITIVE");
 
 void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per) {
     CLI::Option* s = cmd->add_option("--samples", o.samples,
@@ -21,6 +32,7 @@ void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per)
     cmd->add_option("--tolerance", o.tolerance,
                     "absolute error to reach in every " + per + " instead of a fixed sample count: each is refined "
                     "until its error estimate is at most this")
+        ->check(kPositive)  // 0 is "not given": a given 0 (or -0) is refused, not ignored
         ->excludes(s);
     cmd->add_option("--max-samples", o.max_samples, "with --tolerance: the most samples to spend on one " + per)
         ->capture_default_str();

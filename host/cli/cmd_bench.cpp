@@ -56,8 +56,9 @@ void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& actio
         app, "bench", "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak", global,
         action, run_bench_command);
     cmd->add_flag("--full", o->full, "the whole suite (as brdfbake-bench): larger tables, repeated runs, sweeps");
-    cmd->add_option("--table", o->table, "throughput table side N (N x N cells)");
-    cmd->add_option("--samples", o->samples, "samples per cell of the throughput table");
+    // 0 is these options' "not given"; given, they must be positive.
+    cmd->add_option("--table", o->table, "throughput table side N (N x N cells)")->check(kPositive);
+    cmd->add_option("--samples", o->samples, "samples per cell of the throughput table")->check(kPositive);
     cmd->add_option("--json", o->json, "write the report as JSON");
     cmd->add_option("--markdown", o->markdown, "write the tables as Markdown");
     cmd->add_option("--plot", o->plot, "plot time against cells x samples (.png or .svg)");

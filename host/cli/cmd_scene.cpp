@@ -47,10 +47,13 @@ struct SceneOptions {
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o) {
     cmd->add_option("scene", o.scene, "scene: a brdfbake scene file (.json) or glTF 2.0 (.gltf, .glb)")->required();
-    cmd->add_option("--samples", o.samples, "samples per texel (default: the scene's settings, else 16384)");
-    cmd->add_option("--mu-texels", o.mu_texels, "texels along mu (default 32)");
+    // 0 is these options' "not given"; given, they must be positive.
+    cmd->add_option("--samples", o.samples, "samples per texel (default: the scene's settings, else 16384)")
+        ->check(kPositive);
+    cmd->add_option("--mu-texels", o.mu_texels, "texels along mu (default 32)")->check(kPositive);
     cmd->add_option("--alpha-texels", o.alpha_texels,
-                    "texels over the full roughness axis [0, 1]; a scene's range gets its share (default 32)");
+                    "texels over the full roughness axis [0, 1]; a scene's range gets its share (default 32)")
+        ->check(kPositive);
     cmd->add_option("--precision", o.precision, "kernel arithmetic (default float)")
         ->check(CLI::IsMember({"float", "double"}));
     cmd->add_option("--table-format", o.table_format, "table files: exr (default), csv or h")
