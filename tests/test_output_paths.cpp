@@ -163,3 +163,26 @@ TEST_CASE("a result that cannot be written to standard output is an error", "[cl
     }
     std::remove(err.c_str());
 }
+
+TEST_CASE("a picture that cannot be written stops the run before the table is written", "[cli][output]") {
+    const std::string dir = scratch_dir("picture");
+    const std::string missing = dir + "/no-such-folder";
+    const std::vector<std::pair<std::string, std::string>> runs = {
+        {"lut albedo --model ggx --size 2x2 --samples 256 -o '" + dir + "/t.exr' --preview '" + missing + "/p.png'",
+         dir + "/t.exr"},
+        {"reciprocity --model ggx:alpha=0.3 --resolution 8 -o '" + dir + "/r.exr' --plot '" + missing + "/r.png'",
+         dir + "/r.exr"},
+        {"albedo --model lambert --mu 0.5 --samples 4096 -o '" + dir + "/a.csv' --plot '" + missing + "/a.png'",
+         dir + "/a.csv"},
+    };
+    for (const auto& run : runs) {
+        const auto r = testing::run_cli(run.first);
+        INFO(run.first << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(r.err.find("does not exist") != std::string::npos);
+        CHECK(::access(run.second.c_str(), F_OK) != 0);  // the table (or values) not written either
+    }
+    CHECK(entries(dir).empty());
+    std::system(("rm -rf '" + dir + "'").c_str());
+}

@@ -15,6 +15,13 @@
 
 namespace brdfbake {
 
+/// Checks a picture path before any work: it must end in .png or .svg (else Error naming
+/// `option`) and be writable where prepare_output would write it. Empty: nothing to check.
+void check_plot_output(const std::string& path, const std::string& option);
+/// Checks a text output path (-o of albedo, fresnel, check ...) before any work; empty or "-"
+/// is standard output.
+void check_text_output(const std::string& path);
+
 /// Checks that an option's value is a finite number > 0 (for options whose 0 means "not given":
 /// given, 0 is refused rather than silently taken for the default).
 extern const CLI::Validator kPositive;

@@ -4,7 +4,9 @@
 #include <cstdlib>
 
 #include "brdfbake/error.h"
+#include "brdfbake/output.h"
 #include "cli/cli.h"
+#include "plot/plot.h"
 
 namespace brdfbake {
 
@@ -52,6 +54,16 @@ MethodChoice resolve_method_choice(const MethodOptions& o) {
         c.tolerance.max_samples = std::uint64_t(o.max_samples);
     }
     return c;
+}
+
+void check_plot_output(const std::string& path, const std::string& option) {
+    if (path.empty()) return;
+    if (!is_plot_path(path)) throw Error(option + " must end in .png or .svg");
+    check_output_path(path);
+}
+
+void check_text_output(const std::string& path) {
+    if (!path.empty() && path != "-") check_output_path(path);
 }
 
 const char* const kFresnelSpecHelp =

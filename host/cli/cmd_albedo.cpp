@@ -160,7 +160,8 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     // Check every input before touching the device.
     const FresnelConfig fresnel = resolve_fresnel(o.fresnel, o.wavelength_nm);
     const Format format = parse_format(o.format);
-    if (!o.plot.empty() && !is_plot_path(o.plot)) throw Error("--plot must end in .png or .svg");
+    check_plot_output(o.plot, "--plot");
+    check_text_output(o.output);
     const std::vector<double> mus = parse_number_list(o.mu, "--mu");
     for (double mu : mus)
         if (!(mu > 0.0 && mu <= 1.0))

@@ -21,7 +21,7 @@ struct BenchCmdOptions {
 };
 
 int run_bench_command(const BenchCmdOptions& o, const GlobalOptions& g) {
-    if (!o.plot.empty() && !is_plot_path(o.plot)) throw Error("--plot must end in .png or .svg");
+    check_plot_output(o.plot, "--plot");
     BenchOptions b = o.full ? BenchOptions() : BenchOptions::quick_options();
     if (!o.full) {  // short, but large enough for figures that mean something: runs of tens of
                     // milliseconds, a warm-up and the median of up to 5 (single runs of a 16x16

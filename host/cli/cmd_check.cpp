@@ -126,7 +126,7 @@ int run_reciprocity(const ReciprocityArgs& a, const GlobalOptions& g) {
         throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
     if (a.output.empty() && a.plot.empty()) throw Error("give -o FILE.exr and/or --plot FILE.png");
     if (!a.output.empty()) check_table_path(a.output);
-    if (!a.plot.empty() && !is_plot_path(a.plot)) throw Error("--plot must end in .png or .svg");
+    check_plot_output(a.plot, "--plot");
     Engine engine(g.device, g.verbose);
     const Precision p = a.precision == "double" ? Precision::Double : Precision::Float;
     const ReciprocityMap m = scan_reciprocity(engine, model, fresnel, a.resolution, a.phi_resolution, p);

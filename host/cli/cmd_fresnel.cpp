@@ -442,6 +442,8 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
     parse_format(o.format);
     if (!o.plot.empty() && !is_plot_path(o.plot))
         throw Error("--plot '" + o.plot + "': expected a file name ending in .png or .svg");
+    check_plot_output(o.plot, "--plot");
+    check_text_output(o.output);
     const std::vector<double> thetas = parse_number_list(o.theta, "--theta");
     for (double t : thetas)
         if (!(t >= 0.0 && t <= 90.0))

@@ -68,7 +68,7 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     r.tolerance = choice.tolerance;
     r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
     check_table_path(o.output);
-    if (!o.preview.empty() && !is_plot_path(o.preview)) throw Error("--preview must end in .png or .svg");
+    check_plot_output(o.preview, "--preview");
     std::string preview = o.preview;
     if (preview.empty()) preview = o.output.substr(0, o.output.find_last_of('.')) + ".png";
     if (!o.no_preview) check_output_path(preview);

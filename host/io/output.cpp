@@ -51,8 +51,15 @@ std::string resolve_target(const std::string& path) {
     if (path.empty()) throw Error("empty output path");
     struct stat st {};
     if (::lstat(path.c_str(), &st) != 0) {
-        if (errno == ENOENT) return path;
-        throw Error("cannot write '" + path + "': " + std::strerror(errno));
+        if (errno != ENOENT) throw Error("cannot write '" + path + "': " + std::strerror(errno));
+        // A new file: its folder must exist and take files, found out before any work is done.
+        const std::string folder = folder_of(path);
+        if (::stat(folder.c_str(), &st) != 0 || !S_ISDIR(st.st_mode))
+            throw Error("cannot write '" + path + "': folder '" + folder + "' does not exist");
+        if (::access(folder.c_str(), W_OK | X_OK) != 0)
+            throw Error("cannot write '" + path + "': folder '" + folder + "' is not writable (" + std::strerror(errno) +
+                        ")");
+        return path;
     }
     std::string target = path;
     if (S_ISLNK(st.st_mode)) {
