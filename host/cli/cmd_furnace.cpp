@@ -38,7 +38,6 @@ double interpolate(const std::vector<double>& e, double mu) {
 }
 
 int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
-    if (!is_plot_path(a.output)) throw Error("-o must end in .png or .svg");
     check_plot_output(a.output, "-o");
     if (a.pixels < 16 || a.pixels > 2048) throw Error("--pixels must be 16 to 2048");
     if (a.nodes < 4 || a.nodes > 4096) throw Error("--nodes must be 4 to 4096");
