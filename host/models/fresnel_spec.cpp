@@ -16,8 +16,8 @@ namespace {
 
 // eta is a ratio of indices: positive. The upper bounds keep every shared-math expression far
 // from float overflow (see the edge-case policy in brdf/fresnel.h).
-constexpr Range kEta{0.0, 1e3, true};
-constexpr Range kExtinction{0.0, 1e3};
+constexpr Range kEta{0.0, kMaxOpticalConstant, true};
+constexpr Range kExtinction{0.0, kMaxOpticalConstant};
 
 const char kKnown[] =
     "known: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, conductor-approx:eta=E,k=K, "

@@ -12,6 +12,7 @@
 
 #include "brdfbake/error.h"
 #include "engine/embedded_sources.h"
+#include "models/input_file.h"
 #include "models/key_reader.h"
 
 namespace brdfbake {
@@ -40,6 +41,8 @@ std::vector<std::vector<double>> parse_rows(const std::string& data, size_t colu
                 throw Error(where + ", data row " + std::to_string(line_no) + ": '" + field + "' is not a finite number");
             row.push_back(v);
         }
+        if (rows.size() == kMaxNkRows)
+            throw Error(where + ": more than " + std::to_string(kMaxNkRows) + " data rows");
         if (row.size() != columns)
             throw Error(where + ", data row " + std::to_string(line_no) + ": expected " + std::to_string(columns) +
                         " numbers (wavelength in um, then " + (columns == 3 ? "n and k" : "the value") + "), got " +
@@ -58,10 +61,10 @@ std::vector<std::vector<double>> parse_rows(const std::string& data, size_t colu
 
 void check_values(const std::vector<double>& v, bool is_n, const std::string& where) {
     for (size_t i = 0; i < v.size(); ++i) {
-        if (is_n ? !(v[i] > 0.0) : !(v[i] >= 0.0))
+        if (is_n ? !(v[i] > 0.0 && v[i] <= kMaxOpticalConstant) : !(v[i] >= 0.0 && v[i] <= kMaxOpticalConstant))
             throw Error(where + ", data row " + std::to_string(i + 1) + ": " +
-                        (is_n ? "n must be positive" : "k must not be negative") + " (got " +
-                        format_number(v[i]) + ")");
+                        (is_n ? "n must lie in (0, " : "k must lie in [0, ") + format_number(kMaxOpticalConstant) +
+                        "] (got " + format_number(v[i]) + ")");
     }
 }
 
@@ -149,12 +152,7 @@ NkTable parse_nk_yaml(const std::string& text, const std::string& source) {
 }
 
 NkTable load_nk_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot read n,k file '" + path + "': " + std::strerror(errno));
-    std::stringstream s;
-    s << in.rdbuf();
-    if (in.bad()) throw Error("cannot read n,k file '" + path + "'");
-    return parse_nk_yaml(s.str(), path);
+    return parse_nk_yaml(read_input_file(path, "n,k file", kMaxNkFileBytes), path);
 }
 
 std::vector<std::string> nk_preset_names() {

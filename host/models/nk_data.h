@@ -3,6 +3,8 @@
 // into the binary under the keys "nk/<file>".
 #pragma once
 
+#include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -22,6 +24,12 @@ struct NkTable {
     double max_nm() const;
 };
 
+/// Limits on what an n,k file may hold, the same bounds as the `conductor:` spec's keys: larger
+/// values are not optical constants of any material and make the Fresnel equations overflow.
+constexpr double kMaxOpticalConstant = 1e3;             // n in (0, 1e3], k in [0, 1e3]
+constexpr std::size_t kMaxNkRows = 100000;              // rows per data block
+constexpr std::uintmax_t kMaxNkFileBytes = 16u << 20;   // a refractiveindex.info file is < 1 MiB
+
 struct NkValue {
     double n = 1.0;
     double k = 0.0;
@@ -29,10 +37,12 @@ struct NkValue {
 
 /// Parses the YAML text of a refractiveindex.info material file. `source` names it in errors.
 /// Throws Error on malformed YAML, a missing DATA block, formula (non-tabulated) data, rows that
-/// are not numbers, wavelengths that do not increase, n <= 0 or k < 0.
+/// are not numbers, wavelengths that do not increase, n outside (0, 1e3], k outside [0, 1e3] or
+/// more than kMaxNkRows rows in a block.
 NkTable parse_nk_yaml(const std::string& text, const std::string& source);
 
-/// Reads and parses a file; throws Error if it cannot be read.
+/// Reads and parses a file; throws Error if it is not a regular file, is larger than
+/// kMaxNkFileBytes or cannot be read.
 NkTable load_nk_file(const std::string& path);
 
 /// The embedded preset for a metal symbol ("Al", "Au", "Ag", "Cu"): the file data/nk/<symbol>-*.yml.
