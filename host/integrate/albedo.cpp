@@ -15,7 +15,9 @@
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
 #include "brdfbake/error.h"
+#include "brdfbake/memory_limit.h"
 #include "engine/device_buffer.h"
+#include "models/key_reader.h"
 #include "models/params.h"
 
 namespace brdfbake {
@@ -143,6 +145,18 @@ void check_sampling(std::uint64_t samples, unsigned replicas) {
     if (replicas < 2) throw Error("at least 2 replicas are needed for an error estimate");
     if (samples < replicas) throw Error("--samples must be at least " + std::to_string(replicas));
     if (samples / replicas > 0xffffffffu) throw Error("--samples is too large (at most 2^32 per replica)");
+}
+
+/// Memory a sampling launch takes, for check_memory before anything is allocated: the cell
+/// arrays (mu, phi and the parameter block, in double on the host and again in the kernel's
+/// precision for the upload and on the device), the shared point table (per point, `table_values`
+/// numbers in double, converted and on the device) and the per-item outputs (value, square,
+/// non-finite count; on the device and read back).
+double sampling_bytes(size_t n_cells, size_t n_items, double table_points, unsigned table_values, Precision p) {
+    const double real = p == Precision::Double ? 8.0 : 4.0;
+    const double per_number = 8.0 + 2.0 * real;
+    return double(n_cells) * (2 + BB_MAX_PARAMS) * per_number + table_points * table_values * per_number +
+           double(n_items) * (2.0 * real + 4.0) * 2.0;
 }
 
 constexpr size_t kLocalSize = 8;
@@ -311,6 +325,10 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
         build.vector_width = 1;  // a ragged last step: the scalar kernel
         lanes = 1;
     }
+    check_memory(sampling_bytes(n_cells, n_items, lanes > 1 ? double(points) * req.replicas : req.replicas,
+                                lanes > 1 ? (disk ? BB_DISK_VALUES : BB_POINTS_VALUES) : 1, req.precision),
+                 "integrating " + std::to_string(n_cells) + (n_cells == 1 ? " direction with " : " directions with ") + std::to_string(req.samples) +
+                     " samples each");
     if (lanes > 1 && !disk) build.defines.push_back({"BB_VECTOR_POINTS", "1"});
     if (lanes > 1 && uniform) build.defines.push_back({"BB_VECTOR_UNIFORM", "1"});
     if (lanes > 1 && disk) {
@@ -430,6 +448,8 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     build.has_vector_path = model_traits(req.model).halfvector_quadrature;
     build.vector_width = req.vector_width;
     const unsigned lanes = engine.vector_width(build);
+    check_memory(sampling_bytes(n_cells, n_items, 2.0 * (n + m + l + 3 * lanes), 1, req.precision),
+                 "integrating " + std::to_string(n_cells) + (n_cells == 1 ? " direction" : " directions") + " by quadrature");
     cl::Program& program = engine.program(build);
 
     std::vector<double> nodes;
@@ -490,12 +510,30 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
 
 }  // namespace
 
-AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& req) {
-    if (req.cells.empty()) throw Error("no directions to integrate");
-    for (const auto& c : req.cells)
-        if (!(c.mu > 0.0 && c.mu <= 1.0) || !std::isfinite(c.phi))
-            throw Error("mu must lie in (0, 1]; got " + std::to_string(c.mu));
-    return req.method == Method::Quadrature ? compute_quadrature(engine, req) : compute_sampled(engine, req);
+double reduce_azimuth(double phi) {
+    if (!std::isfinite(phi)) throw Error("phi must be a finite angle");
+    // fmod is exact in IEEE arithmetic; a negative remainder moves up by one turn, and one that
+    // rounds up to a whole turn is 0. The kernel's precision sees only this reduced angle, so
+    // float kernels never take cos/sin of a huge argument.
+    double r = std::fmod(phi, 2.0 * M_PI);
+    if (r < 0.0) r += 2.0 * M_PI;
+    return r < 2.0 * M_PI ? r : 0.0;
+}
+
+AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
+    if (request.cells.empty()) throw Error("no directions to integrate");
+    AlbedoRequest req = request;
+    for (auto& c : req.cells) {
+        if (!(c.mu > 0.0 && c.mu <= 1.0)) throw Error("mu must lie in (0, 1]; got " + format_number(c.mu));
+        c.phi = reduce_azimuth(c.phi);
+    }
+    AlbedoResult result = req.method == Method::Quadrature ? compute_quadrature(engine, req) : compute_sampled(engine, req);
+    // The kernels count non-finite samples; this catches what the reduction of their sums could
+    // still overflow (a finite BRDF whose integral exceeds the precision's range).
+    for (size_t c = 0; c < result.values.size(); ++c)
+        if (!std::isfinite(result.values[c].value) || !std::isfinite(result.values[c].error))
+            throw NonFiniteError(nonfinite_where(req, c) + " (the integral overflows); refusing to report a result", c, 1);
+    return result;
 }
 
 DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req) {
@@ -519,6 +557,10 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
         build.vector_width = 1;  // a ragged last step: the scalar kernel
         lanes = 1;
     }
+    check_memory(sampling_bytes(n_cells, n_items * 2, lanes > 1 ? double(points) * req.replicas : req.replicas,
+                                lanes > 1 ? BB_DISK_VALUES : 1, req.precision),
+                 "integrating " + std::to_string(n_cells) + " dielectric cells with " + std::to_string(req.samples) +
+                     " samples each");
     cl::Program& program = engine.program(build);
 
     std::vector<double> mus, alphas, etas;

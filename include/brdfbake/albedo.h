@@ -79,7 +79,11 @@ struct AlbedoResult {
     unsigned rounds = 1;              // kernel launches (tolerance mode refines in rounds)
 };
 
-/// Runs the albedo kernel over every cell. Throws Error if the device produced non-finite
+/// phi reduced to [0, 2 pi) exactly (fmod in double), as compute_albedo does before a cell
+/// reaches a kernel: results are the same for phi and phi + 2 pi k. Throws Error if not finite.
+double reduce_azimuth(double phi);
+
+/// Runs the albedo kernel over every cell (phi reduced by reduce_azimuth). Throws Error if the device produced non-finite
 /// sample weights (the cell and count are named), or for an invalid request.
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request);
 
