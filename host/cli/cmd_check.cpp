@@ -51,7 +51,9 @@ std::string render(const CheckReport& r, Format format) {
                             {"delta_phi_deg", r.max_rel_dphi * kDeg},
                             {"tolerance", r.reciprocity_tolerance},
                             {"pairs", r.pairs},
+                            {"nonfinite", r.scan_nonfinite},
                             {"violation", r.reciprocity_violation}};
+        if (r.scan_nonfinite > 0) j["reciprocity"]["violation"] = nullptr;  // unknown
         j["values"] = {{"nonfinite", r.nonfinite},
                        {"min_value", r.min_value},
                        {"violation", r.value_violation}};
@@ -74,7 +76,10 @@ std::string render(const CheckReport& r, Format format) {
                       r.max_albedo_phi != 0.0 ? (", phi = " + std::to_string(int(std::lround(r.max_albedo_phi * kDeg))) + " deg").c_str() : "",
                       r.furnace_directions, (unsigned long long)r.furnace_samples, r.options.energy_tolerance);
     out << line;
-    if (r.max_rel == 0.0)
+    if (r.scan_nonfinite > 0)
+        std::snprintf(line, sizeof line, "  reciprocity  n/a   the scan met %llu NaN or Inf values (%llu pairs)\n",
+                      (unsigned long long)r.scan_nonfinite, (unsigned long long)r.pairs);
+    else if (r.max_rel == 0.0)
         std::snprintf(line, sizeof line, "  reciprocity  pass  f(wo,wi) = f(wi,wo) exactly at every pair (%llu pairs)\n",
                       (unsigned long long)r.pairs);
     else

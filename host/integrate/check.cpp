@@ -76,6 +76,7 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
     const ReciprocityMap map = scan_reciprocity(engine, model, fresnel, o.resolution, o.phi_resolution, scan_precision);
     r.pairs = map.evaluations / 2;
     r.nonfinite = map.nonfinite;
+    r.scan_nonfinite = map.nonfinite;
     r.min_value = map.min_value.empty() ? 0.0 : map.min_value[0];
     for (size_t k = 0; k < map.max_rel.size(); ++k) {
         r.min_value = std::min(r.min_value, map.min_value[k]);

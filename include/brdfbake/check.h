@@ -55,6 +55,7 @@ struct CheckReport {
     bool reciprocity_violation = false;
     double reciprocity_tolerance = 0.0;
     std::uint64_t pairs = 0;
+    std::uint64_t scan_nonfinite = 0;  // NaN or Inf values met by the scan: reciprocity is then unknown
     // values
     std::uint64_t nonfinite = 0;
     double min_value = 0.0;
