@@ -21,6 +21,7 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "brdfbake/memory_limit.h"
 #include "brdfbake/output.h"
 #include "brdfbake/version.h"
 #include "plot/plot.h"
@@ -204,6 +205,13 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
     namespace fs = std::filesystem;
     BenchReport rep;
     json& j = rep.json;
+    if (o.table < 1 || o.samples < 1) throw Error("bench: the table side and the samples must be positive");
+    // Judged before anything is allocated: per cell, the table's coordinates, the kernel's request
+    // and upload, its per-replica outputs and each baseline flavour's result (about 1 kB).
+    int largest = o.table;
+    for (int n : o.scaling_sizes) largest = std::max(largest, n);
+    check_memory(double(largest) * largest * 1024.0, "bench with a " + std::to_string(largest) + "x" +
+                                                          std::to_string(largest) + " table");
 
     // A fresh PoCL cache for the whole run: the first build of each program is cold.
     std::string cache_dir;

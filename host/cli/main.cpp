@@ -7,6 +7,7 @@
 
 #include "brdfbake/engine.h"
 #include "brdfbake/error.h"
+#include "brdfbake/memory_limit.h"
 #include "brdfbake/version.h"
 #include "cli/cli.h"
 
@@ -23,6 +24,11 @@ int main(int argc, char** argv) {
                    "$BRDFBAKE_DEVICE, else PoCL")
         ->envname("BRDFBAKE_DEVICE");
     app.add_flag("-v,--verbose", global.verbose, "print the device, kernel builds and timings to stderr");
+    std::string max_memory;
+    app.add_option("--max-memory", max_memory,
+                   "refuse work that would take more memory than this (e.g. 8G, 512M); default "
+                   "$BRDFBAKE_MAX_MEMORY, else half the physical memory")
+        ->envname("BRDFBAKE_MAX_MEMORY");
 
     Action action;
     add_albedo_command(app, global, action);
@@ -36,14 +42,18 @@ int main(int argc, char** argv) {
     add_bake_command(app, global, action);
     add_bench_command(app, global, action);
 
+    std::string names;
+    for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
+    // No arguments: a short usage, not the whole help, and the status of bad input.
+    if (argc < 2) {
+        std::cerr << "brdfbake: error: no command given; usage: brdfbake COMMAND [OPTIONS] with COMMAND one of " << names
+                  << " (brdfbake --help, brdfbake COMMAND --help)\n";
+        return kExitError;
+    }
     // A first word that is neither an option nor a command gets its own message.
-    if (argc > 1 && argv[1][0] != '-') {
+    if (argv[1][0] != '-') {
         bool known = false;
-        std::string names;
-        for (const CLI::App* sub : app.get_subcommands({})) {
-            known = known || sub->get_name() == argv[1];
-            names += (names.empty() ? "" : ", ") + sub->get_name();
-        }
+        for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == argv[1];
         if (!known) {
             std::cerr << "brdfbake: error: unknown command '" << argv[1] << "'; commands: " << names << "\n";
             return kExitError;
@@ -62,15 +72,26 @@ int main(int argc, char** argv) {
         std::cout << "brdfbake " << BRDFBAKE_VERSION << "\n";
         return kExitOk;
     } catch (const CLI::ParseError& e) {
-        std::cerr << "brdfbake: error: " << e.what() << "\n";
-        if (e.get_exit_code() == static_cast<int>(CLI::ExitCodes::RequiredError) && argc < 2)
-            std::cerr << app.help();
-        else
-            std::cerr << "Run with --help for usage.\n";
+        // One line: CLI11's message (some span lines) and where the usage is.
+        std::string message = e.what();
+        for (char& c : message)
+            if (c == '\n') c = ' ';
+        while (!message.empty() && message.back() == ' ') message.pop_back();
+        std::string where = "brdfbake --help";
+        for (const CLI::App* sub : app.get_subcommands())
+            where = "brdfbake " + sub->get_name() + " --help";
+        std::cerr << "brdfbake: error: " << message << " (see " << where << ")\n";
         return kExitError;
     }
 
     try {
+        if (!max_memory.empty()) {
+            try {
+                set_memory_limit(parse_memory_size(max_memory));
+            } catch (const Error& e) {
+                throw Error(std::string("--max-memory (or BRDFBAKE_MAX_MEMORY): ") + e.what());
+            }
+        }
         const int status = action ? action() : kExitError;
         // What a command printed is its result: a full disk or a closed pipe must not pass as
         // success (stdout is buffered, so a failed write shows at the flush).
