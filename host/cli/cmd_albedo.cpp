@@ -192,12 +192,7 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
 
     Engine engine(g.device, g.verbose);
     for (Run& r : runs) {
-        if (has_analytic_albedo(r.model))
-            r.result = analytic_albedo_result(r.model, fresnel, r.request.cells);
-        else if (choice.tolerance.tolerance > 0.0)
-            r.result = compute_albedo_to_tolerance(engine, r.request, choice.tolerance);
-        else
-            r.result = compute_albedo(engine, r.request);
+        r.result = albedo_of_model(engine, r.model, fresnel, r.request, choice.tolerance);
         if (g.verbose)
             std::cerr << "brdfbake: " << r.model.canonical << ": kernel " << r.result.kernel_seconds * 1e3 << " ms\n";
     }

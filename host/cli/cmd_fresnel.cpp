@@ -15,13 +15,12 @@
 #include <sstream>
 
 #include "brdfbake/brdf/fresnel.h"
-#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/engine.h"
 #include "brdfbake/error.h"
+#include "brdfbake/fresnel_curve.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
-#include "engine/device_buffer.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"
 
@@ -179,42 +178,6 @@ Comparison compare_forms(const FresnelConfig& f) {
     return c;
 }
 
-// ------------------------------------------------------------ device evaluation
-
-struct Curves {
-    std::vector<double> f, rs, rp;
-};
-
-Curves evaluate_on_device(Engine& engine, const FresnelConfig& f, Precision precision, const std::vector<double>& cosines) {
-    BuildRequest build;
-    build.kernel_file = "fresnel.cl";
-    build.precision = precision;
-    build.defines = {{"BB_FRESNEL", std::to_string(f.kind)}};
-    cl::Program& program = engine.program(build);
-    RealBuffers bufs(engine, precision);
-    const size_t n = cosines.size();
-    cl::Buffer b_cos = bufs.input(cosines);
-    cl::Buffer b_p = bufs.input(std::vector<double>(f.params.begin(), f.params.end()));
-    cl::Buffer b_out = bufs.output(3 * n);
-    cl::Kernel kernel(program, BB_ENTRY_NAME(BB_ENTRY_FRESNEL_CURVE));
-    kernel.setArg(0, b_cos);
-    kernel.setArg(1, b_p);
-    kernel.setArg(2, cl_uint(n));
-    kernel.setArg(3, b_out);
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(n), cl::NullRange);
-    const std::vector<double> out = bufs.read(b_out, 3 * n);
-    Curves c;
-    for (size_t i = 0; i < n; ++i) {
-        for (int j = 0; j < 3; ++j)
-            if (!std::isfinite(out[3 * i + j]))
-                throw Error("the Fresnel kernel produced a non-finite value at cos(theta) = " +
-                            format_number(cosines[i]) + "; refusing to report it");
-        c.f.push_back(out[3 * i]);
-        c.rs.push_back(out[3 * i + 1]);
-        c.rp.push_back(out[3 * i + 2]);
-    }
-    return c;
-}
 
 // ------------------------------------------------------------ plots
 
@@ -347,7 +310,7 @@ const char kAverageMethod[] =
 
 /// One line per angle: theta, cos(theta), F, Rs and Rp in the printf format `row`.
 void write_rows(std::ostream& out, const char* row, const std::vector<double>& thetas,
-                const std::vector<double>& cosines, const Curves& dev) {
+                const std::vector<double>& cosines, const FresnelCurves& dev) {
     char line[200];
     for (size_t i = 0; i < thetas.size(); ++i) {
         std::snprintf(line, sizeof line, row, thetas[i], cosines[i], dev.f[i], dev.rs[i], dev.rp[i]);
@@ -356,7 +319,7 @@ void write_rows(std::ostream& out, const char* row, const std::vector<double>& t
 }
 
 std::string render(const FresnelOptions& o, const FresnelConfig& f, Precision precision, const std::vector<double>& thetas,
-                   const std::vector<double>& cosines, const Curves& dev, double host_diff, const Quadrature& avg,
+                   const std::vector<double>& cosines, const FresnelCurves& dev, double host_diff, const Quadrature& avg,
                    const Comparison& cmp, const Engine& engine, double seconds) {
     const Format format = parse_format(o.format);
     std::ostringstream out;
@@ -454,7 +417,7 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
     for (double t : thetas) cosines.push_back(cos_deg(t));
 
     Engine engine(g.device, g.verbose);
-    const Curves dev = evaluate_on_device(engine, f, precision, cosines);
+    const FresnelCurves dev = fresnel_on_device(engine, f, precision, cosines);
     const HostFresnel host(f);
     double host_diff = 0.0;
     for (size_t i = 0; i < cosines.size(); ++i) {

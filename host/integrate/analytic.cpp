@@ -56,4 +56,12 @@ AlbedoResult analytic_albedo_result(const ModelConfig& model, const FresnelConfi
     return r;
 }
 
+AlbedoResult albedo_of_model(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
+                             const AlbedoRequest& request, const ToleranceRequest& tolerance) {
+    if (request.model != model.id) throw Error("albedo_of_model: the request is for another model");
+    if (has_analytic_albedo(model)) return analytic_albedo_result(model, fresnel, request.cells);
+    if (tolerance.tolerance > 0.0) return compute_albedo_to_tolerance(engine, request, tolerance);
+    return compute_albedo(engine, request);
+}
+
 }  // namespace brdfbake

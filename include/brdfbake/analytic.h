@@ -26,6 +26,13 @@ double analytic_albedo_error(double value);
 AlbedoResult analytic_albedo_result(const ModelConfig& model, const FresnelConfig& fresnel,
                                     const std::vector<AlbedoCell>& cells);
 
+/// The directional albedo of any model at every cell of `request` (whose model must be `model`):
+/// the closed form for a delta lobe, else the kernels, refined to `tolerance` when it is given
+/// (tolerance.tolerance > 0), else at request.samples. The one dispatch the command line, the
+/// scene bake and the Python module share.
+AlbedoResult albedo_of_model(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
+                             const AlbedoRequest& request, const ToleranceRequest& tolerance);
+
 /// Specular transmission of `dielectric-specular` at mu: the transmitted energy fraction
 /// 1 - F(mu, eta) and the factor eta^2 by which the transmitted radiance is scaled (L/n^2 is
 /// invariant across the interface; light crossing into the far side).
