@@ -4,20 +4,21 @@
 # Prints every offending include and fails if there is one.
 
 # Layers from the bottom up; a file's layer is that of the first prefix of its path that matches.
-set(layers brdf engine models io integrate tables scene plot bench cli tests)
+set(layers brdf engine models io integrate tables scene plot bench cli python tests)
 set(prefixes
   "include/brdfbake/brdf/=brdf" "kernels/=brdf"
-  "include/brdfbake/error.h=engine" "include/brdfbake/engine.h=engine" "include/brdfbake/version.h=engine"
+  "include/brdfbake/error.h=engine" "include/brdfbake/engine.h=engine" "include/brdfbake/version.h=engine" "include/brdfbake/memory_limit.h=engine"
   "host/engine/=engine"
   "include/brdfbake/output.h=io" "include/brdfbake/table.h=io" "host/io/=io"
   "include/brdfbake/spec.h=models" "host/models/=models"
-  "include/brdfbake/albedo.h=integrate" "include/brdfbake/analytic.h=integrate" "include/brdfbake/evaluate.h=integrate" "include/brdfbake/check.h=integrate"
+  "include/brdfbake/albedo.h=integrate" "include/brdfbake/analytic.h=integrate" "include/brdfbake/evaluate.h=integrate" "include/brdfbake/check.h=integrate" "include/brdfbake/fresnel_curve.h=integrate"
   "host/integrate/=integrate"
   "include/brdfbake/lut.h=tables" "include/brdfbake/table_kinds.h=tables" "host/tables/=tables"
   "host/scene/=scene"
   "host/plot/=plot"
   "benchmarks/=bench"
   "host/cli/=cli"
+  "python/=python"
   "tests/=tests")
 set(core_layers brdf engine models io integrate tables scene)
 
@@ -54,12 +55,16 @@ endfunction()
 
 file(GLOB_RECURSE files RELATIVE "${SOURCE_DIR}"
   "${SOURCE_DIR}/include/*.h" "${SOURCE_DIR}/kernels/*.cl" "${SOURCE_DIR}/host/*.h" "${SOURCE_DIR}/host/*.cpp"
-  "${SOURCE_DIR}/benchmarks/*.h" "${SOURCE_DIR}/benchmarks/*.cpp")
+  "${SOURCE_DIR}/benchmarks/*.h" "${SOURCE_DIR}/benchmarks/*.cpp" "${SOURCE_DIR}/python/*.cpp")
 set(violations 0)
 set(checked 0)
 foreach(f IN LISTS files)
   layer_of("${f}" mine)
   if(mine STREQUAL "")
+    if(f MATCHES "^(include|host)/")
+      message("${f} belongs to no layer: add its prefix to the list at the top of this file")
+      math(EXPR violations "${violations} + 1")
+    endif()
     continue()
   endif()
   list(FIND layers ${mine} my_rank)
