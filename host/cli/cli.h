@@ -42,14 +42,7 @@ struct MethodOptions {
 /// Adds the MethodOptions to `cmd`; `per` names what the samples are spent on ("texel").
 void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per);
 
-/// The sample count, method and tolerance the options ask for: "auto" with a sample count is the
-/// default method (importance sampling); with a tolerance, auto lets the engine choose per cell.
-struct MethodChoice {
-    std::uint64_t samples = 0;
-    Method method = Method::Importance;
-    ToleranceRequest tolerance;  // tolerance.tolerance == 0: a fixed sample count
-};
-/// Throws Error for a sample count, tolerance or --max-samples that is not positive.
+/// The options as a MethodChoice (choose_method, brdfbake/albedo.h).
 MethodChoice resolve_method_choice(const MethodOptions& o);
 
 /// The help text of --fresnel: the Fresnel spec forms.

@@ -41,19 +41,7 @@ void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per)
 }
 
 MethodChoice resolve_method_choice(const MethodOptions& o) {
-    if (o.samples <= 0) throw Error("--samples must be positive");
-    MethodChoice c;
-    c.samples = std::uint64_t(o.samples);
-    const bool is_auto = o.method == "auto";
-    c.method = is_auto ? Method::Importance : parse_method(o.method);
-    if (o.tolerance != 0.0) {
-        if (!(o.tolerance > 0.0) || !std::isfinite(o.tolerance)) throw Error("--tolerance must be a positive number");
-        if (o.max_samples <= 0) throw Error("--max-samples must be positive");
-        c.tolerance.tolerance = o.tolerance;
-        c.tolerance.auto_method = is_auto;
-        c.tolerance.max_samples = std::uint64_t(o.max_samples);
-    }
-    return c;
+    return choose_method(o.method, double(o.samples), o.tolerance, double(o.max_samples));
 }
 
 void check_plot_output(const std::string& path, const std::string& option) {

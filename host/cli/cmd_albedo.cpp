@@ -180,13 +180,9 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
         r.request.method = choice.method;
         r.request.precision = o.precision == "double" ? Precision::Double : Precision::Float;
         r.request.seed = o.seed;
-        for (double phi_deg : phis) {
-            // Reduced exactly in degrees (fmod is exact), so phi and phi + 360 k give one cell.
-            double turn = std::fmod(phi_deg, 360.0);
-            if (turn < 0.0) turn += 360.0;
-            if (!(turn < 360.0)) turn = 0.0;
-            for (const auto& c : cells_for(mus, turn / kDeg, r.model.params)) r.request.cells.push_back(c);
-        }
+        for (double phi_deg : phis)
+            for (const auto& c : cells_for(mus, azimuth_from_degrees(phi_deg), r.model.params))
+                r.request.cells.push_back(c);
         runs.push_back(std::move(r));
     }
 

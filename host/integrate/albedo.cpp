@@ -14,6 +14,7 @@
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"
+#include "brdfbake/cancel.h"
 #include "brdfbake/error.h"
 #include "brdfbake/memory_limit.h"
 #include "engine/device_buffer.h"
@@ -40,6 +41,22 @@ Method parse_method(const std::string& name) {
     for (Method m : {Method::Importance, Method::QuasiMonteCarlo, Method::MonteCarlo, Method::Quadrature})
         if (name == method_name(m)) return m;
     throw Error("unknown method '" + name + "'; methods: auto, importance, qmc, mc, quadrature");
+}
+
+MethodChoice choose_method(const std::string& method, double samples, double tolerance, double max_samples) {
+    if (!(samples >= 1.0) || samples > 1.8e19) throw Error("--samples must be a positive number");
+    MethodChoice c;
+    c.samples = std::uint64_t(samples);
+    const bool is_auto = method == "auto";
+    c.method = is_auto ? Method::Importance : parse_method(method);
+    if (tolerance != 0.0) {
+        if (!(tolerance > 0.0) || !std::isfinite(tolerance)) throw Error("--tolerance must be a positive number");
+        if (!(max_samples >= 1.0) || max_samples > 1.8e19) throw Error("--max-samples must be positive");
+        c.tolerance.tolerance = tolerance;
+        c.tolerance.auto_method = is_auto;
+        c.tolerance.max_samples = std::uint64_t(max_samples);
+    }
+    return c;
 }
 
 double tolerance_floor(Precision precision) {
@@ -172,6 +189,7 @@ cl_uint set_args(cl::Kernel& kernel, cl_uint first, const Args&... args) {
 /// work-group: the default could give PoCL two groups for two cores, or one, whatever the table
 /// size (issue 9).
 cl::Event run_items(Engine& engine, cl::Kernel& kernel, size_t n_items) {
+    throw_if_cancelled();
     cl::Event done;
     const size_t global = (n_items + kLocalSize - 1) / kLocalSize * kLocalSize;
     engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(kLocalSize), nullptr,
@@ -518,6 +536,14 @@ double reduce_azimuth(double phi) {
     double r = std::fmod(phi, 2.0 * M_PI);
     if (r < 0.0) r += 2.0 * M_PI;
     return r < 2.0 * M_PI ? r : 0.0;
+}
+
+double azimuth_from_degrees(double degrees) {
+    if (!std::isfinite(degrees)) throw Error("phi must be a finite angle");
+    double turn = std::fmod(degrees, 360.0);
+    if (turn < 0.0) turn += 360.0;
+    if (!(turn < 360.0)) turn = 0.0;
+    return reduce_azimuth(turn * (M_PI / 180.0));
 }
 
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {

@@ -6,6 +6,7 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/analytic.h"
 #include "brdfbake/brdf/kernel_abi.h"
+#include "brdfbake/cancel.h"
 #include "brdfbake/error.h"
 #include "engine/device_buffer.h"
 
@@ -48,6 +49,7 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     k.setArg(a++, b_min);
     k.setArg(a++, b_bad);
     const size_t local = 4, global = (size_t(n_theta) + local - 1) / local * local;
+    throw_if_cancelled();
     engine.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global, global), cl::NDRange(local, local));
     m.max_rel = bufs.read(b_rel, cells);
     m.dphi_at_max = bufs.read(b_phi, cells);

@@ -83,6 +83,10 @@ struct AlbedoResult {
 /// reaches a kernel: results are the same for phi and phi + 2 pi k. Throws Error if not finite.
 double reduce_azimuth(double phi);
 
+/// An azimuth in degrees (any finite number) as radians in [0, 2 pi): reduced exactly in degrees
+/// first (fmod is exact), so that phi and phi + 360 k give one cell. Throws Error if not finite.
+double azimuth_from_degrees(double degrees);
+
 /// Runs the albedo kernel over every cell (phi reduced by reduce_azimuth). Throws Error if the device produced non-finite
 /// sample weights (the cell and count are named), or for an invalid request.
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request);
@@ -100,6 +104,19 @@ struct ToleranceRequest {
 
 AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& request,
                                          const ToleranceRequest& tolerance);
+
+/// The sample count, method and tolerance a user asks for: "auto" with a sample count is the
+/// default method (importance sampling); with a tolerance, auto lets the engine choose per cell.
+struct MethodChoice {
+    std::uint64_t samples = 0;
+    Method method = Method::Importance;
+    ToleranceRequest tolerance;  // tolerance.tolerance == 0: a fixed sample count
+};
+
+/// `method` is "auto" or a method name; `tolerance` 0 means a fixed sample count. Throws Error
+/// (naming the command-line option) for a sample count, tolerance or max_samples that is not
+/// positive, or an unknown method.
+MethodChoice choose_method(const std::string& method, double samples, double tolerance, double max_samples);
 
 /// The smallest tolerance a precision can honour: the floating-point bound of the error
 /// estimate at an albedo of 1.

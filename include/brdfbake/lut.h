@@ -30,6 +30,11 @@ struct LutRequest {
     Precision precision = Precision::Float;
 };
 
+/// Sets width, height and depth from 1 to 3 sizes as `--size` reads them: N is NxN (N for a
+/// 1D kind), WxH, and WxHxD for a kind with an eta axis (depth H when not given). Throws Error
+/// for too many sizes or a 1D kind given a height. request.kind must be set first.
+void set_lut_size(LutRequest& request, const std::vector<int>& sizes);
+
 /// Checks a request without touching the device (kind, model, ranges, sizes, and the kind's own
 /// checks in its registry entry, brdfbake/table_kinds.h); throws Error.
 void validate_lut(const LutRequest& request);

@@ -1,0 +1,422 @@
+// The Python module `brdfbake`: the core library's functions over numpy arrays. Every call goes
+// to the same code the command line runs (resolve_model / resolve_fresnel for the specs,
+// albedo_of_model, compute_lut, fresnel_on_device, run_check, evaluate_on_device, write_table);
+// this file only converts arguments and results, releases the GIL while kernels run and turns
+// Ctrl-C into a stop at the next kernel launch.
+#include <pybind11/numpy.h>
+#include <pybind11/pybind11.h>
+#include <pybind11/stl.h>
+
+#include <chrono>
+#include <cmath>
+#include <future>
+#include <map>
+#include <memory>
+#include <optional>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/analytic.h"
+#include "brdfbake/cancel.h"
+#include "brdfbake/check.h"
+#include "brdfbake/engine.h"
+#include "brdfbake/error.h"
+#include "brdfbake/evaluate.h"
+#include "brdfbake/fresnel_curve.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/spec.h"
+#include "brdfbake/table.h"
+#include "brdfbake/table_kinds.h"
+#include "brdfbake/version.h"
+
+namespace py = pybind11;
+using namespace brdfbake;
+
+namespace {
+
+using Array = py::array_t<double, py::array::c_style | py::array::forcecast>;
+
+/// One engine per device selector, created on first use and kept (kernel programs stay built).
+Engine& engine_for(const std::optional<std::string>& device) {
+    static std::map<std::string, std::unique_ptr<Engine>> engines;
+    const std::string key = device.value_or("");
+    auto& e = engines[key];
+    if (!e) e = std::make_unique<Engine>(key, false);
+    return *e;
+}
+
+/// Runs `work` on a worker thread with the GIL released; the calling thread checks for signals
+/// every 50 ms. On Ctrl-C the computation is asked to stop at its next kernel launch, and
+/// KeyboardInterrupt is raised once it has.
+template <typename Work>
+auto interruptible(Work&& work) -> decltype(work()) {
+    clear_cancel();
+    auto future = std::async(std::launch::async, std::forward<Work>(work));
+    bool interrupted = false;
+    {
+        py::gil_scoped_release release;
+        while (future.wait_for(std::chrono::milliseconds(50)) != std::future_status::ready) {
+            py::gil_scoped_acquire acquire;
+            if (PyErr_CheckSignals() != 0) {  // sets KeyboardInterrupt (or the handler's exception)
+                interrupted = true;
+                request_cancel();
+                py::gil_scoped_release wait;
+                future.wait();
+                break;
+            }
+        }
+    }
+    if (interrupted) {
+        clear_cancel();
+        throw py::error_already_set();
+    }
+    return future.get();
+}
+
+Precision precision_of(const std::string& name) {
+    if (name == "float") return Precision::Float;
+    if (name == "double") return Precision::Double;
+    throw Error("precision must be 'float' or 'double'; got '" + name + "'");
+}
+
+py::array_t<double> to_array(const std::vector<double>& v, const std::vector<py::ssize_t>& shape) {
+    py::array_t<double> a(shape);
+    std::copy(v.begin(), v.end(), a.mutable_data());
+    return a;
+}
+
+std::vector<py::ssize_t> shape_of(const py::array& a) { return {a.shape(), a.shape() + a.ndim()}; }
+
+// ------------------------------------------------------------------ albedo
+
+struct AlbedoOut {
+    py::array_t<double> albedo, error;
+    std::string model, fresnel, method, device;
+    std::uint64_t samples = 0;
+    double seconds = 0.0;
+};
+
+AlbedoOut albedo(const std::string& model_spec, const Array& mu, const std::optional<Array>& phi_deg,
+                 const std::string& fresnel_spec, double wavelength, double samples, std::optional<double> tolerance,
+                 const std::string& method, double max_samples, const std::string& precision,
+                 const std::optional<std::string>& device) {
+    const auto t0 = std::chrono::steady_clock::now();
+    const ModelConfig model = resolve_model(model_spec);
+    const FresnelConfig fresnel = resolve_fresnel(fresnel_spec, wavelength);
+    if (fresnel.kind != 0 && !model.uses_fresnel)
+        throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
+    const MethodChoice choice = choose_method(method, samples, tolerance.value_or(0.0), max_samples);
+    const size_t n = size_t(mu.size());
+    if (n == 0) throw Error("mu is empty");
+    // phi broadcasts against mu: one value, or one per mu.
+    std::vector<double> phis(n, 0.0);
+    if (phi_deg) {
+        if (phi_deg->size() == 1)
+            std::fill(phis.begin(), phis.end(), phi_deg->data()[0]);
+        else if (size_t(phi_deg->size()) == n)
+            phis.assign(phi_deg->data(), phi_deg->data() + n);
+        else
+            throw Error("phi must be one value or one per mu");
+    }
+    AlbedoRequest req;
+    req.model = model.id;
+    req.fresnel = fresnel;
+    req.samples = choice.samples;
+    req.method = choice.method;
+    req.precision = precision_of(precision);
+    for (size_t i = 0; i < n; ++i) {
+        const double m = mu.data()[i];
+        if (!(m > 0.0 && m <= 1.0))
+            throw Error("--mu: " + std::to_string(m) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
+        req.cells.push_back(AlbedoCell{m, azimuth_from_degrees(phis[i]), model.params});
+    }
+    Engine& engine = engine_for(device);
+    const AlbedoResult r =
+        interruptible([&] { return albedo_of_model(engine, model, fresnel, req, choice.tolerance); });
+    std::vector<double> values, errors;
+    for (const AlbedoValue& v : r.values) {
+        values.push_back(v.value);
+        errors.push_back(v.error);
+    }
+    AlbedoOut out;
+    out.albedo = to_array(values, shape_of(mu));
+    out.error = to_array(errors, shape_of(mu));
+    out.model = model.canonical;
+    out.fresnel = fresnel.canonical;
+    out.method = r.method;
+    out.samples = r.samples_per_cell;
+    out.device = engine.device().name;
+    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    return out;
+}
+
+// ------------------------------------------------------------------ tables
+
+/// Values as (height, width, channels) for a 2D table, (depth, height, width, channels) with an
+/// eta axis, (width, channels) for a 1D one: numpy's C order, x fastest, as the files store them.
+std::vector<py::ssize_t> table_shape(const Table& t, bool with_channels) {
+    std::vector<py::ssize_t> s;
+    if (t.depth() > 1) s.push_back(t.depth());
+    if (t.height() > 1 || t.depth() > 1) s.push_back(t.height());
+    s.push_back(t.width());
+    if (with_channels) s.push_back(py::ssize_t(t.channels.size()));
+    return s;
+}
+
+py::array_t<double> table_values(const Table& t) {
+    const size_t texels = t.error.size(), nc = t.channels.size();
+    std::vector<double> v(texels * nc);
+    for (size_t i = 0; i < texels; ++i)
+        for (size_t c = 0; c < nc; ++c) v[i * nc + c] = t.values[c][i];
+    return to_array(v, table_shape(t, true));
+}
+
+py::dict axis_dict(const Axis& a) {
+    py::dict d;
+    d["name"] = a.name;
+    d["mapping"] = a.mapping;
+    d["lo"] = a.lo;
+    d["hi"] = a.hi;
+    d["size"] = a.size;
+    d["coordinate"] = to_array(a.coordinate, {py::ssize_t(a.coordinate.size())});
+    d["parameter"] = to_array(a.parameter, {py::ssize_t(a.parameter.size())});
+    return d;
+}
+
+py::list table_axes(const Table& t) {
+    py::list axes;
+    axes.append(axis_dict(t.x));
+    if (t.height() > 1 || t.depth() > 1) axes.append(axis_dict(t.y));
+    if (t.depth() > 1) axes.append(axis_dict(t.z));
+    return axes;
+}
+
+std::vector<int> size_list(const py::object& size) {
+    if (py::isinstance<py::int_>(size)) return {size.cast<int>()};
+    try {
+        return size.cast<std::vector<int>>();
+    } catch (const py::cast_error&) {
+        throw Error("size must be an int or a tuple of 1 to 3 ints");
+    }
+}
+
+std::pair<double, double> range_of(const std::vector<double>& r, const char* option) {
+    if (r.size() != 2) throw Error(std::string(option) + " needs two numbers: LO,HI");
+    return {r[0], r[1]};
+}
+
+Table lut(const std::string& kind, const std::string& model, const py::object& size, const std::string& fresnel,
+          double wavelength, const std::string& mu_map, const std::string& alpha_map,
+          const std::vector<double>& alpha_range, const std::vector<double>& eta_range, double samples,
+          std::optional<double> tolerance, const std::string& method, double max_samples, const std::string& precision,
+          const std::optional<std::string>& device) {
+    LutRequest r;
+    r.kind = kind;
+    r.model = model;
+    r.fresnel = fresnel;
+    r.wavelength_nm = wavelength;
+    set_lut_size(r, size_list(size));
+    r.mu_map = mu_map;
+    r.alpha_map = alpha_map;
+    std::tie(r.alpha_lo, r.alpha_hi) = range_of(alpha_range, "--alpha-range");
+    std::tie(r.eta_lo, r.eta_hi) = range_of(eta_range, "--eta-range");
+    const MethodChoice choice = choose_method(method, samples, tolerance.value_or(0.0), max_samples);
+    r.samples = choice.samples;
+    r.method = choice.method;
+    r.tolerance = choice.tolerance;
+    r.precision = precision_of(precision);
+    validate_lut(r);  // every input checked before the device is touched
+    Engine& engine = engine_for(device);
+    return interruptible([&] { return compute_lut(engine, r); });
+}
+
+// ------------------------------------------------------------------ fresnel, check, eval
+
+py::dict fresnel(const std::string& spec, const Array& theta_deg, double wavelength, const std::string& precision,
+                 const std::optional<std::string>& device) {
+    const FresnelConfig f = resolve_fresnel(spec, wavelength);
+    std::vector<double> cosines;
+    for (py::ssize_t i = 0; i < theta_deg.size(); ++i) {
+        const double t = theta_deg.data()[i];
+        if (!(t >= 0.0 && t <= 90.0))
+            throw Error("--theta: " + std::to_string(t) + " is out of range; angles of incidence lie in [0, 90] degrees");
+        cosines.push_back(std::sin((90.0 - t) * (M_PI / 180.0)));  // exact 1 at 0 and 0 at 90 degrees
+    }
+    Engine& engine = engine_for(device);
+    const FresnelCurves c = interruptible([&] { return fresnel_on_device(engine, f, precision_of(precision), cosines); });
+    py::dict d;
+    d["fresnel"] = f.canonical;
+    d["F"] = to_array(c.f, shape_of(theta_deg));
+    d["Rs"] = to_array(c.rs, shape_of(theta_deg));
+    d["Rp"] = to_array(c.rp, shape_of(theta_deg));
+    return d;
+}
+
+py::dict check(const std::string& model_spec, const std::string& fresnel_spec, double wavelength, int directions,
+               double samples, const std::string& precision, double energy_tolerance, int resolution,
+               double reciprocity_tolerance, const std::optional<std::string>& device) {
+    const ModelConfig model = resolve_model(model_spec);
+    const FresnelConfig fresnel = resolve_fresnel(fresnel_spec, wavelength);
+    if (fresnel.kind != 0 && !model.uses_fresnel)
+        throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
+    if (!(samples >= 1.0)) throw Error("--samples must be a positive number");
+    CheckOptions o;
+    o.directions = directions;
+    o.samples = std::uint64_t(samples);
+    o.precision = precision_of(precision);
+    o.energy_tolerance = energy_tolerance;
+    o.resolution = resolution;
+    o.reciprocity_tolerance = reciprocity_tolerance;
+    Engine& engine = engine_for(device);
+    const CheckReport r = interruptible([&] { return run_check(engine, model, fresnel, o); });
+    py::dict energy, reciprocity, values, d;
+    energy["max_albedo"] = r.max_albedo;
+    energy["error"] = r.max_albedo_error;
+    energy["mu"] = r.max_albedo_mu;
+    energy["phi_deg"] = r.max_albedo_phi * 180.0 / M_PI;
+    energy["analytic"] = r.furnace_analytic;
+    energy["violation"] = r.energy_violation;
+    reciprocity["max_relative_error"] = r.max_rel;
+    reciprocity["theta_i_deg"] = r.max_rel_theta_i * 180.0 / M_PI;
+    reciprocity["theta_o_deg"] = r.max_rel_theta_o * 180.0 / M_PI;
+    reciprocity["tolerance"] = r.reciprocity_tolerance;
+    reciprocity["pairs"] = r.pairs;
+    reciprocity["nonfinite"] = r.scan_nonfinite;
+    reciprocity["violation"] = r.scan_nonfinite > 0 ? py::object(py::none()) : py::bool_(r.reciprocity_violation);
+    values["nonfinite"] = r.nonfinite;
+    values["min_value"] = r.min_value;
+    values["violation"] = r.value_violation;
+    d["model"] = r.model;
+    d["fresnel"] = r.fresnel;
+    d["energy"] = energy;
+    d["reciprocity"] = reciprocity;
+    d["values"] = values;
+    d["passed"] = r.passed();
+    return d;
+}
+
+std::vector<Vec3> directions_of(const Array& a, const char* name) {
+    if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
+        throw Error(std::string(name) + " must be an array of unit vectors with a last axis of 3");
+    std::vector<Vec3> out(size_t(a.size() / 3));
+    for (size_t i = 0; i < out.size(); ++i)
+        for (int k = 0; k < 3; ++k) out[i][k] = a.data()[3 * i + k];
+    return out;
+}
+
+py::array_t<double> eval(const std::string& model_spec, const Array& wo, const Array& wi,
+                         const std::string& fresnel_spec, double wavelength, const std::string& precision,
+                         const std::optional<std::string>& device) {
+    const ModelConfig model = resolve_model(model_spec);
+    const FresnelConfig fresnel = resolve_fresnel(fresnel_spec, wavelength);
+    if (fresnel.kind != 0 && !model.uses_fresnel)
+        throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
+    if (wo.ndim() != wi.ndim() || !std::equal(wo.shape(), wo.shape() + wo.ndim(), wi.shape()))
+        throw Error("wo and wi must have the same shape");
+    const std::vector<Vec3> o = directions_of(wo, "wo"), i = directions_of(wi, "wi");
+    Engine& engine = engine_for(device);
+    const std::vector<double> f =
+        interruptible([&] { return evaluate_on_device(engine, model, fresnel, precision_of(precision), o, i); });
+    std::vector<py::ssize_t> shape = shape_of(wo);
+    shape.pop_back();
+    return to_array(f, shape);
+}
+
+}  // namespace
+
+PYBIND11_MODULE(brdfbake, m) {
+    m.doc() =
+        "brdfbake: integrate BRDFs in OpenCL kernels (PoCL by default) from Python. Model and Fresnel specs are "
+        "the command line's (`ggx:alpha=0.5`, `schlick:f0=0.04`); angles are degrees, mu = cos(theta).";
+    m.attr("__version__") = BRDFBAKE_VERSION;
+
+    // Bad input is ValueError with the command line's message; a violation found (a tolerance
+    // not met, exit status 1 on the command line) and device faults are RuntimeError.
+    py::register_exception_translator([](std::exception_ptr p) {
+        try {
+            if (p) std::rethrow_exception(p);
+        } catch (const Error& e) {
+            if (e.exit_code() == kExitViolation)
+                PyErr_SetString(PyExc_RuntimeError, e.what());
+            else
+                PyErr_SetString(PyExc_ValueError, e.what());
+        } catch (const cl::Error& e) {
+            PyErr_SetString(PyExc_RuntimeError,
+                            (std::string("OpenCL call ") + e.what() + " failed: " + cl_error_name(e.err())).c_str());
+        }
+    });
+
+    py::class_<AlbedoOut>(m, "Albedo", "directional albedo E(mu) with its error, arrays of mu's shape")
+        .def_readonly("albedo", &AlbedoOut::albedo)
+        .def_readonly("error", &AlbedoOut::error)
+        .def_readonly("model", &AlbedoOut::model)
+        .def_readonly("fresnel", &AlbedoOut::fresnel)
+        .def_readonly("method", &AlbedoOut::method)
+        .def_readonly("samples", &AlbedoOut::samples, "samples per direction (the most any direction took)")
+        .def_readonly("device", &AlbedoOut::device)
+        .def_readonly("seconds", &AlbedoOut::seconds)
+        .def("__repr__", [](const AlbedoOut& a) {
+            return "<brdfbake.Albedo " + a.model + ", " + std::to_string(a.albedo.size()) + " directions>";
+        });
+
+    py::class_<Table>(m, "Table", "a lookup table: values, per-texel error, axes and the brdfbake:* attributes")
+        .def_readonly("kind", &Table::kind)
+        .def_readonly("quantity", &Table::quantity)
+        .def_readonly("channels", &Table::channels)
+        .def_property_readonly("values", &table_values,
+                               "(height, width, channels); (depth, height, width, channels) with an eta axis; "
+                               "(width, channels) for a 1D table")
+        .def_property_readonly(
+            "error", [](const Table& t) { return to_array(t.error, table_shape(t, false)); },
+            "estimated absolute error per texel (the largest over the channels), values' shape without channels")
+        .def_property_readonly("axes", &table_axes, "x (width), then y (height), then z (depth): dicts of name, "
+                                                    "mapping, lo, hi, size, coordinate, parameter")
+        .def_readonly("attributes", &Table::attributes)
+        .def("max_error", &Table::max_error)
+        .def(
+            "save", [](const Table& t, const std::string& path, bool half) { write_table(t, path, half); },
+            py::arg("path"), py::arg("half") = false,
+            "write by the extension of path, as `brdfbake lut -o`: .exr, .csv, .h")
+        .def("__repr__", [](const Table& t) {
+            return "<brdfbake.Table " + t.kind + " " + std::to_string(t.width()) + "x" + std::to_string(t.height()) +
+                   "x" + std::to_string(t.depth()) + ">";
+        });
+
+    m.def("albedo", &albedo, py::arg("model"), py::arg("mu"), py::arg("phi") = py::none(),
+          py::arg("fresnel") = "none", py::arg("wavelength") = 0.0, py::arg("samples") = double(1 << 18),
+          py::arg("tolerance") = py::none(), py::arg("method") = "auto", py::arg("max_samples") = double(1 << 26),
+          py::arg("precision") = "float", py::arg("device") = py::none(),
+          "directional albedo E(mu) = integral of f cos(theta_i) over the hemisphere, as `brdfbake albedo`; phi in "
+          "degrees (one value or one per mu); tolerance refines every direction to that absolute error");
+    m.def("lut", &lut, py::arg("kind"), py::arg("model"), py::arg("size") = 32, py::arg("fresnel") = "none",
+          py::arg("wavelength") = 0.0, py::arg("mu_map") = "linear", py::arg("alpha_map") = "alpha",
+          py::arg("alpha_range") = std::vector<double>{0.0, 1.0}, py::arg("eta_range") = std::vector<double>{1.0, 3.0},
+          py::arg("samples") = double(1 << 18), py::arg("tolerance") = py::none(), py::arg("method") = "auto",
+          py::arg("max_samples") = double(1 << 26), py::arg("precision") = "float", py::arg("device") = py::none(),
+          "a lookup table as `brdfbake lut KIND`; size is N, (W, H) or (W, H, D)");
+    m.def("fresnel", &fresnel, py::arg("spec"), py::arg("theta_deg"), py::arg("wavelength") = 0.0,
+          py::arg("precision") = "float", py::arg("device") = py::none(),
+          "F, Rs and Rp of a Fresnel spec at angles of incidence in degrees (dict of arrays)");
+    m.def("check", &check, py::arg("model"), py::arg("fresnel") = "none", py::arg("wavelength") = 0.0,
+          py::arg("directions") = 48, py::arg("samples") = double(1 << 16), py::arg("precision") = "float",
+          py::arg("energy_tolerance") = 1e-4, py::arg("resolution") = 32, py::arg("reciprocity_tolerance") = 1e-6,
+          py::arg("device") = py::none(),
+          "white furnace, reciprocity and value scans with a verdict, as `brdfbake check` (a dict)");
+    m.def("eval", &eval, py::arg("model"), py::arg("wo"), py::arg("wi"), py::arg("fresnel") = "none",
+          py::arg("wavelength") = 0.0, py::arg("precision") = "double", py::arg("device") = py::none(),
+          "f(wo, wi) without the cosine, on the device, for arrays of unit vectors (..., 3) in the shading frame "
+          "(normal +z)");
+    m.def(
+        "models", [] {
+            std::vector<std::string> names;
+            for (const ModelTraits& t : model_registry()) names.push_back(t.name);
+            return names;
+        },
+        "the model names of the registry");
+    m.def(
+        "table_kinds", [] {
+            std::vector<std::string> names;
+            for (const TableKind* k : table_kinds()) names.push_back(k->name);
+            return names;
+        },
+        "the table kinds of the registry");
+}
