@@ -227,3 +227,30 @@ def test_readme_example_runs_as_written():
         r = subprocess.run([sys.executable, script], cwd=d, capture_output=True, text=True)
         assert r.returncode == 0, r.stderr
         assert os.path.exists(os.path.join(d, "dfg.exr"))
+
+
+def test_ctrl_c_raises_keyboard_interrupt_at_the_next_kernel_launch():
+    # A tolerance no method reaches soon: many refinement rounds, each a kernel launch.
+    script = (
+        "import signal, sys, brdfbake\n"
+        "signal.signal(signal.SIGINT, signal.default_int_handler)\n"  # a background job may inherit SIG_IGN
+        "print('started', flush=True)\n"
+        "try:\n"
+        "    brdfbake.lut('albedo', 'beckmann', size=(64, 64), tolerance=1e-7, precision='double',\n"
+        "                 method='importance', max_samples=2**30)\n"
+        "except KeyboardInterrupt:\n"
+        "    print('interrupted', flush=True)\n"
+        "    sys.exit(3)\n"
+    )
+    p = subprocess.Popen([sys.executable, "-c", script], stdout=subprocess.PIPE, text=True)
+    assert p.stdout.readline().strip() == "started"
+    import signal
+    import time
+    time.sleep(2.0)
+    p.send_signal(signal.SIGINT)
+    try:
+        out, _ = p.communicate(timeout=120)
+    except subprocess.TimeoutExpired:
+        p.kill()
+        raise AssertionError("Ctrl-C did not stop the computation")
+    assert p.returncode == 3 and "interrupted" in out
