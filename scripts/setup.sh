@@ -9,6 +9,8 @@ packages=(
   libopenexr-dev catch2 libcli11-dev nlohmann-json3-dev librandom123-dev
   libboost-math-dev libmgl-dev libyaml-cpp-dev libtinygltf-dev
   pkg-config  # the install_consumer test checks brdfbake.pc
+  libpng-dev  # 16-bit PNG tables (host/io/png_writer.cpp)
+  python3-numpy  # the .npy round-trip test reads tables with numpy
 )
 
 missing=()
