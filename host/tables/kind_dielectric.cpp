@@ -113,6 +113,18 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
         res.transmitted[c].value = 1.0 - f;
         res.reflected[c].error = res.transmitted[c].error = 4 * std::numeric_limits<double>::epsilon();
     }
+    const size_t n = dr.cells.size() / 2;
+    t.channels = {"R", "T", "R_inside", "T_inside"};
+    t.values.assign(4, std::vector<double>(n));
+    t.error.assign(n, 0.0);
+    for (size_t k = 0; k < n; ++k) {
+        t.values[0][k] = res.reflected[k].value;
+        t.values[1][k] = res.transmitted[k].value;
+        t.values[2][k] = res.reflected[n + k].value;
+        t.values[3][k] = res.transmitted[n + k].value;
+        t.error[k] = std::max({res.reflected[k].error, res.transmitted[k].error, res.reflected[n + k].error,
+                               res.transmitted[n + k].error});
+    }
     // The dielectric table has never carried the alpha floor note: it is left out here too, so
     // that its files stay as they were.
     describe(t, r, m, "dielectric (exact, unpolarised) at each texel's eta", res.method, res.samples_per_cell,
