@@ -145,7 +145,11 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     check_table_path(o.output);
     check_plot_output(o.preview, "--preview");
     std::string preview = o.preview;
-    if (preview.empty()) preview = o.output.substr(0, o.output.find_last_of('.')) + ".png";
+    const std::string stem = o.output.substr(0, o.output.find_last_of('.'));
+    // A PNG table keeps its name: its preview goes beside it as NAME.preview.png.
+    if (preview.empty()) preview = stem + (stem + ".png" == o.output ? ".preview.png" : ".png");
+    if (!o.no_preview && preview == o.output)
+        throw Error("--preview '" + preview + "' is the table's own file; give another name or --no-preview");
     if (!o.no_preview) check_output_path(preview);
     validate_lut(r);  // every input checked before the device is touched
 
@@ -213,7 +217,7 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
     cmd->add_flag("--half", o->half, "store half-float EXR channels instead of float32");
     cmd->add_option("-o,--output", o->output, "output file: .exr, .csv, .h, .png (16-bit) or .npy (+ .npy.json)")
         ->required();
-    cmd->add_option("--preview", o->preview, "preview picture (.png or .svg); default: the output name with .png");
+    cmd->add_option("--preview", o->preview, "preview picture (.png or .svg); default: the output name with .png (NAME.preview.png for a .png table)");
     cmd->add_flag("--no-preview", o->no_preview, "write no preview picture");
 }
 
