@@ -30,6 +30,7 @@
 #include "brdfbake/table_kinds.h"
 #include "integrate/refine.h"
 #include "reference/reference.h"
+#include "ggx_albedo_reference.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -340,7 +341,7 @@ TEST_CASE("lut command: bad input exits 2 and writes nothing", "[lut][cli]") {
     }
     const auto r = testing::run_cli("lut albedo --model ggx -o " + tmp_path("table.txt"));
     CHECK(r.status == 2);
-    CHECK(r.err.find(".exr, .csv or .h") != std::string::npos);
+    CHECK(r.err.find(".exr, .csv, .h, .png or .npy") != std::string::npos);
 }
 
 // ------------------------------------------------------------------------------------------------
@@ -349,91 +350,8 @@ TEST_CASE("lut command: bad input exits 2 and writes nothing", "[lut][cli]") {
 // bounds the actual error. The whole command runs through the executable; the file is read back
 // with the OpenEXR library; all 1024 texels are compared.
 
-namespace {
-
-/// Directional albedo of isotropic GGX (F = 1, height-correlated G2) from the textbook pieces in
-/// reference.h, by quadrature in half-vector space, made cheap enough for 1024 texels.
-///
-///   E(mu_o) = integral of f cos_i dw_i, w_i = reflect(w_o, h), dw_i = 4 (o.h) dw_h
-///           = (1 / mu_o) integral of D(h) G2(o, i) (o.h) dw_h  over the h with mu_i > 0,
-///   mu_i = 2 (o.h) cos th - mu_o,  o.h = sin_o sin th cos dphi + mu_o cos th.
-///
-/// mu_i > 0 is one azimuth interval |dphi| < dmax(th), cos dmax = -mu_o cos 2th / (sin_o sin 2th)
-/// (it implies o.h > 0): every azimuth up to th1 = (pi/2 - th_o)/2, none from th2 = pi/4 + th_o/2.
-/// The reference depends on (mu, alpha) only: the integrand is even in dphi, D and Lambda(o) are
-/// fixed per th, and G2 depends on w_i only through mu_i (isotropic), so
-///   - outer: th substituted by u = tan^2 th / (alpha^2 + tan^2 th) (the cdf of D cos in th, which
-///     flattens the peak of D for small alpha), Jacobian dth/du applied explicitly, split at th1
-///     (where the azimuth range starts to shrink); Boost's tanh-sinh, which also takes the
-///     square-root behaviour at th2 and th1;
-///   - inner: dphi over [0, dmax], `n` point Gauss-Legendre (Boost), with dphi = dmax s (2 - s)
-///     when dmax < pi so that the nodes cluster where mu_i -> 0 and G2 has a layer of width ~alpha.
-/// `n` = 30 with tol = 1e-9 agrees with ref::albedo_halfvector (adaptive Gauss-Kronrod in (th, phi))
-/// at tol 1e-10 to 2.4e-13 on 40 texels of this table including the corners; the test also checks
-/// the reference against a coarser setting (n = 20, tol = 1e-8) on every texel and against
-/// albedo_halfvector on a few.
-template <int N>
-double ggx_albedo_reference(double alpha, double mu_o, double tol) {
-    using ref::ld;
-    using ref::kPi;
-    thread_local boost::math::quadrature::tanh_sinh<double> outer_rule;
-    const ld th_o = std::acos((ld)mu_o), sin_o = std::sin(th_o);
-    const ld lam_o = ref::ggx_lambda(ref::Dir{sin_o, 0, (ld)mu_o}, alpha, alpha);
-    const ld a2 = (ld)alpha * alpha;
-    auto u_of = [&](ld th) {
-        const ld t2 = std::tan(th) * std::tan(th);
-        return double(t2 / (a2 + t2));
-    };
-    auto outer = [&](double u) -> double {
-        if (!(u > 0 && u < 1)) return 0.0;
-        const ld s = std::sqrt((ld)u / (1 - (ld)u));  // tan th / alpha
-        const ld th = std::atan(alpha * s);
-        const ld dth_du = alpha / (1 + a2 * s * s) / (2 * s * (1 - (ld)u) * (1 - (ld)u));
-        const ld st = std::sin(th), ct = std::cos(th), c2 = ct * ct - st * st, s2 = 2 * st * ct;
-        ld dmax = kPi;
-        if (sin_o * s2 > 1e-300L) {
-            const ld c = -(ld)mu_o * c2 / (sin_o * s2);
-            dmax = c >= 1 ? 0 : c <= -1 ? kPi : std::acos(c);
-        } else if (c2 <= 0) {
-            dmax = 0;
-        }
-        if (dmax <= 0) return 0.0;
-        auto g = [&](double dphi) -> double {  // G2 (o.h)
-            const ld oh = sin_o * st * std::cos((ld)dphi) + mu_o * ct;
-            const ld mu_i = 2 * oh * ct - mu_o;
-            if (oh <= 0 || mu_i <= 0) return 0.0;
-            const ld lam_i = ref::ggx_lambda(ref::Dir{std::sqrt(1 - mu_i * mu_i), 0, mu_i}, alpha, alpha);
-            return double(oh / (1 + lam_o + lam_i));
-        };
-        using GL = boost::math::quadrature::gauss<double, N>;
-        const double azimuth =
-            dmax >= kPi ? GL::integrate(g, 0.0, double(kPi))
-                        : GL::integrate([&](double x) { return double(2 * dmax * (1 - x) * g(double(dmax * x * (2 - x)))); },
-                                        0.0, 1.0);
-        const ld d = ref::ggx_d(ref::Dir{st, 0, ct}, alpha, alpha);
-        return double(2 * azimuth * d * st * dth_du / mu_o);
-    };
-    // The (x, complement) form of tanh-sinh: Boost's one-argument form asserts on intervals
-    // whose ends are close to 1 (u1 and u2 for small alpha).
-    auto f = [&](double u, double) { return outer(u); };
-    const double u1 = u_of((kPi / 2 - th_o) / 2), u2 = u_of(kPi / 4 + th_o / 2);
-    return outer_rule.integrate(f, 0.0, u1, tol) + outer_rule.integrate(f, u1, u2, tol);
-}
-
-/// Runs fn(k) for k in [0, n) on the machine's cores.
-template <class Fn>
-void parallel_for(size_t n, Fn fn) {
-    const unsigned workers = std::max(1u, std::min(8u, std::thread::hardware_concurrency()));
-    std::atomic<size_t> next{0};
-    std::vector<std::thread> pool;
-    for (unsigned w = 0; w < workers; ++w)
-        pool.emplace_back([&] {
-            for (size_t k = next++; k < n; k = next++) fn(k);
-        });
-    for (auto& t : pool) t.join();
-}
-
-}  // namespace
+using testing::ggx_albedo_reference;
+using testing::parallel_for;
 
 TEST_CASE("issue 6: every texel of `lut albedo --model ggx --size 32x32` is within 1e-4 of quadrature and "
           "within its error channel",
@@ -544,4 +462,243 @@ TEST_CASE("issue 6: every texel of `lut albedo --model ggx --size 32x32` is with
     INFO(over_1e4 << " texels off by more than 1e-4, " << over_estimate << " outside their error channel");
     CHECK(over_1e4 == 0);
     CHECK(over_estimate == 0);
+}
+
+// ------------------------------------------------------------------------------------------------
+// Issue 17: grid conventions (texels at centres or edges, ranges and floors, alpha = 0 as the
+// mirror limit, axis order and flips, eta mappings) for every kind, and the CSV axis columns.
+
+TEST_CASE("edge texels sit on the range's ends, i/(N - 1) between; one edge texel is refused", "[lut][quick]") {
+    const Axis a = make_axis("roughness", "alpha = r^2", 0.0, 1.0, 32, Texels::Edge);
+    CHECK(a.coordinate.front() == 0.0);
+    CHECK(a.coordinate.back() == 1.0);
+    for (int i = 0; i < 32; ++i) CHECK(a.coordinate[size_t(i)] == Approx(i / 31.0).margin(1e-15));
+    const Axis b = make_axis("mu", "mu = u", 0.25, 0.75, 3, Texels::Edge);
+    CHECK(b.coordinate == std::vector<double>{0.25, 0.5, 0.75});
+    CHECK_THROWS_WITH(make_axis("mu", "mu = u", 0.0, 1.0, 1, Texels::Edge), Catch::Contains("at least 2 texels"));
+    CHECK(parse_texels("centre") == Texels::Centre);
+    CHECK(parse_texels("edge") == Texels::Edge);
+    CHECK_THROWS_WITH(parse_texels("middle"), Catch::Contains("--texels must be centre or edge"));
+}
+
+TEST_CASE("arrange_axes: a permutation and flips move every value with its texel", "[lut][quick]") {
+    Table t;
+    t.kind = "dielectric";
+    t.x = make_axis("mu", "mu = u", 0, 1, 3);
+    t.y = make_axis("alpha", "alpha = v", 0, 1, 2);
+    t.z = make_axis("eta", "eta = w", 1, 2, 4);
+    for (Axis* a : {&t.x, &t.y, &t.z}) a->parameter = a->coordinate;
+    t.channels = {"R"};
+    t.values.assign(1, {});
+    // The value of texel (i, j, l) encodes its indices.
+    for (int l = 0; l < 4; ++l)
+        for (int j = 0; j < 2; ++j)
+            for (int i = 0; i < 3; ++i) {
+                t.values[0].push_back(100 * l + 10 * j + i);
+                t.error.push_back(0.001 * (100 * l + 10 * j + i));
+            }
+    Table u = t;
+    arrange_axes(u, {"eta", "mu", "alpha"}, {"mu"});
+    REQUIRE(u.x.name == "eta");
+    REQUIRE(u.y.name == "mu");
+    REQUIRE(u.z.name == "alpha");
+    CHECK(u.width() == 4);
+    CHECK(u.height() == 3);
+    CHECK(u.depth() == 2);
+    CHECK(u.y.lo == 1.0);  // flipped: texel 0 holds the upper end
+    CHECK(u.y.hi == 0.0);
+    CHECK(u.y.coordinate.front() == t.x.coordinate.back());
+    for (int j = 0; j < 2; ++j)          // new z = alpha
+        for (int i = 0; i < 3; ++i)      // new y = flipped mu
+            for (int l = 0; l < 4; ++l) {  // new x = eta
+                const size_t k = (size_t(j) * 3 + i) * 4 + l;
+                CHECK(u.values[0][k] == 100 * l + 10 * j + (2 - i));
+                CHECK(u.error[k] == Approx(0.001 * (100 * l + 10 * j + (2 - i))));
+            }
+    Table same = t;
+    arrange_axes(same, {}, {});
+    CHECK(same.values == t.values);
+    CHECK_THROWS_WITH(arrange_axes(same, {"mu", "alpha"}, {}), Catch::Contains("has 3 axes"));
+    CHECK_THROWS_WITH(arrange_axes(same, {}, {"roughness"}), Catch::Contains("no axis 'roughness'"));
+    CHECK_THROWS_WITH(arrange_axes(same, {"mu", "mu", "eta"}, {}), Catch::Contains("named twice"));
+}
+
+TEST_CASE("CSV: the column named after an axis holds its coordinate, the derived parameter its own column",
+          "[lut][quick]") {
+    Table t;
+    t.kind = "albedo";
+    t.x = make_axis("mu", "mu = u", 0, 1, 2);
+    t.x.parameter_name = "mu";
+    t.x.parameter = t.x.coordinate;
+    t.y = make_axis("roughness", "alpha = r^2", 0, 1, 2);
+    t.y.parameter_name = "alpha";
+    for (double r : t.y.coordinate) t.y.parameter.push_back(r * r);
+    t.channels = {"E"};
+    t.values = {{0.9, 0.8, 0.7, 0.6}};
+    t.error = {1e-4, 1e-4, 1e-4, 1e-4};
+    const std::string csv = table_csv(t);
+    const std::string body = csv.substr(csv.find("mu,roughness,alpha,E,error\n"));
+    CHECK(body == "mu,roughness,alpha,E,error\n"
+                  "0.25,0.25,0.0625,0.9,1.000e-04\n"
+                  "0.75,0.25,0.0625,0.8,1.000e-04\n"
+                  "0.25,0.75,0.5625,0.7,1.000e-04\n"
+                  "0.75,0.75,0.5625,0.6,1.000e-04\n");
+}
+
+TEST_CASE("issue 17: `lut albedo --model ggx --size 2x2 --alpha-map roughness -o t.csv` writes roughness 0.25, "
+          "0.75 under roughness and alpha 0.0625, 0.5625 under alpha",
+          "[lut][cli][device]") {
+    const std::string path = tmp_path("issue17.csv");
+    const auto run = testing::run_cli("lut albedo --model ggx --size 2x2 --alpha-map roughness --samples 1024 --no-preview -o " + path);
+    INFO(run.err);
+    REQUIRE(run.status == 0);
+    const std::string csv = testing::slurp(path);
+    std::remove(path.c_str());
+    const size_t head = csv.find("mu,roughness,alpha,E,error\n");
+    REQUIRE(head != std::string::npos);
+    std::istringstream rows(csv.substr(head + 27));
+    const double want_r[] = {0.25, 0.25, 0.75, 0.75}, want_a[] = {0.0625, 0.0625, 0.5625, 0.5625};
+    for (int k = 0; k < 4; ++k) {
+        std::string line;
+        REQUIRE(std::getline(rows, line));
+        double mu, rough, alpha;
+        char c;
+        std::istringstream l(line);
+        l >> mu >> c >> rough >> c >> alpha;
+        CHECK(rough == want_r[k]);
+        CHECK(alpha == want_a[k]);
+    }
+}
+
+TEST_CASE("every kind takes the grid conventions: edge texels, a flipped and reordered roughness axis",
+          "[lut][device]") {
+    for (const TableKind* k : table_kinds()) {
+        LutRequest r = request(k->name, 3, k->one_dimensional ? 1 : 2, 1024);
+        r.depth = 2;
+        if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        r.texels = Texels::Edge;
+        r.alpha_map = "roughness";
+        r.alpha_lo = 0.2;
+        r.alpha_hi = 0.8;
+        r.mu_lo = 0.5;
+        r.flip = {"roughness"};
+        if (!k->one_dimensional) r.axes = k->eta_axis ? std::vector<std::string>{"roughness", "mu", "eta"}
+                                                      : std::vector<std::string>{"roughness", "mu"};
+        INFO(k->name);
+        const Table t = compute_lut(testing::engine(), r);
+        const Axis& rough = t.x;
+        REQUIRE(rough.name == "roughness");
+        CHECK(rough.texels == Texels::Edge);
+        CHECK(rough.coordinate.front() == 0.8);  // flipped: texel 0 at the upper end
+        CHECK(rough.coordinate.back() == 0.2);
+        CHECK(rough.parameter.front() == Approx(0.64));
+        if (!k->one_dimensional) {
+            CHECK(t.y.name == "mu");
+            CHECK(t.y.coordinate.front() == 0.5);
+            CHECK(t.y.coordinate.back() == 1.0);
+            CHECK(t.attributes.at("axis_order").rfind("roughness, mu", 0) == 0);
+        }
+    }
+}
+
+TEST_CASE("alpha = 0 is the mirror limit: F(mu) for the albedo, the split-sum terms and the smooth dielectric",
+          "[lut][device]") {
+    LutRequest r = request("albedo", 3, 3, 1024);
+    r.texels = Texels::Edge;
+    r.fresnel = "schlick:f0=0.04";
+    r.mu_lo = 0.1;
+    const Table e = compute_lut(testing::engine(), r);
+    REQUIRE(e.y.parameter.front() == 0.0);
+    CHECK(e.attributes.count("alpha_zero") == 1);
+    CHECK(e.attributes.count("alpha_floor") == 0);
+    for (int i = 0; i < 3; ++i) {
+        const double mu = e.x.parameter[size_t(i)];
+        CHECK(e.values[0][size_t(i)] == Approx(0.04 + 0.96 * std::pow(1 - mu, 5)).margin(1e-15));
+    }
+    const Table s = compute_lut(testing::engine(), [] {
+        LutRequest q = request("dfg", 3, 2, 1024);
+        q.texels = Texels::Edge;
+        q.mu_lo = 0.2;
+        return q;
+    }());
+    for (int i = 0; i < 3; ++i) {
+        const double mu = s.x.parameter[size_t(i)], b = std::pow(1 - mu, 5);
+        CHECK(s.values[0][size_t(i)] == Approx(1 - b).margin(1e-15));
+        CHECK(s.values[1][size_t(i)] == Approx(b).margin(1e-15));
+    }
+    LutRequest d = request("dielectric", 2, 2, 1024);
+    d.texels = Texels::Edge;
+    d.mu_lo = 0.3;
+    d.depth = 2;
+    d.eta_lo = 1.0;  // eta = 1: no interface
+    d.eta_hi = 1.5;
+    const Table g = compute_lut(testing::engine(), d);
+    CHECK(g.attributes.count("eta_one") == 1);
+    for (int l = 0; l < 2; ++l)
+        for (int i = 0; i < 2; ++i) {
+            const size_t k = size_t(l) * 4 + size_t(i);  // alpha index 0
+            const double mu = g.x.parameter[size_t(i)], eta = g.z.parameter[size_t(l)];
+            const double f = eta == 1.0 ? 0.0 : ref::fresnel_dielectric(mu, eta);
+            const double f_inside = eta == 1.0 ? 0.0 : ref::fresnel_dielectric(mu, 1 / eta);
+            CHECK(g.values[0][k] == Approx(f).margin(1e-12));
+            CHECK(g.values[1][k] == Approx(1 - f).margin(1e-12));
+            CHECK(g.values[2][k] == Approx(f_inside).margin(1e-12));
+            CHECK(g.values[3][k] == Approx(1 - f_inside).margin(1e-12));
+        }
+}
+
+TEST_CASE("eta mappings: F0 and Cycles' z coordinates map back to eta, up to 100 and below 1", "[lut][device]") {
+    for (const char* map : {"f0", "cycles", "linear"}) {
+        LutRequest r = request("dielectric", 2, 2, 256);
+        r.eta_map = map;
+        r.depth = 3;
+        r.texels = Texels::Edge;
+        r.alpha_lo = 0.3;
+        r.eta_lo = std::string(map) == "linear" ? 0.5 : 1.2;
+        r.eta_hi = 100.0;
+        INFO(map);
+        const Table t = compute_lut(testing::engine(), r);
+        CHECK(t.z.parameter.front() == r.eta_lo);
+        CHECK(t.z.parameter.back() == 100.0);
+        for (size_t l = 0; l < 3; ++l) {
+            const double w = t.z.coordinate[l], eta = t.z.parameter[l];
+            const double f0 = ((eta - 1) / (eta + 1)) * ((eta - 1) / (eta + 1));
+            if (std::string(map) == "f0") CHECK(w == Approx(f0).epsilon(1e-12));
+            if (std::string(map) == "cycles") CHECK(w == Approx(std::pow(f0, 0.25)).epsilon(1e-12));
+            if (std::string(map) == "linear") CHECK(w == eta);
+        }
+        CHECK(t.z.name == (std::string(map) == "f0" ? "f0" : std::string(map) == "cycles" ? "cycles_z" : "eta"));
+    }
+}
+
+TEST_CASE("issue 17: bad grid options exit 2 with one line and write nothing", "[lut][cli]") {
+    const std::string path = tmp_path("bad17.exr");
+    const char* cases[] = {
+        "lut albedo --model ggx --texels edge --size 1x4 -o ",      // one edge texel
+        "lut eavg --model ggx --texels edge --size 1 -o ",          // one edge texel, 1D
+        "lut albedo --model ggx --texels middle -o ",               // unknown convention
+        "lut albedo --model ggx --mu-range 0.8,0.2 -o ",            // inverted
+        "lut albedo --model ggx --mu-range 0,1.5 -o ",              // beyond 1
+        "lut albedo --model ggx --mu-floor 0 -o ",                  // no floor
+        "lut albedo --model ggx --alpha-range 0.5,0.5 -o ",         // empty
+        "lut dielectric --model ggx --eta-range 0,2 -o ",           // eta <= 0
+        "lut dielectric --model ggx --eta-range -1,2 -o ",          // eta <= 0
+        "lut dielectric --model ggx --eta-range 2,1.5 -o ",         // inverted
+        "lut dielectric --model ggx --eta-range 1.5,200 -o ",       // beyond 100
+        "lut dielectric --model ggx --eta-map f0 --eta-range 0.5,2 -o ",  // f0 covers eta >= 1 only
+        "lut dielectric --model ggx --eta-map z -o ",               // unknown mapping
+        "lut albedo --model ggx --axes mu,eta -o ",                 // no eta axis
+        "lut albedo --model ggx --axes mu -o ",                     // not every axis
+        "lut albedo --model ggx --axes mu,mu -o ",                  // twice
+        "lut albedo --model ggx --flip roughness -o ",              // the axis is alpha here
+        "lut albedo --model ggx --preset nope -o ",                 // unknown preset
+    };
+    for (const char* c : cases) {
+        INFO(c);
+        const auto r = testing::run_cli(std::string(c) + path);
+        CHECK(r.status == 2);
+        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(::access(path.c_str(), F_OK) != 0);
+    }
 }

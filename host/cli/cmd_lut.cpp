@@ -1,5 +1,7 @@
 // `brdfbake lut KIND`: lookup tables of the kinds in brdfbake/table_kinds.h as OpenEXR, CSV or a C header.
+#include <algorithm>
 #include <chrono>
+#include <tuple>
 #include <cstdio>
 #include <iostream>
 #include <memory>
@@ -15,10 +17,16 @@ namespace brdfbake {
 namespace {
 
 struct LutOptions {
+    CLI::App* command = nullptr;  // to tell the options given from the defaults (a preset fills the rest)
     LutRequest request;
+    std::string preset;
     std::string size = "32x32";
     std::string alpha_range = "0,1";
     std::string eta_range = "1,3";
+    std::string mu_range = "0,1";
+    std::string texels = "centre";
+    std::string axes;
+    std::string flip;
     MethodOptions integration;
     std::string precision = "float";
     bool half = false;
@@ -50,27 +58,98 @@ void parse_size(const std::string& text, LutRequest& r) {
     if (one && r.height != 1) throw Error("--size: an " + r.kind + " table is 1D; give N or Nx1");
 }
 
+std::pair<double, double> parse_range(const std::string& text, const std::string& option) {
+    const std::vector<double> v = parse_number_list(text, option);
+    if (v.size() != 2) throw Error(option + " needs two numbers: LO,HI");
+    return {v[0], v[1]};
+}
+
+std::vector<std::string> parse_names(const std::string& text, const std::string& option) {
+    std::vector<std::string> names;
+    if (text.empty()) return names;
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t comma = text.find(',', start);
+        if (comma == std::string::npos) comma = text.size();
+        const std::string name = text.substr(start, comma - start);
+        if (name.empty()) throw Error(option + ": '" + text + "' is not a comma-separated list of axis names");
+        names.push_back(name);
+        start = comma + 1;
+    }
+    return names;
+}
+
 int run_lut(LutOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
     LutRequest& r = o.request;
-    parse_size(o.size, r);
-    const std::vector<double> range = parse_number_list(o.alpha_range, "--alpha-range");
-    if (range.size() != 2) throw Error("--alpha-range needs two numbers: LO,HI");
-    r.alpha_lo = range[0];
-    r.alpha_hi = range[1];
-    const std::vector<double> eta = parse_number_list(o.eta_range, "--eta-range");
-    if (eta.size() != 2) throw Error("--eta-range needs two numbers: LO,HI");
-    r.eta_lo = eta[0];
-    r.eta_hi = eta[1];
+    const LutPreset* preset = o.preset.empty() ? nullptr : &lut_preset(o.preset);
+    if (r.kind.empty()) {
+        if (!preset) throw Error("lut needs a table kind (" + table_kind_names() + ")");
+        r.kind = preset->kinds.front();
+    }
+    if (preset && std::find(preset->kinds.begin(), preset->kinds.end(), r.kind) == preset->kinds.end()) {
+        std::string kinds;
+        for (const auto& k : preset->kinds) kinds += (kinds.empty() ? "" : ", ") + k;
+        throw Error("preset '" + preset->name + "' has a layout for " + kinds + " tables, not " + r.kind);
+    }
+    auto given = [&](const char* option) { return o.command->count(option) > 0; };
+    LutRequest p;  // the preset's request; an option given on the command line overrides its field
+    if (preset) {
+        p.kind = r.kind;
+        preset->apply(p);
+    }
+    if (!preset && !given("--model")) throw Error("--model is required (or give --preset)");
+    if (preset) {
+        if (!given("--model")) r.model = p.model;
+        if (!given("--mu-map")) r.mu_map = p.mu_map;
+        if (!given("--alpha-map")) r.alpha_map = p.alpha_map;
+        if (!given("--eta-map")) r.eta_map = p.eta_map;
+        if (!given("--mu-floor")) r.mu_floor = p.mu_floor;
+        if (!given("--half")) o.half = preset->half;
+    }
+    if (preset && !given("--size")) {
+        r.width = p.width;
+        r.height = p.height;
+        r.depth = p.depth;
+    } else {
+        parse_size(o.size, r);
+    }
+    if (preset && !given("--alpha-range")) {
+        r.alpha_lo = p.alpha_lo;
+        r.alpha_hi = p.alpha_hi;
+    } else {
+        std::tie(r.alpha_lo, r.alpha_hi) = parse_range(o.alpha_range, "--alpha-range");
+    }
+    if (preset && !given("--eta-range")) {
+        r.eta_lo = p.eta_lo;
+        r.eta_hi = p.eta_hi;
+    } else {
+        std::tie(r.eta_lo, r.eta_hi) = parse_range(o.eta_range, "--eta-range");
+    }
+    if (preset && !given("--mu-range")) {
+        r.mu_lo = p.mu_lo;
+        r.mu_hi = p.mu_hi;
+    } else {
+        std::tie(r.mu_lo, r.mu_hi) = parse_range(o.mu_range, "--mu-range");
+    }
+    r.texels = preset && !given("--texels") ? p.texels : parse_texels(o.texels);
+    r.axes = preset && !given("--axes") ? p.axes : parse_names(o.axes, "--axes");
+    r.flip = preset && !given("--flip") ? p.flip : parse_names(o.flip, "--flip");
     const MethodChoice choice = resolve_method_choice(o.integration);
-    r.samples = choice.samples;
-    r.method = choice.method;
-    r.tolerance = choice.tolerance;
-    r.precision = o.precision == "double" ? Precision::Double : Precision::Float;
+    const bool method_given = given("--samples") || given("--tolerance") || given("--method") || given("--max-samples");
+    r.samples = preset && !method_given ? p.samples : choice.samples;
+    r.method = preset && !method_given ? p.method : choice.method;
+    r.tolerance = preset && !method_given ? p.tolerance : choice.tolerance;
+    r.precision = preset && !given("--precision") ? p.precision
+                                                  : (o.precision == "double" ? Precision::Double : Precision::Float);
     check_table_path(o.output);
     check_plot_output(o.preview, "--preview");
     std::string preview = o.preview;
-    if (preview.empty()) preview = o.output.substr(0, o.output.find_last_of('.')) + ".png";
+    const std::string stem = o.output.substr(0, o.output.find_last_of('.'));
+    // A PNG table keeps its name: its preview goes beside it as NAME.preview.png.
+    if (preview.empty()) preview = stem + (stem + ".png" == o.output ? ".preview.png" : ".png");
+    if (!o.no_preview && preview == o.output)
+        throw Error("--preview '" + preview + "' is the table's own file; give another name or --no-preview");
     if (!o.no_preview) check_output_path(preview);
     validate_lut(r);  // every input checked before the device is touched
 
@@ -91,10 +170,21 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
     std::string kinds;
     for (const TableKind* k : table_kinds()) kinds += "\n  " + k->name + ": " + k->description;
     const auto [cmd, o] = add_command<LutOptions>(
-        app, "lut", "write a lookup table (OpenEXR, CSV or C header by the -o extension)", global, action, run_lut);
-    cmd->add_option("kind", o->request.kind, "table kind:" + kinds)->required();
-    cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable")
-        ->required();
+        app, "lut", "write a lookup table (OpenEXR, CSV, C header, 16-bit PNG or .npy by the -o extension)", global,
+        action, run_lut);
+    std::string presets;
+    for (const LutPreset& p : lut_presets())
+        presets += "\n  " + p.name + ": " + p.engine + " " + p.ships + " (" + [&] {
+            std::string k;
+            for (const auto& kind : p.kinds) k += (k.empty() ? "" : ", ") + kind;
+            return k;
+        }() + "; ." + p.extension + "): " + p.summary;
+    o->command = cmd;
+    cmd->add_option("kind", o->request.kind, "table kind (default with --preset: the preset's first):" + kinds);
+    cmd->add_option("--preset", o->preset,
+                    "an engine's table layout; options given beside it override its settings:" + presets);
+    cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable "
+                                                  "(required without --preset)");
     cmd->add_option("--fresnel", o->request.fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();
     cmd->add_option("--wavelength", o->request.wavelength_nm, "wavelength in nm for measured metals");
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT (mu x alpha), WIDTHxHEIGHTxDEPTH (x eta) for dielectric, N for eavg")->capture_default_str();
@@ -105,12 +195,29 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->check(CLI::IsMember({"alpha", "roughness"}))
         ->capture_default_str();
     cmd->add_option("--alpha-range", o->alpha_range, "LO,HI of the roughness axis coordinate")->capture_default_str();
-    cmd->add_option("--eta-range", o->eta_range, "LO,HI of the eta axis (dielectric)")->capture_default_str();
+    cmd->add_option("--eta-range", o->eta_range, "LO,HI of eta (0 < LO < HI <= 100; below 1: from the denser side)")
+        ->capture_default_str();
+    cmd->add_option("--eta-map", o->request.eta_map,
+                    "eta axis coordinate: linear (w = eta), f0 (w = ((eta-1)/(eta+1))^2) or cycles "
+                    "(w = sqrt((eta-1)/(eta+1)), Cycles' glass tables)")
+        ->capture_default_str();
+    cmd->add_option("--texels", o->texels,
+                    "where texels sit on every axis: centre ((i + 0.5)/N) or edge (i/(N - 1): the range's ends)")
+        ->capture_default_str();
+    cmd->add_option("--mu-range", o->mu_range, "LO,HI of the mu axis coordinate (0 <= LO < HI <= 1)")
+        ->capture_default_str();
+    cmd->add_option("--mu-floor", o->request.mu_floor, "mu below this is computed at it (0 < F < 1)")
+        ->capture_default_str();
+    cmd->add_option("--axes", o->axes,
+                    "axis order, x first, by name: e.g. roughness,mu (names: mu or sqrt_mu, alpha or roughness, eta, "
+                    "f0 or cycles_z)");
+    cmd->add_option("--flip", o->flip, "axes stored from their upper end (texel 0 at HI), e.g. roughness");
     add_method_options(cmd, o->integration, "texel");
     add_precision_option(cmd, o->precision);
     cmd->add_flag("--half", o->half, "store half-float EXR channels instead of float32");
-    cmd->add_option("-o,--output", o->output, "output file: .exr, .csv or .h")->required();
-    cmd->add_option("--preview", o->preview, "preview picture (.png or .svg); default: the output name with .png");
+    cmd->add_option("-o,--output", o->output, "output file: .exr, .csv, .h, .png (16-bit) or .npy (+ .npy.json)")
+        ->required();
+    cmd->add_option("--preview", o->preview, "preview picture (.png or .svg); default: the output name with .png (NAME.preview.png for a .png table)");
     cmd->add_flag("--no-preview", o->no_preview, "write no preview picture");
 }
 

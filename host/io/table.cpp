@@ -28,15 +28,122 @@ double Table::max_error() const {
     return m;
 }
 
-Axis make_axis(const std::string& name, const std::string& mapping, double lo, double hi, int size) {
+Texels parse_texels(const std::string& text) {
+    if (text == "centre" || text == "center") return Texels::Centre;
+    if (text == "edge") return Texels::Edge;
+    throw Error("--texels must be centre or edge, not '" + text + "'");
+}
+
+const char* texels_name(Texels texels) { return texels == Texels::Edge ? "edge" : "centre"; }
+
+Axis make_axis(const std::string& name, const std::string& mapping, double lo, double hi, int size, Texels texels) {
+    if (texels == Texels::Edge && size < 2)
+        throw Error("edge texels need at least 2 texels on the " + name + " axis (one texel cannot sit on both ends)");
     Axis a;
     a.name = name;
     a.mapping = mapping;
     a.lo = lo;
     a.hi = hi;
     a.size = size;
-    for (int i = 0; i < size; ++i) a.coordinate.push_back(lo + (hi - lo) * (i + 0.5) / size);
+    a.texels = texels;
+    for (int i = 0; i < size; ++i) {
+        const double t = texels == Texels::Edge ? double(i) / (size - 1) : (i + 0.5) / size;
+        // The ends exactly: lo + (hi - lo) * 1 may round away from hi.
+        a.coordinate.push_back(texels == Texels::Edge && i == size - 1 ? hi : lo + (hi - lo) * t);
+    }
     return a;
+}
+
+namespace {
+
+Axis& axis_at(Table& t, int which) { return which == 0 ? t.x : which == 1 ? t.y : t.z; }
+
+}  // namespace
+
+void arrange_axes(Table& t, const std::vector<std::string>& order, const std::vector<std::string>& flip) {
+    const int n = t.depth() > 1 ? 3 : t.height() > 1 ? 2 : 1;
+    auto find = [&](const std::string& name, const char* option) {
+        for (int a = 0; a < 3; ++a)
+            if (axis_at(t, a).name == name && (a < n || axis_at(t, a).size > 1)) return a;
+        std::string known;
+        for (int a = 0; a < n; ++a) known += (known.empty() ? "" : ", ") + axis_at(t, a).name;
+        throw Error(std::string(option) + ": the " + t.kind + " table has no axis '" + name + "'; its axes: " + known);
+    };
+    std::vector<int> perm;  // new axis k is old axis perm[k]
+    if (order.empty()) {
+        for (int a = 0; a < n; ++a) perm.push_back(a);
+    } else {
+        if (int(order.size()) != n)
+            throw Error("--axes: the " + t.kind + " table has " + std::to_string(n) + " axes; name each once (got " +
+                        std::to_string(order.size()) + ")");
+        for (const auto& name : order) {
+            const int a = find(name, "--axes");
+            if (std::find(perm.begin(), perm.end(), a) != perm.end()) throw Error("--axes: '" + name + "' is named twice");
+            perm.push_back(a);
+        }
+    }
+    std::vector<bool> flipped(3, false);
+    for (const auto& name : flip) {
+        const int a = find(name, "--flip");
+        if (flipped[a]) throw Error("--flip: '" + name + "' is named twice");
+        flipped[a] = true;
+    }
+    bool identity = true;
+    for (int k = 0; k < n; ++k) identity = identity && perm[k] == k && !flipped[k];
+    if (identity) return;
+    const Axis old[3] = {t.x, t.y, t.z};
+    const int size[3] = {old[0].size, old[1].size, old[2].size};
+    for (int k = n; k < 3; ++k) perm.push_back(k);  // the axes of size 1 stay where they are
+    auto moved = [&](const std::vector<double>& v) {
+        std::vector<double> out(v.size());
+        int idx[3];
+        for (idx[2] = 0; idx[2] < size[perm[2]]; ++idx[2])
+            for (idx[1] = 0; idx[1] < size[perm[1]]; ++idx[1])
+                for (idx[0] = 0; idx[0] < size[perm[0]]; ++idx[0]) {
+                    int src[3] = {0, 0, 0};
+                    for (int k = 0; k < 3; ++k) {
+                        const int a = perm[k];
+                        src[a] = flipped[a] ? size[a] - 1 - idx[k] : idx[k];
+                    }
+                    const size_t from = (size_t(src[2]) * size[1] + src[1]) * size[0] + src[0];
+                    const size_t to = (size_t(idx[2]) * size[perm[1]] + idx[1]) * size[perm[0]] + idx[0];
+                    out[to] = v[from];
+                }
+        return out;
+    };
+    for (auto& v : t.values) v = moved(v);
+    t.error = moved(t.error);
+    for (int k = 0; k < 3; ++k) {
+        Axis a = old[perm[k]];
+        if (flipped[perm[k]]) {
+            std::swap(a.lo, a.hi);
+            std::reverse(a.coordinate.begin(), a.coordinate.end());
+            std::reverse(a.parameter.begin(), a.parameter.end());
+        }
+        axis_at(t, k) = a;
+    }
+}
+
+std::vector<int> rgba_view(const Table& t) {
+    switch (t.values.size()) {
+        case 1: return {0, 0, 0, -1};
+        case 2: return {0, 1, -1, -1};
+        case 3: return {0, 1, 2, -1};
+        case 4: return {0, 1, 2, 3};
+        default: return {};
+    }
+}
+
+std::string rgba_view_text(const Table& t) {
+    const std::vector<int> view = rgba_view(t);
+    if (view.empty()) return "none (more than four value channels)";
+    std::string s;
+    const char* slot[4] = {"R", "G", "B", "A"};
+    for (int k = 0; k < 4; ++k) {
+        if (k == 3 && view[k] < 0) break;
+        s += std::string(k ? ", " : "") + slot[k] + " = " + (view[k] < 0 ? std::string("0") : t.channels[size_t(view[k])]);
+    }
+    return s;
 }
 
 void check_finite(const Table& t) {
@@ -54,22 +161,35 @@ void check_finite(const Table& t) {
 
 namespace {
 
-// The attributes every format carries, in a stable order.
-std::vector<std::pair<std::string, std::string>> describe(const Table& t) {
+std::string number(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.9g", v);
+    return b;
+}
+
+/// The texel convention of an axis, in words.
+std::string texel_text(const Axis& ax) {
+    const std::string t = ax.texels == Texels::Edge ? "i / (size - 1) (edges: the first and last texel on the range's ends)"
+                                                    : "(i + 0.5) / size (texel centres)";
+    return "texel i holds coordinate lo + (hi - lo) t, t = " + t;
+}
+
+}  // namespace
+
+std::vector<std::pair<std::string, std::string>> table_description(const Table& t) {
     std::vector<std::pair<std::string, std::string>> a;
-    auto num = [](double v) {
-        char b[32];
-        std::snprintf(b, sizeof b, "%.9g", v);
-        return std::string(b);
-    };
     a.emplace_back("kind", t.kind);
     a.emplace_back("quantity", t.quantity);
     for (const auto& kv : t.attributes) a.emplace_back(kv.first, kv.second);
+    bool all_centres = true;
     auto axis = [&](const char* which, const Axis& ax) {
         a.emplace_back(std::string(which) + "_axis", ax.name);
         a.emplace_back(std::string(which) + "_mapping", ax.mapping);
-        a.emplace_back(std::string(which) + "_range", num(ax.lo) + " " + num(ax.hi));
+        a.emplace_back(std::string(which) + "_range", number(ax.lo) + " " + number(ax.hi));
         a.emplace_back(std::string(which) + "_size", std::to_string(ax.size));
+        if (ax.texels == Texels::Edge) a.emplace_back(std::string(which) + "_texels", texel_text(ax));
+        if (ax.lo > ax.hi) a.emplace_back(std::string(which) + "_flipped", "texel 0 holds the range's upper end");
+        all_centres = all_centres && ax.texels == Texels::Centre;
     };
     axis("x", t.x);
     if (t.height() > 1) axis("y", t.y);
@@ -78,17 +198,22 @@ std::vector<std::pair<std::string, std::string>> describe(const Table& t) {
         a.emplace_back("layout", "3D: the " + std::to_string(t.depth()) + " z-slices are stacked along y; image row = z * " +
                                      std::to_string(t.height()) + " + y");
     }
-    a.emplace_back("texel_convention", "texel i holds coordinate lo + (hi - lo)(i + 0.5)/size (texel centres)");
+    a.emplace_back("texel_convention", all_centres ? "texel i holds coordinate lo + (hi - lo)(i + 0.5)/size (texel centres)"
+                                                   : "per axis (see x_texels, y_texels, z_texels); an axis without "
+                                                     "one has texel centres, t = (i + 0.5) / size");
     std::string ch;
     for (const auto& c : t.channels) ch += (ch.empty() ? "" : " ") + c;
     a.emplace_back("channels", ch + " error");
+    a.emplace_back("rgba_view", rgba_view_text(t));
     a.emplace_back("error_meaning", "estimated absolute error of the texel (max over channels): "
                                     "3 standard errors of the replicas plus 3 |E| / N (sampling) or the difference "
                                     "from the half-order rule (quadrature), plus a floating-point bound");
-    a.emplace_back("max_error", num(t.max_error()));
+    a.emplace_back("max_error", number(t.max_error()));
     a.emplace_back("tool", std::string("brdfbake ") + BRDFBAKE_VERSION);
     return a;
 }
+
+namespace {
 
 std::string extension(const std::string& path) {
     const size_t dot = path.find_last_of('.');
@@ -105,28 +230,56 @@ void write_exr(const Table& t, const std::string& path, bool half) {
     const int w = t.width(), h = t.image_height();
     Imf::Header header(w, h);
     header.compression() = Imf::ZIP_COMPRESSION;
-    for (const auto& kv : describe(t)) header.insert("brdfbake:" + kv.first, Imf::StringAttribute(kv.second));
+    for (const auto& kv : table_description(t)) header.insert("brdfbake:" + kv.first, Imf::StringAttribute(kv.second));
     header.insert("brdfbake:max_error_value", Imf::FloatAttribute(float(t.max_error())));
     const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
 
-    // The frame buffer's pixel type must match the channel's: convert on the host.
-    std::vector<std::vector<double>> sources = t.values;
-    sources.push_back(t.error);
-    std::vector<std::string> names = t.channels;
+    // The channels: the RGB(A) view that a generic RGBA reader (Imf::RgbaInputFile) returns, then
+    // every value channel under its name (under the layer "KIND." where its name is one of the
+    // RGBA names but holds another channel: dfg's A and B), then the error, which RGBA readers
+    // ignore. The frame buffer's pixel type must match the channel's: convert on the host.
+    std::vector<const std::vector<double>*> sources;
+    std::vector<std::string> names;
+    const std::vector<int> view = rgba_view(t);
+    const char* const slot[4] = {"R", "G", "B", "A"};
+    for (size_t k = 0; k < view.size(); ++k)
+        if (view[k] >= 0) {
+            names.push_back(slot[k]);
+            sources.push_back(&t.values[size_t(view[k])]);
+        }
+    for (size_t c = 0; c < t.channels.size(); ++c) {
+        const std::string& name = t.channels[c];
+        const auto same = std::find(names.begin(), names.end(), name);
+        if (same != names.end()) {
+            if (sources[size_t(same - names.begin())] == &t.values[c]) continue;  // the view slot holds it
+            names.push_back(t.kind + "." + name);
+        } else if (name == "R" || name == "G" || name == "B" || name == "A" || name == "Y") {
+            names.push_back(t.kind + "." + name);
+        } else {
+            names.push_back(name);
+        }
+        sources.push_back(&t.values[c]);
+    }
     names.push_back("error");
+    sources.push_back(&t.error);
+    std::string listing;
+    for (const auto& n : names) listing += (listing.empty() ? "" : " ") + n;
+    header.insert("brdfbake:exr_channels", Imf::StringAttribute(listing));
     std::vector<std::vector<float>> planes32;
     std::vector<std::vector<Imath::half>> planes16;
+    planes32.reserve(names.size());
+    planes16.reserve(names.size());
     Imf::FrameBuffer fb;
     for (size_t c = 0; c < names.size(); ++c) {
         header.channels().insert(names[c], Imf::Channel(type));
         char* base;
         size_t size;
         if (half) {
-            planes16.emplace_back(sources[c].begin(), sources[c].end());
+            planes16.emplace_back(sources[c]->begin(), sources[c]->end());
             base = reinterpret_cast<char*>(planes16.back().data());
             size = sizeof(Imath::half);
         } else {
-            planes32.emplace_back(sources[c].begin(), sources[c].end());
+            planes32.emplace_back(sources[c]->begin(), sources[c]->end());
             base = reinterpret_cast<char*>(planes32.back().data());
             size = sizeof(float);
         }
@@ -146,34 +299,48 @@ void write_exr(const Table& t, const std::string& path, bool half) {
 
 std::string table_csv(const Table& t) {
     std::ostringstream o;
-    for (const auto& kv : describe(t)) o << "# " << kv.first << ": " << kv.second << "\n";
-    o << t.x.name;
-    if (t.height() > 1) o << "," << t.y.name;
-    if (t.depth() > 1) o << "," << t.z.name;
+    for (const auto& kv : table_description(t)) o << "# " << kv.first << ": " << kv.second << "\n";
+    // Per axis: its coordinate under the axis's name, then the parameter the mapping derives
+    // from it under the parameter's name where the two differ (roughness, then alpha).
+    std::vector<const Axis*> axes = {&t.x};
+    if (t.height() > 1) axes.push_back(&t.y);
+    if (t.depth() > 1) axes.push_back(&t.z);
+    // A parameter named as its coordinate but computed elsewhere (mu raised to its floor) goes
+    // under NAME_computed.
+    auto derived = [](const Axis& a) {
+        return !a.parameter_name.empty() && (a.parameter_name != a.name || a.parameter != a.coordinate);
+    };
+    std::string head;
+    for (const Axis* a : axes) {
+        head += (head.empty() ? "" : ",") + a->name;
+        if (derived(*a)) head += "," + a->parameter_name + (a->parameter_name == a->name ? "_computed" : "");
+    }
+    o << head;
     for (const auto& c : t.channels) o << "," << c;
     o << ",error\n";
     char b[64];
-    for (int l = 0; l < t.depth(); ++l)
-    for (int j = 0; j < t.height(); ++j)
-        for (int i = 0; i < t.width(); ++i) {
-            const size_t k = (size_t(l) * t.height() + j) * t.width() + i;
-            std::snprintf(b, sizeof b, "%.9g", t.x.parameter[i]);
-            o << b;
-            if (t.height() > 1) {
-                std::snprintf(b, sizeof b, ",%.9g", t.y.parameter[j]);
-                o << b;
-            }
-            if (t.depth() > 1) {
-                std::snprintf(b, sizeof b, ",%.9g", t.z.parameter[l]);
-                o << b;
-            }
-            for (const auto& v : t.values) {
-                std::snprintf(b, sizeof b, ",%.9g", v[k]);
-                o << b;
-            }
-            std::snprintf(b, sizeof b, ",%.3e\n", t.error[k]);
+    auto put = [&](const Axis& a, int i, bool first) {
+        std::snprintf(b, sizeof b, first ? "%.9g" : ",%.9g", a.coordinate[size_t(i)]);
+        o << b;
+        if (derived(a)) {
+            std::snprintf(b, sizeof b, ",%.9g", a.parameter[size_t(i)]);
             o << b;
         }
+    };
+    for (int l = 0; l < t.depth(); ++l)
+        for (int j = 0; j < t.height(); ++j)
+            for (int i = 0; i < t.width(); ++i) {
+                const size_t k = (size_t(l) * t.height() + j) * t.width() + i;
+                put(t.x, i, true);
+                if (t.height() > 1) put(t.y, j, false);
+                if (t.depth() > 1) put(t.z, l, false);
+                for (const auto& v : t.values) {
+                    std::snprintf(b, sizeof b, ",%.9g", v[k]);
+                    o << b;
+                }
+                std::snprintf(b, sizeof b, ",%.3e\n", t.error[k]);
+                o << b;
+            }
     return o.str();
 }
 
@@ -181,7 +348,7 @@ std::string table_header(const Table& t, const std::string& symbol) {
     std::ostringstream o;
     o << "// Generated by brdfbake; one float per texel, row-major: index = (z * " << t.height() << " + y) * "
       << t.width() << " + x.\n";
-    for (const auto& kv : describe(t)) o << "// " << kv.first << ": " << kv.second << "\n";
+    for (const auto& kv : table_description(t)) o << "// " << kv.first << ": " << kv.second << "\n";
     o << "#pragma once\n\n";
     o << "static const int " << symbol << "_width = " << t.width() << ";\n";
     o << "static const int " << symbol << "_height = " << t.height() << ";\n";
@@ -202,9 +369,10 @@ std::string table_header(const Table& t, const std::string& symbol) {
 
 void check_table_path(const std::string& path) {
     const std::string ext = extension(path);
-    if (ext != "exr" && ext != "csv" && ext != "h" && ext != "hpp")
-        throw Error("cannot tell the table format from '" + path + "': use .exr, .csv or .h");
+    if (ext != "exr" && ext != "csv" && ext != "h" && ext != "hpp" && ext != "png" && ext != "npy")
+        throw Error("cannot tell the table format from '" + path + "': use .exr, .csv, .h, .png or .npy");
     check_output_path(path);
+    if (ext == "npy") check_output_path(path + ".json");
 }
 
 void write_table(const Table& t, const std::string& path, bool half) {
@@ -212,6 +380,8 @@ void write_table(const Table& t, const std::string& path, bool half) {
     check_finite(t);
     const std::string ext = extension(path);
     if (ext == "exr") return write_exr(t, path, half);
+    if (ext == "png") return write_png16(t, path);
+    if (ext == "npy") return write_npy(t, path);
     if (ext == "csv") return write_file_atomically(path, table_csv(t));
     if (ext == "h" || ext == "hpp") {
         // A C identifier from the file name: brdfbake_<stem>.

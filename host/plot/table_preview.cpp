@@ -7,7 +7,13 @@
 
 namespace brdfbake {
 
-void write_table_preview(const Table& t, const std::string& path) {
+void write_table_preview(const Table& table, const std::string& path) {
+    // The picture runs every axis upwards: a flipped axis (lo > hi) is drawn unflipped.
+    Table t = table;
+    std::vector<std::string> flipped;
+    for (const Axis* a : {&t.x, &t.y, &t.z})
+        if (a->lo > a->hi && a->size > 1) flipped.push_back(a->name);
+    arrange_axes(t, {}, flipped);
     Figure fig;
     if (t.height() == 1 && t.depth() == 1) {
         PlotSpec p;

@@ -1,6 +1,7 @@
 // The rough dielectric interface (GGX): energy reflected and transmitted from outside (eta) and
 // from inside (1/eta), over (mu_o, alpha, eta).
 #include <algorithm>
+#include <limits>
 #include <sstream>
 
 #include "brdfbake/brdf/models.h"
@@ -66,8 +67,7 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
     t.quantity = "rough dielectric interface: energy fractions reflected (R) and transmitted (T) for light "
                  "from outside (relative index eta), and R_inside, T_inside from inside (relative index 1/eta); "
                  "transmitted radiance is T times (eta_t/eta_i)^2";
-    t.z = make_axis("eta", "eta = w", r.eta_lo, r.eta_hi, r.depth);
-    t.z.parameter = t.z.coordinate;
+    t.z = eta_axis(r, r.depth);
     DielectricRequest dr;
     dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
     dr.samples = r.samples;
@@ -76,8 +76,43 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
         for (double eta : t.z.parameter)
             for (double alpha : t.y.parameter)
                 for (double mu : t.x.parameter) dr.cells.push_back({mu, alpha, side == 0 ? eta : 1.0 / eta});
-    const DielectricResult res =
-        r.tolerance.tolerance > 0.0 ? dielectric_to_tolerance(engine, dr, r.tolerance) : compute_dielectric(engine, dr);
+    // Cells with a closed form stay off the device: alpha = 0 is the smooth interface, R = F(mu,
+    // eta) and T = 1 - R (Fresnel's equations; total internal reflection gives R = 1); eta = 1 is
+    // no interface at all, R = 0 and T = 1.
+    std::vector<size_t> device_cells;
+    DielectricRequest on_device = dr;
+    on_device.cells.clear();
+    for (size_t c = 0; c < dr.cells.size(); ++c)
+        if (!(dr.cells[c].alpha == 0.0 || dr.cells[c].eta == 1.0)) {
+            device_cells.push_back(c);
+            on_device.cells.push_back(dr.cells[c]);
+        }
+    DielectricResult res;
+    if (!on_device.cells.empty()) {
+        const DielectricResult part = r.tolerance.tolerance > 0.0 ? dielectric_to_tolerance(engine, on_device, r.tolerance)
+                                                                  : compute_dielectric(engine, on_device);
+        res = part;
+        res.reflected.assign(dr.cells.size(), AlbedoValue{});
+        res.transmitted.assign(dr.cells.size(), AlbedoValue{});
+        for (size_t k = 0; k < device_cells.size(); ++k) {
+            res.reflected[device_cells[k]] = part.reflected[k];
+            res.transmitted[device_cells[k]] = part.transmitted[k];
+        }
+    } else {
+        res.method = "closed form (smooth interface or eta = 1)";
+        res.reflected.assign(dr.cells.size(), AlbedoValue{});
+        res.transmitted.assign(dr.cells.size(), AlbedoValue{});
+    }
+    bool smooth = false;
+    for (size_t c = 0; c < dr.cells.size(); ++c) {
+        const DielectricCell& cell = dr.cells[c];
+        if (!(cell.alpha == 0.0 || cell.eta == 1.0)) continue;
+        const double f = cell.eta == 1.0 ? 0.0 : bb_fresnel_dielectric(cell.mu, cell.eta);
+        smooth = smooth || cell.alpha == 0.0;
+        res.reflected[c].value = f;
+        res.transmitted[c].value = 1.0 - f;
+        res.reflected[c].error = res.transmitted[c].error = 4 * std::numeric_limits<double>::epsilon();
+    }
     const size_t n = dr.cells.size() / 2;
     t.channels = {"R", "T", "R_inside", "T_inside"};
     t.values.assign(4, std::vector<double>(n));
@@ -94,6 +129,10 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
     // that its files stay as they were.
     describe(t, r, m, "dielectric (exact, unpolarised) at each texel's eta", res.method, res.samples_per_cell,
              false);
+    if (smooth) t.attributes["alpha_zero"] = "texels at alpha = 0 hold the smooth interface: R = F(mu, eta), T = 1 - R";
+    bool no_interface = false;
+    for (double eta : t.z.parameter) no_interface = no_interface || eta == 1.0;
+    if (no_interface) t.attributes["eta_one"] = "texels at eta = 1 have no interface: R = 0, T = 1";
     return t;
 }
 
@@ -104,8 +143,6 @@ void validate_dielectric(const LutRequest& r, const ModelConfig& m, const Fresne
     if (f.kind != BB_FRESNEL_NONE) throw Error("the dielectric table uses the exact dielectric Fresnel term; drop --fresnel");
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
         throw Error("dielectric table depth must be 1 to 1024 and the table at most 4M texels");
-    if (!(r.eta_lo >= 1.0 && r.eta_hi > r.eta_lo && r.eta_hi <= 10.0))
-        throw Error("--eta-range must satisfy 1 <= lo < hi <= 10 (the inside view uses 1/eta)");
 }
 
 int four(const LutRequest&) { return 4; }

@@ -1,7 +1,10 @@
 // validate_lut and compute_lut through the table-kind registry, and what the kinds share.
 #include "brdfbake/lut.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <sstream>
 
 #include "brdfbake/albedo.h"
@@ -9,6 +12,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
+#include "models/params.h"
 #include "tables/lut_common.h"
 #include "tables/sweep.h"
 
@@ -20,24 +24,81 @@ bool is_measured_metal(const std::string& fresnel) {
     return name == "metal" || name == "nk";
 }
 
+bool has_mirror_limit(const ModelConfig& m) {
+    // The Smith microfacet lobes: as alpha -> 0, D tends to a delta about the normal and G to 1,
+    // so E(mu) -> F(mu), the mirror's albedo (Walter et al. 2007, "Microfacet Models for
+    // Refraction through Rough Surfaces", eq. 20 with D -> delta).
+    return m.id == BB_MODEL_GGX || m.id == BB_MODEL_BECKMANN;
+}
+
 Axis mu_axis(const LutRequest& r, int size) {
-    Axis a = make_axis("mu", r.mu_map == "sqrt" ? "mu = u^2 (u = sqrt(mu))" : "mu = u", 0.0, 1.0, size);
-    for (double u : a.coordinate) a.parameter.push_back(r.mu_map == "sqrt" ? u * u : u);
+    const bool sq = r.mu_map == "sqrt";
+    Axis a = make_axis(sq ? "sqrt_mu" : "mu", sq ? "mu = u^2 (u = sqrt(mu))" : "mu = u", r.mu_lo, r.mu_hi, size, r.texels);
+    a.parameter_name = "mu";
+    bool floored = false;
+    for (double u : a.coordinate) {
+        double mu = sq ? u * u : u;
+        if (mu < r.mu_floor) {
+            mu = r.mu_floor;
+            floored = true;
+        }
+        a.parameter.push_back(mu);
+    }
+    if (floored) {
+        std::ostringstream m;
+        m << (sq ? "mu = max(u^2, " : "mu = max(u, ") << r.mu_floor << ")" << (sq ? " (u = sqrt(mu))" : "")
+          << ": mu below " << r.mu_floor << " was computed at " << r.mu_floor;
+        a.mapping = m.str();
+    }
     return a;
 }
 
 Axis alpha_axis(const LutRequest& r, int size, bool& clamped) {
     const bool rough = r.alpha_map == "roughness";
-    Axis a = make_axis(rough ? "roughness" : "alpha", rough ? "alpha = r^2 (r = sqrt(alpha))" : "alpha = v",
-                       r.alpha_lo, r.alpha_hi, size);
+    Axis a = make_axis(rough ? "roughness" : "alpha", rough ? "alpha = r^2 (r = sqrt(alpha))" : "alpha = v", r.alpha_lo,
+                       r.alpha_hi, size, r.texels);
+    a.parameter_name = "alpha";
+    const std::optional<ModelConfig> m = try_sweep_model(r.model);
+    const bool zero_is_limit = m && has_mirror_limit(*m);
     clamped = false;
     for (double v : a.coordinate) {
         double alpha = rough ? v * v : v;
-        if (alpha < BB_ALPHA_MIN) {
+        if (alpha < BB_ALPHA_MIN && !(alpha == 0.0 && zero_is_limit)) {
             alpha = BB_ALPHA_MIN;
             clamped = true;
         }
         a.parameter.push_back(alpha);
+    }
+    return a;
+}
+
+double eta_coordinate(const std::string& map, double eta) {
+    if (map == "f0") return ((eta - 1) / (eta + 1)) * ((eta - 1) / (eta + 1));
+    if (map == "cycles") return std::sqrt((eta - 1) / (eta + 1));
+    return eta;
+}
+
+double eta_from_coordinate(const std::string& map, double w) {
+    if (map == "f0") return (1 + std::sqrt(w)) / (1 - std::sqrt(w));
+    if (map == "cycles") return (1 + w * w) / (1 - w * w);
+    return w;
+}
+
+Axis eta_axis(const LutRequest& r, int size) {
+    const bool f0 = r.eta_map == "f0", cycles = r.eta_map == "cycles";
+    const std::string name = f0 ? "f0" : cycles ? "cycles_z" : "eta";
+    const std::string mapping =
+        f0       ? "eta = (1 + sqrt(w)) / (1 - sqrt(w)) (w = F0 = ((eta - 1)/(eta + 1))^2, reflectance at normal incidence)"
+        : cycles ? "eta = (1 + w^2) / (1 - w^2) (w = sqrt((eta - 1)/(eta + 1)) = F0^(1/4), Cycles' glass tables)"
+                 : "eta = w";
+    Axis a = make_axis(name, mapping, eta_coordinate(r.eta_map, r.eta_lo), eta_coordinate(r.eta_map, r.eta_hi), size,
+                       r.texels);
+    a.parameter_name = "eta";
+    for (size_t i = 0; i < a.coordinate.size(); ++i) {
+        // The range's ends exactly as asked (the mapping's round trip may round).
+        const bool first = i == 0 && (r.texels == Texels::Edge);
+        const bool last = i + 1 == a.coordinate.size() && r.texels == Texels::Edge;
+        a.parameter.push_back(first ? r.eta_lo : last ? r.eta_hi : eta_from_coordinate(r.eta_map, a.coordinate[i]));
     }
     return a;
 }
@@ -60,19 +121,47 @@ MuAlphaGrid mu_alpha_grid(const LutRequest& r, const ModelConfig& m) {
 
 AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
                        std::vector<AlbedoCell> cells, double share) {
+    // Cells at alpha = 0 of a model with a mirror limit hold that limit, F(mu); the others are
+    // integrated on the device.
+    const std::vector<int> slots = roughness_slots(m);
+    std::vector<size_t> limit, rest;
+    for (size_t c = 0; c < cells.size(); ++c) {
+        bool zero = has_mirror_limit(m) && !slots.empty();
+        for (int s : slots) zero = zero && cells[c].params[s] == 0.0;
+        (zero ? limit : rest).push_back(c);
+    }
     AlbedoRequest req;
     req.model = m.id;
     req.fresnel = f;
-    req.cells = std::move(cells);
     req.samples = r.samples;
     req.method = r.method;
     req.precision = r.precision;
-    if (r.tolerance.tolerance > 0.0) {
-        ToleranceRequest t = r.tolerance;
-        t.tolerance *= share;
-        return compute_albedo_to_tolerance(engine, req, t);
+    for (size_t c : rest) req.cells.push_back(cells[c]);
+    AlbedoResult integrated;
+    if (!req.cells.empty()) {
+        if (r.tolerance.tolerance > 0.0) {
+            ToleranceRequest t = r.tolerance;
+            t.tolerance *= share;
+            integrated = compute_albedo_to_tolerance(engine, req, t);
+        } else {
+            integrated = compute_albedo(engine, req);
+        }
+    } else {
+        integrated.method = "closed form (the mirror limit at alpha = 0)";
     }
-    return compute_albedo(engine, req);
+    if (limit.empty()) return integrated;
+    AlbedoResult out = integrated;
+    out.values.assign(cells.size(), AlbedoValue{});
+    for (size_t k = 0; k < rest.size(); ++k) out.values[rest[k]] = integrated.values[k];
+    const bb_params fp = to_bb_params(f.params);
+    for (size_t c : limit) {
+        AlbedoValue v;
+        v.value = bb_fresnel_eval(f.kind, fp, cells[c].mu);
+        v.error = 4 * std::numeric_limits<double>::epsilon();  // F evaluated in double
+        v.method = integrated.values.empty() ? r.method : integrated.values.front().method;
+        out.values[c] = v;
+    }
+    return out;
 }
 
 Table directional_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
@@ -108,6 +197,13 @@ void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::st
         s << "alpha below " << BB_ALPHA_MIN << " was computed at " << BB_ALPHA_MIN;
         t.attributes["alpha_floor"] = s.str();
     }
+    for (const Axis* a : {&t.x, &t.y})
+        if (a->parameter_name == "alpha" &&
+            std::find(a->parameter.begin(), a->parameter.end(), 0.0) != a->parameter.end())
+            t.attributes["alpha_zero"] =
+                "texels at alpha = 0 hold the model's delta limit, a mirror (Walter et al. 2007, D -> delta, G -> 1): "
+                "albedo E = F(mu) (1 without Fresnel), split sum A = 1 - (1 - mu)^5 and B = (1 - mu)^5, dielectric "
+                "R = F(mu, eta) and T = 1 - R";
 }
 
 TableKind variant_of(TableKind base, TableKindId id, const std::string& name, const std::string& description,
@@ -154,6 +250,43 @@ void validate_lut(const LutRequest& r) {
     if (r.alpha_map != "alpha" && r.alpha_map != "roughness") throw Error("--alpha-map must be alpha or roughness");
     if (!(r.alpha_lo >= 0.0 && r.alpha_hi > r.alpha_lo && r.alpha_hi <= 3.0))
         throw Error("--alpha-range must satisfy 0 <= lo < hi <= 3");
+    if (!(r.mu_lo >= 0.0 && r.mu_hi > r.mu_lo && r.mu_hi <= 1.0))
+        throw Error("--mu-range must satisfy 0 <= lo < hi <= 1");
+    if (!(r.mu_floor > 0.0 && r.mu_floor < 1.0)) throw Error("--mu-floor must satisfy 0 < floor < 1");
+    if (kind.eta_axis) {
+        if (r.eta_map != "linear" && r.eta_map != "f0" && r.eta_map != "cycles")
+            throw Error("--eta-map must be linear, f0 or cycles, not '" + r.eta_map + "'");
+        if (!(r.eta_lo > 0.0 && r.eta_hi > r.eta_lo && r.eta_hi <= 100.0))
+            throw Error("--eta-range must satisfy 0 < lo < hi <= 100 (eta below 1: light from the denser side)");
+        if (r.eta_map != "linear" && r.eta_lo < 1.0)
+            throw Error("--eta-map " + r.eta_map + " covers eta >= 1 (the inside view is the 1/eta channels); "
+                        "use --eta-range with lo >= 1 or --eta-map linear");
+    }
+    if (r.texels == Texels::Edge && (r.width < 2 || (!kind.one_dimensional && r.height < 2) ||
+                                     (kind.eta_axis && r.depth < 2)))
+        throw Error("--texels edge needs at least 2 texels per axis (one texel cannot sit on both ends of a range)");
+    {
+        // The axis names that --axes and --flip may use, as the kind's axes will be named.
+        std::vector<std::string> names;
+        if (!kind.one_dimensional) names.push_back(r.mu_map == "sqrt" ? "sqrt_mu" : "mu");
+        names.push_back(r.alpha_map == "roughness" ? "roughness" : "alpha");
+        if (kind.eta_axis) names.push_back(r.eta_map == "f0" ? "f0" : r.eta_map == "cycles" ? "cycles_z" : "eta");
+        std::string known;
+        for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
+        auto check = [&](const std::vector<std::string>& list, const char* option) {
+            for (size_t i = 0; i < list.size(); ++i) {
+                if (std::find(names.begin(), names.end(), list[i]) == names.end())
+                    throw Error(std::string(option) + ": the " + r.kind + " table has no axis '" + list[i] +
+                                "'; its axes: " + known);
+                if (std::find(list.begin(), list.begin() + long(i), list[i]) != list.begin() + long(i))
+                    throw Error(std::string(option) + ": '" + list[i] + "' is named twice");
+            }
+        };
+        check(r.axes, "--axes");
+        check(r.flip, "--flip");
+        if (!r.axes.empty() && r.axes.size() != names.size())
+            throw Error("--axes: name each of the " + r.kind + " table's axes once: " + known);
+    }
     if (r.samples < 16) throw Error("--samples must be at least 16");
     if (kind.validate) kind.validate(r, m, f);
 }
@@ -161,7 +294,15 @@ void validate_lut(const LutRequest& r) {
 Table compute_lut(Engine& engine, const LutRequest& r) {
     validate_lut(r);
     const TableKind& kind = table_kind(r.kind);
-    return kind.compute(engine, r, swept_model(r), kind.fresnel(r));
+    Table t = kind.compute(engine, r, swept_model(r), kind.fresnel(r));
+    arrange_axes(t, r.axes, r.flip);
+    if (r.texels == Texels::Edge || !r.axes.empty() || !r.flip.empty()) {
+        std::string order;
+        for (const Axis* a : {&t.x, &t.y, &t.z})
+            if (a->size > 1 || a == &t.x) order += (order.empty() ? "" : ", ") + a->name;
+        t.attributes["axis_order"] = order + " (x first)";
+    }
+    return t;
 }
 
 }  // namespace brdfbake

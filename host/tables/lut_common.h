@@ -20,10 +20,19 @@ constexpr int kMaxTexels = 1 << 22;
 /// A measured metal (metal:X, nk:FILE), whose Fresnel term depends on the wavelength.
 bool is_measured_metal(const std::string& fresnel);
 
-/// The mu axis (x) of a 2D table, with the request's mapping.
+/// Whether the model's alpha -> 0 limit is a mirror (the Smith microfacet lobes), so that a
+/// texel at alpha = 0 is computed as that limit rather than at the alpha floor.
+bool has_mirror_limit(const ModelConfig& m);
+
+// The axes, with the request's texel convention (r.texels), range and mapping; every kind builds
+// its axes with these so that the grid options (--texels, ranges, floors) reach it.
+/// The mu axis (x) of a 2D table; mu below r.mu_floor is computed at it (said in the mapping).
 Axis mu_axis(const LutRequest& r, int size);
-/// The roughness axis; `clamped` tells whether a texel's alpha was raised to BB_ALPHA_MIN.
+/// The roughness axis; `clamped` tells whether a texel's alpha was raised to BB_ALPHA_MIN. A texel
+/// at alpha = 0 of a model with a mirror limit keeps alpha = 0: `integrate` computes it as the limit.
 Axis alpha_axis(const LutRequest& r, int size, bool& clamped);
+/// The eta axis (z) with the request's mapping (r.eta_map) over [r.eta_lo, r.eta_hi] in eta.
+Axis eta_axis(const LutRequest& r, int size);
 
 /// A (mu, alpha) table with its axes set and one albedo cell per texel, alpha-major.
 struct MuAlphaGrid {
@@ -37,7 +46,8 @@ MuAlphaGrid mu_alpha_grid(const LutRequest& r, const ModelConfig& swept_model);
 ParamBlock with_alpha(ParamBlock p, const std::vector<int>& slots, double alpha);
 
 /// The albedo of every cell, with the request's method and samples, or to its tolerance times
-/// `share` (the split-sum table adds two integrals' errors: each gets half).
+/// `share` (the split-sum table adds two integrals' errors: each gets half). A cell at alpha = 0
+/// of a model with a mirror limit is that limit, F(mu) at Fresnel term f, in closed form.
 AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
                        std::vector<AlbedoCell> cells, double share = 1.0);
 

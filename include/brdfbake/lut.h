@@ -1,5 +1,5 @@
 // Lookup tables computed on the device: directional albedo, average albedo and the split-sum
-// terms, over (mu_o, alpha).
+// terms, over (mu_o, alpha); their grid conventions and the engines' presets.
 #pragma once
 
 #include <cstdint>
@@ -23,7 +23,21 @@ struct LutRequest {
     std::string alpha_map = "alpha";    // alpha: alpha = v; roughness: v = sqrt(alpha), alpha = v^2
     double alpha_lo = 0.0, alpha_hi = 1.0;  // range of the roughness-axis coordinate
     int depth = 16;               // eta texels (dielectric)
-    double eta_lo = 1.0, eta_hi = 3.0;  // eta axis range (dielectric); texel centres inside
+    double eta_lo = 1.0, eta_hi = 3.0;  // eta range (in eta, whatever the mapping): 0 < lo < hi <= 100
+    /// The eta axis coordinate: linear (w = eta), f0 (w = ((eta - 1)/(eta + 1))^2, the reflectance
+    /// at normal incidence) or cycles (w = sqrt((eta - 1)/(eta + 1)) = F0^(1/4), Cycles' glass
+    /// tables); f0 and cycles need eta >= 1 (the inside view is the kind's 1/eta channels).
+    std::string eta_map = "linear";
+    /// Where the texels sit on every axis: centres ((i + 0.5)/N) or edges (i/(N - 1)).
+    Texels texels = Texels::Centre;
+    double mu_lo = 0.0, mu_hi = 1.0;  // range of the mu-axis coordinate (u of the mu mapping)
+    /// A texel whose mu is below this is computed at it (mu = 0 has no direction to integrate
+    /// from); the header says so where it happens.
+    double mu_floor = 1e-4;
+    /// The axes in their stored order x, y[, z], by name (mu or sqrt_mu, alpha or roughness, eta,
+    /// f0 or cycles_z); empty: the kind's order (mu, roughness axis, eta).
+    std::vector<std::string> axes;
+    std::vector<std::string> flip;  // axes stored from their upper end (texel 0 at hi)
     std::uint64_t samples = 1u << 18;   // per texel (per mu node for eavg)
     Method method = Method::Importance; // with a fixed sample count; the dielectric table: importance only
     ToleranceRequest tolerance;         // tolerance.tolerance > 0: refine every texel to it instead
@@ -39,7 +53,28 @@ void set_lut_size(LutRequest& request, const std::vector<int>& sizes);
 /// checks in its registry entry, brdfbake/table_kinds.h); throws Error.
 void validate_lut(const LutRequest& request);
 
-/// Computes the table. Throws Error for bad input or non-finite results.
+/// Computes the table, its axes arranged as the request asks (arrange_axes). Throws Error for
+/// bad input or non-finite results.
 Table compute_lut(Engine& engine, const LutRequest& request);
+
+/// A preset: the settings that make a table replace one an engine ships (host/tables/presets.cpp;
+/// README "Drop-in tables" says where each convention comes from).
+struct LutPreset {
+    std::string name;         // --preset NAME
+    std::string engine;       // "glTF Sample Viewer", "Blender Cycles", ...
+    std::string ships;        // the file or symbol the engine ships
+    std::vector<std::string> kinds;  // the table kinds it has a layout for; the first is the default
+    std::string extension;    // the file format the engine loads: "png", "h", "exr"
+    bool half = false;        // an EXR of half floats (the engine's texture is 16-bit float)
+    std::string summary;      // the layout in one line
+    /// Replaces the request by the preset's for its kind (size, model, texels, ranges, mappings,
+    /// axes, flips, precision, samples or tolerance); the kind stays.
+    void (*apply)(LutRequest& request);
+};
+
+/// Every preset, in help order.
+const std::vector<LutPreset>& lut_presets();
+/// The preset of that name; throws Error "unknown preset 'X'; known: ...".
+const LutPreset& lut_preset(const std::string& name);
 
 }  // namespace brdfbake

@@ -1,24 +1,38 @@
-// Lookup tables: axes with their texel-centre convention, value channels, a per-texel error
-// channel, the attributes that describe how the table was made, and the writers (OpenEXR, CSV,
-// C/C++ header).
+// Lookup tables: axes with their texel convention (centres or edges), value channels, a per-texel
+// error channel, the attributes that describe how the table was made, and the writers (OpenEXR,
+// CSV, C/C++ header, 16-bit PNG, NumPy .npy).
 #pragma once
 
 #include <cstdint>
 #include <map>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace brdfbake {
 
-/// One table axis. Texel i sits at the texel centre t = (i + 0.5) / size of [0, 1]; the axis
-/// coordinate is lo + (hi - lo) t, and `mapping` turns the coordinate into the parameter
-/// (e.g. mu = coordinate^2 for the "sqrt" mapping of mu).
+/// Where the texels of an axis sit on its coordinate range [lo, hi] (lo > hi for a flipped axis).
+enum class Texels {
+    Centre,  // texel i at t = (i + 0.5) / size: the texel centres of a sampled texture
+    Edge,    // texel i at t = i / (size - 1): the first and last texel on the range's ends
+};
+
+/// "centre" or "edge"; throws Error otherwise.
+Texels parse_texels(const std::string& text);
+const char* texels_name(Texels texels);
+
+/// One table axis. Texel i sits at t_i of [0, 1] by the axis's texel convention; the axis
+/// coordinate is lo + (hi - lo) t_i, and `mapping` turns the coordinate into the parameter
+/// (e.g. alpha = coordinate^2 for the "roughness" mapping of alpha). A flipped axis has lo > hi:
+/// its texel 0 holds the range's upper end.
 struct Axis {
-    std::string name;     // "mu", "alpha", "eta"
-    std::string mapping;  // how coordinate -> parameter, in words: "mu = u", "mu = u^2", "alpha = r^2"
+    std::string name;            // the coordinate's name: "mu", "sqrt_mu", "alpha", "roughness", "eta", "f0", ...
+    std::string mapping;         // how coordinate -> parameter, in words: "mu = u", "mu = u^2", "alpha = r^2"
+    std::string parameter_name;  // what the mapping yields ("mu", "alpha", "eta"); empty: the coordinate itself
     double lo = 0.0, hi = 1.0;
     int size = 1;
-    std::vector<double> coordinate;  // per texel: lo + (hi - lo)(i + 0.5)/size
+    Texels texels = Texels::Centre;
+    std::vector<double> coordinate;  // per texel: lo + (hi - lo) t_i
     std::vector<double> parameter;   // per texel: the mapped parameter value
 };
 
@@ -41,21 +55,50 @@ struct Table {
     double max_error() const;
 };
 
-/// An axis of `size` texels over the coordinate range [lo, hi] with texel centres.
-Axis make_axis(const std::string& name, const std::string& mapping, double lo, double hi, int size);
+/// An axis of `size` texels over the coordinate range [lo, hi] with the given texel convention
+/// (throws Error for edge texels with size 1: one texel cannot sit on both ends).
+Axis make_axis(const std::string& name, const std::string& mapping, double lo, double hi, int size,
+               Texels texels = Texels::Centre);
+
+/// Reorders the axes of a table: `order` names the axes (by Axis::name) in their new order x, y[, z]
+/// (every axis of size > 1 once; empty: keep), and every axis named in `flip` is reversed (its
+/// texel 0 then holds the range's upper end). Values and errors move with their texels. Throws
+/// Error for an unknown or repeated name.
+void arrange_axes(Table& table, const std::vector<std::string>& order, const std::vector<std::string>& flip);
+
+/// The RGB(A) view of a table's value channels that the image formats share: slot s of
+/// R, G, B, A holds value channel view[s], or nothing (-1: written as 0, or A absent). One
+/// channel: R = G = B = it; two: R, G and B = 0; three: R, G, B; four: R, G, B, A. More than
+/// four value channels have no view (empty).
+std::vector<int> rgba_view(const Table& table);
+/// "R = A, G = B, B = 0": the view in words, for the files' descriptions.
+std::string rgba_view_text(const Table& table);
 
 /// Checks that every value and error is finite; throws Error naming the first bad texel.
 void check_finite(const Table& table);
 
-/// Throws Error unless `path` ends in a table format write_table knows (.exr, .csv, .h, .hpp).
+/// Throws Error unless `path` ends in a table format write_table knows (.exr, .csv, .h, .hpp,
+/// .png, .npy).
 void check_table_path(const std::string& path);
 
-/// Writes by the extension of `path`: .exr (float32, or half when `half`), .csv, .h/.hpp.
-/// Every write goes through a temporary file and a rename. Throws Error.
+/// Writes by the extension of `path`: .exr (float32, or half when `half`), .csv, .h/.hpp, .png
+/// (16-bit), .npy (with its sidecar PATH.json). Every write goes through a temporary file and a
+/// rename. Throws Error.
 void write_table(const Table& table, const std::string& path, bool half = false);
+
+/// The description every format carries, in a stable order: (key, text) pairs that the EXR
+/// header stores as brdfbake:KEY attributes.
+std::vector<std::pair<std::string, std::string>> table_description(const Table& table);
 
 void write_exr(const Table& table, const std::string& path, bool half);
 std::string table_csv(const Table& table);
 std::string table_header(const Table& table, const std::string& symbol);
+/// 16-bit PNG: the RGB(A) view (rgba_view), each value v stored as round(v * 65535). Values must
+/// lie in [0, 1]; a value outside by no more than its texel's error estimate is clamped, one
+/// further out is refused (Error). The description is in tEXt chunks brdfbake:KEY. Throws Error.
+void write_png16(const Table& table, const std::string& path);
+/// NumPy .npy (format 1.0, '<f8', C order) of shape (x), (y, x) or (z, y, x) plus a last axis of
+/// the value channels and the error, and the sidecar PATH.json (axes, channels, description).
+void write_npy(const Table& table, const std::string& path);
 
 }  // namespace brdfbake
