@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <algorithm>
 #include <future>
 #include <map>
 #include <memory>
@@ -174,6 +175,8 @@ py::dict axis_dict(const Axis& a) {
     py::dict d;
     d["name"] = a.name;
     d["mapping"] = a.mapping;
+    d["parameter_name"] = a.parameter_name.empty() ? a.name : a.parameter_name;
+    d["texels"] = texels_name(a.texels);
     d["lo"] = a.lo;
     d["hi"] = a.hi;
     d["size"] = a.size;
@@ -204,26 +207,52 @@ std::pair<double, double> range_of(const std::vector<double>& r, const char* opt
     return {r[0], r[1]};
 }
 
-Table lut(const std::string& kind, const std::string& model, const py::object& size, const std::string& fresnel,
-          double wavelength, const std::string& mu_map, const std::string& alpha_map,
-          const std::vector<double>& alpha_range, const std::vector<double>& eta_range, double samples,
-          std::optional<double> tolerance, const std::string& method, double max_samples, const std::string& precision,
-          const std::optional<std::string>& device) {
+template <typename T>
+using Opt = std::optional<T>;
+
+/// As `brdfbake lut`: a preset (if given) sets the request for its kind, then every argument
+/// given (not None) overrides its field; the rest are LutRequest's defaults.
+Table lut(Opt<std::string> kind, Opt<std::string> model, const py::object& size, Opt<std::string> preset,
+          Opt<std::string> fresnel, Opt<double> wavelength, Opt<std::string> mu_map, Opt<std::string> alpha_map,
+          Opt<std::vector<double>> alpha_range, Opt<std::vector<double>> mu_range, Opt<double> mu_floor,
+          Opt<std::vector<double>> eta_range, Opt<std::string> eta_map, Opt<std::string> texels,
+          Opt<std::vector<std::string>> axes, Opt<std::vector<std::string>> flip, Opt<double> samples,
+          Opt<double> tolerance, Opt<std::string> method, Opt<double> max_samples, Opt<std::string> precision,
+          const Opt<std::string>& device) {
     LutRequest r;
-    r.kind = kind;
-    r.model = model;
-    r.fresnel = fresnel;
-    r.wavelength_nm = wavelength;
-    set_lut_size(r, size_list(size));
-    r.mu_map = mu_map;
-    r.alpha_map = alpha_map;
-    std::tie(r.alpha_lo, r.alpha_hi) = range_of(alpha_range, "--alpha-range");
-    std::tie(r.eta_lo, r.eta_hi) = range_of(eta_range, "--eta-range");
-    const MethodChoice choice = choose_method(method, samples, tolerance.value_or(0.0), max_samples);
-    r.samples = choice.samples;
-    r.method = choice.method;
-    r.tolerance = choice.tolerance;
-    r.precision = precision_of(precision);
+    const LutPreset* p = preset ? &lut_preset(*preset) : nullptr;
+    if (!kind && !p) throw Error("lut needs a table kind (" + table_kind_names() + ")");
+    r.kind = kind ? *kind : p->kinds.front();
+    if (p) {
+        if (std::find(p->kinds.begin(), p->kinds.end(), r.kind) == p->kinds.end())
+            throw Error("preset '" + p->name + "' has no layout for " + r.kind + " tables");
+        p->apply(r);
+    } else if (!model) {
+        throw Error("--model is required (or give --preset)");
+    }
+    if (model) r.model = *model;
+    if (!size.is_none()) set_lut_size(r, size_list(size));
+    if (fresnel) r.fresnel = *fresnel;
+    if (wavelength) r.wavelength_nm = *wavelength;
+    if (mu_map) r.mu_map = *mu_map;
+    if (alpha_map) r.alpha_map = *alpha_map;
+    if (alpha_range) std::tie(r.alpha_lo, r.alpha_hi) = range_of(*alpha_range, "--alpha-range");
+    if (mu_range) std::tie(r.mu_lo, r.mu_hi) = range_of(*mu_range, "--mu-range");
+    if (mu_floor) r.mu_floor = *mu_floor;
+    if (eta_range) std::tie(r.eta_lo, r.eta_hi) = range_of(*eta_range, "--eta-range");
+    if (eta_map) r.eta_map = *eta_map;
+    if (texels) r.texels = parse_texels(*texels);
+    if (axes) r.axes = *axes;
+    if (flip) r.flip = *flip;
+    if (samples || tolerance || method || max_samples) {
+        const MethodChoice choice =
+            choose_method(method.value_or("auto"), samples.value_or(double(r.samples)), tolerance.value_or(0.0),
+                          max_samples.value_or(double(r.tolerance.max_samples ? r.tolerance.max_samples : 1u << 26)));
+        r.samples = choice.samples;
+        r.method = choice.method;
+        r.tolerance = choice.tolerance;
+    }
+    if (precision) r.precision = precision_of(*precision);
     validate_lut(r);  // every input checked before the device is touched
     Engine& engine = engine_for(device);
     return interruptible([&] { return compute_lut(engine, r); });
@@ -375,7 +404,7 @@ PYBIND11_MODULE(brdfbake, m) {
         .def(
             "save", [](const Table& t, const std::string& path, bool half) { write_table(t, path, half); },
             py::arg("path"), py::arg("half") = false,
-            "write by the extension of path, as `brdfbake lut -o`: .exr, .csv, .h")
+            "write by the extension of path, as `brdfbake lut -o`: .exr, .csv, .h, .png (16-bit), .npy")
         .def("__repr__", [](const Table& t) {
             return "<brdfbake.Table " + t.kind + " " + std::to_string(t.width()) + "x" + std::to_string(t.height()) +
                    "x" + std::to_string(t.depth()) + ">";
@@ -387,12 +416,25 @@ PYBIND11_MODULE(brdfbake, m) {
           py::arg("precision") = "float", py::arg("device") = py::none(),
           "directional albedo E(mu) = integral of f cos(theta_i) over the hemisphere, as `brdfbake albedo`; phi in "
           "degrees (one value or one per mu); tolerance refines every direction to that absolute error");
-    m.def("lut", &lut, py::arg("kind"), py::arg("model"), py::arg("size") = 32, py::arg("fresnel") = "none",
-          py::arg("wavelength") = 0.0, py::arg("mu_map") = "linear", py::arg("alpha_map") = "alpha",
-          py::arg("alpha_range") = std::vector<double>{0.0, 1.0}, py::arg("eta_range") = std::vector<double>{1.0, 3.0},
-          py::arg("samples") = double(1 << 18), py::arg("tolerance") = py::none(), py::arg("method") = "auto",
-          py::arg("max_samples") = double(1 << 26), py::arg("precision") = "float", py::arg("device") = py::none(),
-          "a lookup table as `brdfbake lut KIND`; size is N, (W, H) or (W, H, D)");
+    m.def("lut", &lut, py::arg("kind") = py::none(), py::arg("model") = py::none(), py::arg("size") = py::none(),
+          py::arg("preset") = py::none(), py::arg("fresnel") = py::none(), py::arg("wavelength") = py::none(),
+          py::arg("mu_map") = py::none(), py::arg("alpha_map") = py::none(), py::arg("alpha_range") = py::none(),
+          py::arg("mu_range") = py::none(), py::arg("mu_floor") = py::none(), py::arg("eta_range") = py::none(),
+          py::arg("eta_map") = py::none(), py::arg("texels") = py::none(), py::arg("axes") = py::none(),
+          py::arg("flip") = py::none(), py::arg("samples") = py::none(), py::arg("tolerance") = py::none(),
+          py::arg("method") = py::none(), py::arg("max_samples") = py::none(), py::arg("precision") = py::none(),
+          py::arg("device") = py::none(),
+          "a lookup table as `brdfbake lut KIND`: size is N, (W, H) or (W, H, D); preset names an engine's layout "
+          "(the arguments given override it); every other argument is the option of the same name");
+    m.def("read_table", &read_table, py::arg("path"),
+          "a table brdfbake wrote (.exr, .csv, .npy with its .json), as a Table");
+    m.def(
+        "presets", [] {
+            std::vector<std::string> names;
+            for (const LutPreset& p : lut_presets()) names.push_back(p.name);
+            return names;
+        },
+        "the engines' table layouts (lut(preset=...))");
     m.def("fresnel", &fresnel, py::arg("spec"), py::arg("theta_deg"), py::arg("wavelength") = 0.0,
           py::arg("precision") = "float", py::arg("device") = py::none(),
           "F, Rs and Rp of a Fresnel spec at angles of incidence in degrees (dict of arrays)");

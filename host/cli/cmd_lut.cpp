@@ -47,15 +47,11 @@ void parse_size(const std::string& text, LutRequest& r) {
         dims.push_back(std::stoi(s));
         start = x + 1;
     }
-    // An unknown kind is reported by validate_lut; its size is read as 2D meanwhile.
-    const TableKind* kind = find_table_kind(r.kind);
-    const bool three = kind && kind->eta_axis, one = kind && kind->one_dimensional;
-    if (dims.size() > (three ? 3u : 2u))
-        throw Error("--size: '" + text + "' has too many dimensions for a " + r.kind + " table");
-    r.width = dims[0];
-    r.height = dims.size() > 1 ? dims[1] : (one ? 1 : dims[0]);
-    if (three) r.depth = dims.size() > 2 ? dims[2] : r.height;
-    if (one && r.height != 1) throw Error("--size: an " + r.kind + " table is 1D; give N or Nx1");
+    try {
+        set_lut_size(r, dims);
+    } catch (const Error& e) {
+        throw Error(std::string(e.what()) + " (--size " + text + ")");
+    }
 }
 
 std::pair<double, double> parse_range(const std::string& text, const std::string& option) {

@@ -101,4 +101,12 @@ void write_png16(const Table& table, const std::string& path);
 /// the value channels and the error, and the sidecar PATH.json (axes, channels, description).
 void write_npy(const Table& table, const std::string& path);
 
+/// Reads back a table write_table wrote: .exr, .csv or .npy (with its PATH.json sidecar). Kind,
+/// quantity, axes, channels, values, error and attributes come back; values of an EXR are its
+/// float32 (or half) samples, of a CSV its 9 significant digits. An axis's per-texel parameter
+/// comes back from a .npy's sidecar and a CSV's parameter column (else it equals the
+/// coordinate for a CSV, and is empty for an EXR, which does not store it). Throws Error for any
+/// other file, or one that is not a brdfbake table.
+Table read_table(const std::string& path);
+
 }  // namespace brdfbake

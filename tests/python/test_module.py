@@ -254,3 +254,58 @@ def test_ctrl_c_raises_keyboard_interrupt_at_the_next_kernel_launch():
         p.kill()
         raise AssertionError("Ctrl-C did not stop the computation")
     assert p.returncode == 3 and "interrupted" in out
+
+
+# ------------------------------------------------------------------ read_table, presets
+
+@pytest.mark.parametrize("kind,size,extra", [
+    ("dfg", (6, 4), {}),
+    ("eavg", 5, {}),
+    ("dielectric", (4, 3, 2), {}),
+    ("albedo", (5, 3), {"alpha_map": "roughness", "texels": "edge", "flip": ["mu"]}),
+])
+def test_read_table_round_trips_every_format(kind, size, extra):
+    t = brdfbake.lut(kind, "ggx", size=size, samples=1024, **extra)
+    with tempfile.TemporaryDirectory() as d:
+        for ext, rtol_value, rtol_error in (("npy", 0, 0), ("exr", None, None), ("csv", 6e-9, 6e-4)):
+            path = os.path.join(d, "t." + ext)
+            t.save(path)
+            back = brdfbake.read_table(path)
+            assert (back.kind, back.quantity, back.channels) == (t.kind, t.quantity, t.channels)
+            assert back.attributes == t.attributes
+            assert back.values.shape == t.values.shape and back.error.shape == t.error.shape
+            for a, b in zip(t.axes, back.axes):
+                assert (a["name"], a["mapping"], a["size"], a["texels"]) == (b["name"], b["mapping"], b["size"], b["texels"])
+                np.testing.assert_allclose(b["coordinate"], a["coordinate"], rtol=1e-15, atol=1e-15)
+            if ext == "exr":  # float32 samples: exactly the table's values rounded to float
+                assert np.array_equal(back.values, t.values.astype(np.float32).astype(np.float64))
+                assert np.array_equal(back.error, t.error.astype(np.float32).astype(np.float64))
+            else:
+                np.testing.assert_allclose(back.values, t.values, rtol=rtol_value, atol=0)
+                np.testing.assert_allclose(back.error, t.error, rtol=rtol_error, atol=0)
+            if ext != "exr":  # the per-texel parameters (alpha of a roughness axis) come back too
+                for a, b in zip(t.axes, back.axes):
+                    np.testing.assert_allclose(b["parameter"], a["parameter"], rtol=6e-9)
+
+
+def test_read_table_refuses_what_is_not_a_table():
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "x.csv")
+        with open(path, "w") as f:
+            f.write("a,b\n1,2\n")
+        with pytest.raises(ValueError, match="not a brdfbake table"):
+            brdfbake.read_table(path)
+        with pytest.raises(ValueError, match="reads back"):
+            brdfbake.read_table(os.path.join(d, "x.txt"))
+
+
+def test_a_preset_equals_the_command_lines():
+    assert "cycles" in brdfbake.presets()
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "e.npy")
+        cli = run_cli("lut", "--preset", "cycles", "-o", path, "--no-preview")
+        assert cli.returncode == 0, cli.stderr
+        from_cli = brdfbake.read_table(path)
+        t = brdfbake.lut(preset="cycles")
+        assert t.kind == from_cli.kind and t.attributes == from_cli.attributes
+        assert np.array_equal(t.values, from_cli.values)

@@ -1,0 +1,282 @@
+// Reading back a table that write_table wrote (.exr, .csv, .npy with its .json sidecar): the
+// description (the brdfbake:* header, the CSV's "# key: value" lines, the sidecar's
+// "description") gives the kind, the axes and the channels; the data gives values and error.
+#include <OpenEXR/ImfChannelList.h>
+#include <OpenEXR/ImfFrameBuffer.h>
+#include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfInputFile.h>
+#include <OpenEXR/ImfStringAttribute.h>
+
+#include <nlohmann/json.hpp>
+
+#include <cctype>
+#include <cstring>
+#include <map>
+#include <set>
+#include <sstream>
+
+#include "brdfbake/error.h"
+#include "brdfbake/table.h"
+#include "models/input_file.h"
+
+namespace brdfbake {
+
+namespace {
+
+using Description = std::map<std::string, std::string>;
+
+constexpr std::uintmax_t kMaxTableFileBytes = std::uintmax_t(4) << 30;
+
+std::string lower_extension(const std::string& path) {
+    const size_t dot = path.find_last_of('.'), slash = path.find_last_of('/');
+    if (dot == std::string::npos || (slash != std::string::npos && dot < slash)) return "";
+    std::string e = path.substr(dot + 1);
+    for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
+    return e;
+}
+
+std::vector<std::string> words(const std::string& text) {
+    std::istringstream in(text);
+    std::vector<std::string> out;
+    for (std::string w; in >> w;) out.push_back(w);
+    return out;
+}
+
+double number_of(const std::string& text, const std::string& path, const std::string& what) {
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0') throw Error("'" + path + "': " + what + " '" + text + "' is not a number");
+    return v;
+}
+
+/// The table's kind, quantity, axes (coordinates recomputed from range, size and texels; the
+/// parameters are the caller's) and channel names from a description; every other key is an
+/// attribute.
+Table table_from_description(const Description& d, const std::string& path) {
+    auto get = [&](const std::string& key) -> const std::string& {
+        const auto it = d.find(key);
+        if (it == d.end()) throw Error("'" + path + "' is not a brdfbake table: its description has no '" + key + "'");
+        return it->second;
+    };
+    Table t;
+    t.kind = get("kind");
+    t.quantity = get("quantity");
+    std::set<std::string> structural = {"kind",          "quantity", "layout",    "texel_convention", "channels",
+                                        "rgba_view",     "error_meaning", "max_error", "tool", "exr_channels",
+                                        "max_error_value"};
+    auto axis = [&](const std::string& which, Axis& a) {
+        if (!d.count(which + "_axis")) return;
+        for (const char* k : {"_axis", "_mapping", "_range", "_size", "_texels", "_flipped"}) structural.insert(which + k);
+        const std::vector<std::string> range = words(get(which + "_range"));
+        if (range.size() != 2) throw Error("'" + path + "': " + which + "_range must hold two numbers");
+        const int size = int(number_of(get(which + "_size"), path, which + "_size"));
+        if (size < 1) throw Error("'" + path + "': " + which + "_size must be positive");
+        const Texels texels = d.count(which + "_texels") ? Texels::Edge : Texels::Centre;
+        a = make_axis(get(which + "_axis"), get(which + "_mapping"), number_of(range[0], path, which + "_range"),
+                      number_of(range[1], path, which + "_range"), size, texels);
+    };
+    axis("x", t.x);
+    axis("y", t.y);
+    axis("z", t.z);
+    std::vector<std::string> channels = words(get("channels"));
+    if (channels.empty() || channels.back() != "error")
+        throw Error("'" + path + "': its channels do not end with the error channel");
+    channels.pop_back();
+    t.channels = channels;
+    for (const auto& kv : d)
+        if (!structural.count(kv.first)) t.attributes[kv.first] = kv.second;
+    return t;
+}
+
+size_t texels_of(const Table& t) { return size_t(t.width()) * size_t(t.image_height()); }
+
+// ------------------------------------------------------------------ EXR
+
+Table read_exr(const std::string& path) {
+    try {
+        Imf::InputFile file(path.c_str());
+        const Imf::Header& header = file.header();
+        Description d;
+        for (auto it = header.begin(); it != header.end(); ++it) {
+            const std::string name = it.name();
+            if (name.rfind("brdfbake:", 0) != 0) continue;
+            if (const auto* s = dynamic_cast<const Imf::StringAttribute*>(&it.attribute()))
+                d[name.substr(std::strlen("brdfbake:"))] = s->value();
+        }
+        Table t = table_from_description(d, path);
+        const Imath::Box2i win = header.dataWindow();
+        const int w = win.max.x - win.min.x + 1, h = win.max.y - win.min.y + 1;
+        if (w != t.width() || h != t.image_height())
+            throw Error("'" + path + "': the image is " + std::to_string(w) + "x" + std::to_string(h) +
+                        " but its description says " + std::to_string(t.width()) + "x" + std::to_string(t.image_height()));
+        // A value channel is stored under KIND.NAME where its name is an RGBA slot that holds
+        // another channel, else under its name (write_exr).
+        std::vector<std::string> names;
+        for (const auto& c : t.channels) {
+            const std::string layered = t.kind + "." + c;
+            if (header.channels().findChannel(layered))
+                names.push_back(layered);
+            else if (header.channels().findChannel(c))
+                names.push_back(c);
+            else
+                throw Error("'" + path + "' has no channel for '" + c + "'");
+        }
+        names.push_back("error");
+        if (!header.channels().findChannel("error")) throw Error("'" + path + "' has no error channel");
+        std::vector<std::vector<float>> planes(names.size(), std::vector<float>(texels_of(t)));
+        Imf::FrameBuffer fb;
+        for (size_t c = 0; c < names.size(); ++c) {
+            char* base = reinterpret_cast<char*>(planes[c].data()) -
+                         (size_t(win.min.x) + size_t(win.min.y) * size_t(w)) * sizeof(float);
+            fb.insert(names[c], Imf::Slice(Imf::FLOAT, base, sizeof(float), sizeof(float) * size_t(w)));
+        }
+        file.setFrameBuffer(fb);
+        file.readPixels(win.min.y, win.max.y);
+        for (size_t c = 0; c + 1 < names.size(); ++c) t.values.emplace_back(planes[c].begin(), planes[c].end());
+        t.error.assign(planes.back().begin(), planes.back().end());
+        return t;
+    } catch (const Error&) {
+        throw;
+    } catch (const std::exception& e) {
+        throw Error("cannot read table '" + path + "': " + e.what());
+    }
+}
+
+// ------------------------------------------------------------------ CSV
+
+Table read_csv(const std::string& path) {
+    std::istringstream in(read_input_file(path, "table", kMaxTableFileBytes));
+    Description d;
+    std::string line;
+    std::vector<std::string> columns;
+    while (std::getline(in, line)) {
+        if (line.rfind("# ", 0) == 0) {
+            const size_t colon = line.find(": ");
+            if (colon != std::string::npos) d[line.substr(2, colon - 2)] = line.substr(colon + 2);
+            continue;
+        }
+        std::istringstream cells(line);
+        for (std::string c; std::getline(cells, c, ',');) columns.push_back(c);
+        break;
+    }
+    Table t = table_from_description(d, path);
+    auto column = [&](const std::string& name) -> int {
+        for (size_t i = 0; i < columns.size(); ++i)
+            if (columns[i] == name) return int(i);
+        return -1;
+    };
+    std::vector<int> value_columns;
+    for (const auto& c : t.channels) {
+        const int i = column(c);
+        if (i < 0) throw Error("'" + path + "' has no column '" + c + "'");
+        value_columns.push_back(i);
+    }
+    const int error_column = column("error");
+    if (error_column < 0) throw Error("'" + path + "' has no error column");
+    // An axis's derived parameter sits in the column after its coordinate where the two differ.
+    const Axis* axes[3] = {&t.x, &t.y, &t.z};
+    int parameter_column[3] = {-1, -1, -1};
+    for (int a = 0; a < 3; ++a) {
+        const int i = axes[a]->size > 1 || a == 0 ? column(axes[a]->name) : -1;
+        if (i >= 0 && i + 1 < int(columns.size()) && i + 1 != value_columns.front()) {
+            bool is_axis = false;
+            for (int b = 0; b < 3; ++b) is_axis = is_axis || columns[size_t(i + 1)] == axes[b]->name;
+            if (!is_axis) parameter_column[a] = i + 1;
+        }
+    }
+    const size_t n = texels_of(t);
+    t.values.assign(t.channels.size(), std::vector<double>(n));
+    t.error.assign(n, 0.0);
+    std::vector<std::vector<double>> parameter(3);
+    for (int a = 0; a < 3; ++a) parameter[a].assign(size_t(axes[a]->size), 0.0);
+    size_t k = 0;
+    while (std::getline(in, line)) {
+        if (line.empty()) continue;
+        if (k == n) throw Error("'" + path + "' has more rows than its " + std::to_string(n) + " texels");
+        std::vector<std::string> cells;
+        std::istringstream row(line);
+        for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
+        if (cells.size() != columns.size()) throw Error("'" + path + "': row " + std::to_string(k + 1) + " has " +
+                                                        std::to_string(cells.size()) + " fields, not " +
+                                                        std::to_string(columns.size()));
+        for (size_t c = 0; c < value_columns.size(); ++c)
+            t.values[c][k] = number_of(cells[size_t(value_columns[c])], path, "value");
+        t.error[k] = number_of(cells[size_t(error_column)], path, "error");
+        const size_t index[3] = {k % size_t(t.width()), (k / size_t(t.width())) % size_t(t.height()),
+                                 k / (size_t(t.width()) * size_t(t.height()))};
+        for (int a = 0; a < 3; ++a)
+            if (parameter_column[a] >= 0)
+                parameter[a][index[a]] = number_of(cells[size_t(parameter_column[a])], path, "parameter");
+        ++k;
+    }
+    if (k != n) throw Error("'" + path + "' has " + std::to_string(k) + " rows for " + std::to_string(n) + " texels");
+    Axis* writable[3] = {&t.x, &t.y, &t.z};
+    for (int a = 0; a < 3; ++a) {
+        writable[a]->parameter = parameter_column[a] >= 0 ? parameter[a] : writable[a]->coordinate;
+        if (parameter_column[a] >= 0) writable[a]->parameter_name = columns[size_t(parameter_column[a])];
+    }
+    return t;
+}
+
+// ------------------------------------------------------------------ NPY
+
+Table read_npy(const std::string& path) {
+    nlohmann::json side;
+    try {
+        side = nlohmann::json::parse(read_input_file(path + ".json", "table description", std::uintmax_t(1) << 30));
+    } catch (const nlohmann::json::exception& e) {
+        throw Error("'" + path + ".json' is not valid JSON: " + e.what());
+    }
+    const std::string bytes = read_input_file(path, "table", kMaxTableFileBytes);
+    try {
+        Description d;
+        for (const auto& kv : side.at("description").items()) d[kv.key()] = kv.value().get<std::string>();
+        Table t = table_from_description(d, path);
+        if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) throw Error("'" + path + "' is not a .npy file");
+        const size_t header_len = size_t(static_cast<unsigned char>(bytes[8])) |
+                                  size_t(static_cast<unsigned char>(bytes[9])) << 8;
+        const std::string header = bytes.substr(10, header_len);
+        if (header.find("'descr': '<f8'") == std::string::npos || header.find("'fortran_order': False") == std::string::npos)
+            throw Error("'" + path + "': brdfbake reads little-endian float64 arrays in C order");
+        const size_t n = texels_of(t), channels = t.channels.size() + 1;
+        if (bytes.size() != 10 + header_len + n * channels * 8)
+            throw Error("'" + path + "' does not hold " + std::to_string(n) + " texels of " + std::to_string(channels) +
+                        " channels");
+        t.values.assign(t.channels.size(), std::vector<double>(n));
+        t.error.assign(n, 0.0);
+        const char* data = bytes.data() + 10 + header_len;
+        for (size_t k = 0; k < n; ++k)
+            for (size_t c = 0; c < channels; ++c) {
+                std::uint64_t bits = 0;
+                for (int b = 0; b < 8; ++b)
+                    bits |= std::uint64_t(static_cast<unsigned char>(data[(k * channels + c) * 8 + size_t(b)])) << (8 * b);
+                double v;
+                std::memcpy(&v, &bits, sizeof v);
+                (c + 1 < channels ? t.values[c][k] : t.error[k]) = v;
+            }
+        // The sidecar lists the axes in the array's order: z, y, x.
+        for (const auto& a : side.at("axes")) {
+            const std::string name = a.at("name").get<std::string>();
+            for (Axis* axis : {&t.x, &t.y, &t.z})
+                if (axis->name == name && axis->size == a.at("size").get<int>()) {
+                    axis->parameter = a.at("parameter_values").get<std::vector<double>>();
+                    axis->parameter_name = a.at("parameter").get<std::string>();
+                }
+        }
+        return t;
+    } catch (const nlohmann::json::exception& e) {
+        throw Error("'" + path + ".json' is not a brdfbake table description: " + e.what());
+    }
+}
+
+}  // namespace
+
+Table read_table(const std::string& path) {
+    const std::string e = lower_extension(path);
+    if (e == "exr") return read_exr(path);
+    if (e == "csv") return read_csv(path);
+    if (e == "npy") return read_npy(path);
+    throw Error("cannot read '" + path + "' as a table: brdfbake reads back .exr, .csv and .npy (with its .json)");
+}
+
+}  // namespace brdfbake
