@@ -232,6 +232,20 @@ void write_exr(const Table& t, const std::string& path, bool half) {
     header.compression() = Imf::ZIP_COMPRESSION;
     for (const auto& kv : table_description(t)) header.insert("brdfbake:" + kv.first, Imf::StringAttribute(kv.second));
     header.insert("brdfbake:max_error_value", Imf::FloatAttribute(float(t.max_error())));
+    // The axes' per-texel parameters (alpha of a roughness axis, mu raised to its floor), which
+    // the description gives only as a mapping in words: read_table restores them.
+    for (const auto& [which, ax] : {std::pair<const char*, const Axis*>{"x", &t.x}, {"y", &t.y}, {"z", &t.z}}) {
+        if (ax->parameter.size() != ax->coordinate.size() || (ax != &t.x && ax->size == 1)) continue;
+        std::string values;
+        char b[32];
+        for (double v : ax->parameter) {
+            std::snprintf(b, sizeof b, "%.17g", v);
+            values += (values.empty() ? "" : " ") + std::string(b);
+        }
+        header.insert(std::string("brdfbake:") + which + "_parameter_values", Imf::StringAttribute(values));
+        header.insert(std::string("brdfbake:") + which + "_parameter_name",
+                      Imf::StringAttribute(ax->parameter_name.empty() ? ax->name : ax->parameter_name));
+    }
     const Imf::PixelType type = half ? Imf::HALF : Imf::FLOAT;
 
     // The channels: the RGB(A) view that a generic RGBA reader (Imf::RgbaInputFile) returns, then
@@ -308,7 +322,8 @@ std::string table_csv(const Table& t) {
     // A parameter named as its coordinate but computed elsewhere (mu raised to its floor) goes
     // under NAME_computed.
     auto derived = [](const Axis& a) {
-        return !a.parameter_name.empty() && (a.parameter_name != a.name || a.parameter != a.coordinate);
+        return !a.parameter_name.empty() && a.parameter.size() == a.coordinate.size() &&
+               (a.parameter_name != a.name || a.parameter != a.coordinate);
     };
     std::string head;
     for (const Axis* a : axes) {

@@ -66,7 +66,9 @@ Table table_from_description(const Description& d, const std::string& path) {
                                         "max_error_value"};
     auto axis = [&](const std::string& which, Axis& a) {
         if (!d.count(which + "_axis")) return;
-        for (const char* k : {"_axis", "_mapping", "_range", "_size", "_texels", "_flipped"}) structural.insert(which + k);
+        for (const char* k : {"_axis", "_mapping", "_range", "_size", "_texels", "_flipped", "_parameter_values",
+                              "_parameter_name"})
+            structural.insert(which + k);
         const std::vector<std::string> range = words(get(which + "_range"));
         if (range.size() != 2) throw Error("'" + path + "': " + which + "_range must hold two numbers");
         const int size = int(number_of(get(which + "_size"), path, which + "_size"));
@@ -74,6 +76,16 @@ Table table_from_description(const Description& d, const std::string& path) {
         const Texels texels = d.count(which + "_texels") ? Texels::Edge : Texels::Centre;
         a = make_axis(get(which + "_axis"), get(which + "_mapping"), number_of(range[0], path, which + "_range"),
                       number_of(range[1], path, which + "_range"), size, texels);
+        // The per-texel parameters where the file stores them (EXR); else the coordinate until
+        // the format's own record (a CSV column, the .npy sidecar) replaces it.
+        a.parameter = a.coordinate;
+        if (d.count(which + "_parameter_values")) {
+            std::vector<double> p;
+            for (const auto& w : words(d.at(which + "_parameter_values"))) p.push_back(number_of(w, path, "parameter"));
+            if (p.size() != size_t(size)) throw Error("'" + path + "': " + which + "_parameter_values has the wrong length");
+            a.parameter = p;
+            if (d.count(which + "_parameter_name")) a.parameter_name = d.at(which + "_parameter_name");
+        }
     };
     axis("x", t.x);
     axis("y", t.y);
@@ -259,8 +271,11 @@ Table read_npy(const std::string& path) {
             const std::string name = a.at("name").get<std::string>();
             for (Axis* axis : {&t.x, &t.y, &t.z})
                 if (axis->name == name && axis->size == a.at("size").get<int>()) {
-                    axis->parameter = a.at("parameter_values").get<std::vector<double>>();
-                    axis->parameter_name = a.at("parameter").get<std::string>();
+                    const auto p = a.at("parameter_values").get<std::vector<double>>();
+                    if (p.size() == size_t(axis->size)) {
+                        axis->parameter = p;
+                        axis->parameter_name = a.at("parameter").get<std::string>();
+                    }
                 }
         }
         return t;

@@ -104,8 +104,8 @@ void write_npy(const Table& table, const std::string& path);
 /// Reads back a table write_table wrote: .exr, .csv or .npy (with its PATH.json sidecar). Kind,
 /// quantity, axes, channels, values, error and attributes come back; values of an EXR are its
 /// float32 (or half) samples, of a CSV its 9 significant digits. An axis's per-texel parameter
-/// comes back from a .npy's sidecar and a CSV's parameter column (else it equals the
-/// coordinate for a CSV, and is empty for an EXR, which does not store it). Throws Error for any
+/// comes back from the EXR header (brdfbake:x_parameter_values), the .npy sidecar or the CSV's
+/// parameter column, and equals the coordinate where the file has none. Throws Error for any
 /// other file, or one that is not a brdfbake table.
 Table read_table(const std::string& path);
 
