@@ -7,7 +7,7 @@
 set(layers brdf engine models io integrate tables scene plot bench cli python tests)
 set(prefixes
   "include/brdfbake/brdf/=brdf" "kernels/=brdf"
-  "include/brdfbake/error.h=engine" "include/brdfbake/engine.h=engine" "include/brdfbake/version.h=engine" "include/brdfbake/memory_limit.h=engine" "include/brdfbake/cancel.h=engine"
+  "include/brdfbake/error.h=engine" "include/brdfbake/engine.h=engine" "include/brdfbake/version.h=engine" "include/brdfbake/memory_limit.h=engine" "include/brdfbake/cancel.h=engine" "include/brdfbake/progress.h=engine"
   "host/engine/=engine"
   "include/brdfbake/output.h=io" "include/brdfbake/table.h=io" "host/io/=io"
   "include/brdfbake/spec.h=models" "host/models/=models"

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/progress.h"
 
 namespace brdfbake {
 
@@ -68,6 +69,10 @@ std::pair<CLI::App*, std::shared_ptr<Options>> add_command(CLI::App& app, const 
     cmd->callback([options, &global, &action, run] { action = [options, &global, run] { return run(*options, global); }; });
     return {cmd, options};
 }
+
+/// The progress display on stderr (a bar on a terminal, lines otherwise) that main() installs
+/// unless --quiet is given.
+ProgressSink& stderr_progress();
 
 void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_devices_command(CLI::App& app, const GlobalOptions& global, Action& action);

@@ -24,6 +24,8 @@ int main(int argc, char** argv) {
                    "$BRDFBAKE_DEVICE, else PoCL")
         ->envname("BRDFBAKE_DEVICE");
     app.add_flag("-v,--verbose", global.verbose, "print the device, kernel builds and timings to stderr");
+    bool quiet = false;
+    app.add_flag("-q,--quiet", quiet, "no progress display on stderr");
     std::string max_memory;
     app.add_option("--max-memory", max_memory,
                    "refuse work that would take more memory than this (e.g. 8G, 512M); default "
@@ -94,6 +96,7 @@ int main(int argc, char** argv) {
                 throw Error(std::string("--max-memory (or BRDFBAKE_MAX_MEMORY): ") + e.what());
             }
         }
+        if (!quiet) set_progress_sink(&stderr_progress());
         const int status = action ? action() : kExitError;
         // What a command printed is its result: a full disk or a closed pipe must not pass as
         // success (stdout is buffered, so a failed write shows at the flush).

@@ -17,6 +17,7 @@
 #include "brdfbake/cancel.h"
 #include "brdfbake/error.h"
 #include "brdfbake/memory_limit.h"
+#include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
 #include "models/key_reader.h"
 #include "models/params.h"
@@ -185,16 +186,32 @@ cl_uint set_args(cl::Kernel& kernel, cl_uint first, const Args&... args) {
     return first;
 }
 
-/// Runs an integration kernel over n_items work-items and returns its event. An explicit small
-/// work-group: the default could give PoCL two groups for two cores, or one, whatever the table
-/// size (issue 9).
-cl::Event run_items(Engine& engine, cl::Kernel& kernel, size_t n_items) {
+/// Runs an integration kernel over n_items work-items of `points_per_item` samples each and
+/// returns the kernel time in seconds. An explicit small work-group: the default could give PoCL
+/// two groups for two cores, or one, whatever the table size (issue 9). A long launch (more than
+/// 2^28 samples) runs in up to 64 slices of the index range (the work-items keep their global ids,
+/// so the results are the same), reporting progress and honouring a cancel request between
+/// slices; a short one is one launch.
+double run_items(Engine& engine, cl::Kernel& kernel, size_t n_items, double points_per_item, const std::string& what) {
     throw_if_cancelled();
-    cl::Event done;
-    const size_t global = (n_items + kLocalSize - 1) / kLocalSize * kLocalSize;
-    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange(global), cl::NDRange(kLocalSize), nullptr,
-                                        &done);
-    return done;
+    const size_t groups = (n_items + kLocalSize - 1) / kLocalSize;
+    const double work = double(n_items) * points_per_item;
+    const size_t slices = std::min<size_t>({groups, 64, size_t(std::max(1.0, work / double(1 << 26)))});
+    const size_t per_slice = slices <= 1 ? groups : (groups + slices - 1) / slices;
+    double seconds = 0.0;
+    if (slices > 1) report_progress(what, 0, n_items);
+    for (size_t first = 0; first < groups; first += per_slice) {
+        const size_t count = std::min(per_slice, groups - first);
+        cl::Event done;
+        engine.queue().enqueueNDRangeKernel(kernel, cl::NDRange(first * kLocalSize), cl::NDRange(count * kLocalSize),
+                                            cl::NDRange(kLocalSize), nullptr, &done);
+        done.wait();
+        seconds += event_seconds(done);
+        if (slices <= 1) break;
+        report_progress(what, std::min<std::uint64_t>(std::uint64_t(first + count) * kLocalSize, n_items), n_items);
+        if (first + count < groups) throw_if_cancelled();
+    }
+    return seconds;
 }
 
 /// The per-item counts of non-finite samples, the last output of every integration kernel.
@@ -384,14 +401,16 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
         a = set_args(kernel, a, cl_int(method), cl_uint(req.seed), cl_uint(req.seed >> 32));
     }
     set_args(kernel, a, b_mean, bad_counts.buffer);
-    const cl::Event done = run_items(engine, kernel, n_items);
+    const double kernel_seconds =
+        run_items(engine, kernel, n_items, double(points),
+                  "albedo of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) + " samples each");
     const std::vector<double> means = bufs.read(b_mean, n_items);
     const std::vector<cl_uint> bad = bad_counts.read(engine);
 
     AlbedoResult result;
     result.samples_per_cell = points * req.replicas;
     result.total_samples = result.samples_per_cell * n_cells;
-    result.kernel_seconds = event_seconds(done);
+    result.kernel_seconds = kernel_seconds;
     result.vector_width = lanes;
     result.method = method_text(req.method, req.replicas, points);
     result.values = summarize(means, bad, req.replicas, result.samples_per_cell, req.precision,
@@ -486,13 +505,15 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
                                          : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_QUADRATURE));
     set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_nodes, cl_uint(n), cl_uint(m), cl_uint(l), cl_uint(n_cells), b_sum,
              bad_counts.buffer);
-    const cl::Event done = run_items(engine, kernel, n_items);
+    const double kernel_seconds =
+        run_items(engine, kernel, n_items, double(n) * n / 4.0,
+                  "albedo of " + std::to_string(n_cells) + " cells by quadrature, " + std::to_string(n) + " nodes");
     const std::vector<double> sums = bufs.read(b_sum, n_items);
     const std::vector<cl_uint> bad = bad_counts.read(engine);
 
     AlbedoResult result;
     const std::uint64_t per_piece = std::uint64_t(n) * n + std::uint64_t(m) * m + std::uint64_t(l) * l;
-    result.kernel_seconds = event_seconds(done);
+    result.kernel_seconds = kernel_seconds;
     result.vector_width = lanes;
     result.method = quadrature_text(req.model, n);
     const double fp_bound = tolerance_floor(req.precision);
@@ -605,13 +626,16 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
     set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(points), cl_uint(req.replicas), cl_uint(n_cells),
              cl_int(req.correlated ? 1 : 0), b_r, b_t, bad_counts.buffer);
-    const cl::Event done = run_items(engine, kernel, n_items);
+    const double kernel_seconds =
+        run_items(engine, kernel, n_items, double(points),
+                  "rough dielectric of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +
+                      " samples each");
     const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
     const std::vector<cl_uint> bad = bad_counts.read(engine);
 
     DielectricResult result;
     result.samples_per_cell = points * req.replicas;
-    result.kernel_seconds = event_seconds(done);
+    result.kernel_seconds = kernel_seconds;
     result.method = method_text(Method::Importance, req.replicas, points);
     result.vector_width = lanes;
     auto where = [&](size_t c) {
