@@ -7,7 +7,7 @@
 //   - after exit status 2 nothing is left in the output folder, and never a temporary file.
 //
 // CI runs a fixed seed and a few hundred small cases; scripts/fuzz.sh runs more with any seed.
-// Environment: BRDFBAKE_FUZZ_SEED (default 16), BRDFBAKE_FUZZ_COUNT (default 240),
+// Environment: BRDFBAKE_FUZZ_SEED (default 16), BRDFBAKE_FUZZ_COUNT (default 200),
 // BRDFBAKE_FUZZ_ONLY (one case index), BRDFBAKE_FUZZ_TIMEOUT (seconds per run, default 20),
 // BRDFBAKE_FUZZ_JOBS (runs at a time, default 2),
 // BRDFBAKE_FUZZ_HOSTILE=1 (also /dev/zero and /dev/urandom as input files: memory-hungry),
@@ -45,6 +45,7 @@
 
 #include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
+#include "scene/bake_folder.h"
 #include "support.h"
 
 namespace {
@@ -80,11 +81,17 @@ public:
             "inf",  "-inf",  "infinity", "",     "abc",   "0x1p-3", " 0.5", "0.5 ",  "+0.5",   "1e",
             ".",    "-",     "99999999999999999999999", "0.5.5", "1/2", "1e-5", "0.999999"};
         const double p = uniform(0, 1);
-        if (p < 0.3) return pick(hostile);
-        if (p < 0.55) return fmt(uniform(0.01, 1.0));
-        if (p < 0.75) return fmt(uniform(-0.5, 1.5));
+        const double hostile_share = level == 0 ? 0.0 : level == 1 ? 0.15 : 0.35;
+        if (p < hostile_share) return pick(hostile);
+        if (level == 0 || p < hostile_share + 0.35) return fmt(uniform(0.01, 1.0));
+        if (p < hostile_share + 0.55) return fmt(uniform(-0.5, 1.5));
         return fmt(std::pow(10.0, uniform(-300, 300)) * (chance(0.2) ? -1 : 1));  // any magnitude
     }
+    /// How hostile the case is: 0 plausible values only (most runs compute something), 1 some
+    /// hostile values, 2 many.
+    int level = 1;
+    /// p scaled by the level: none at 0, p at 1, twice p at 2.
+    bool mutate(double p) { return chance(p * level); }
     static std::string fmt(double x) {
         char b[40];
         std::snprintf(b, sizeof b, "%.6g", x);
@@ -132,30 +139,32 @@ std::string model_spec(Gen& g, bool roughness = true) {
             keys.push_back({"alpha_y", g.chance(0.7) ? Gen::fmt(g.uniform(0.01, 1)) : g.number()});
             continue;
         }
-        if (!roughness && kv.first.rfind("alpha", 0) == 0 && !g.chance(0.1)) continue;
-        if (g.chance(0.1)) continue;                      // a key dropped
-        if (g.chance(0.35)) kv.second = g.number();       // a value mutated
-        if (g.chance(0.03)) kv.second = "\x01";           // `key` without `=value`
+        if (!roughness && kv.first.rfind("alpha", 0) == 0 && !g.mutate(0.05)) continue;
+        if (g.mutate(0.05)) continue;                         // a key dropped
+        const bool numeric = kv.second.find_first_not_of("0123456789.e+-") == std::string::npos;
+        if (g.mutate(0.15) || (numeric && g.chance(0.3))) kv.second = g.number();  // a value changed
+        if (g.mutate(0.015)) kv.second = "\x01";               // `key` without `=value`
         keys.push_back(kv);
     }
-    if (g.chance(0.1)) keys.push_back({g.pick(std::vector<std::string>{"beta", "alpha", "ALPHA", "", "n", "eta"}), g.number()});
-    if (g.chance(0.05)) keys.push_back(keys.empty() ? std::make_pair(std::string("alpha"), g.number()) : keys.front());
-    if (g.chance(0.05)) s.name = g.pick(std::vector<std::string>{"", "GGX", "ggx ", "nosuchmodel", "ggx:ggx", "\xff"});
+    if (g.mutate(0.05)) keys.push_back({g.pick(std::vector<std::string>{"beta", "alpha", "ALPHA", "", "n", "eta"}), g.number()});
+    if (g.mutate(0.02)) keys.push_back(keys.empty() ? std::make_pair(std::string("alpha"), g.number()) : keys.front());
+    if (g.mutate(0.02)) s.name = g.pick(std::vector<std::string>{"", "GGX", "ggx ", "nosuchmodel", "ggx:ggx", "\xff"});
     s.keys = keys;
     std::string out = join_spec(s);
-    if (g.chance(0.04)) out += g.pick(std::vector<std::string>{",", ":", "=", ",,", "=1=2", ":a=1"});
+    if (g.mutate(0.02)) out += g.pick(std::vector<std::string>{",", ":", "=", ",,", "=1=2", ":a=1"});
     return out;
 }
 
 /// A Fresnel spec; `nk_file` is an n,k file of the case, or empty.
 std::string fresnel_spec(Gen& g, const std::string& nk_file) {
-    switch (g.between(0, 8)) {
+    switch (g.between(0, g.level == 0 ? 7 : 8)) {
     case 0: return "none";
     case 1: return "schlick:f0=" + g.number();
     case 2: return "dielectric:eta=" + g.number();
     case 3: return "conductor:eta=" + g.number() + ",k=" + g.number();
     case 4: return "conductor-approx:eta=" + g.number() + ",k=" + g.number();
-    case 5: return "metal:" + g.pick(std::vector<std::string>{"Al", "Au", "Ag", "Cu", "Xx", "", "au"});
+    case 5: return "metal:" + (g.mutate(0.15) ? g.pick(std::vector<std::string>{"Xx", "", "au"})
+                                              : g.pick(std::vector<std::string>{"Al", "Au", "Ag", "Cu"}));
     case 6:
     case 7: return nk_file.empty() ? "metal:Au" : "nk:" + nk_file;
     default: return g.pick(std::vector<std::string>{"", "schlick", "schlick:f0", "dielectric:eta=1.5,eta=2", "nk:",
@@ -173,7 +182,7 @@ void write_text(const std::string& path, const std::string& text) {
 /// An n,k file in the refractiveindex.info YAML layout brdfbake reads, with random rows (sorted
 /// or not, huge, negative, NaN), or empty, or binary garbage.
 std::string nk_text(Gen& g) {
-    const int kind = g.between(0, 9);
+    const int kind = g.level == 0 ? 9 : g.between(0, 9);
     if (kind == 0) return "";
     if (kind == 1) {
         std::string bytes(size_t(g.between(1, 4096)), '\0');
@@ -260,12 +269,13 @@ std::string scene_file(Gen& g, const std::string& dir, const std::string& nk_fil
     if (ext != ".glb" && g.chance(0.8)) {
         json j = json::parse(text, nullptr, false);
         if (!j.is_discarded()) {
-            const int rounds = g.between(0, 3);
+            const int rounds = g.between(0, g.level + 1);
             for (int r = 0; r < rounds; ++r) mutate_json(g, j, nk_file);
-            text = j.dump(g.chance(0.5) ? 2 : -1);
+            // Invalid UTF-8 from a mutated spec becomes U+FFFD; the byte edits below add raw bytes.
+            text = j.dump(g.chance(0.5) ? 2 : -1, ' ', false, json::error_handler_t::replace);
         }
     }
-    if (g.chance(0.15) && !text.empty()) {  // bytes: flipped, cut or inserted
+    if (g.mutate(0.08) && !text.empty()) {  // bytes: flipped, cut or inserted
         const int edits = g.between(1, 4);
         for (int e = 0; e < edits && !text.empty(); ++e) {
             const size_t at = size_t(g.between(0, int(text.size()) - 1));
@@ -319,6 +329,7 @@ std::vector<std::string> directed_cases(const std::string& in, const std::string
 /// The case of index i of a seed: one command with its generated inputs.
 Case make_case(std::uint64_t seed, std::uint64_t index, const std::string& root, bool hostile) {
     Gen g(seed * 0x9E3779B97F4A7C15ULL + index);
+    g.level = g.chance(0.45) ? 0 : g.chance(0.5) ? 1 : 2;
     Case c;
     c.dir = root + "/case-" + std::to_string(index);
     std::system(("rm -rf " + c.dir + " && mkdir -p " + c.dir + "/in " + c.dir + "/out").c_str());
@@ -333,8 +344,8 @@ Case make_case(std::uint64_t seed, std::uint64_t index, const std::string& root,
         }
     }
     auto wavelength = [&] {
-        return g.chance(0.6) ? " --wavelength '" + (g.chance(0.6) ? Gen::fmt(g.uniform(250, 1500)) : g.number()) + "'"
-                             : std::string();
+        if (!(g.level == 0 || g.chance(0.6))) return std::string();
+        return " --wavelength '" + (g.level == 0 || g.chance(0.6) ? Gen::fmt(g.uniform(300, 1200)) : g.number()) + "'";
     };
     std::string extension = "txt";  // of a text output file: json for --format json, csv for csv
     auto format = [&](const std::vector<std::string>& f) {
@@ -375,7 +386,7 @@ Case make_case(std::uint64_t seed, std::uint64_t index, const std::string& root,
     case 4:
         a << "reciprocity --model '" << model_spec(g) << "'";
         if (g.chance(0.4)) a << " --fresnel '" << fresnel_spec(g, nk) << "'";
-        a << wavelength() << " --resolution " << g.pick(std::vector<std::string>{"4", "6", "0", "-3", "1"})
+        a << wavelength() << " --resolution " << (g.mutate(0.15) ? g.pick(std::vector<std::string>{"0", "-3", "1", "x"}) : "4")
           << " --phi-resolution " << g.pick(std::vector<std::string>{"4", "3", "1"}) << precision();
         a << " -o " << out << "/recip." << g.pick(std::vector<std::string>{"exr", "csv", "h"});
         break;
@@ -383,19 +394,38 @@ Case make_case(std::uint64_t seed, std::uint64_t index, const std::string& root,
     case 6: {
         std::vector<std::string> kinds;
         for (const auto* k : brdfbake::table_kinds()) kinds.push_back(k->name);
-        kinds.push_back("nosuchkind");
-        const std::string kind = g.pick(kinds);
-        a << "lut " << kind << " --model '" << model_spec(g, false) << "'";
-        if (g.chance(0.4) || kind == "conductor") a << " --fresnel '" << fresnel_spec(g, nk) << "'";
+        const std::string kind = g.mutate(0.05) ? "nosuchkind" : g.pick(kinds);
+        // A model with a roughness axis (but now and then one without); a Fresnel the kind takes.
+        std::string model = model_spec(g, false);
+        for (int tries = 0; tries < 20 && !g.mutate(0.05); ++tries) {
+            const std::string name = model.substr(0, model.find(':'));
+            const auto& reg = brdfbake::model_registry();
+            if (std::any_of(reg.begin(), reg.end(), [&](const brdfbake::ModelTraits& m) {
+                    return name == m.name && m.alpha_x_slot >= 0 && !m.delta;
+                }))
+                break;
+            model = model_spec(g, false);
+        }
+        a << "lut " << kind << " --model '" << model << "'";
+        if (kind == "conductor" && !g.mutate(0.2))
+            a << " --fresnel '" << g.pick(std::vector<std::string>{"metal:Au", "conductor:eta=" + g.number() + ",k=" + g.number(),
+                                                                   nk.empty() ? "metal:Cu" : "nk:" + nk}) << "'";
+        else if (kind != "dielectric" && g.chance(0.3)) a << " --fresnel '" << fresnel_spec(g, nk) << "'";
         a << wavelength();
         const bool one_d = kind == "eavg", three_d = kind == "dielectric";
         std::string size = one_d ? std::to_string(g.between(1, 6))
                                  : std::to_string(g.between(1, 5)) + "x" + std::to_string(g.between(1, 5)) +
                                        (three_d ? "x" + std::to_string(g.between(1, 3)) : "");
-        if (g.chance(0.15)) size = g.pick(std::vector<std::string>{"0x4", "4x", "-1x4", "1e9x1e9", "abc", "4x4x4x4", "", "100000x100000"});
+        if (g.mutate(0.1)) size = g.pick(std::vector<std::string>{"0x4", "4x", "-1x4", "1e9x1e9", "abc", "4x4x4x4", "", "100000x100000"});
         a << " --size '" << size << "' --samples " << g.pick(std::vector<std::string>{"256", "1024"});
-        if (g.chance(0.3)) a << " --alpha-range '" << g.list(2) << "'";
-        if (g.chance(0.3) || three_d) a << " --eta-range '" << (g.chance(0.5) ? "1.1,2" : g.list(2)) << "'";
+        auto range = [&](double lo, double hi) {
+            if (g.mutate(0.3)) return g.list(3);
+            double a0 = g.uniform(lo, hi), a1 = g.uniform(lo, hi);
+            if (a0 > a1) std::swap(a0, a1);
+            return Gen::fmt(a0) + "," + Gen::fmt(a1);
+        };
+        if (g.chance(0.3)) a << " --alpha-range '" << range(0, 1) << "'";
+        if (g.chance(0.3) || three_d) a << " --eta-range '" << range(1.01, 3) << "'";
         if (g.chance(0.2)) a << " --mu-map sqrt";
         if (g.chance(0.2)) a << " --alpha-map roughness";
         if (g.chance(0.1)) a << " --half";
@@ -496,7 +526,16 @@ struct KnownBug {
 };
 
 const std::vector<KnownBug>& known_bugs() {
-    static const std::vector<KnownBug> bugs = {};
+    static const std::regex non_finite_output("nan/inf on standard output|null in the JSON|holds (nan|inf)|nan/inf in the text");
+    static const std::vector<KnownBug> bugs = {
+        // `albedo --phi 1e100` of an anisotropic model prints nan (JSON null); phi is not reduced
+        // before the kernel (issue 16, item 4: the lead is fixing host/integrate and cmd_albedo).
+        {"phi not reduced: issue 16 item 4", std::regex(R"(--phi '?([^ ']*,)?[-+]?[0-9.]+e\+?(0?[89]|[1-9][0-9]+))"),
+         non_finite_output},
+        // n,k files are not bounded like conductor: specs: n = k = 1e308 (or 1e155) gives a
+        // Fresnel average of nan in `fresnel` (issue 16, item 3: the lead is fixing host/models).
+        {"n,k values unbounded: issue 16 item 3", std::regex(R"(nk:)"), non_finite_output},
+    };
     return bugs;
 }
 
@@ -535,16 +574,28 @@ Outcome run_case(const Case& c, int timeout_s) {
     }
     std::vector<std::string> files;
     list_files(c.dir + "/out", files);
+    // A bake that fails after finishing some tables keeps them (docs/scenes.md): after exit 2,
+    // what is in its folder must be index.json and the tables it lists, each with its hash.
+    const std::string bake_dir = c.dir + "/out/bake";
+    const json index = json::parse(testing::slurp(bake_dir + "/index.json"), nullptr, false);
+    auto indexed = [&](const std::string& path) {
+        if (path == bake_dir + "/index.json") return !index.is_discarded();
+        if (index.is_discarded() || !index.contains("tables")) return false;
+        for (const auto& t : index["tables"])
+            if (bake_dir + "/" + t.value("file", "") == path)
+                return t.value("content_hash", "") == brdfbake::content_hash_of_file(path);
+        return false;
+    };
     for (const auto& f : files) {
         if (!failure.empty()) break;
         const std::string name = f.substr(f.find_last_of('/') + 1);
-        if (name.find(".tmp-") != std::string::npos) failure = "temporary file left: " + f;
-        else if (status == 2) failure = "file left after exit status 2: " + f;
+        if (name.find(".tmp-") != std::string::npos || name == ".brdfbake.lock") failure = "temporary file left: " + f;
+        else if (status == 2 && !indexed(f)) failure = "file left after exit status 2: " + f;
         else if (const std::string why = non_finite_in_file(f); !why.empty()) failure = f + ": " + why;
     }
-    if (failure.empty() && status == 2) {
+    if (failure.empty() && status == 2 && files.empty()) {
         struct stat st {};
-        if (::stat((c.dir + "/out/bake").c_str(), &st) == 0) failure = "bake folder left after exit status 2";
+        if (::stat(bake_dir.c_str(), &st) == 0) failure = "empty bake folder left after exit status 2";
     }
     r.status = status;
     if (failure.empty()) return r;
@@ -561,7 +612,7 @@ Outcome run_case(const Case& c, int timeout_s) {
 
 TEST_CASE("fuzz: random and mutated specs, n,k files and scenes across the commands", "[fuzz]") {
     const std::uint64_t seed = env_number("BRDFBAKE_FUZZ_SEED", 16);
-    const std::uint64_t count = env_number("BRDFBAKE_FUZZ_COUNT", 240);
+    const std::uint64_t count = env_number("BRDFBAKE_FUZZ_COUNT", 200);
     const int timeout_s = int(env_number("BRDFBAKE_FUZZ_TIMEOUT", 20));
     const unsigned jobs = unsigned(std::max<std::uint64_t>(1, env_number("BRDFBAKE_FUZZ_JOBS", 2)));
     const bool hostile = env_number("BRDFBAKE_FUZZ_HOSTILE", 0) != 0;
@@ -599,8 +650,14 @@ TEST_CASE("fuzz: random and mutated specs, n,k files and scenes across the comma
     auto worker = [&] {
         for (std::uint64_t k; (k = next++) < total;) {
             const std::uint64_t i = k < n_directed ? k : first + (k - n_directed);
-            Case c = k < n_directed ? directed[k] : make_case(seed, i, root, hostile);
-            Outcome r = run_case(c, timeout_s);
+            Case c;
+            Outcome r;
+            try {
+                c = k < n_directed ? directed[k] : make_case(seed, i, root, hostile);
+                r = run_case(c, timeout_s);
+            } catch (const std::exception& e) {
+                r.failure = std::string("the fuzz harness itself failed: ") + e.what();
+            }
             if (verbose) {
                 std::lock_guard<std::mutex> lock(log);
                 std::fprintf(stderr, "fuzz: %s %llu exit %d in %.2f s: brdfbake %s\n", k < n_directed ? "directed" : "case",
