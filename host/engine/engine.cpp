@@ -309,10 +309,19 @@ cl::Program& Engine::program(const BuildRequest& request) {
     try {
         program.build(std::vector<cl::Device>{info_.device}, options.c_str());
     } catch (const cl::Error& e) {
+        // Only a compile error has a log worth reading. After an allocation failure PoCL 3.1 can
+        // leave the program locked, and asking for its log then waits forever.
+        if (e.err() == CL_OUT_OF_HOST_MEMORY || e.err() == CL_OUT_OF_RESOURCES)
+            throw Error("out of memory building the kernel " + request.kernel_file + " on '" + info_.name + "' (" +
+                        cl_error_name(e.err()) + ")" +
+                        (address_space_limit() ? "; the address space limit (ulimit -v) is " + mib(address_space_limit())
+                                               : std::string()));
         std::string log;
-        try {
-            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device);
-        } catch (const cl::Error&) {
+        if (e.err() == CL_BUILD_PROGRAM_FAILURE) {
+            try {
+                log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device);
+            } catch (const cl::Error&) {
+            }
         }
         throw Error("kernel build failed for " + request.kernel_file + " with options '" + options +
                     "' on '" + info_.name + "' (" + cl_error_name(e.err()) + "); build log:\n" + log);
