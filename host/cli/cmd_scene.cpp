@@ -394,8 +394,8 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         std::stringstream s;
         if (in) s << in.rdbuf();
         if (!in || s.str() != text) {
-            folder.commit();
             write_file_atomically(index_path, text);
+            folder.commit();
         }
     };
 
@@ -411,8 +411,9 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
 
     if (to_compute == 0) {
         write_index();
-        std::fprintf(stderr, "brdfbake: all %zu tables in %s are up to date (same request hash, file present with its content hash); "
-                             "nothing to compute\n",
+        std::fprintf(stderr,
+                     "brdfbake: all %zu tables in %s are up to date (same request hash, file present with its "
+                     "content hash); nothing to compute\n",
                      plan.tables.size(), o.output.c_str());
         return kExitOk;
     }
@@ -450,8 +451,8 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         }
         check_finite(table);
         const std::string path = join_path(o.output, t.file);
-        folder.commit();
         write_table(table, path, plan.settings.half);
+        folder.commit();
         const double seconds = since(t1);
         max_error = std::max(max_error, table.max_error());
 

@@ -38,7 +38,8 @@ public:
     BakeFolder(const BakeFolder&) = delete;
     BakeFolder& operator=(const BakeFolder&) = delete;
 
-    /// Something was written into the folder: keep it.
+    /// Something was written into the folder: keep it. (Without it the destructor still removes
+    /// only empty folders.)
     void commit() { committed_ = true; }
     const std::string& path() const { return folder_; }
     static const char* lock_name() { return ".brdfbake.lock"; }
