@@ -24,6 +24,7 @@
 #include "brdfbake/table.h"
 #include "brdfbake/version.h"
 #include "cli/cli.h"
+#include "scene/bake_folder.h"
 #include "scene/scene.h"
 
 namespace brdfbake {
@@ -178,6 +179,7 @@ struct BakeOptions {
     SceneOptions scene;
     std::string output = "out";
     bool force = false;
+    double lock_timeout = 600.0;  // seconds to wait for another bake into the same folder
 };
 
 /// Progress on stderr: a bar redrawn in place when stderr is a terminal, plain lines otherwise.
@@ -278,24 +280,6 @@ bool file_exists(const std::string& path) {
     return ::stat(path.c_str(), &st) == 0 && S_ISREG(st.st_mode);
 }
 
-void make_dirs(const std::string& dir) {
-    std::string partial;
-    std::stringstream in(dir);
-    std::string part;
-    if (!dir.empty() && dir[0] == '/') partial = "/";
-    while (std::getline(in, part, '/')) {
-        if (part.empty()) continue;
-        partial += part + "/";
-        struct stat st;
-        if (::stat(partial.c_str(), &st) == 0) {
-            if (!S_ISDIR(st.st_mode)) throw Error("output folder '" + dir + "': '" + partial + "' is not a folder");
-            continue;
-        }
-        if (::mkdir(partial.c_str(), 0777) != 0 && errno != EEXIST)
-            throw Error("cannot create output folder '" + dir + "': " + std::strerror(errno));
-    }
-}
-
 json axis_json(const Axis& a) {
     return {{"name", a.name}, {"mapping", a.mapping}, {"lo", a.lo}, {"hi", a.hi}, {"size", a.size}};
 }
@@ -343,7 +327,9 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
             }() + "): " + t.unavailable);
     for (const auto& w : plan.warnings) std::fprintf(stderr, "brdfbake: warning: %s\n", w.c_str());
 
-    make_dirs(o.output);
+    // The folder is locked from here on: the index read below is still the index when this bake
+    // writes it, and another bake into the folder waits (docs/scenes.md, "Bake folders").
+    BakeFolder folder(o.output, o.lock_timeout);
     const std::string index_path = join_path(o.output, "index.json");
     json old_index;
     if (file_exists(index_path)) {
@@ -363,14 +349,23 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         return nullptr;
     };
 
-    // What is up to date: the same request hash in the index and the file still present.
+    // What is up to date: the same request hash in the index, and the file present with the
+    // content hash the index records (a file another bake or an edit replaced is recomputed).
+    const bool same_hash_algorithm =
+        old_index.is_object() && old_index.value("content_hash_algorithm", "") == kContentHashAlgorithm;
     std::vector<bool> fresh(plan.tables.size(), false);
     double work = 0.0;
     int to_compute = 0;
     for (size_t i = 0; i < plan.tables.size(); ++i) {
         const PlannedTable& t = plan.tables[i];
         const json* e = old_entry(t.file);
-        fresh[i] = !o.force && e && e->value("request_hash", "") == t.hash && file_exists(join_path(o.output, t.file));
+        const std::string path = join_path(o.output, t.file);
+        if (!o.force && e && e->value("request_hash", "") == t.hash && file_exists(path)) {
+            fresh[i] = same_hash_algorithm && e->value("content_hash", "") == content_hash_of_file(path);
+            if (!fresh[i])
+                std::fprintf(stderr, "brdfbake: %s is not the table index.json describes (content hash differs); "
+                                     "recomputing it\n", path.c_str());
+        }
         if (!fresh[i]) {
             work += double(t.samples_total);
             ++to_compute;
@@ -382,6 +377,7 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                   {"scene", plan.scene},
                   {"source", plan.source},
                   {"settings", settings_json(plan.settings)},
+                  {"content_hash_algorithm", kContentHashAlgorithm},
                   {"tables", json::array()},
                   {"materials", materials_json(scene, plan)},
                   {"warnings", plan.warnings}};
@@ -397,7 +393,10 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         std::ifstream in(index_path, std::ios::binary);
         std::stringstream s;
         if (in) s << in.rdbuf();
-        if (!in || s.str() != text) write_file_atomically(index_path, text);
+        if (!in || s.str() != text) {
+            write_file_atomically(index_path, text);
+            folder.commit();
+        }
     };
 
     // Tables of an earlier bake that the plan no longer has: reported, left in place.
@@ -412,8 +411,9 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
 
     if (to_compute == 0) {
         write_index();
-        std::fprintf(stderr, "brdfbake: all %zu tables in %s are up to date (same request hash, file present); "
-                             "nothing to compute\n",
+        std::fprintf(stderr,
+                     "brdfbake: all %zu tables in %s are up to date (same request hash, file present with its "
+                     "content hash); nothing to compute\n",
                      plan.tables.size(), o.output.c_str());
         return kExitOk;
     }
@@ -452,6 +452,7 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         check_finite(table);
         const std::string path = join_path(o.output, t.file);
         write_table(table, path, plan.settings.half);
+        folder.commit();
         const double seconds = since(t1);
         max_error = std::max(max_error, table.max_error());
 
@@ -477,6 +478,7 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                   {"materials", t.materials},
                   {"serves", t.serves},
                   {"request_hash", t.hash},
+                  {"content_hash", content_hash_of_file(path)},
                   {"request", t.key},
                   {"seconds", std::round(seconds * 1000) / 1000}};
         if (t.eta) e["eta_range"] = {t.eta->lo, t.eta->hi};
@@ -530,6 +532,10 @@ void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action
     add_scene_options(cmd, o->scene);
     cmd->add_option("-o,--output", o->output, "output folder")->capture_default_str();
     cmd->add_flag("--force", o->force, "recompute tables that are up to date");
+    cmd->add_option("--lock-timeout", o->lock_timeout,
+                    "seconds to wait while another bake writes into the same folder; 0: refuse at once")
+        ->capture_default_str()
+        ->check(CLI::NonNegativeNumber);
 }
 
 }  // namespace brdfbake

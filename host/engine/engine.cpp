@@ -1,9 +1,17 @@
 #include "brdfbake/engine.h"
 
+#include <sys/resource.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
 #include <chrono>
 #include <cstdlib>
+#include <cstring>
 #include <iostream>
 #include <sstream>
+#include <thread>
 
 #include "brdfbake/error.h"
 #include "engine/embedded_sources.h"
@@ -44,6 +52,105 @@ const char* kNoPlatformAdvice =
     "with `sudo apt-get install pocl-opencl-icd` (or run scripts/setup.sh); on a GPU machine "
     "install the vendor's OpenCL ICD. `clinfo` lists what the ICD loader sees.";
 
+// --- the environment PoCL needs, checked so that a failure names its cause ----------------------
+
+/// The address space (ulimit -v) below which PoCL cannot start its device and compiler: measured
+/// with PoCL 3.1 on 2 cores, `albedo` needs about 490 MiB (below that, depending on the limit,
+/// the ICD loader finds no platform, PoCL aborts creating its threads, or a kernel build
+/// deadlocks inside PoCL). Each PoCL worker thread reserves a stack and a malloc arena (8 + 64
+/// MiB of address space), hence a base plus a share per hardware thread, with a margin.
+std::uint64_t min_address_space_bytes() {
+    const std::uint64_t threads = std::max(1u, std::thread::hardware_concurrency());
+    return (512ull + 80ull * threads) << 20;
+}
+
+std::string mib(std::uint64_t bytes) { return std::to_string(bytes >> 20) + " MiB"; }
+
+/// The soft address-space limit in bytes, or 0 when there is none.
+std::uint64_t address_space_limit() {
+    struct rlimit r {};
+    if (::getrlimit(RLIMIT_AS, &r) != 0 || r.rlim_cur == RLIM_INFINITY) return 0;
+    return std::uint64_t(r.rlim_cur);
+}
+
+/// PoCL's kernel cache folder as PoCL 3 chooses it (PoCL's documentation of POCL_CACHE_DIR):
+/// $POCL_CACHE_DIR, else $XDG_CACHE_HOME/pocl/kcache, else $HOME/.cache/pocl/kcache; empty when
+/// none of them is set. `from` names the variable it came from.
+std::string pocl_cache_dir(std::string& from) {
+    auto env = [](const char* name) {
+        const char* v = std::getenv(name);
+        return std::string(v ? v : "");
+    };
+    if (std::getenv("POCL_CACHE_DIR")) {
+        from = "POCL_CACHE_DIR";
+        return env("POCL_CACHE_DIR");
+    }
+    if (!env("XDG_CACHE_HOME").empty()) {
+        from = "XDG_CACHE_HOME";
+        return env("XDG_CACHE_HOME") + "/pocl/kcache";
+    }
+    if (!env("HOME").empty()) {
+        from = "HOME";
+        return env("HOME") + "/.cache/pocl/kcache";
+    }
+    return "";
+}
+
+/// Why PoCL cannot create or write its kernel cache folder, or "" when it can (or when the
+/// folder is unknown). Creates nothing: it finds the nearest existing folder on the path.
+std::string pocl_cache_problem() {
+    std::string from;
+    const std::string dir = pocl_cache_dir(from);
+    if (dir.empty()) return "";
+    const std::string advice = "; set POCL_CACHE_DIR to a writable folder";
+    const std::string what = "PoCL's kernel cache folder '" + dir + "' (from $" + from + ")";
+    std::string path = dir;
+    while (path.size() > 1 && path.back() == '/') path.pop_back();
+    for (;;) {
+        struct stat st {};
+        if (::stat(path.c_str(), &st) == 0) {
+            if (!S_ISDIR(st.st_mode)) return what + " cannot be created: '" + path + "' is not a folder" + advice;
+            // Whether a folder can be made there, tried (access() says yes to root on /proc).
+            std::string probe = path + (path == "/" ? "" : "/") + ".brdfbake-probe-XXXXXX";
+            if (::mkdtemp(&probe[0])) {
+                ::rmdir(probe.c_str());
+                return "";
+            }
+            return what + (path == dir ? " is not writable" : " cannot be created in '" + path + "'") + " (" +
+                   std::strerror(errno) + ")" + advice;
+        }
+        if (errno != ENOENT && errno != ENOTDIR)
+            return what + " cannot be used: '" + path + "': " + std::strerror(errno) + advice;
+        const size_t slash = path.find_last_of('/');
+        if (slash == std::string::npos) return "";  // a relative path: its first part is created in "."
+        path = slash == 0 ? "/" : path.substr(0, slash);
+    }
+}
+
+/// What can be known before the ICD loader starts the platforms, because past it the failure is
+/// a misleading code, an abort or a hang inside PoCL.
+void check_environment_before_platforms() {
+    const char* cache = std::getenv("POCL_CACHE_DIR");
+    if (cache && !*cache)
+        throw Error("POCL_CACHE_DIR is set but empty (PoCL aborts on it): unset it or name a writable folder");
+    const std::uint64_t limit = address_space_limit(), need = min_address_space_bytes();
+    if (limit && limit < need)
+        throw Error("out of memory: the address space limit (ulimit -v) is " + mib(limit) + ", and the OpenCL device " +
+                    "(PoCL with its compiler) needs at least " + mib(need) + " on this machine; raise the limit");
+}
+
+/// The advice when no platform or no device starts: the cache folder, the address space limit,
+/// or the installation.
+std::string no_device_advice(const std::string& otherwise) {
+    const std::string cache = pocl_cache_problem();
+    if (!cache.empty()) return "no OpenCL device could start: " + cache;
+    std::string out = otherwise;
+    if (const std::uint64_t limit = address_space_limit())
+        out += " The address space is limited (ulimit -v " + std::to_string(limit >> 10) +
+               " KiB): too little memory also stops PoCL from starting.";
+    return out;
+}
+
 std::string type_name(cl_device_type t) {
     if (t & CL_DEVICE_TYPE_GPU) return "gpu";
     if (t & CL_DEVICE_TYPE_CPU) return "cpu";
@@ -83,9 +190,15 @@ DeviceInfo query(const cl::Platform& platform, const cl::Device& d, int pi, int 
 }  // namespace
 
 std::vector<DeviceInfo> list_devices() {
+    check_environment_before_platforms();
     std::vector<cl::Platform> platforms;
-    cl_int err = cl::Platform::get(&platforms);
-    if (err != CL_SUCCESS || platforms.empty()) throw Error(kNoPlatformAdvice);
+    cl_int err = CL_SUCCESS;
+    try {
+        err = cl::Platform::get(&platforms);
+    } catch (const cl::Error& e) {
+        err = e.err();  // CL_PLATFORM_NOT_FOUND_KHR when no ICD loads, e.g. for lack of memory
+    }
+    if (err != CL_SUCCESS || platforms.empty()) throw Error(no_device_advice(kNoPlatformAdvice));
     std::vector<DeviceInfo> out;
     for (size_t pi = 0; pi < platforms.size(); ++pi) {
         std::vector<cl::Device> devices;
@@ -98,8 +211,8 @@ std::vector<DeviceInfo> list_devices() {
             out.push_back(query(platforms[pi], devices[di], int(pi), int(di)));
     }
     if (out.empty())
-        throw Error("OpenCL platforms were found but no device: is /sys mounted (PoCL needs it "
-                    "to size its device)? `clinfo` shows what the ICD loader sees.");
+        throw Error(no_device_advice("OpenCL platforms were found but no device: is /sys mounted (PoCL needs it "
+                                     "to size its device)? `clinfo` shows what the ICD loader sees."));
     return out;
 }
 
@@ -196,10 +309,19 @@ cl::Program& Engine::program(const BuildRequest& request) {
     try {
         program.build(std::vector<cl::Device>{info_.device}, options.c_str());
     } catch (const cl::Error& e) {
+        // Only a compile error has a log worth reading. After an allocation failure PoCL 3.1 can
+        // leave the program locked, and asking for its log then waits forever.
+        if (e.err() == CL_OUT_OF_HOST_MEMORY || e.err() == CL_OUT_OF_RESOURCES)
+            throw Error("out of memory building the kernel " + request.kernel_file + " on '" + info_.name + "' (" +
+                        cl_error_name(e.err()) + ")" +
+                        (address_space_limit() ? "; the address space limit (ulimit -v) is " + mib(address_space_limit())
+                                               : std::string()));
         std::string log;
-        try {
-            log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device);
-        } catch (const cl::Error&) {
+        if (e.err() == CL_BUILD_PROGRAM_FAILURE) {
+            try {
+                log = program.getBuildInfo<CL_PROGRAM_BUILD_LOG>(info_.device);
+            } catch (const cl::Error&) {
+            }
         }
         throw Error("kernel build failed for " + request.kernel_file + " with options '" + options +
                     "' on '" + info_.name + "' (" + cl_error_name(e.err()) + "); build log:\n" + log);
