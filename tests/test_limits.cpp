@@ -154,3 +154,15 @@ TEST_CASE("parse errors are one line, and a bare brdfbake prints a short usage",
     require_one_line_error(run_cli("albedo --model ggx:alpha=0.5 --frobnicate"), "--frobnicate");
     require_one_line_error(run_cli("lut albedo --model ggx --size 2x2"), "brdfbake lut --help");
 }
+
+TEST_CASE("scene files are judged before they are read: only a regular file of at most 64 MiB", "[cli][limits]") {
+    const std::string dir = scratch("scenes");
+    REQUIRE(std::system(("mkdir -p " + dir).c_str()) == 0);
+    const std::string fifo = dir + "/fifo.json", big = dir + "/big.json";
+    REQUIRE(::mkfifo(fifo.c_str(), 0600) == 0);
+    write_text(big, "{\"x\": \"" + std::string(65u << 20, 'x') + "\"}");
+    require_one_line_error(run_cli("plan " + fifo), "not a regular file");
+    require_one_line_error(run_cli("plan " + big), "the limit is 64 MiB");
+    require_one_line_error(run_cli("plan /dev/null.json"), "cannot read scene");
+    REQUIRE(std::system(("rm -rf " + dir).c_str()) == 0);
+}

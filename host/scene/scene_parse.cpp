@@ -18,6 +18,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/version.h"
+#include "models/input_file.h"
 #include "models/key_reader.h"
 #include "scene/scene_text.h"
 #include "tables/sweep.h"
@@ -362,11 +363,8 @@ Scene load_scene(const std::string& path) {
     if (ext == ".gltf" || ext == ".glb") return load_gltf_scene(path);
     if (ext != ".json")
         throw Error("scene '" + path + "': unknown scene format; expected a .json scene file, .gltf or .glb");
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot read scene '" + path + "': " + std::strerror(errno));
-    std::stringstream s;
-    s << in.rdbuf();
-    return parse_scene_json(s.str(), path);
+    // A regular file of at most 64 MiB (a scene lists materials, not geometry), judged before reading.
+    return parse_scene_json(read_input_file(path, "scene", std::uintmax_t(64) << 20), path);
 }
 
 std::string model_without_alpha(const std::string& spec) { return split_model(spec, "model").canonical; }
