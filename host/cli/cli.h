@@ -26,6 +26,8 @@ void check_text_output(const std::string& path);
 /// Checks that an option's value is a finite number > 0 (for options whose 0 means "not given":
 /// given, 0 is refused rather than silently taken for the default).
 extern const CLI::Validator kPositive;
+/// A finite number of 0 or more (e.g. a time limit whose 0 means "at once").
+extern const CLI::Validator kNonNegative;
 
 /// Options that every command shares.
 struct GlobalOptions {

@@ -20,6 +20,16 @@ const CLI::Validator kPositive(
     },
     "POSITIVE");
 
+const CLI::Validator kNonNegative(
+    [](std::string& text) -> std::string {
+        char* end = nullptr;
+        const double v = std::strtod(text.c_str(), &end);
+        if (text.empty() || *end != '\0' || !(v >= 0.0) || !std::isfinite(v))
+            return "must be a number of 0 or more, got '" + text + "'";
+        return "";
+    },
+    "NONNEGATIVE");
+
 void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per) {
     CLI::Option* s = cmd->add_option("--samples", o.samples,
                                      "samples per " + per + " (quadrature: n = sqrt(samples/4) nodes per axis of the finer rule, n^2 per azimuth piece)")

@@ -535,7 +535,7 @@ void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("--lock-timeout", o->lock_timeout,
                     "seconds to wait while another bake writes into the same folder; 0: refuse at once")
         ->capture_default_str()
-        ->check(CLI::NonNegativeNumber);
+        ->check(kNonNegative);
 }
 
 }  // namespace brdfbake
