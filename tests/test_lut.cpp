@@ -224,6 +224,36 @@ TEST_CASE("eavg agrees with integrating the reference albedo over mu", "[lut][de
     }
 }
 
+TEST_CASE("eavg meets the tolerance it records where E(mu) bends sharply (small alpha)", "[lut][device]") {
+    // Before, the mu rule's |G32 - G16| was never refined: --tolerance 1e-7 recorded 1e-7 and
+    // delivered 3.07e-6 at alpha = 0.00625.
+    LutRequest r = request("eavg", 4, 1, 1 << 16);
+    r.alpha_lo = 0.0;
+    r.alpha_hi = 0.05;
+    r.precision = Precision::Double;
+    r.tolerance.tolerance = 1e-7;
+    const Table t = compute_lut(testing::engine(), r);
+    for (int i = 0; i < 4; ++i) CHECK(t.error[size_t(i)] <= 1e-7);
+    for (int i : {0, 3}) {
+        const double alpha = t.x.parameter[size_t(i)];
+        // Composite Gauss-Legendre (Boost) over mu on panels that shrink geometrically toward the
+        // grazing layer, of the fast GGX reference; the 20-node rule checks the 30-node one.
+        const double edges[] = {0.0, 1e-3, 3e-3, 1e-2, 3e-2, 0.1, 0.3, 1.0};
+        auto eavg = [&](auto rule) {
+            double sum = 0;
+            for (size_t k = 0; k + 1 < std::size(edges); ++k)
+                sum += rule.integrate([&](double mu) { return testing::ggx_albedo_reference<30>(alpha, mu, 1e-10) * mu; },
+                                      edges[k], edges[k + 1]);
+            return 2 * sum;
+        };
+        const double expect = eavg(boost::math::quadrature::gauss<double, 30>());
+        REQUIRE(std::fabs(expect - eavg(boost::math::quadrature::gauss<double, 20>())) <= 1e-9);
+        INFO("alpha " << alpha << " got " << t.values[0][size_t(i)] << " +- " << t.error[size_t(i)] << " expected "
+                      << expect);
+        CHECK(std::fabs(t.values[0][size_t(i)] - expect) <= t.error[size_t(i)]);
+    }
+}
+
 TEST_CASE("dfg terms with Schlick F reproduce the directly integrated Fresnel albedo", "[lut][device]") {
     const Table t = compute_lut(testing::engine(), request("dfg", 4, 3));
     REQUIRE(t.channels == std::vector<std::string>{"A", "B"});

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <iostream>
 #include <sstream>
 
@@ -70,9 +71,13 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
         throw Error("--tolerance must be a positive number");
     const double floor = tolerance_floor(req.precision);
     if (tol.tolerance < 2.0 * floor)
-        throw Error("--tolerance " + std::to_string(tol.tolerance) + " is below what " + precision_name(req.precision) +
-                    " arithmetic can certify (about " + std::to_string(2.0 * floor) + ")" +
-                    (req.precision == Precision::Float ? "; use --precision double" : ""));
+    {
+        // The tolerance asked of each integral (a table that adds several gives each a share).
+        char text[160];
+        std::snprintf(text, sizeof text, "--tolerance: %.3g per integral is below what %s arithmetic can certify (about %.2g)",
+                      tol.tolerance, precision_name(req.precision), 2.0 * floor);
+        throw Error(std::string(text) + (req.precision == Precision::Float ? "; use --precision double" : ""));
+    }
     if (req.cells.empty()) throw Error("no directions to integrate");
 
     // The plan: (method, samples) steps, each a round over the cells still above the tolerance.
