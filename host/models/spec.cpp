@@ -213,6 +213,30 @@ ModelConfig resolve_dielectric_specular(KeyReader& keys) {
     return m;
 }
 
+// sheen: roughness=R (glTF's sheenRoughness, alpha = R^2) or alpha=A, and the visibility.
+// The roughness is that of [EK17]'s fit, r in (0, 1]; the floor is the microfacet alpha floor,
+// BB_ALPHA_MIN = 1e-4 (sheenRoughness 0.01), below which a table's texels are clamped as for
+// the other microfacet lobes. The canonical spec spells alpha, as the other lobes' do, so that a
+// table's roughness sweep (tables/sweep.h) can set it.
+constexpr Range kSheenAlpha{BB_ALPHA_MIN, 1.0};
+constexpr Range kSheenRoughness{0.01, 1.0};  // roughness^2 within kSheenAlpha
+
+ModelConfig resolve_sheen(KeyReader& keys) {
+    ModelConfig m;
+    if (keys.has("alpha") && keys.has("roughness"))
+        throw Error("model 'sheen': give roughness (glTF's sheenRoughness) or alpha = roughness^2, not both");
+    double alpha;
+    if (auto r = keys.optional_number("roughness", kSheenRoughness))
+        alpha = *r * *r;
+    else
+        alpha = keys.required_number("alpha", kSheenAlpha, "or roughness=R, glTF's sheenRoughness, with alpha = R^2");
+    const std::string v = keys.choice("visibility", "charlie", {"charlie", "ashikhmin"});
+    m.params[BB_SHEEN_ALPHA] = alpha;
+    m.params[BB_SHEEN_VISIBILITY] = v == "charlie" ? BB_SHEEN_V_CHARLIE : BB_SHEEN_V_ASHIKHMIN;
+    m.canonical = "sheen:alpha=" + format_number(alpha) + ",visibility=" + v;
+    return m;
+}
+
 /// Torrance-Sparrow's roughness axis exists only for the distributions with an alpha.
 const char* torrance_sparrow_roughness_refusal(const ParamBlock& params) {
     return params[BB_TORRANCE_SPARROW_DIST] == BB_TS_D_BLINN
