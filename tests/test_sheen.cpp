@@ -4,17 +4,24 @@
 // incidence, the energy gain that `check` reports, and the extremes.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 #include <random>
 
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/check.h"
 #include "brdfbake/evaluate.h"
+#include "brdfbake/lut.h"
 #include "brdfbake/spec.h"
 #include "model_refs.h"
 #include "models/params.h"
 #include "parity.h"
+#include "scene/scene.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -180,4 +187,136 @@ TEST_CASE("sheen: check reports the energy gain, where it is and how much", "[sh
         CHECK(cli.status == 1);
         CHECK_THAT(cli.out, Catch::Contains("energy       FAIL  max E = "));
     }
+}
+
+TEST_CASE("sheen-albedo table: texels against independent quadrature, both visibilities", "[sheen][lut][device]") {
+    // E(mu, sheenRoughness) over mu = u^2 from 9.8e-4 and sheenRoughness 0.05 ... 0.95 (texel
+    // centres), refined to 1e-6 in double: within 1e-5 of the tanh-sinh reference, the error
+    // channel at most the tolerance; in float by sampling: within its own error estimate.
+    for (bool charlie : {true, false}) {
+        LutRequest r;
+        r.kind = "sheen-albedo";
+        r.model = std::string("sheen:visibility=") + (charlie ? "charlie" : "ashikhmin");
+        r.width = 16;
+        r.height = 10;
+        r.mu_map = "sqrt";
+        r.alpha_map = "roughness";
+        r.precision = Precision::Double;
+        r.tolerance.tolerance = 1e-6;
+        const Table t = compute_lut(testing::engine(), r);
+        REQUIRE(t.channels == std::vector<std::string>{"E"});
+        CHECK(t.attributes.at("visibility") == (charlie ? "charlie" : "ashikhmin"));
+        CHECK(t.x.parameter[0] == Approx(std::pow(0.5 / 16, 2)));
+        CHECK(t.y.parameter[0] == Approx(0.05 * 0.05));  // alpha = sheenRoughness^2
+        CHECK(t.y.parameter[9] == Approx(0.95 * 0.95));
+        for (double e : t.error) CHECK(e <= 1e-6);
+        LutRequest rf = r;
+        rf.precision = Precision::Float;
+        rf.tolerance.tolerance = 0.0;
+        rf.samples = 1u << 16;
+        const Table tf = compute_lut(testing::engine(), rf);
+        for (int j : {0, 3, 9})
+            for (int i : {0, 4, 15}) {
+                const size_t k = size_t(j) * 16 + size_t(i);
+                const double mu = t.x.parameter[size_t(i)], alpha = t.y.parameter[size_t(j)];
+                const double want = ref::albedo_sheen(alpha, charlie, mu, 1e-9);
+                INFO(r.model << " mu " << mu << " sheenRoughness " << std::sqrt(alpha) << ": double " << t.values[0][k]
+                             << " +- " << t.error[k] << ", float " << tf.values[0][k] << " +- " << tf.error[k]
+                             << ", reference " << want);
+                CHECK(std::fabs(t.values[0][k] - want) <= 1e-5);
+                CHECK(std::fabs(t.values[0][k] - want) <= t.error[k] + 1e-8);  // + the reference's own 1e-9
+                CHECK(std::fabs(tf.values[0][k] - want) <= tf.error[k]);
+            }
+    }
+}
+
+TEST_CASE("sheen-albedo: bad requests give one line and exit status 2", "[sheen][lut][cli]") {
+    for (const char* args : {"sheen-albedo --model ggx --size 4x4",              // not the sheen model
+                             "sheen-albedo --model sheen --alpha-range 0,2 --size 4x4",  // alpha beyond 1
+                             "sheen-albedo --model sheen:roughness=0.5 --size 4x4",      // the axis sweeps it
+                             "sheen-albedo --model sheen --fresnel schlick:f0=0.04 --size 4x4",
+                             "sheen-albedo --model sheen:visibility=velvet --size 4x4"}) {
+        const std::string out = "/tmp/brdfbake-sheen-" + std::to_string(::getpid()) + ".exr";
+        const testing::CliResult r = testing::run_cli(std::string("lut ") + args + " -o " + out);
+        INFO(args << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
+        CHECK_FALSE(std::ifstream(out).good());
+    }
+}
+
+namespace {
+
+std::string write_temp(const std::string& name, const std::string& text) {
+    const std::string path = "/tmp/brdfbake-sheen-" + std::to_string(::getpid()) + "-" + name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+const PlannedTable* planned(const Plan& p, const std::string& kind) {
+    for (const auto& t : p.tables)
+        if (t.request.kind == kind) return &t;
+    return nullptr;
+}
+
+bool any_contains(const std::vector<std::string>& v, const std::string& part) {
+    for (const auto& s : v)
+        if (s.find(part) != std::string::npos) return true;
+    return false;
+}
+
+}  // namespace
+
+TEST_CASE("glTF KHR_materials_sheen plans a sheen-albedo table over the scene's sheenRoughness", "[sheen][scene][quick]") {
+    // velvet: sheenRoughness 0.6; satin: a sheenRoughnessTexture makes it [0, 0.3]; a black sheen
+    // (sheenColorFactor 0, the extension's default) adds nothing.
+    const std::string gltf = write_temp("sheen.gltf", R"({"asset": {"version": "2.0"},
+ "extensionsUsed": ["KHR_materials_sheen"],
+ "materials": [
+  {"name": "velvet", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.8},
+   "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [0.5, 0.1, 0.1], "sheenRoughnessFactor": 0.6}}},
+  {"name": "satin", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.3},
+   "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 0.3,
+                                          "sheenRoughnessTexture": {"index": 0}}}},
+  {"name": "black sheen", "pbrMetallicRoughness": {"metallicFactor": 1.0, "roughnessFactor": 0.3},
+   "extensions": {"KHR_materials_sheen": {"sheenRoughnessFactor": 0.5}}}],
+ "textures": [{"source": 0}], "images": [{"uri": "absent.png"}]})");
+    const Plan plan = make_plan(load_gltf_scene(gltf));
+    const PlannedTable* s = planned(plan, "sheen-albedo");
+    REQUIRE(s);
+    CHECK(s->request.model == "sheen:visibility=charlie");  // the specification's visibility
+    CHECK(s->materials == std::vector<std::string>{"velvet", "satin"});
+    CHECK(s->alpha.lo == 0.0);
+    CHECK(s->alpha.hi == Approx(0.36));  // alpha = sheenRoughness^2
+    CHECK(s->request.alpha_hi <= 1.0);
+    CHECK(std::find(plan.models.begin(), plan.models.end(), "sheen") != plan.models.end());
+    CHECK_FALSE(any_contains(plan.warnings, "KHR_materials_sheen"));
+    bool black_noted = false;
+    for (const auto& m : plan.materials)
+        if (m.name == "black sheen") {
+            black_noted = any_contains(m.notes, "sheenColorFactor 0, no sheen");
+            for (const auto& l : m.lobes) CHECK(l.role != "sheen");
+        }
+    CHECK(black_noted);
+    std::remove(gltf.c_str());
+}
+
+TEST_CASE("glTF sheen factors out of range and a sheen-albedo table for a non-sheen lobe are refused",
+          "[sheen][scene][cli]") {
+    const std::string bad = write_temp("bad-sheen.gltf", R"({"asset": {"version": "2.0"}, "materials": [
+  {"name": "fuzz", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 1.5}}}]})");
+    const std::string json = write_temp("bad-sheen.json", R"({"brdfbake_scene": 1, "materials": [
+  {"name": "steel", "model": "ggx", "fresnel": "metal:Al", "roughness": 0.3, "tables": ["sheen-albedo"]}]})");
+    for (const std::string& f : {bad, json}) {
+        const testing::CliResult r = testing::run_cli("plan " + f);
+        INFO(f << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
+    }
+    CHECK_THAT(testing::run_cli("plan " + bad).err, Catch::Contains("sheenRoughnessFactor 1.5 is out of range"));
+    CHECK_THAT(testing::run_cli("plan " + json).err, Catch::Contains("needs a sheen lobe"));
+    std::remove(bad.c_str());
+    std::remove(json.c_str());
 }

@@ -64,6 +64,7 @@ TableKind dfg_kind();
 TableKind dfg_ms_kind();
 TableKind dielectric_kind();
 TableKind conductor_kind();
+TableKind sheen_albedo_kind();
 
 }  // namespace tables
 }  // namespace brdfbake
