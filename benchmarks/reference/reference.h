@@ -395,4 +395,44 @@ inline double albedo_sheen_ashikhmin_normal(double alpha) {
     return std::pow(2.0, -k / 2) / (k + 4);
 }
 
+// ------------------------------------------------------------------------------------------
+// The rough GGX dielectric interface (Walter et al. 2007) with either height-correlated
+// transmission shadowing (issue 18).
+
+/// The energy fractions R and T of a rough GGX interface for light from wo (mu_o, phi_o = 0),
+/// relative index eta, in half-vector space: the visible-normal density D(h) (wo.h) / cos_o
+/// times F or 1 - F at the microfacet, times G2 / ... with G2 height-correlated: reflection
+/// 1/(1 + L_o + L_r) (Heitz 2014 eq. 99); transmission the Beta function B(1 + L_o, 1 + L_t)
+/// (Heitz 2014 eq. 100) or, as Blender Cycles writes it, 1/(1 + L_o + L_t).
+inline void rough_dielectric_rt(ld mu_o, ld alpha, ld eta, bool cycles, double& r, double& t, double tol = 1e-7) {
+    const Dir wo = dir_mu(mu_o, 0);
+    auto split = [&](bool transmit) {
+        return integrate_facing(
+            [&](double th, double ph) -> double {
+                const Dir h = dir(th, ph);
+                const ld c = dot(wo, h);
+                const ld F = fresnel_dielectric(double(c), double(eta));
+                const ld lo = ggx_lambda(wo, alpha, alpha);
+                const ld vis = ggx_d(h, alpha, alpha) * c / mu_o;
+                if (!transmit) {
+                    const Dir wi = reflect(wo, h);
+                    if (wi.z <= 0) return 0.0;
+                    return double(vis * F / (1 + lo + ggx_lambda(wi, alpha, alpha)));
+                }
+                const ld sin2_t = (1 - c * c) / (eta * eta);
+                if (sin2_t >= 1) return 0.0;
+                const ld cos_t = std::sqrt(1 - sin2_t);
+                const Dir wt = {-wo.x / eta + (c / eta - cos_t) * h.x, -wo.y / eta + (c / eta - cos_t) * h.y,
+                                -wo.z / eta + (c / eta - cos_t) * h.z};
+                if (wt.z >= 0) return 0.0;
+                const ld lt = ggx_lambda({wt.x, wt.y, -wt.z}, alpha, alpha);
+                const ld g2 = cycles ? 1 / (1 + lo + lt) : std::tgamma(1 + lo) * std::tgamma(1 + lt) / std::tgamma(2 + lo + lt);
+                return double(vis * (1 - F) * g2);
+            },
+            mu_o, 0.0, double(kPi / 2), tol);
+    };
+    r = split(false);
+    t = split(true);
+}
+
 }  // namespace ref

@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
 
@@ -136,8 +137,22 @@ ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, i
     return m;
 }
 
+// ggx also names how the rough dielectric (the dielectric table, brdf/rough_dielectric.h) shadows
+// its transmitted lobe under height-correlated shadowing: transmission_shadowing=beta (Heitz 2014
+// eq. 100, the default) or cycles (1/(1 + L_o + L_t), Blender Cycles' form). The choice rides in
+// the shadowing slot as BB_DIELECTRIC_SHADOWING_CYCLES (2), which every reflection reads as
+// height-correlated (> 0.5); the canonical spec names it only when it is not the default.
 ModelConfig resolve_ggx(KeyReader& keys) {
-    return resolve_smith_microfacet(keys, "ggx", BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, BB_GGX_SHADOWING);
+    ModelConfig m = resolve_smith_microfacet(keys, "ggx", BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, BB_GGX_SHADOWING);
+    const std::string t = keys.choice("transmission_shadowing", "beta", {"beta", "cycles"});
+    if (t == "cycles") {
+        if (m.params[BB_GGX_SHADOWING] != BB_DIELECTRIC_SHADOWING_BETA)
+            throw Error("model 'ggx': transmission_shadowing=cycles is a height-correlated form; it needs "
+                        "shadowing=correlated");
+        m.params[BB_GGX_SHADOWING] = BB_DIELECTRIC_SHADOWING_CYCLES;
+        m.canonical += ",transmission_shadowing=cycles";
+    }
+    return m;
 }
 
 ModelConfig resolve_oren_nayar(KeyReader& keys) {
