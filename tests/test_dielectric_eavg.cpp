@@ -5,6 +5,8 @@
 #include <cmath>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/table.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/spec.h"
@@ -61,5 +63,72 @@ TEST_CASE("rough dielectric with Cycles' transmission shadowing against independ
         if (cells[k].alpha >= 0.8)
             CHECK(std::fabs(cyc.transmitted[k].value - beta.transmitted[k].value) >
                   10 * (cyc.transmitted[k].error + beta.transmitted[k].error));
+    }
+}
+
+namespace {
+
+LutRequest one_interface(const std::string& kind, const std::string& model, int width, double alpha, double eta) {
+    LutRequest r;
+    r.kind = kind;
+    r.model = model;
+    r.width = width;
+    r.height = 1;
+    r.depth = 1;
+    r.alpha_lo = alpha - 0.05;  // one texel centred on alpha
+    r.alpha_hi = alpha + 0.05;
+    r.eta_lo = eta - 0.05;
+    r.eta_hi = eta + 0.05;
+    r.samples = 1u << 16;
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("dielectric-eavg equals 2 int (R + T) mu dmu of the dielectric table's own values", "[dielectric-eavg][device]") {
+    // The dielectric table over mu (linear texel centres, one alpha, one eta) integrated by the
+    // midpoint rule at 128 texels; the rule's own error is bounded by its change from 64 texels,
+    // the table's sampling error by its error channel weighted as the rule weights it (R + T: twice
+    // the channel). Both interfaces' sides and both transmission shadowing forms.
+    for (const char* model : {"ggx", "ggx:transmission_shadowing=cycles"})
+        for (const auto& ae : {std::pair<double, double>{0.5, 1.5}, {0.1, 1.33}}) {
+            const Table eavg =
+                compute_lut(testing::engine(), one_interface("dielectric-eavg", model, 1, ae.first, ae.second));
+            REQUIRE(eavg.channels == std::vector<std::string>{"Eavg", "Eavg_inside"});
+            REQUIRE(eavg.x.parameter.size() == 1);
+            CHECK(eavg.x.parameter[0] == Approx(ae.first));
+            CHECK(eavg.z.parameter[0] == Approx(ae.second));
+            double m[2][2] = {}, err[2] = {};  // [side][64 or 128 texels]
+            for (int w : {64, 128}) {
+                const Table d = compute_lut(testing::engine(), one_interface("dielectric", model, w, ae.first, ae.second));
+                for (int side = 0; side < 2; ++side)
+                    for (int i = 0; i < w; ++i) {
+                        const double mu = d.x.parameter[size_t(i)];
+                        const double rt = d.values[size_t(2 * side)][size_t(i)] + d.values[size_t(2 * side + 1)][size_t(i)];
+                        m[side][w == 128] += 2 * rt * mu / w;
+                        if (w == 128) err[side] += 2 * 2 * d.error[size_t(i)] * mu / w;
+                    }
+            }
+            for (int side = 0; side < 2; ++side) {
+                const double got = eavg.values[size_t(side)][0], rule = std::fabs(m[side][1] - m[side][0]);
+                INFO(model << " alpha " << ae.first << " eta " << ae.second << (side ? " inside" : " outside") << ": Eavg "
+                           << got << " +- " << eavg.error[0] << ", midpoint rule " << m[side][1] << " +- " << err[side]
+                           << " (rule " << rule << ")");
+                CHECK(std::fabs(got - m[side][1]) <= eavg.error[0] + err[side] + rule);
+                CHECK(eavg.error[0] + err[side] + rule < 0.01);  // the comparison has teeth
+            }
+        }
+}
+
+TEST_CASE("dielectric-eavg: bad requests give one line and exit status 2", "[dielectric-eavg][cli]") {
+    for (const char* args : {"--model beckmann --size 4x1x2", "--model ggx --size 4x1x2 --tolerance 1e-4",
+                             "--model ggx --size 4x1x2 --eta-range 0.5,2", "--model ggx --fresnel schlick:f0=0.04 --size 4x1x2",
+                             "--model ggx:transmission_shadowing=snell --size 4x1x2"}) {
+        const testing::CliResult r =
+            testing::run_cli(std::string("lut dielectric-eavg ") + args + " -o /tmp/brdfbake-deavg-never.exr");
+        INFO(args << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
     }
 }
