@@ -57,7 +57,7 @@ std::string tmp_path(const std::string& name) { return "/tmp/brdfbake-lut-" + st
 
 TEST_CASE("the table-kind registry: every kind once, found by name and id, unknown names listed", "[lut][quick]") {
     const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms",
-                                               "sheen-albedo"};
+                                               "sheen-albedo", "dielectric-eavg"};
     REQUIRE(table_kinds().size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         const TableKind* k = table_kinds()[i];
@@ -76,7 +76,7 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
                       "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms, "
-                      "sheen-albedo");
+                      "sheen-albedo, dielectric-eavg");
 }
 
 TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {
