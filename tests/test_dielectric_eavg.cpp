@@ -2,7 +2,11 @@
 // dielectric-eavg table kind (issue 18).
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cmath>
+#include <cstdio>
+#include <fstream>
 
 #include "brdfbake/albedo.h"
 #include "brdfbake/lut.h"
@@ -12,6 +16,7 @@
 #include "brdfbake/spec.h"
 #include "models/params.h"
 #include "reference/reference.h"
+#include "scene/scene.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -131,4 +136,23 @@ TEST_CASE("dielectric-eavg: bad requests give one line and exit status 2", "[die
         CHECK(testing::count_lines(r.err) == 1);
         CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
     }
+}
+
+TEST_CASE("glTF: a transmissive material also plans dielectric-eavg, an opaque dielectric does not",
+          "[dielectric-eavg][scene][quick]") {
+    const std::string path = "/tmp/brdfbake-deavg-" + std::to_string(::getpid()) + ".gltf";
+    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "materials": [
+  {"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.4},
+   "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 1.7}}},
+  {"name": "plastic", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.6}}]})";
+    const Plan plan = make_plan(load_gltf_scene(path));
+    std::remove(path.c_str());
+    const PlannedTable* e = nullptr;
+    for (const auto& t : plan.tables)
+        if (t.request.kind == "dielectric-eavg") e = &t;
+    REQUIRE(e);
+    CHECK(e->materials == std::vector<std::string>{"glass"});
+    CHECK(e->alpha.lo == Approx(0.16));
+    CHECK(e->eta->lo == Approx(1.7));
+    CHECK(e->request.height == 1);
 }

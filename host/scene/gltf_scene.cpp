@@ -218,6 +218,9 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
                 out.notes.push_back("KHR_materials_specular: specularColor tints F0 (Schlick), E = f0 A + B from dfg");
             }
             if (transmissive) {
+                // Rough glass's multiple-scattering compensation (Kulla and Conty 2017) needs the
+                // average of R + T over mu from both sides, as Cycles' ggx_glass_Eavg.
+                l.kinds.push_back(&table_kind(TableKindId::DielectricEavg));
                 out.notes.push_back("KHR_materials_transmission: transmission " +
                                     range_text(factor_range(transmission, transmission_tex)) +
                                     ", rough transmission from the dielectric table");
