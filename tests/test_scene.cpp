@@ -219,7 +219,12 @@ TEST_CASE("glTF: metals, glass with ior and volume, clear coat, specular colour 
     REQUIRE(sheen);
     CHECK(sheen->materials == std::vector<std::string>{"velvet"});
     CHECK(sheen->alpha.lo == Approx(0.36));
-    CHECK(plan.tables.size() == 5);
+    // the transmissive bottle glass: its average R + T for rough-glass compensation
+    const PlannedTable* deavg = find_kind(plan, "dielectric-eavg");
+    REQUIRE(deavg);
+    CHECK(deavg->materials == std::vector<std::string>{"bottle glass"});
+    CHECK(deavg->eta->lo == Approx(1.45));
+    CHECK(plan.tables.size() == 6);
     // not modelled: named, never silent
     CHECK_FALSE(contains(plan.warnings, "KHR_materials_sheen"));
     CHECK(contains(plan.warnings, "material 'velvet': VENDOR_materials_glitter is not modelled"));
