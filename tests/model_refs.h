@@ -74,4 +74,11 @@ inline Case oren_nayar(double sigma, double rho) {
             [=](double mu) { return ref::albedo_oren_nayar(sigma, rho, mu, 1e-9); }};
 }
 
+/// sheen:roughness=R (alpha = R^2) with the charlie or the ashikhmin visibility.
+inline Case sheen(double roughness, bool charlie, double tol = 1e-10) {
+    const double alpha = roughness * roughness;
+    return {"sheen:roughness=" + num(roughness) + ",visibility=" + (charlie ? "charlie" : "ashikhmin"),
+            [=](double mu) { return ref::albedo_sheen(alpha, charlie, mu, tol); }};
+}
+
 }  // namespace modelref

@@ -57,7 +57,8 @@ std::string tmp_path(const std::string& name) { return "/tmp/brdfbake-lut-" + st
 }  // namespace
 
 TEST_CASE("the table-kind registry: every kind once, found by name and id, unknown names listed", "[lut][quick]") {
-    const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms"};
+    const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms",
+                                               "sheen-albedo", "dielectric-eavg"};
     REQUIRE(table_kinds().size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         const TableKind* k = table_kinds()[i];
@@ -75,7 +76,8 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
     }
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
-                      "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms");
+                      "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms, "
+                      "sheen-albedo, dielectric-eavg");
 }
 
 TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {
@@ -165,6 +167,7 @@ TEST_CASE("each kind's computed table has the axes and channels its registry ent
         LutRequest r = request(k->name, 3, k->one_dimensional ? 1 : 2, 1024);
         r.depth = 2;
         if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        if (k->id == TableKindId::SheenAlbedo) r.model = "sheen";  // the kind of the sheen model only
         INFO(k->name);
         const Table t = compute_lut(testing::engine(), r);
         CHECK(t.kind == k->name);

@@ -192,7 +192,7 @@ TEST_CASE("glTF: metals, glass with ior and volume, clear coat, specular colour 
           "the rest is named", "[scene][quick]") {
     const Scene scene = load_gltf_scene(data("materials.gltf"));
     const Plan plan = make_plan(scene);
-    CHECK(plan.models == std::vector<std::string>{"ggx"});
+    CHECK(plan.models == std::vector<std::string>{"ggx", "sheen"});  // velvet's KHR_materials_sheen
     const PlannedTable* a = find_kind(plan, "albedo");
     REQUIRE(a);
     // metals: aluminium (roughness 0.4), brushed steel (textured: roughness 0..0.3, metallic 0..1,
@@ -214,9 +214,19 @@ TEST_CASE("glTF: metals, glass with ior and volume, clear coat, specular colour 
     REQUIRE(dfg);
     CHECK(dfg->materials == std::vector<std::string>{"tinted plastic"});
     CHECK(dfg->alpha.lo == Approx(0.36));
-    CHECK(plan.tables.size() == 4);
+    // velvet's sheen (sheenRoughness 0.6): its albedo table (tests/test_sheen.cpp has the details)
+    const PlannedTable* sheen = find_kind(plan, "sheen-albedo");
+    REQUIRE(sheen);
+    CHECK(sheen->materials == std::vector<std::string>{"velvet"});
+    CHECK(sheen->alpha.lo == Approx(0.36));
+    // the transmissive bottle glass: its average R + T for rough-glass compensation
+    const PlannedTable* deavg = find_kind(plan, "dielectric-eavg");
+    REQUIRE(deavg);
+    CHECK(deavg->materials == std::vector<std::string>{"bottle glass"});
+    CHECK(deavg->eta->lo == Approx(1.45));
+    CHECK(plan.tables.size() == 6);
     // not modelled: named, never silent
-    CHECK(contains(plan.warnings, "material 'velvet': KHR_materials_sheen is not modelled"));
+    CHECK_FALSE(contains(plan.warnings, "KHR_materials_sheen"));
     CHECK(contains(plan.warnings, "material 'velvet': VENDOR_materials_glitter is not modelled"));
     CHECK(contains(plan.warnings, "KHR_texture_transform is not modelled"));
     CHECK(contains(plan.warnings, "material 'brushed steel': KHR_materials_anisotropy is approximated"));
@@ -314,7 +324,8 @@ TEST_CASE("plan --format json lists the tables with their ranges, sizes, materia
     CHECK(j.at("models") == nlohmann::json::array({"ggx"}));
     const auto text = run_cli("plan " + data("materials.gltf"));
     REQUIRE(text.status == 0);
-    CHECK(text.out.find("warning: material 'velvet': KHR_materials_sheen is not modelled") != std::string::npos);
+    CHECK(text.out.find("warning: material 'velvet': VENDOR_materials_glitter is not modelled") != std::string::npos);
+    CHECK(text.out.find("sheen-albedo-sheen.exr") != std::string::npos);
     CHECK(text.out.find("albedo-ggx.exr") != std::string::npos);
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <boost/math/quadrature/tanh_sinh.hpp>
 
 #include <cmath>
 #include <algorithm>
@@ -330,6 +331,108 @@ inline double albedo_about_mirror(const std::function<ld(Dir, Dir)>& f, ld mu_o,
     }
     if (lo < double(kPi / 2)) sum += integrate(inner, lo, double(kPi / 2), tol);
     return sum;
+}
+
+// ------------------------------------------------------------------------------------------
+// Sheen (issue 18): Estevez and Kulla, "Production Friendly Microfacet Sheen BRDF", SIGGRAPH
+// 2017, in the form of the KHR_materials_sheen specification (alpha = sheenRoughness^2).
+
+/// The Charlie distribution, [EK17] eq. 2, from the angle theta_h of the half vector.
+inline ld charlie_d(ld theta_h, ld alpha) {
+    return (2 + 1 / alpha) * std::pow(std::sin(theta_h), 1 / alpha) / (2 * kPi);
+}
+
+/// [EK17]'s fitted Lambda: L(x) = a/(1 + b x^c) + d x + e with the coefficients of its table at
+/// r = 0 and r = 1 blended by (1 - r)^2, and Lambda = exp(L(mu)) below mu = 1/2, exp(2 L(1/2) -
+/// L(1 - mu)) above (the specification's "Sheen visibility").
+inline ld charlie_lambda(ld mu, ld alpha) {
+    const ld t = (1 - alpha) * (1 - alpha);
+    auto blend = [&](ld at1, ld at0) { return at1 * (1 - t) + at0 * t; };
+    auto l = [&](ld x) {
+        return blend(21.5473L, 25.3245L) / (1 + blend(3.82987L, 3.32435L) * std::pow(x, blend(0.19823L, 0.16801L))) +
+               blend(-1.97760L, -1.27393L) * x + blend(-4.32054L, -4.85967L);
+    };
+    return mu < 0.5L ? std::exp(l(mu)) : std::exp(2 * l(0.5L) - l(1 - mu));
+}
+
+/// The sheen BRDF D V: charlie V = 1/((1 + Lambda_o + Lambda_i) 4 cos_o cos_i), or the
+/// Neubelt-Pettineo ("ashikhmin") V = 1/(4 (cos_i + cos_o - cos_i cos_o)).
+inline ld sheen_f(Dir wo, Dir wi, ld alpha, bool charlie) {
+    if (wo.z <= 0 || wi.z <= 0) return 0;
+    const Dir h = normalize({wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
+    const ld theta_h = std::acos(std::min<ld>(1, h.z));
+    const ld v = charlie ? 1 / ((1 + charlie_lambda(wo.z, alpha) + charlie_lambda(wi.z, alpha)) * 4 * wo.z * wi.z)
+                         : 1 / (4 * (wi.z + wo.z - wi.z * wo.z));
+    return charlie_d(theta_h, alpha) * v;
+}
+
+/// Directional albedo of the sheen by 2D tanh-sinh quadrature (Boost.Math) over (theta_i,
+/// phi_i), phi_o = 0, over half the azimuths (the lobe is symmetric about the plane of wo), split
+/// at theta_i = theta_o so that every feature of the integrand lies on an edge of the domain,
+/// where tanh-sinh crowds its nodes: D's cone at the mirror direction (theta_o, pi), its peak on
+/// the horizon of wi at phi_i = 0 for small alpha, and the x^c of the fitted Lambda at
+/// cos(theta_i) = 0. `tol` is the relative tolerance of each level.
+inline double albedo_sheen(ld alpha, bool charlie, ld mu_o, double tol = 1e-10) {
+    boost::math::quadrature::tanh_sinh<double> ts(12);
+    const Dir wo = dir_mu(mu_o, 0);
+    const double to = double(std::acos(mu_o));
+    auto inner = [&](double th) {
+        const ld c = std::cos((ld)th), s = std::sin((ld)th);
+        auto g = [&](double ph) { return double(sheen_f(wo, dir(th, ph), alpha, charlie) * c * s); };
+        return ts.integrate(g, 0.0, double(kPi), 0.1 * tol);
+    };
+    double sum = 0;
+    for (auto t : {std::pair<double, double>{0.0, to}, {to, double(kPi / 2)}})
+        if (t.second > t.first) sum += 2 * ts.integrate(inner, t.first, t.second, tol);
+    return sum;
+}
+
+/// The one closed form of the sheen albedo: the ashikhmin visibility at normal incidence, where
+/// V = 1/4 and theta_h = theta_i / 2, so E = (2 + k)/4 int 4 s^(k+1) (1 - 2 s^2) ds over
+/// s = sin(theta_i/2) in [0, 1/sqrt 2], k = 1/alpha: E = 2^(-k/2) / (k + 4).
+inline double albedo_sheen_ashikhmin_normal(double alpha) {
+    const double k = 1 / alpha;
+    return std::pow(2.0, -k / 2) / (k + 4);
+}
+
+// ------------------------------------------------------------------------------------------
+// The rough GGX dielectric interface (Walter et al. 2007) with either height-correlated
+// transmission shadowing (issue 18).
+
+/// The energy fractions R and T of a rough GGX interface for light from wo (mu_o, phi_o = 0),
+/// relative index eta, in half-vector space: the visible-normal density D(h) (wo.h) / cos_o
+/// times F or 1 - F at the microfacet, times G2 / ... with G2 height-correlated: reflection
+/// 1/(1 + L_o + L_r) (Heitz 2014 eq. 99); transmission the Beta function B(1 + L_o, 1 + L_t)
+/// (Heitz 2014 eq. 100) or, as Blender Cycles writes it, 1/(1 + L_o + L_t).
+inline void rough_dielectric_rt(ld mu_o, ld alpha, ld eta, bool cycles, double& r, double& t, double tol = 1e-7) {
+    const Dir wo = dir_mu(mu_o, 0);
+    auto split = [&](bool transmit) {
+        return integrate_facing(
+            [&](double th, double ph) -> double {
+                const Dir h = dir(th, ph);
+                const ld c = dot(wo, h);
+                const ld F = fresnel_dielectric(double(c), double(eta));
+                const ld lo = ggx_lambda(wo, alpha, alpha);
+                const ld vis = ggx_d(h, alpha, alpha) * c / mu_o;
+                if (!transmit) {
+                    const Dir wi = reflect(wo, h);
+                    if (wi.z <= 0) return 0.0;
+                    return double(vis * F / (1 + lo + ggx_lambda(wi, alpha, alpha)));
+                }
+                const ld sin2_t = (1 - c * c) / (eta * eta);
+                if (sin2_t >= 1) return 0.0;
+                const ld cos_t = std::sqrt(1 - sin2_t);
+                const Dir wt = {-wo.x / eta + (c / eta - cos_t) * h.x, -wo.y / eta + (c / eta - cos_t) * h.y,
+                                -wo.z / eta + (c / eta - cos_t) * h.z};
+                if (wt.z >= 0) return 0.0;
+                const ld lt = ggx_lambda({wt.x, wt.y, -wt.z}, alpha, alpha);
+                const ld g2 = cycles ? 1 / (1 + lo + lt) : std::tgamma(1 + lo) * std::tgamma(1 + lt) / std::tgamma(2 + lo + lt);
+                return double(vis * (1 - F) * g2);
+            },
+            mu_o, 0.0, double(kPi / 2), tol);
+    };
+    r = split(false);
+    t = split(true);
 }
 
 }  // namespace ref

@@ -13,6 +13,7 @@
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/brdf/sampling.h"
 #include "brdfbake/cancel.h"
 #include "brdfbake/error.h"
@@ -625,7 +626,10 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS_DISK)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
     set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(points), cl_uint(req.replicas), cl_uint(n_cells),
-             cl_int(req.correlated ? 1 : 0), b_r, b_t, bad_counts.buffer);
+             cl_int(!req.correlated            ? BB_DIELECTRIC_SHADOWING_SEPARABLE
+                    : req.cycles_transmission ? BB_DIELECTRIC_SHADOWING_CYCLES
+                                              : BB_DIELECTRIC_SHADOWING_BETA),
+             b_r, b_t, bad_counts.buffer);
     const double kernel_seconds =
         run_items(engine, kernel, n_items, double(points),
                   "rough dielectric of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +

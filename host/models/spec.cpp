@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
 
@@ -136,8 +137,22 @@ ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, i
     return m;
 }
 
+// ggx also names how the rough dielectric (the dielectric table, brdf/rough_dielectric.h) shadows
+// its transmitted lobe under height-correlated shadowing: transmission_shadowing=beta (Heitz 2014
+// eq. 100, the default) or cycles (1/(1 + L_o + L_t), Blender Cycles' form). The choice rides in
+// the shadowing slot as BB_DIELECTRIC_SHADOWING_CYCLES (2), which every reflection reads as
+// height-correlated (> 0.5); the canonical spec names it only when it is not the default.
 ModelConfig resolve_ggx(KeyReader& keys) {
-    return resolve_smith_microfacet(keys, "ggx", BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, BB_GGX_SHADOWING);
+    ModelConfig m = resolve_smith_microfacet(keys, "ggx", BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, BB_GGX_SHADOWING);
+    const std::string t = keys.choice("transmission_shadowing", "beta", {"beta", "cycles"});
+    if (t == "cycles") {
+        if (m.params[BB_GGX_SHADOWING] != BB_DIELECTRIC_SHADOWING_BETA)
+            throw Error("model 'ggx': transmission_shadowing=cycles is a height-correlated form; it needs "
+                        "shadowing=correlated");
+        m.params[BB_GGX_SHADOWING] = BB_DIELECTRIC_SHADOWING_CYCLES;
+        m.canonical += ",transmission_shadowing=cycles";
+    }
+    return m;
 }
 
 ModelConfig resolve_oren_nayar(KeyReader& keys) {
@@ -210,6 +225,30 @@ ModelConfig resolve_dielectric_specular(KeyReader& keys) {
     const double eta = keys.required_number("eta", kEta, "relative index of refraction, e.g. 1.5");
     m.params[BB_DIELECTRIC_SPECULAR_ETA] = eta;
     m.canonical = "dielectric-specular:eta=" + format_number(eta);
+    return m;
+}
+
+// sheen: roughness=R (glTF's sheenRoughness, alpha = R^2) or alpha=A, and the visibility.
+// The roughness is that of [EK17]'s fit, r in (0, 1]; the floor is the microfacet alpha floor,
+// BB_ALPHA_MIN = 1e-4 (sheenRoughness 0.01), below which a table's texels are clamped as for
+// the other microfacet lobes. The canonical spec spells alpha, as the other lobes' do, so that a
+// table's roughness sweep (tables/sweep.h) can set it.
+constexpr Range kSheenAlpha{BB_ALPHA_MIN, 1.0};
+constexpr Range kSheenRoughness{0.01, 1.0};  // roughness^2 within kSheenAlpha
+
+ModelConfig resolve_sheen(KeyReader& keys) {
+    ModelConfig m;
+    if (keys.has("alpha") && keys.has("roughness"))
+        throw Error("model 'sheen': give roughness (glTF's sheenRoughness) or alpha = roughness^2, not both");
+    double alpha;
+    if (auto r = keys.optional_number("roughness", kSheenRoughness))
+        alpha = *r * *r;
+    else
+        alpha = keys.required_number("alpha", kSheenAlpha, "or roughness=R, glTF's sheenRoughness, with alpha = R^2");
+    const std::string v = keys.choice("visibility", "charlie", {"charlie", "ashikhmin"});
+    m.params[BB_SHEEN_ALPHA] = alpha;
+    m.params[BB_SHEEN_VISIBILITY] = v == "charlie" ? BB_SHEEN_V_CHARLIE : BB_SHEEN_V_ASHIKHMIN;
+    m.canonical = "sheen:alpha=" + format_number(alpha) + ",visibility=" + v;
     return m;
 }
 

@@ -41,7 +41,7 @@ std::string one_line(std::string s) {
 const std::set<std::string> kModelled = {"KHR_materials_ior",          "KHR_materials_specular",
                                          "KHR_materials_transmission", "KHR_materials_volume",
                                          "KHR_materials_clearcoat",    "KHR_materials_anisotropy",
-                                         "KHR_materials_unlit"};
+                                         "KHR_materials_unlit",        "KHR_materials_sheen"};
 
 /// Extensions known not to change any table (geometry, textures, lights): reported, nothing else.
 const std::map<std::string, std::string> kNoTableEffect = {
@@ -62,7 +62,6 @@ const std::map<std::string, std::string> kNoTableEffect = {
 
 /// Material extensions that need tables brdfbake does not compute.
 const std::map<std::string, std::string> kNotModelled = {
-    {"KHR_materials_sheen", "the Charlie sheen lobe needs its own albedo table, which brdfbake does not compute"},
     {"KHR_materials_iridescence", "thin-film interference changes the Fresnel term; tables are computed without it"},
     {"KHR_materials_dispersion", "the index of refraction varies with wavelength; only the base ior is tabulated"},
     {"KHR_materials_diffuse_transmission", "diffuse transmission needs no microfacet table and is not modelled"},
@@ -219,6 +218,9 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
                 out.notes.push_back("KHR_materials_specular: specularColor tints F0 (Schlick), E = f0 A + B from dfg");
             }
             if (transmissive) {
+                // Rough glass's multiple-scattering compensation (Kulla and Conty 2017) needs the
+                // average of R + T over mu from both sides, as Cycles' ggx_glass_Eavg.
+                l.kinds.push_back(&table_kind(TableKindId::DielectricEavg));
                 out.notes.push_back("KHR_materials_transmission: transmission " +
                                     range_text(factor_range(transmission, transmission_tex)) +
                                     ", rough transmission from the dielectric table");
@@ -256,6 +258,32 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
             l.eta = Interval{1.5, 1.5};
             l.kinds = default_lobe_kinds(l);
             out.notes.push_back("KHR_materials_clearcoat: GGX coat, eta 1.5, roughness " + range_text(r));
+            out.lobes.push_back(l);
+        }
+    }
+    // Sheen: the Charlie lobe of Estevez and Kulla 2017 with alpha = sheenRoughness^2 and the
+    // specification's visibility (charlie), layered over the rest; its directional albedo scales
+    // the layer beneath (KHR_materials_sheen, "Sheen layering"). A black sheen adds nothing.
+    if (const tinygltf::Value* s = ext("KHR_materials_sheen")) {
+        const std::vector<double> color = number_array(*s, "sheenColorFactor", {0, 0, 0});
+        for (double c : color) check_factor(where, "KHR_materials_sheen: sheenColorFactor", c, 0, 1);
+        const double sr = number(*s, "sheenRoughnessFactor", 0.0);
+        check_factor(where, "KHR_materials_sheen: sheenRoughnessFactor", sr, 0, 1);
+        const bool colored = has_texture(*s, "sheenColorTexture") ||
+                             std::any_of(color.begin(), color.end(), [](double c) { return c > 0.0; });
+        if (!colored) {
+            out.notes.push_back("KHR_materials_sheen: sheenColorFactor 0, no sheen, no table");
+        } else {
+            const Interval r = factor_range(sr, has_texture(*s, "sheenRoughnessTexture"));
+            Lobe l;
+            l.role = "sheen";
+            l.model = model_without_alpha("sheen");
+            l.model_name = "sheen";
+            l.alpha = square(r);
+            l.kinds = default_lobe_kinds(l);
+            out.notes.push_back("KHR_materials_sheen: Charlie sheen, sheenRoughness " + range_text(r) +
+                                ", charlie visibility; its albedo scales the base (1 - max(sheenColor) E)");
+            if (r.lo == 0.0) out.notes.push_back("sheenRoughness 0 is computed at the alpha floor");
             out.lobes.push_back(l);
         }
     }

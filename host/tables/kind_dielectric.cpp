@@ -5,6 +5,7 @@
 #include <sstream>
 
 #include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/error.h"
 #include "integrate/refine.h"
 #include "tables/lut_common.h"
@@ -70,6 +71,7 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
     t.z = eta_axis(r, r.depth);
     DielectricRequest dr;
     dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
+    dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
     dr.samples = r.samples;
     dr.precision = r.precision;
     for (int side = 0; side < 2; ++side)

@@ -74,6 +74,8 @@ TableKind dfg_kind();
 TableKind dfg_ms_kind();
 TableKind dielectric_kind();
 TableKind conductor_kind();
+TableKind sheen_albedo_kind();
+TableKind dielectric_eavg_kind();
 
 }  // namespace tables
 }  // namespace brdfbake

@@ -9,7 +9,9 @@ namespace brdfbake {
 const std::vector<const TableKind*>& table_kinds() {
     static const std::vector<TableKind> entries = {tables::albedo_kind(),     tables::eavg_kind(),
                                                    tables::dfg_kind(),        tables::dielectric_kind(),
-                                                   tables::conductor_kind(),  tables::dfg_ms_kind()};
+                                                   tables::conductor_kind(),  tables::dfg_ms_kind(),
+                                                   tables::sheen_albedo_kind(),
+                                                   tables::dielectric_eavg_kind()};
     static const std::vector<const TableKind*> kinds = [] {
         std::vector<const TableKind*> list;
         for (const TableKind& k : entries) list.push_back(&k);

@@ -133,6 +133,9 @@ struct DielectricCell {
 struct DielectricRequest {
     std::vector<DielectricCell> cells;
     bool correlated = true;  // height-correlated G2 (reflection and transmission); else separable
+    /// With correlated: T shadowed by 1/(1 + L_o + L_t) as Blender Cycles does, instead of the
+    /// Beta-function form of Heitz 2014 eq. 100 (brdf/rough_dielectric.h).
+    bool cycles_transmission = false;
     std::uint64_t samples = 1u << 18;
     unsigned replicas = 16;
     Precision precision = Precision::Float;

@@ -84,6 +84,12 @@
 #define BB_COMPILED_DIELECTRIC_SPECULAR ~, 1
 #endif
 
+#define BB_MODEL_SHEEN 11
+#if BB_HAS_MODEL(BB_MODEL_SHEEN)
+#include "brdfbake/brdf/sheen.h"
+#define BB_COMPILED_SHEEN ~, 1
+#endif
+
 /* ---------------------------------------------------------------------------- the table
  * X(NAME, name, SPEC, FRESNEL, QUAD, COSINE, DELTA, DISK, VSAMPLE, VEVAL, RECIPROCAL,
  *   ALPHA_X, ALPHA_Y, EXPONENT, KINKED, FURNACE, EXAMPLE), one row per model:
@@ -131,7 +137,9 @@
     X(MIRROR,               mirror,              "mirror",              1, SAMPLER,    0, 1, 0, 0, 0, 1,          \
       -1, -1, -1, 0, 1, "mirror")                                                                                 \
     X(DIELECTRIC_SPECULAR,  dielectric_specular, "dielectric-specular", 0, SAMPLER,    0, 1, 0, 0, 0, 1,          \
-      -1, -1, -1, 0, 1, "dielectric-specular:eta=1.5")
+      -1, -1, -1, 0, 1, "dielectric-specular:eta=1.5")                                                    \
+    X(SHEEN,                sheen,               "sheen",               0, SAMPLER,    0, 0, 0, 1, 1, 1,          \
+      BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, 0, 1, "sheen:roughness=0.5")
 
 /* The values of the QUAD column. */
 #define BB_QUAD_SPACE_SAMPLER 0

@@ -14,13 +14,24 @@
  * on top of T [WMLT07 eq. 21 and Veach 1997 ch. 5]. G2 is separable G1(wo) G1(wi), or
  * height-correlated: 1/(1 + L(wo) + L(wi)) for reflection [H14 eq. 99] and the Beta function
  * B(1 + L(wo), 1 + L(wt)) for transmission [H14 eq. 100], which follows from integrating
- * u^L(wo) (1 - u)^L(wt) over the height CDF u. */
+ * u^L(wo) (1 - u)^L(wt) over the height CDF u. The shadowing argument picks the forms
+ * (BB_DIELECTRIC_SHADOWING_*): separable; height-correlated with the Beta function for T (the
+ * default); or height-correlated with 1/(1 + L(wo) + L(wt)) for T as for R, the form Blender
+ * Cycles evaluates for both lobes (intern/cycles/kernel/closure/bsdf_microfacet.h), which
+ * treats the transmitted direction as if it were reflected and so ignores that a microsurface
+ * point seen from above and below at once must lie at a height both can reach; the two forms
+ * differ most at grazing angles and high roughness. */
 #ifndef BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H
 #define BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/sampling.h"
+
+/* The shadowing argument of the samplers below. */
+#define BB_DIELECTRIC_SHADOWING_SEPARABLE 0 /* G1(wo) G1(wi) for both lobes [H14 eq. 98] */
+#define BB_DIELECTRIC_SHADOWING_BETA 1      /* 1/(1 + L_o + L_r); B(1 + L_o, 1 + L_t) [H14 eq. 99, 100] */
+#define BB_DIELECTRIC_SHADOWING_CYCLES 2    /* 1/(1 + L_o + L_r); 1/(1 + L_o + L_t) (Cycles) */
 
 typedef struct {
     real r; /* reflected energy fraction of this sample */
@@ -101,9 +112,11 @@ BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real e
     /* correlated is the same for every sample (and every lane): only its branch is computed
      * (the Beta function's log-gammas are the costliest part of a sample) */
     real g2t = g1o * g1t;
-    if (correlated != 0) {
+    if (correlated == BB_DIELECTRIC_SHADOWING_BETA) {
         real lo = bb_ggx_lambda(wo, ax, ay), lt = bb_ggx_lambda(wt_up, ax, ay);
         g2t = bb_select(BB_R(0.0), bb_beta(BB_R(1.0) + lo, BB_R(1.0) + lt), g1o > BB_R(0.0) && g1t > BB_R(0.0));
+    } else if (correlated == BB_DIELECTRIC_SHADOWING_CYCLES) {
+        g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
     }
     out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t * inv_g1o, wt.z < BB_R(0.0) && g1o > BB_R(0.0));
     return out;

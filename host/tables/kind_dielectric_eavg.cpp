@@ -1,0 +1,125 @@
+// The average albedo of a rough dielectric interface, R + T averaged over mu, from outside (eta)
+// and from inside (1/eta), over (alpha, eta): the Eavg of the multiple-scattering compensation of
+// rough glass (Kulla and Conty, "Revisiting Physically Based Shading at Imageworks", SIGGRAPH
+// 2017), which Blender Cycles ships as ggx_glass_Eavg and ggx_glass_inv_Eavg
+// (intern/cycles/app/cycles_precompute.cpp).
+#include <boost/math/quadrature/gauss.hpp>
+
+#include <cmath>
+
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/rough_dielectric.h"
+#include "brdfbake/error.h"
+#include "tables/lut_common.h"
+
+namespace brdfbake {
+namespace tables {
+namespace {
+
+/// Gauss-Legendre nodes on [0, 1]: the 32-node rule (weights32) and the 16-node rule
+/// (weights16) on one list, as the eavg kind integrates E(mu) mu.
+struct MuRule {
+    std::vector<double> nodes, weights32, weights16;
+};
+
+MuRule mu_rule() {
+    using G32 = boost::math::quadrature::gauss<double, 32>;
+    using G16 = boost::math::quadrature::gauss<double, 16>;
+    MuRule q;
+    auto add = [&](const auto& x, const auto& w, bool is32) {
+        for (size_t i = 0; i < x.size(); ++i)
+            for (int s : {-1, 1}) {
+                if (x[i] == 0.0 && s == 1) continue;
+                q.nodes.push_back(0.5 + 0.5 * s * x[i]);
+                q.weights32.push_back(is32 ? 0.5 * w[i] : 0.0);
+                q.weights16.push_back(is32 ? 0.0 : 0.5 * w[i]);
+            }
+    };
+    add(G32::abscissa(), G32::weights(), true);
+    add(G16::abscissa(), G16::weights(), false);
+    return q;
+}
+
+// Eavg = 2 int_0^1 (R + T)(mu) mu dmu per (alpha, eta) and side, by the 32-node rule; its error is
+// the sampling errors of R and T weighted as the rule weights them (added linearly: the cells
+// share their point sets) plus |Q32 - Q16|.
+Table compute_dielectric_eavg(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
+    Table t;
+    t.kind = r.kind;
+    bool clamped = false;
+    t.quantity = "average albedo of a rough dielectric interface, Eavg = 2 integral_0^1 (R + T)(mu) mu dmu, for light "
+                 "from outside (relative index eta) and from inside (Eavg_inside, relative index 1/eta)";
+    t.x = alpha_axis(r, r.width, clamped);
+    t.y = make_axis("-", "-", 0.0, 1.0, 1);
+    t.y.parameter = {0.5};
+    t.z = make_axis("eta", "eta = w", r.eta_lo, r.eta_hi, r.depth);
+    t.z.parameter = t.z.coordinate;
+    const MuRule q = mu_rule();
+    DielectricRequest dr;
+    dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
+    dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
+    dr.samples = r.samples;
+    dr.precision = r.precision;
+    for (int side = 0; side < 2; ++side)
+        for (double eta : t.z.parameter)
+            for (double alpha : t.x.parameter)
+                for (double mu : q.nodes) dr.cells.push_back({mu, alpha, side == 0 ? eta : 1.0 / eta});
+    const DielectricResult res = compute_dielectric(engine, dr);
+    const size_t per_side = dr.cells.size() / 2, texels = t.x.parameter.size() * t.z.parameter.size();
+    t.channels = {"Eavg", "Eavg_inside"};
+    t.values.assign(2, std::vector<double>(texels));
+    t.error.assign(texels, 0.0);
+    for (int side = 0; side < 2; ++side)
+        for (size_t k = 0; k < texels; ++k) {
+            double e32 = 0, e16 = 0, err = 0;
+            for (size_t i = 0; i < q.nodes.size(); ++i) {
+                const size_t c = side * per_side + k * q.nodes.size() + i;
+                const double rt = res.reflected[c].value + res.transmitted[c].value;
+                e32 += 2 * q.weights32[i] * q.nodes[i] * rt;
+                e16 += 2 * q.weights16[i] * q.nodes[i] * rt;
+                err += 2 * q.weights32[i] * q.nodes[i] * (res.reflected[c].error + res.transmitted[c].error);
+            }
+            t.values[side][k] = e32;
+            t.error[k] = std::max(t.error[k], err + std::fabs(e32 - e16));
+        }
+    describe(t, r, m, "dielectric (exact, unpolarised) at each texel's eta", res.method, res.samples_per_cell, clamped);
+    t.attributes["mu_quadrature"] = "Gauss-Legendre, 32 nodes (16-node rule for the error estimate)";
+    return t;
+}
+
+void validate_dielectric_eavg(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    if (m.id != BB_MODEL_GGX) throw Error("the dielectric-eavg table is computed for GGX microfacets; use --model ggx");
+    if (f.kind != BB_FRESNEL_NONE)
+        throw Error("the dielectric-eavg table uses the exact dielectric Fresnel term; drop --fresnel");
+    if (r.method != Method::Importance || r.tolerance.tolerance > 0.0)
+        throw Error("the dielectric-eavg table is computed by importance sampling with --samples; it takes no "
+                    "--tolerance or --method");
+    if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.depth * 48 > kMaxTexels)
+        throw Error("dielectric-eavg table depth must be 1 to 1024 and width x depth x 48 mu nodes at most 4M cells");
+    if (!(r.eta_lo >= 1.0 && r.eta_hi > r.eta_lo && r.eta_hi <= 10.0))
+        throw Error("--eta-range must satisfy 1 <= lo < hi <= 10 (the inside view uses 1/eta)");
+}
+
+int two(const LutRequest&) { return 2; }
+std::vector<std::string> dielectric_eavg_program(const LutRequest& r) { return {"dielectric|" + r.model}; }
+
+}  // namespace
+
+TableKind dielectric_eavg_kind() {
+    TableKind k(TableKindId::DielectricEavg, "dielectric-eavg",
+                "rough dielectric (GGX) average albedo Eavg = 2 integral of (R + T) mu dmu from outside (eta) and "
+                "Eavg_inside from inside (1/eta) over (alpha, eta) (1D in alpha, slices of eta)",
+                dielectric_eavg_program, compute_dielectric_eavg);
+    k.one_dimensional = true;
+    k.eta_axis = true;
+    k.cells_per_texel = 2 * 48;  // both sides, 32 + 16 Gauss-Legendre nodes in mu
+    k.plan_fresnel = "exact dielectric at each eta";
+    k.lobe_requirement = "a dielectric-eavg table needs an index of refraction (fresnel dielectric:eta=E or 'eta')";
+    k.sample_cost = 3.5;  // a dielectric sample, as the dielectric kind's
+    k.value_channels = two;
+    k.validate = validate_dielectric_eavg;
+    return k;
+}
+
+}  // namespace tables
+}  // namespace brdfbake

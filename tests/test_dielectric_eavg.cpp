@@ -1,0 +1,158 @@
+// The rough dielectric's transmission shadowing key (transmission_shadowing=beta|cycles) and the
+// dielectric-eavg table kind (issue 18).
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <cstdio>
+#include <fstream>
+
+#include "brdfbake/albedo.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/table.h"
+#include "brdfbake/brdf/rough_dielectric.h"
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/spec.h"
+#include "models/params.h"
+#include "reference/reference.h"
+#include "scene/scene.h"
+#include "support.h"
+
+using namespace brdfbake;
+
+TEST_CASE("ggx transmission_shadowing: spec, canonical spelling and refusals", "[dielectric][cycles][quick]") {
+    CHECK(resolve_model("ggx:alpha=0.5").params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_BETA);
+    CHECK(resolve_model("ggx:alpha=0.5,transmission_shadowing=beta").canonical == "ggx:alpha=0.5,shadowing=correlated");
+    const ModelConfig c = resolve_model("ggx:alpha=0.5,transmission_shadowing=cycles");
+    CHECK(c.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES);
+    CHECK(c.canonical == "ggx:alpha=0.5,shadowing=correlated,transmission_shadowing=cycles");
+    CHECK(resolve_model(c.canonical).params == c.params);
+    // the reflection of a ggx lobe is height-correlated either way
+    const bb_vec3 wo = bb_dir_from_mu_phi(0.3, 0.0), wi = bb_dir_from_mu_phi(0.7, 2.0);
+    const bb_params none = {{0}};
+    CHECK(bb_model_eval(c.id, to_bb_params(c.params), BB_FRESNEL_NONE, none, wo, wi) ==
+          bb_model_eval(c.id, to_bb_params(resolve_model("ggx:alpha=0.5").params), BB_FRESNEL_NONE, none, wo, wi));
+    for (const char* spec : {"ggx:shadowing=separable,transmission_shadowing=cycles", "ggx:transmission_shadowing=heitz",
+                             "ggx:transmission_shadowing="}) {
+        const testing::CliResult r = testing::run_cli(std::string("lut dielectric --model '") + spec +
+                                                      "' --size 2x2x1 -o /tmp/brdfbake-cycles-never.exr");
+        INFO(spec << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
+    }
+}
+
+TEST_CASE("rough dielectric with Cycles' transmission shadowing against independent quadrature",
+          "[dielectric][cycles][device]") {
+    // R is the same under both forms; T follows 1/(1 + L_o + L_t), and differs from the Beta form
+    // by more than the errors where the roughness is high and the light grazing.
+    const std::vector<DielectricCell> cells = {{0.5, 0.3, 1.5}, {0.9, 0.6, 1 / 1.5}, {0.1, 1.0, 1.5}, {0.3, 0.8, 1.33}};
+    DielectricRequest req;
+    req.cells = cells;
+    req.samples = 1 << 18;
+    req.cycles_transmission = true;
+    const DielectricResult cyc = compute_dielectric(testing::engine(), req);
+    req.cycles_transmission = false;
+    const DielectricResult beta = compute_dielectric(testing::engine(), req);
+    for (size_t k = 0; k < cells.size(); ++k) {
+        double r, t;
+        ref::rough_dielectric_rt(cells[k].mu, cells[k].alpha, cells[k].eta, true, r, t);
+        INFO("mu " << cells[k].mu << " alpha " << cells[k].alpha << " eta " << cells[k].eta << ": R "
+                   << cyc.reflected[k].value << " vs " << r << ", T " << cyc.transmitted[k].value << " +- "
+                   << cyc.transmitted[k].error << " vs " << t << " (Beta form " << beta.transmitted[k].value << ")");
+        CHECK(std::fabs(cyc.reflected[k].value - r) <= cyc.reflected[k].error);
+        CHECK(std::fabs(cyc.transmitted[k].value - t) <= cyc.transmitted[k].error);
+        CHECK(cyc.reflected[k].value == Approx(beta.reflected[k].value).margin(1e-12));
+        if (cells[k].alpha >= 0.8)
+            CHECK(std::fabs(cyc.transmitted[k].value - beta.transmitted[k].value) >
+                  10 * (cyc.transmitted[k].error + beta.transmitted[k].error));
+    }
+}
+
+namespace {
+
+LutRequest one_interface(const std::string& kind, const std::string& model, int width, double alpha, double eta) {
+    LutRequest r;
+    r.kind = kind;
+    r.model = model;
+    r.width = width;
+    r.height = 1;
+    r.depth = 1;
+    r.alpha_lo = alpha - 0.05;  // one texel centred on alpha
+    r.alpha_hi = alpha + 0.05;
+    r.eta_lo = eta - 0.05;
+    r.eta_hi = eta + 0.05;
+    r.samples = 1u << 16;
+    return r;
+}
+
+}  // namespace
+
+TEST_CASE("dielectric-eavg equals 2 int (R + T) mu dmu of the dielectric table's own values", "[dielectric-eavg][device]") {
+    // The dielectric table over mu (linear texel centres, one alpha, one eta) integrated by the
+    // midpoint rule at 128 texels; the rule's own error is bounded by its change from 64 texels,
+    // the table's sampling error by its error channel weighted as the rule weights it (R + T: twice
+    // the channel). Both interfaces' sides and both transmission shadowing forms.
+    for (const char* model : {"ggx", "ggx:transmission_shadowing=cycles"})
+        for (const auto& ae : {std::pair<double, double>{0.5, 1.5}, {0.1, 1.33}}) {
+            const Table eavg =
+                compute_lut(testing::engine(), one_interface("dielectric-eavg", model, 1, ae.first, ae.second));
+            REQUIRE(eavg.channels == std::vector<std::string>{"Eavg", "Eavg_inside"});
+            REQUIRE(eavg.x.parameter.size() == 1);
+            CHECK(eavg.x.parameter[0] == Approx(ae.first));
+            CHECK(eavg.z.parameter[0] == Approx(ae.second));
+            double m[2][2] = {}, err[2] = {};  // [side][64 or 128 texels]
+            for (int w : {64, 128}) {
+                const Table d = compute_lut(testing::engine(), one_interface("dielectric", model, w, ae.first, ae.second));
+                for (int side = 0; side < 2; ++side)
+                    for (int i = 0; i < w; ++i) {
+                        const double mu = d.x.parameter[size_t(i)];
+                        const double rt = d.values[size_t(2 * side)][size_t(i)] + d.values[size_t(2 * side + 1)][size_t(i)];
+                        m[side][w == 128] += 2 * rt * mu / w;
+                        if (w == 128) err[side] += 2 * 2 * d.error[size_t(i)] * mu / w;
+                    }
+            }
+            for (int side = 0; side < 2; ++side) {
+                const double got = eavg.values[size_t(side)][0], rule = std::fabs(m[side][1] - m[side][0]);
+                INFO(model << " alpha " << ae.first << " eta " << ae.second << (side ? " inside" : " outside") << ": Eavg "
+                           << got << " +- " << eavg.error[0] << ", midpoint rule " << m[side][1] << " +- " << err[side]
+                           << " (rule " << rule << ")");
+                CHECK(std::fabs(got - m[side][1]) <= eavg.error[0] + err[side] + rule);
+                CHECK(eavg.error[0] + err[side] + rule < 0.01);  // the comparison has teeth
+            }
+        }
+}
+
+TEST_CASE("dielectric-eavg: bad requests give one line and exit status 2", "[dielectric-eavg][cli]") {
+    for (const char* args : {"--model beckmann --size 4x1x2", "--model ggx --size 4x1x2 --tolerance 1e-4",
+                             "--model ggx --size 4x1x2 --eta-range 0.5,2", "--model ggx --fresnel schlick:f0=0.04 --size 4x1x2",
+                             "--model ggx:transmission_shadowing=snell --size 4x1x2"}) {
+        const testing::CliResult r =
+            testing::run_cli(std::string("lut dielectric-eavg ") + args + " -o /tmp/brdfbake-deavg-never.exr");
+        INFO(args << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
+    }
+}
+
+TEST_CASE("glTF: a transmissive material also plans dielectric-eavg, an opaque dielectric does not",
+          "[dielectric-eavg][scene][quick]") {
+    const std::string path = "/tmp/brdfbake-deavg-" + std::to_string(::getpid()) + ".gltf";
+    std::ofstream(path) << R"({"asset": {"version": "2.0"}, "materials": [
+  {"name": "glass", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.4},
+   "extensions": {"KHR_materials_transmission": {"transmissionFactor": 1.0}, "KHR_materials_ior": {"ior": 1.7}}},
+  {"name": "plastic", "pbrMetallicRoughness": {"metallicFactor": 0.0, "roughnessFactor": 0.6}}]})";
+    const Plan plan = make_plan(load_gltf_scene(path));
+    std::remove(path.c_str());
+    const PlannedTable* e = nullptr;
+    for (const auto& t : plan.tables)
+        if (t.request.kind == "dielectric-eavg") e = &t;
+    REQUIRE(e);
+    CHECK(e->materials == std::vector<std::string>{"glass"});
+    CHECK(e->alpha.lo == Approx(0.16));
+    CHECK(e->eta->lo == Approx(1.7));
+    CHECK(e->request.height == 1);
+}
