@@ -12,6 +12,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
+#include "models/key_reader.h"
 #include "models/params.h"
 #include "tables/lut_common.h"
 #include "tables/sweep.h"
@@ -250,6 +251,16 @@ void validate_lut(const LutRequest& r) {
     if (r.alpha_map != "alpha" && r.alpha_map != "roughness") throw Error("--alpha-map must be alpha or roughness");
     if (!(r.alpha_lo >= 0.0 && r.alpha_hi > r.alpha_lo && r.alpha_hi <= 3.0))
         throw Error("--alpha-range must satisfy 0 <= lo < hi <= 3");
+    {
+        // The largest alpha the table sweeps must be one the model takes (sheen's fit ends at 1).
+        const double top = r.alpha_map == "roughness" ? r.alpha_hi * r.alpha_hi : r.alpha_hi;
+        try {
+            resolve_model(r.model + (r.model.find(':') == std::string::npos ? ":" : ",") + "alpha=" + format_number(top));
+        } catch (const Error& e) {
+            throw Error("--alpha-range reaches alpha = " + format_number(top) + ", which " + m.name +
+                        " does not take: " + e.what());
+        }
+    }
     if (!(r.mu_lo >= 0.0 && r.mu_hi > r.mu_lo && r.mu_hi <= 1.0))
         throw Error("--mu-range must satisfy 0 <= lo < hi <= 1");
     if (!(r.mu_floor > 0.0 && r.mu_floor < 1.0)) throw Error("--mu-floor must satisfy 0 < floor < 1");
