@@ -101,21 +101,19 @@ void validate_dielectric_eavg(const LutRequest& r, const ModelConfig& m, const F
 }
 
 int two(const LutRequest&) { return 2; }
-std::vector<std::string> dielectric_eavg_program(const LutRequest& r) { return {"dielectric|" + r.model}; }
 
 }  // namespace
 
 TableKind dielectric_eavg_kind() {
-    TableKind k(TableKindId::DielectricEavg, "dielectric-eavg",
-                "rough dielectric (GGX) average albedo Eavg = 2 integral of (R + T) mu dmu from outside (eta) and "
-                "Eavg_inside from inside (1/eta) over (alpha, eta) (1D in alpha, slices of eta)",
-                dielectric_eavg_program, compute_dielectric_eavg);
+    // The dielectric table integrated over mu: its programs, Fresnel, lobe requirement and cost
+    // per sample; one dimension fewer, two channels, 48 mu nodes a texel per side.
+    TableKind k = variant_of(dielectric_kind(), TableKindId::DielectricEavg, "dielectric-eavg",
+                             "rough dielectric (GGX) average albedo Eavg = 2 integral of (R + T) mu dmu from outside "
+                             "(eta) and Eavg_inside from inside (1/eta) over (alpha, eta) (1D in alpha, slices of eta)",
+                             compute_dielectric_eavg);
     k.one_dimensional = true;
-    k.eta_axis = true;
     k.cells_per_texel = 2 * 48;  // both sides, 32 + 16 Gauss-Legendre nodes in mu
-    k.plan_fresnel = "exact dielectric at each eta";
     k.lobe_requirement = "a dielectric-eavg table needs an index of refraction (fresnel dielectric:eta=E or 'eta')";
-    k.sample_cost = 3.5;  // a dielectric sample, as the dielectric kind's
     k.value_channels = two;
     k.validate = validate_dielectric_eavg;
     return k;
