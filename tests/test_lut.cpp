@@ -609,6 +609,7 @@ TEST_CASE("every kind takes the grid conventions: edge texels, a flipped and reo
         LutRequest r = request(k->name, 3, k->one_dimensional ? 1 : 2, 1024);
         r.depth = 2;
         if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        if (k->id == TableKindId::SheenAlbedo) r.model = "sheen";  // the kind of the sheen model only
         r.texels = Texels::Edge;
         r.alpha_map = "roughness";
         r.alpha_lo = 0.2;
