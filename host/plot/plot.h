@@ -51,7 +51,9 @@ struct Heatmap {
     double z_hi = std::numeric_limits<double>::quiet_NaN();
     bool log_scale = false;      // colour by log10(z) (z <= 0 drawn at the lower end)
     std::string colorbar_label;  // empty: no colour bar
-    std::string scheme = "BbcyrR";  // MathGL colour scheme; "kw" for grey levels
+    // MathGL colour scheme: viridis (van der Walt and Smith, matplotlib 2015) at five stops, which
+    // is perceptually uniform and reads in grey and to colour-blind eyes; "kw" for grey levels.
+    std::string scheme = "{x440154}{x3B528B}{x21918C}{x5EC962}{xFDE725}";
 };
 
 /// One panel of a figure.

@@ -1,5 +1,6 @@
 // PNG/SVG previews of tables: a heatmap per channel with axes and a colour bar (2D and 3D
 // tables; a 3D table shows its middle z-slice), or curves for a 1D table.
+#include <algorithm>
 #include <cstdio>
 
 #include "brdfbake/table.h"
@@ -47,8 +48,11 @@ void write_table_preview(const Table& table, const std::string& path) {
             h.y_hi = t.y.hi;
             const size_t n = size_t(h.nx) * h.ny;
             h.z.assign(t.values[c].begin() + long(n * size_t(slice)), t.values[c].begin() + long(n * size_t(slice + 1)));
-            h.z_lo = 0.0;
-            h.z_hi = 1.0;
+            // [0, 1] (an energy fraction's range) widened to the data, so that a value above 1 (a
+            // sheen lobe's gain at grazing) or below 0 is shown, never clipped to the end colour.
+            const auto [lo, hi] = std::minmax_element(h.z.begin(), h.z.end());
+            h.z_lo = std::min(0.0, *lo);
+            h.z_hi = std::max(1.0, *hi);
             h.colorbar_label = t.channels[c];
             fig.panels.push_back(p);
         }
