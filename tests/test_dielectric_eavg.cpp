@@ -156,3 +156,35 @@ TEST_CASE("glTF: a transmissive material also plans dielectric-eavg, an opaque d
     CHECK(e->eta->lo == Approx(1.7));
     CHECK(e->request.height == 1);
 }
+
+TEST_CASE("dielectric-eavg takes the grid conventions: edge texels hold the closed forms, eta maps", "[lut][device]") {
+    LutRequest r;
+    r.kind = "dielectric-eavg";
+    r.model = "ggx";
+    r.width = 3;
+    r.height = 1;
+    r.depth = 2;
+    r.samples = 1024;
+    r.texels = Texels::Edge;  // alpha 0, 0.5, 1 and eta 1, 3
+    const Table t = compute_lut(testing::engine(), r);
+    REQUIRE(t.x.parameter.front() == 0.0);
+    REQUIRE(t.z.parameter.front() == 1.0);
+    // alpha = 0 (a smooth interface: R + T = 1 at every mu) and eta = 1 (no interface: T = 1)
+    // average to exactly 1 on both sides; a rough interface at eta = 3 loses energy.
+    for (size_t k = 0; k < 3; ++k) {
+        CHECK(t.values[0][k] == 1.0);
+        CHECK(t.values[1][k] == 1.0);
+    }
+    CHECK(t.values[0][3] == 1.0);
+    CHECK(t.values[0][5] < 0.9);
+    // The F0 coordinate of the eta axis, as every kind with one takes it.
+    r.texels = Texels::Centre;
+    r.eta_map = "f0";
+    r.eta_lo = 1.2;
+    r.eta_hi = 50.0;
+    const Table f = compute_lut(testing::engine(), r);
+    CHECK(f.z.name == "f0");
+    const double f0_lo = std::pow(0.2 / 2.2, 2), f0_hi = std::pow(49.0 / 51.0, 2);
+    CHECK(f.z.lo == Approx(f0_lo).epsilon(1e-12));
+    CHECK(f.z.hi == Approx(f0_hi).epsilon(1e-12));
+}

@@ -6,6 +6,7 @@
 #include <boost/math/quadrature/gauss.hpp>
 
 #include <cmath>
+#include <limits>
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/rough_dielectric.h"
@@ -52,28 +53,46 @@ Table compute_dielectric_eavg(Engine& engine, const LutRequest& r, const ModelCo
     t.x = alpha_axis(r, r.width, clamped);
     t.y = make_axis("-", "-", 0.0, 1.0, 1);
     t.y.parameter = {0.5};
-    t.z = make_axis("eta", "eta = w", r.eta_lo, r.eta_hi, r.depth);
-    t.z.parameter = t.z.coordinate;
+    t.z = eta_axis(r, r.depth);  // the request's eta mapping and texel placement, as the dielectric table's
     const MuRule q = mu_rule();
     DielectricRequest dr;
     dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
     dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
     dr.samples = r.samples;
     dr.precision = r.precision;
+    // As in the dielectric table, a texel at alpha = 0 is the smooth interface, whose R + T is 1
+    // at every mu (Fresnel's equations conserve energy; total internal reflection gives R = 1),
+    // and one at eta = 1 is no interface at all (T = 1): Eavg = 1 on both sides, in closed form.
+    // The others integrate their mu nodes on the device.
+    const size_t texels = t.x.parameter.size() * t.z.parameter.size(), none = size_t(-1);
+    std::vector<size_t> first_cell(2 * texels, none);
     for (int side = 0; side < 2; ++side)
-        for (double eta : t.z.parameter)
-            for (double alpha : t.x.parameter)
+        for (size_t e = 0; e < t.z.parameter.size(); ++e)
+            for (size_t a = 0; a < t.x.parameter.size(); ++a) {
+                const double eta = t.z.parameter[e], alpha = t.x.parameter[a];
+                if (alpha == 0.0 || eta == 1.0) continue;
+                first_cell[side * texels + e * t.x.parameter.size() + a] = dr.cells.size();
                 for (double mu : q.nodes) dr.cells.push_back({mu, alpha, side == 0 ? eta : 1.0 / eta});
-    const DielectricResult res = compute_dielectric(engine, dr);
-    const size_t per_side = dr.cells.size() / 2, texels = t.x.parameter.size() * t.z.parameter.size();
+            }
+    DielectricResult res;
+    if (!dr.cells.empty())
+        res = compute_dielectric(engine, dr);
+    else
+        res.method = "closed form (the smooth interface at alpha = 0, no interface at eta = 1)";
     t.channels = {"Eavg", "Eavg_inside"};
     t.values.assign(2, std::vector<double>(texels));
     t.error.assign(texels, 0.0);
     for (int side = 0; side < 2; ++side)
         for (size_t k = 0; k < texels; ++k) {
+            const size_t first = first_cell[side * texels + k];
+            if (first == none) {  // the smooth interface, or none
+                t.values[side][k] = 1.0;
+                t.error[k] = std::max(t.error[k], 4 * std::numeric_limits<double>::epsilon());
+                continue;
+            }
             double e32 = 0, e16 = 0, err = 0;
             for (size_t i = 0; i < q.nodes.size(); ++i) {
-                const size_t c = side * per_side + k * q.nodes.size() + i;
+                const size_t c = first + i;
                 const double rt = res.reflected[c].value + res.transmitted[c].value;
                 e32 += 2 * q.weights32[i] * q.nodes[i] * rt;
                 e16 += 2 * q.weights16[i] * q.nodes[i] * rt;
@@ -96,8 +115,8 @@ void validate_dielectric_eavg(const LutRequest& r, const ModelConfig& m, const F
                     "--tolerance or --method");
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.depth * 48 > kMaxTexels)
         throw Error("dielectric-eavg table depth must be 1 to 1024 and width x depth x 48 mu nodes at most 4M cells");
-    if (!(r.eta_lo >= 1.0 && r.eta_hi > r.eta_lo && r.eta_hi <= 10.0))
-        throw Error("--eta-range must satisfy 1 <= lo < hi <= 10 (the inside view uses 1/eta)");
+    if (!(r.eta_lo >= 1.0))
+        throw Error("--eta-range must start at eta >= 1 for the dielectric-eavg table (the inside view is Eavg_inside)");
 }
 
 int two(const LutRequest&) { return 2; }
