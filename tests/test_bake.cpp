@@ -70,7 +70,7 @@ TEST_CASE("CRC-64/XZ gives the catalogue's check value", "[bake][quick]") {
     CHECK(brdfbake::crc64_xz("123456780") != brdfbake::crc64_xz("123456789"));
 }
 
-TEST_CASE("two concurrent bakes into one folder run one after the other; index and files agree", "[bake][device]") {
+TEST_CASE("two concurrent bakes into one folder run one after the other, index and files agree", "[bake][device]") {
     // Issue 16, item 2: A and C both produce albedo-ggx.exr and eavg-ggx.exr, of other sizes.
     const std::string a = scene_file("A", 0.3, 0.95), c = scene_file("C", 0.7, 0.8);
     for (int round = 0; round < 2; ++round) {
@@ -150,7 +150,7 @@ TEST_CASE("a bake into a folder another process holds waits up to --lock-timeout
     std::remove(a.c_str());
 }
 
-TEST_CASE("a bake that fails before writing a table leaves no folder behind; -o FILE is refused at once",
+TEST_CASE("a bake that fails before writing a table leaves no folder behind, -o FILE is refused at once",
           "[bake][cli]") {
     const std::string a = scene_file("A4", 0.3, 0.95);
     const std::string top = scratch("never");

@@ -102,7 +102,7 @@ TEST_CASE("check exits 0 on a pass, 1 on a violation, 2 on bad input", "[check][
     CHECK(bad.err.rfind("brdfbake: error: ", 0) == 0);
 }
 
-TEST_CASE("reciprocity writes its map as EXR and heatmap; furnace and albedo draw their pictures",
+TEST_CASE("reciprocity writes its map as EXR and heatmap, furnace and albedo draw their pictures",
           "[check][cli]") {
     const std::string exr = tmp("recip.exr"), png = tmp("recip.png"), furnace = tmp("furnace.png"),
                       curves = tmp("albedo.png");

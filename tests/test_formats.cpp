@@ -24,9 +24,13 @@
 #include "brdfbake/lut.h"
 #include "brdfbake/table.h"
 #include "brdfbake/table_kinds.h"
+#include "image_readers.h"
 #include "support.h"
 
 using namespace brdfbake;
+
+using testing::Png;
+using testing::read_png;
 
 namespace {
 
@@ -56,38 +60,6 @@ Table synthetic(int channels, int w, int h, int d = 1) {
     }
     t.error.assign(n, 1e-6);
     return t;
-}
-
-struct Png {
-    int width = 0, height = 0, channels = 0, bit_depth = 0;
-    std::vector<unsigned> samples;  // row-major, channels interleaved
-    std::map<std::string, std::string> text;
-};
-
-/// Reads a PNG with libpng's own reader, no transformations.
-Png read_png(const std::string& path) {
-    Png p;
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    REQUIRE(f != nullptr);
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png_create_info_struct(png);
-    REQUIRE(setjmp(png_jmpbuf(png)) == 0);
-    png_init_io(png, f);
-    png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
-    p.width = int(png_get_image_width(png, info));
-    p.height = int(png_get_image_height(png, info));
-    p.channels = png_get_channels(png, info);
-    p.bit_depth = png_get_bit_depth(png, info);
-    png_bytepp rows = png_get_rows(png, info);
-    for (int y = 0; y < p.height; ++y)
-        for (int x = 0; x < p.width * p.channels; ++x)
-            p.samples.push_back(unsigned(rows[y][2 * x]) << 8 | rows[y][2 * x + 1]);
-    png_textp text = nullptr;
-    const int n = png_get_text(png, info, &text, nullptr);
-    for (int i = 0; i < n; ++i) p.text[text[i].key] = std::string(text[i].text, text[i].text_length);
-    png_destroy_read_struct(&png, &info, nullptr);
-    std::fclose(f);
-    return p;
 }
 
 bool have_numpy() { return std::system("/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1") == 0; }
@@ -125,7 +97,7 @@ TEST_CASE("16-bit PNG round-trips through libpng within half a unit of 1/65535, 
     }
 }
 
-TEST_CASE("PNG: values outside [0, 1] beyond their error are refused and nothing is written; within it, clamped",
+TEST_CASE("PNG: values outside [0, 1] beyond their error are refused and nothing is written, within it, clamped",
           "[formats][quick]") {
     Table t = synthetic(1, 3, 2);
     t.values[0][2] = 1.0 + 5e-7;  // within its error (1e-6): stored as 65535
@@ -183,7 +155,7 @@ TEST_CASE(".npy round-trips through numpy exactly (float64), shape and sidecar a
     }
 }
 
-TEST_CASE("EXR through Imf::RgbaInputFile: every table kind shows non-zero, documented R, G, B; the header keeps "
+TEST_CASE("EXR through Imf::RgbaInputFile: every table kind shows non-zero, documented R, G, B, the header keeps "
           "every brdfbake attribute and the error channel",
           "[formats][device]") {
     for (const TableKind* k : table_kinds()) {
@@ -195,6 +167,7 @@ TEST_CASE("EXR through Imf::RgbaInputFile: every table kind shows non-zero, docu
         r.depth = 2;
         r.samples = 1024;
         if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        if (k->id == TableKindId::SheenAlbedo) r.model = "sheen";  // the kind of the sheen model only
         INFO(k->name);
         const Table t = compute_lut(testing::engine(), r);
         for (bool half : {false, true}) {

@@ -168,7 +168,7 @@ TEST_CASE("Total internal reflection from inside beyond the critical angle", "[f
         CHECK(bb_fresnel_dielectric(-c, 1.5) == Approx(bb_fresnel_dielectric(c, eta)).epsilon(1e-14));
 }
 
-TEST_CASE("A conductor with k = 0 equals the dielectric; eta = 1 gives 0", "[fresnel][quick]") {
+TEST_CASE("A conductor with k = 0 equals the dielectric, eta = 1 gives 0", "[fresnel][quick]") {
     for (double eta : {0.5, 1 / 1.5, 0.999, 1.0001, 1.5, 2.4, 10.0})
         for (double t : angle_sweep()) {
             const double c = cos_deg(t);

@@ -127,7 +127,7 @@ TEST_CASE("refine driver: rounds over the cells above the tolerance only, best o
     CHECK(seen_latest == seen_best);
 }
 
-TEST_CASE("refine driver: a cell stops at the first round that meets the tolerance; keep_best keeps the smaller error",
+TEST_CASE("refine driver: a cell stops at the first round that meets the tolerance, keep_best keeps the smaller error",
           "[lut][quick]") {
     const std::vector<RefineStep> steps = {{Method::Importance, 16}, {Method::Importance, 64}, {Method::Importance, 256}};
     for (bool keep_best : {true, false}) {
@@ -501,7 +501,7 @@ TEST_CASE("issue 6: every texel of `lut albedo --model ggx --size 32x32` is with
 // Issue 17: grid conventions (texels at centres or edges, ranges and floors, alpha = 0 as the
 // mirror limit, axis order and flips, eta mappings) for every kind, and the CSV axis columns.
 
-TEST_CASE("edge texels sit on the range's ends, i/(N - 1) between; one edge texel is refused", "[lut][quick]") {
+TEST_CASE("edge texels sit on the range's ends, i/(N - 1) between, one edge texel is refused", "[lut][quick]") {
     const Axis a = make_axis("roughness", "alpha = r^2", 0.0, 1.0, 32, Texels::Edge);
     CHECK(a.coordinate.front() == 0.0);
     CHECK(a.coordinate.back() == 1.0);

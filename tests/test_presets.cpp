@@ -26,9 +26,12 @@
 #include "brdfbake/lut.h"
 #include "ggx_albedo_reference.h"
 #include "reference/reference.h"
+#include "image_readers.h"
 #include "support.h"
 
 using namespace brdfbake;
+
+using testing::exr_channel;
 
 namespace {
 
@@ -43,21 +46,6 @@ struct TempDir {
 };
 
 /// A float channel of an EXR (row-major over the data window).
-std::vector<float> exr_channel(const std::string& path, const std::string& name, int& w, int& h) {
-    Imf::InputFile file(path.c_str());
-    const Imath::Box2i dw = file.header().dataWindow();
-    w = dw.max.x - dw.min.x + 1;
-    h = dw.max.y - dw.min.y + 1;
-    REQUIRE(file.header().channels().findChannel(name.c_str()) != nullptr);
-    std::vector<float> v(size_t(w) * h);
-    Imf::FrameBuffer fb;
-    char* base = reinterpret_cast<char*>(v.data()) - (size_t(dw.min.y) * w + dw.min.x) * sizeof(float);
-    fb.insert(name, Imf::Slice(Imf::FLOAT, base, sizeof(float), size_t(w) * sizeof(float)));
-    file.setFrameBuffer(fb);
-    file.readPixels(dw.min.y, dw.max.y);
-    return v;
-}
-
 /// The RGBA pixels as a generic reader (and an engine's texture upload) sees them.
 std::vector<Imf::Rgba> exr_rgba(const std::string& path, int& w, int& h) {
     Imf::RgbaInputFile file(path.c_str());
@@ -72,23 +60,12 @@ std::vector<Imf::Rgba> exr_rgba(const std::string& path, int& w, int& h) {
 
 /// 16-bit RGB(A) samples of a PNG, as libpng reads them, scaled to [0, 1].
 std::vector<double> png_rgb(const std::string& path, int& w, int& h, int& channels) {
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    REQUIRE(f != nullptr);
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png_create_info_struct(png);
-    REQUIRE(setjmp(png_jmpbuf(png)) == 0);
-    png_init_io(png, f);
-    png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
-    w = int(png_get_image_width(png, info));
-    h = int(png_get_image_height(png, info));
-    channels = png_get_channels(png, info);
-    REQUIRE(png_get_bit_depth(png, info) == 16);
-    png_bytepp rows = png_get_rows(png, info);
+    const testing::Png p = testing::read_png(path);
+    w = p.width;
+    h = p.height;
+    channels = p.channels;
     std::vector<double> v;
-    for (int y = 0; y < h; ++y)
-        for (int x = 0; x < w * channels; ++x) v.push_back((unsigned(rows[y][2 * x]) << 8 | rows[y][2 * x + 1]) / 65535.0);
-    png_destroy_read_struct(&png, &info, nullptr);
-    std::fclose(f);
+    for (unsigned s : p.samples) v.push_back(s / 65535.0);
     return v;
 }
 

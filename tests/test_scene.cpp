@@ -133,7 +133,7 @@ TEST_CASE("two GGX metals and a rough glass plan exactly albedo and eavg over th
     CHECK(plan.warnings.empty());
 }
 
-TEST_CASE("materials that can share a table share it; model, shadowing and kind split them", "[scene][quick]") {
+TEST_CASE("materials that can share a table share it, model, shadowing and kind split them", "[scene][quick]") {
     const Plan plan = make_plan(load_scene(data("merge.json")));
     // correlated GGX: albedo + eavg shared by two metals and a Schlick plastic, ranges merged
     const PlannedTable* a = find_kind(plan, "albedo", "ggx:shadowing=correlated");
@@ -168,7 +168,7 @@ TEST_CASE("materials that can share a table share it; model, shadowing and kind 
     CHECK(plan.warnings.empty());
 }
 
-TEST_CASE("delta lobes need no table; models without a roughness axis are named in a warning", "[scene][quick]") {
+TEST_CASE("delta lobes need no table, models without a roughness axis are named in a warning", "[scene][quick]") {
     const auto names = model_names();
     for (const char* needed : {"mirror", "oren-nayar"})
         if (std::find(names.begin(), names.end(), needed) == names.end()) {
@@ -188,7 +188,7 @@ TEST_CASE("delta lobes need no table; models without a roughness axis are named 
     CHECK(contains(plan.warnings, "material 'skin': model 'oren-nayar' is not modelled"));
 }
 
-TEST_CASE("glTF: metals, glass with ior and volume, clear coat, specular colour and anisotropy map to tables; "
+TEST_CASE("glTF: metals, glass with ior and volume, clear coat, specular colour and anisotropy map to tables, "
           "the rest is named", "[scene][quick]") {
     const Scene scene = load_gltf_scene(data("materials.gltf"));
     const Plan plan = make_plan(scene);
@@ -329,7 +329,7 @@ TEST_CASE("plan --format json lists the tables with their ranges, sizes, materia
     CHECK(text.out.find("albedo-ggx.exr") != std::string::npos);
 }
 
-TEST_CASE("bake writes the tables and an index; a second bake does no work", "[scene][device]") {
+TEST_CASE("bake writes the tables and an index, a second bake does no work", "[scene][device]") {
     const std::string out = fresh_tmp_dir("bake");
     const auto index = bake_index("small_bake.json", out);
     REQUIRE(index.at("tables").size() == 2);

@@ -14,6 +14,7 @@
 #include <cstring>
 #include <fstream>
 
+#include "image_readers.h"
 #include "support.h"
 
 using testing::run_cli;
@@ -24,16 +25,8 @@ std::string scratch(const std::string& name) { return "/tmp/brdfbake-show-" + st
 
 /// One channel of an EXR file, read with OpenEXR and nothing of brdfbake's.
 std::vector<float> exr_channel(const std::string& path, const std::string& name) {
-    Imf::InputFile file(path.c_str());
-    const Imath::Box2i win = file.header().dataWindow();
-    const int w = win.max.x - win.min.x + 1, h = win.max.y - win.min.y + 1;
-    REQUIRE(file.header().channels().findChannel(name.c_str()) != nullptr);
-    std::vector<float> v(size_t(w) * size_t(h));
-    Imf::FrameBuffer fb;
-    fb.insert(name.c_str(), Imf::Slice(Imf::FLOAT, reinterpret_cast<char*>(v.data()), sizeof(float), sizeof(float) * w));
-    file.setFrameBuffer(fb);
-    file.readPixels(win.min.y, win.max.y);
-    return v;
+    int w = 0, h = 0;
+    return testing::exr_channel(path, name, w, h);
 }
 
 /// The float64 data of a .npy written by brdfbake ('<f8', C order), read from its header's length.
