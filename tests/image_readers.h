@@ -50,6 +50,29 @@ inline Png read_png(const std::string& path) {
     return p;
 }
 
+/// An 8-bit RGB(A) PNG (the pictures MathGL writes) with libpng's own reader: samples 0..255,
+/// row-major from the top, channels interleaved.
+inline Png read_png8(const std::string& path) {
+    Png p;
+    std::FILE* f = std::fopen(path.c_str(), "rb");
+    REQUIRE(f != nullptr);
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    REQUIRE(setjmp(png_jmpbuf(png)) == 0);
+    png_init_io(png, f);
+    png_read_png(png, info, PNG_TRANSFORM_STRIP_16 | PNG_TRANSFORM_EXPAND, nullptr);
+    p.width = int(png_get_image_width(png, info));
+    p.height = int(png_get_image_height(png, info));
+    p.channels = png_get_channels(png, info);
+    p.bit_depth = 8;
+    png_bytepp rows = png_get_rows(png, info);
+    for (int y = 0; y < p.height; ++y)
+        for (int x = 0; x < p.width * p.channels; ++x) p.samples.push_back(rows[y][x]);
+    png_destroy_read_struct(&png, &info, nullptr);
+    std::fclose(f);
+    return p;
+}
+
 /// One channel of an EXR file as float, with OpenEXR's reader; sets the image's width and height.
 inline std::vector<float> exr_channel(const std::string& path, const std::string& name, int& w, int& h) {
     Imf::InputFile file(path.c_str());

@@ -27,7 +27,7 @@ struct AlbedoOptions {
     std::vector<std::string> models;
     std::string fresnel = "none";
     double wavelength_nm = 0.0;
-    std::string mu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
+    std::string mu;  // empty: kDefaultMu, or with --plot a dense set (plot_mus)
     std::string phi = "0";
     MethodOptions integration;
     std::string precision = "float";
@@ -127,6 +127,16 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
     return out.str();
 }
 
+constexpr const char* kDefaultMu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
+
+/// The directions of a plot without --mu: 64 values of mu = u^2, u evenly spaced, dense at grazing
+/// angles where E(mu) changes fastest, from mu = 1/4096 to 1.
+std::vector<double> plot_mus() {
+    std::vector<double> mus;
+    for (int k = 1; k <= 64; ++k) mus.push_back(double(k * k) / (64.0 * 64.0));
+    return mus;
+}
+
 void plot_runs(const std::string& path, const FresnelConfig& fresnel, const std::vector<Run>& runs) {
     PlotSpec p;
     p.title = "directional albedo E(\\mu)" + (fresnel.kind ? ", Fresnel " + fresnel.canonical : std::string());
@@ -134,7 +144,7 @@ void plot_runs(const std::string& path, const FresnelConfig& fresnel, const std:
     p.y.label = "E(\\mu)";
     p.x.lo = 0.0;
     p.x.hi = 1.0;
-    p.legend = LegendPlace::BottomLeft;
+    p.legend = LegendPlace::Outside;
     for (const Run& r : runs) {
         // One curve per model and azimuth.
         std::map<double, Curve> by_phi;
@@ -144,15 +154,13 @@ void plot_runs(const std::string& path, const FresnelConfig& fresnel, const std:
             c.y.push_back(r.result.values[i].value);
         }
         for (auto& kv : by_phi) {
-            std::string label = r.model.canonical;
-            for (char& ch : label)
-                if (ch == '_') ch = ' ';  // MathGL reads _ as a subscript
+            std::string label = plot_text(r.model.canonical);
             if (by_phi.size() > 1) label += ", \\phi = " + format_number(std::round(kv.first * kDeg * 10) / 10);
             kv.second.label = label;
             p.curves.push_back(kv.second);
         }
     }
-    write_plot(path, p);
+    write_plot(path, p, 1300, 640);  // room for the legend right of the curves
 }
 
 int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
@@ -162,7 +170,9 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     const Format format = parse_format(o.format);
     check_plot_output(o.plot, "--plot");
     check_text_output(o.output);
-    const std::vector<double> mus = parse_number_list(o.mu, "--mu");
+    const std::vector<double> mus = !o.mu.empty() ? parse_number_list(o.mu, "--mu")
+                                    : o.plot.empty() ? parse_number_list(kDefaultMu, "--mu")
+                                                     : plot_mus();
     for (double mu : mus)
         if (!(mu > 0.0 && mu <= 1.0))
             throw Error("--mu: " + format_number(mu) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
@@ -208,7 +218,9 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
         ->required();
     cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp)->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
-    cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
+    cmd->add_option("--mu", o->mu,
+                    "comma-separated cos(theta_o) values in (0, 1] (default: 0.05,0.1,0.2,...,0.9,1; with --plot, 64 "
+                    "values from 1/4096 to 1, dense at grazing angles)");
     cmd->add_option("--phi", o->phi, "comma-separated phi_o in degrees (anisotropic models)")->capture_default_str();
     add_method_options(cmd, o->integration, "direction");
     add_precision_option(cmd, o->precision);

@@ -96,15 +96,20 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
         h.z_lo = 0.0;
         h.z_hi = 1.0;
         h.scheme = "kw";
+        // The environment (E = 1 by definition) in a colour of its own, so that a sphere that
+        // conserves energy (white) still stands out; the figure's colour bar gives the scale.
+        h.gap_colour = "{x8DB3D9}";
         for (int j = 0; j < a.pixels; ++j)
             for (int i = 0; i < a.pixels; ++i) {
                 const double x = -1 + (i + 0.5) * 2.0 / a.pixels, y = -1 + (j + 0.5) * 2.0 / a.pixels;
                 const double r2 = x * x + y * y;
-                // Background: the white environment itself. Sphere: E(n.v) for the view along -z.
-                h.z.push_back(r2 >= 1.0 ? 1.0 : std::min(1.0, interpolate(e, std::sqrt(1.0 - r2))));
+                // Background: a gap (the environment's colour). Sphere: E(n.v) for the view along -z.
+                h.z.push_back(r2 >= 1.0 ? NAN : std::min(1.0, interpolate(e, std::sqrt(1.0 - r2))));
             }
         fig.panels.push_back(p);
     }
+    fig.colorbar_label = "E(\\mu); environment (blue) = 1";
+    fig.colorbar_scheme = "kw";
     write_figure(a.output, fig);
     std::fprintf(stderr, "brdfbake: wrote %s: %zu spheres\n", a.output.c_str(), models.size());
     return kExitOk;

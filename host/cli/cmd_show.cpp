@@ -165,7 +165,7 @@ int run_show(const ShowOptions& o, const GlobalOptions&) {
     std::cout << render(t, format);
     if (!o.plot.empty()) {
         if (curves.empty())
-            write_table_preview(slice, o.plot);
+            write_table_preview(o.slice < 0 ? t : slice, o.plot);  // every slice, or the one asked for
         else
             write_curves(slice, curves, o.plot);
         std::fprintf(stderr, "brdfbake: wrote %s\n", o.plot.c_str());
@@ -185,7 +185,8 @@ void add_show_command(CLI::App& app, const GlobalOptions& global, Action& action
         global, action, run_show);
     cmd->add_option("table", o->table, "a table brdfbake wrote: .exr, .csv or .npy")->required();
     add_format_option(cmd, o->format, {"table", "json"});
-    cmd->add_option("--slice", o->slice, "z texel of a 3D table to draw (default: the middle one)");
+    cmd->add_option("--slice", o->slice,
+                    "z texel of a 3D table to draw (default: every slice as a small multiple; --curves: the middle one)");
     cmd->add_option("--curves", o->curves, "draw each channel along x at these values of the y axis (with --plot)");
     cmd->add_option("--plot", o->plot, "a picture of the slice (.png or .svg): its preview, or --curves");
     cmd->add_option("-o,--output", o->output, "convert: write the table as .exr, .csv, .h, .png or .npy");

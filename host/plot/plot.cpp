@@ -68,6 +68,24 @@ mglData to_mgl(const std::vector<double>& v) {
     return d;
 }
 
+/// The fraction of a panel's width left of its axes box, for the y tick labels and the y label.
+constexpr double kLeftMargin = 0.13;
+
+/// The fraction of a panel's width that an Outside legend takes: enough for its longest entry.
+double outside_legend_width(const PlotSpec& p) {
+    size_t chars = 0;
+    for (const Curve& c : p.curves) chars = std::max(chars, c.label.size());
+    return std::min(0.45, 0.06 + 0.0105 * double(chars));
+}
+
+/// Where a panel's axes box ends, as a fraction of its width: room for a colour bar or an Outside
+/// legend on the right.
+double box_right(const PlotSpec& p) {
+    if (p.heatmap.nx > 0 && !p.heatmap.colorbar_label.empty()) return 0.78;
+    if (p.legend == LegendPlace::Outside) return 1.0 - outside_legend_width(p);
+    return 0.96;
+}
+
 /// The legend, drawn by hand in data coordinates: MathGL's Legend() scales its text with the
 /// data ranges of an InPlot and comes out unreadably small or not at all.
 void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<std::string, std::string>>& entries,
@@ -87,10 +105,14 @@ void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<st
         chars = std::max(chars, visible);
     }
     const double row = 0.058 * dy, sample = 0.08 * dx, pad = 0.015 * dx;
-    const double w = pad + sample + pad + 0.0125 * dx * double(chars) + pad;
+    double w = pad + sample + pad + 0.0125 * dx * double(chars) + pad;
+    if (p.legend == LegendPlace::Outside) {  // the strip write_figure left right of the box
+        w = dx * (outside_legend_width(p) - 0.03) / (box_right(p) - kLeftMargin);
+    }
     const double h = row * double(entries.size()) + 0.6 * row;
     const double m = 0.025;  // distance from the axes box, as a fraction of the range
     double left = x0 + m * dx, top = y1 - m * dy;
+    if (p.legend == LegendPlace::Outside) left = x1 + 0.03 * dx;  // write_figure leaves room on the right
     if (p.legend == LegendPlace::TopRight || p.legend == LegendPlace::BottomRight) left = x1 - m * dx - w;
     if (p.legend == LegendPlace::BottomLeft || p.legend == LegendPlace::BottomRight) top = y0 + m * dy + h;
     if (std::isfinite(p.legend_x) && std::isfinite(p.legend_y)) {
@@ -107,12 +129,8 @@ void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<st
     gr.Line(mglPoint(left, top, 0.6), mglPoint(left, bottom, 0.6), frame);
     for (size_t i = 0; i < entries.size(); ++i) {
         const double y = top - 0.8 * row - row * double(i);
-        mglData sx(2), sy(2), sz(2);
-        sx.a[0] = left + pad;
-        sx.a[1] = left + pad + sample;
-        sy.a[0] = sy.a[1] = y;
-        sz.a[0] = sz.a[1] = 0.7;
-        gr.Plot(sx, sy, sz, entries[i].second.c_str());
+        // A line, not Plot(): Plot clips to the axes box, and an Outside legend lies beyond it.
+        gr.Line(mglPoint(left + pad, y, 0.7), mglPoint(left + pad + sample, y, 0.7), entries[i].second.c_str());
         gr.Puts(mglPoint(left + 2 * pad + sample, y, 0.7), entries[i].first.c_str(), ":L", -0.85);
     }
 }
@@ -141,6 +159,14 @@ void draw_heatmap(mglGraph& gr, const Heatmap& h, double x0, double x1, double y
     for (int i = 0; i < h.nx; ++i) x.a[i] = h.x_lo + (i + 0.5) * (h.x_hi - h.x_lo) / h.nx;
     for (int j = 0; j < h.ny; ++j) y.a[j] = h.y_lo + (j + 0.5) * (h.y_hi - h.y_lo) / h.ny;
     gr.SetRange('c', zlo, zhi);
+    if (!h.gap_colour.empty()) {
+        // Gaps (non-finite z) show this colour rather than the canvas: a face below the map (which
+        // MathGL draws at the bottom of the z range, -1; larger z is nearer the viewer).
+        gr.SetCut(false);
+        gr.Face(mglPoint(h.x_lo, h.y_lo, -1.5), mglPoint(h.x_hi, h.y_lo, -1.5), mglPoint(h.x_lo, h.y_hi, -1.5),
+                mglPoint(h.x_hi, h.y_hi, -1.5), h.gap_colour.c_str());
+        gr.SetCut(true);
+    }
     gr.Dens(x, y, z, h.scheme.c_str());
     if (!h.colorbar_label.empty()) {
         // Outside the axes box, on the right (write_figure leaves room for it).
@@ -210,14 +236,18 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     gr.SetTicks('y', p.y.tick, 0, 0.0);
     if (p.heatmap.nx == 0) gr.Grid("xy", "{h9}");
     gr.Box("k", false);
+    gr.SetRotatedText(false);  // tick labels upright on the y axis too
     gr.Axis("xy");
+    gr.SetRotatedText(true);
     // Axis labels placed by hand, clear of the tick labels (MathGL's Label() overlaps them at
     // this font size).
     gr.SetCut(false);
     const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1), dx = x1 - x0, dy = y1 - y0;
     if (!p.x.label.empty()) gr.Puts(mglPoint(xm, y0 - 0.13 * dy), p.x.label.c_str(), ":C", -1.0);
+    // Left of the upright tick labels, whatever the box's width (an Outside legend narrows it).
+    const double ylabel = 0.105 / (box_right(p) - kLeftMargin);
     if (!p.y.label.empty())
-        gr.Puts(mglPoint(x0 - 0.085 * dx, ym), mglPoint(x0 - 0.085 * dx, ym + dy), p.y.label.c_str(), ":C", -1.0);
+        gr.Puts(mglPoint(x0 - ylabel * dx, ym), mglPoint(x0 - ylabel * dx, ym + dy), p.y.label.c_str(), ":C", -1.0);
     gr.SetCut(true);
 
     for (const RefLine& l : p.lines) {
@@ -242,7 +272,11 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
         gr.Plot(x, y, style.c_str());
         if (!c.label.empty()) entries.emplace_back(c.label, style);
     }
-    if (p.legend != LegendPlace::None && !entries.empty()) draw_legend(gr, p, entries, x0, x1, y0, y1);
+    if (p.legend != LegendPlace::None && !entries.empty()) {
+        gr.SetCut(false);  // an Outside legend lies beyond the axes box
+        draw_legend(gr, p, entries, x0, x1, y0, y1);
+        gr.SetCut(true);
+    }
 }
 
 }  // namespace
@@ -258,24 +292,49 @@ void write_figure(const std::string& path, const Figure& figure) {
     const int rows = (n + cols - 1) / cols;
 
     mglGraph::SuppressWarn(true);  // problems are checked below and reported as errors
-    mglGraph gr(0, figure.panel_width * cols, figure.panel_height * rows);
+    // A shared colour bar takes a strip of its own on the right of the panels.
+    const int strip = figure.colorbar_label.empty() ? 0 : 200;
+    const int width = figure.panel_width * cols + strip;
+    const double panels = double(figure.panel_width * cols) / width;  // their fraction of the canvas
+    mglGraph gr(0, width, figure.panel_height * rows);
     gr.Clf('w');
     gr.SetQuality(figure.flat ? MGL_DRAW_FAST : MGL_DRAW_NORM);
     for (int i = 0; i < n; ++i) {
         // Each panel is a cell of the grid (fractions of the canvas, y upwards); the axes box
         // leaves room for the y label on the left, the x label below and the title above.
-        const double cw = 1.0 / cols, ch = 1.0 / rows;
+        const double cw = panels / cols, ch = 1.0 / rows;
         const double cx = cw * (i % cols), cy = 1.0 - ch * (i / cols + 1);
         const PlotSpec& panel = figure.panels[size_t(i)];
-        const double right = panel.heatmap.nx > 0 && !panel.heatmap.colorbar_label.empty() ? 0.78 : 0.96;
+        const double right = box_right(panel);
+        // A caption takes a strip at the bottom of the canvas (the panels' cells shrink to above it).
+        const double bottom = figure.caption.empty() ? 0.16 : 0.16 + 0.06 * rows;
         if (panel.axes)
-            gr.InPlot(cx + 0.12 * cw, cx + right * cw, cy + 0.16 * ch, cy + 0.90 * ch, false);
+            gr.InPlot(cx + kLeftMargin * cw, cx + right * cw, cy + bottom * ch, cy + 0.90 * ch, false);
         else  // a picture: only the title needs room
             gr.InPlot(cx + 0.03 * cw, cx + 0.97 * cw, cy + 0.02 * ch, cy + 0.88 * ch, false);
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
         gr.SetFontSize(3.0);
         const PlotSpec& p = figure.panels[size_t(i)];
         draw_panel(gr, p, size_t(i));
+    }
+    if (strip > 0) {
+        // The strip as one plot (so that text keeps the panels' size), the bar in its left part.
+        gr.InPlot(panels, 1.0, 0.0, 1.0, false);
+        gr.SetPlotFactor(1.0);
+        gr.SetRanges(0.0, 1.0, 0.0, 1.0);
+        gr.SetFontSize(6.0);  // relative to the strip, which is narrower than a panel
+        gr.SetRange('c', figure.colorbar_lo, figure.colorbar_hi);
+        gr.Colorbar((figure.colorbar_scheme + "I>").c_str(), 0.05, 0.06, 0.25, 0.82);
+        gr.Puts(mglPoint(0.62, 0.5), mglPoint(0.62, 1.5), figure.colorbar_label.c_str(), ":C", -0.6);
+    }
+    if (!figure.caption.empty()) {
+        gr.InPlot(0.0, 1.0, 0.0, 1.0, false);
+        gr.SetPlotFactor(1.0);
+        gr.SetRanges(0.0, 1.0, 0.0, 1.0);
+        gr.SetFontSize(3.0 / rows);
+        gr.SetCut(false);
+        gr.Puts(mglPoint(0.01, 0.03 / rows), figure.caption.c_str(), ":L", -0.75);
+        gr.SetCut(true);
     }
     if (gr.Message() && *gr.Message()) {
         // MathGL reports problems as messages rather than failures; they are not fatal for a plot

@@ -31,7 +31,9 @@ struct PlotAxis {
     double tick = 0.0;  // distance between labelled ticks; 0: automatic
 };
 
-enum class LegendPlace { TopRight, TopLeft, BottomRight, BottomLeft, None };
+/// Where a panel's legend goes: inside a corner of the axes box, or Outside it on the right (the
+/// box narrows to make room), where it can never cover a curve.
+enum class LegendPlace { TopRight, TopLeft, BottomRight, BottomLeft, Outside, None };
 
 /// A vertical or horizontal reference line (e.g. the critical angle), drawn thin and grey.
 struct RefLine {
@@ -51,6 +53,7 @@ struct Heatmap {
     double z_hi = std::numeric_limits<double>::quiet_NaN();
     bool log_scale = false;      // colour by log10(z) (z <= 0 drawn at the lower end)
     std::string colorbar_label;  // empty: no colour bar
+    std::string gap_colour;      // MathGL colour drawn where z is not finite (empty: the canvas)
     // MathGL colour scheme: viridis (van der Walt and Smith, matplotlib 2015) at five stops, which
     // is perceptually uniform and reads in grey and to colour-blind eyes; "kw" for grey levels.
     std::string scheme = "{x440154}{x3B528B}{x21918C}{x5EC962}{xFDE725}";
@@ -80,6 +83,13 @@ struct Figure {
     // Draw without colour interpolation (MathGL's fast quality): every cell of a heatmap one flat
     // colour, which is what a table holds, in half the time (0.15 s less for a 64x64 preview).
     bool flat = false;
+    /// One colour bar for every panel, in a strip right of them (empty label: none): the panels'
+    /// heatmaps must use the same scheme and range.
+    std::string colorbar_label;
+    std::string colorbar_scheme;
+    double colorbar_lo = 0.0, colorbar_hi = 1.0;
+    /// A line of small text under the panels (MathGL markup), e.g. how the picture maps to a file.
+    std::string caption;
 };
 
 /// Writes `figure` to `path`; the format follows the extension (.png or .svg, any case).
@@ -93,9 +103,19 @@ void write_plot(const std::string& path, const PlotSpec& panel, int width = 900,
 /// True if `path` ends in .png or .svg (any case), the formats write_figure can produce.
 bool is_plot_path(const std::string& path);
 
+/// Plain text as MathGL markup: '_' and '^' are escaped, so "R_inside" reads as written.
+std::string plot_text(const std::string& plain);
+
+struct Axis;
+/// The label of a table axis: what its ticks show ("u = sqrt(mu)" on a sqrt-mapped mu axis,
+/// "roughness r (alpha = r^2)"), as MathGL markup.
+std::string axis_label(const Axis& axis);
+
 struct Table;
-/// A table's preview picture (.png or .svg): a heatmap with axes and a colour bar per channel
-/// (2D and 3D tables; a 3D table shows its middle z-slice), or curves for a 1D table.
-void write_table_preview(const Table& table, const std::string& path);
+/// A table's preview picture (.png or .svg): a heatmap per channel with labelled axes and a colour
+/// bar naming the channel and its range, or curves for a 1D table. A 3D table shows z-slice
+/// `slice`, or with slice = -1 every slice as a small multiple (at most 8, evenly spread). The
+/// caption says which of the file's rows is at the bottom.
+void write_table_preview(const Table& table, const std::string& path, int slice = -1);
 
 }  // namespace brdfbake

@@ -1,5 +1,7 @@
-// PNG/SVG previews of tables: a heatmap per channel with axes and a colour bar (2D and 3D
-// tables; a 3D table shows its middle z-slice), or curves for a 1D table.
+// PNG/SVG previews of tables: a heatmap per channel with labelled axes and a colour bar naming the
+// channel and its range (2D tables; a 3D table shows every z-slice as a small multiple, or the one
+// slice asked for), or curves for a 1D table. The picture runs every axis upwards, and its caption
+// says where the file's row 0 is, so that the picture and the file cannot be misread.
 #include <algorithm>
 #include <cstdio>
 
@@ -8,7 +10,44 @@
 
 namespace brdfbake {
 
-void write_table_preview(const Table& table, const std::string& path) {
+namespace {
+
+/// At most this many z-slices are drawn side by side; a deeper table shows that many, evenly spread.
+constexpr int kMaxSlices = 8;
+
+std::string number(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", v);
+    return b;
+}
+
+}  // namespace
+
+std::string plot_text(const std::string& plain) {
+    // MathGL markup reads '_' as a subscript and '^' as a superscript; '\_' and '\^' are literal.
+    std::string out;
+    for (char c : plain) {
+        if (c == '_' || c == '^') out += '\\';
+        out += c;
+    }
+    return out;
+}
+
+std::string axis_label(const Axis& a) {
+    // What the ticks show, with the quantity the mapping gives where they differ.
+    if (a.name == "mu") return "\\mu = cos \\theta_o";
+    if (a.name == "sqrt_mu") return "u = \\sqrt{\\mu}  (\\mu = u^2 = cos \\theta_o)";
+    if (a.name == "alpha") return "\\alpha";
+    if (a.name == "roughness") return "roughness r  (\\alpha = r^2)";
+    if (a.name == "eta") return "\\eta";
+    if (a.name == "f0") return "F_0 = ((\\eta - 1)/(\\eta + 1))^2";
+    if (a.name == "cycles_z") return "z = F_0^{1/4}  (Cycles' \\eta axis)";
+    if (a.name == "theta_i") return "\\theta_i (degrees)";
+    if (a.name == "theta_o") return "\\theta_o (degrees)";
+    return plot_text(a.name);
+}
+
+void write_table_preview(const Table& table, const std::string& path, int slice) {
     // The picture runs every axis upwards: a flipped axis (lo > hi) is drawn unflipped.
     Table t = table;
     std::vector<std::string> flipped;
@@ -16,28 +55,49 @@ void write_table_preview(const Table& table, const std::string& path) {
         if (a->lo > a->hi && a->size > 1) flipped.push_back(a->name);
     arrange_axes(t, {}, flipped);
     Figure fig;
+    const std::string model = t.attributes.count("model") ? t.attributes.at("model") : std::string();
     if (t.height() == 1 && t.depth() == 1) {
         PlotSpec p;
-        p.title = t.kind + " of " + (t.attributes.count("model") ? t.attributes.at("model") : std::string());
-        p.x.label = t.x.name;
-        p.y.label = t.kind;
-        for (size_t c = 0; c < t.channels.size(); ++c) p.curves.push_back({t.channels[c], t.x.parameter, t.values[c], ""});
+        p.title = plot_text(t.kind + (model.empty() ? "" : " of " + model));
+        p.x.label = axis_label(t.x);
+        p.y.label = plot_text(t.kind);
+        p.legend = t.channels.size() > 1 ? LegendPlace::Outside : LegendPlace::None;
+        for (size_t c = 0; c < t.channels.size(); ++c)
+            p.curves.push_back({plot_text(t.channels[c]), t.x.parameter, t.values[c], ""});
         fig.panels.push_back(p);
+        write_figure(path, fig);
+        return;
+    }
+    // The slices drawn: the one asked for, or every one (at most kMaxSlices, evenly spread).
+    std::vector<int> slices;
+    if (slice >= 0) {
+        slices.push_back(std::min(slice, t.depth() - 1));
+    } else if (t.depth() <= kMaxSlices) {
+        for (int z = 0; z < t.depth(); ++z) slices.push_back(z);
     } else {
-        const int slice = t.depth() / 2;
-        for (size_t c = 0; c < t.channels.size(); ++c) {
+        for (int k = 0; k < kMaxSlices; ++k) slices.push_back(int(double(k) * (t.depth() - 1) / (kMaxSlices - 1) + 0.5));
+    }
+    const size_t n = size_t(t.width()) * size_t(t.height());
+    for (size_t c = 0; c < t.channels.size(); ++c) {
+        // One colour range per channel, over the slices drawn, so that slices compare: [0, 1] (an
+        // energy fraction's range) widened to the data, so that a value above 1 (a sheen lobe's
+        // gain at grazing) or below 0 is shown, never clipped to the end colour.
+        double lo = 0.0, hi = 1.0, data_lo = t.values[c][n * size_t(slices[0])], data_hi = data_lo;
+        for (int z : slices) {
+            const auto first = t.values[c].begin() + long(n * size_t(z));
+            const auto [mn, mx] = std::minmax_element(first, first + long(n));
+            data_lo = std::min(data_lo, *mn);
+            data_hi = std::max(data_hi, *mx);
+        }
+        lo = std::min(lo, data_lo);
+        hi = std::max(hi, data_hi);
+        for (int z : slices) {
             PlotSpec p;
-            std::string name = t.channels[c];  // MathGL reads _ as a subscript
-            for (char& ch : name)
-                if (ch == '_') ch = ' ';
-            p.title = name + " (" + t.kind + ")";
-            if (t.depth() > 1) {
-                char b[64];
-                std::snprintf(b, sizeof b, ", %s = %.3g", t.z.name.c_str(), t.z.parameter[size_t(slice)]);
-                p.title += b;
-            }
-            p.x.label = t.x.name + " (" + t.x.mapping + ")";
-            p.y.label = t.y.name + " (" + t.y.mapping + ")";
+            p.title = plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")";
+            if (t.depth() > 1) p.title += ", " + axis_label(t.z) + " = " + number(t.z.coordinate[size_t(z)]);
+            if (t.depth() > 1 && t.z.name != "eta") p.title += " (\\eta = " + number(t.z.parameter[size_t(z)]) + ")";
+            p.x.label = axis_label(t.x);
+            p.y.label = axis_label(t.y);
             p.legend = LegendPlace::None;
             Heatmap& h = p.heatmap;
             h.nx = t.width();
@@ -46,21 +106,27 @@ void write_table_preview(const Table& table, const std::string& path) {
             h.x_hi = t.x.hi;
             h.y_lo = t.y.lo;
             h.y_hi = t.y.hi;
-            const size_t n = size_t(h.nx) * h.ny;
-            h.z.assign(t.values[c].begin() + long(n * size_t(slice)), t.values[c].begin() + long(n * size_t(slice + 1)));
-            // [0, 1] (an energy fraction's range) widened to the data, so that a value above 1 (a
-            // sheen lobe's gain at grazing) or below 0 is shown, never clipped to the end colour.
-            const auto [lo, hi] = std::minmax_element(h.z.begin(), h.z.end());
-            h.z_lo = std::min(0.0, *lo);
-            h.z_hi = std::max(1.0, *hi);
-            h.colorbar_label = t.channels[c];
+            h.z.assign(t.values[c].begin() + long(n * size_t(z)), t.values[c].begin() + long(n * size_t(z + 1)));
+            h.z_lo = lo;
+            h.z_hi = hi;
+            h.colorbar_label = plot_text(t.channels[c]) + ": " + number(data_lo) + " to " + number(data_hi);
             fig.panels.push_back(p);
         }
-        fig.columns = std::min<int>(int(t.channels.size()), 2);
-        fig.panel_width = 760;
-        fig.panel_height = 640;
-        fig.flat = true;
     }
+    fig.columns = slices.size() > 1 ? int(slices.size()) : std::min<int>(int(t.channels.size()), 2);
+    const bool small = slices.size() > 2;
+    fig.panel_width = small ? 520 : 760;
+    fig.panel_height = small ? 460 : 640;
+    fig.flat = true;
+    // Where the file's texels are: the picture's bottom row is the file's first row of each slice
+    // unless an axis was flipped, and a 3D file stacks its slices along y.
+    std::string row0 = "file: row 0 holds " + t.y.name + " = " + number(table.y.coordinate.front()) +
+                       (flipped.empty() ? " (the bottom row here)" : " (the axis is flipped in the file; drawn upwards here)");
+    if (table.depth() > 1) row0 += "; slices stacked along y, " + t.z.name + " = " + number(table.z.coordinate.front()) + " first";
+    std::string caption = row0;
+    for (const Axis* a : {&t.x, &t.y})
+        if (a->mapping.find("computed at") != std::string::npos) caption += ". " + a->mapping;
+    fig.caption = plot_text(caption);
     write_figure(path, fig);
 }
 
