@@ -506,8 +506,10 @@ void write_bench_plot(const BenchReport& report, const std::string& path) {
     p.x.label = "log_{10}(cells x samples)";
     p.y.label = "log_{10}(seconds)";
     p.curves = {ks, kn, bs, bn};
-    p.legend = LegendPlace::TopLeft;
-    write_plot(path, p);
+    p.legend = LegendPlace::Outside;  // never over the baseline curves
+    p.x.tick = 1.0;                   // one labelled tick per decade: the labels cannot overlap
+    p.y.tick = 1.0;
+    write_plot(path, p, 1300, 640);
 }
 
 std::string bench_cpu_model() { return read_cpu_model(); }

@@ -88,5 +88,6 @@ void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action
 void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_show_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_report_command(CLI::App& app, const GlobalOptions& global, Action& action);
 
 }  // namespace brdfbake

@@ -44,6 +44,7 @@ int main(int argc, char** argv) {
     add_bake_command(app, global, action);
     add_show_command(app, global, action);
     add_lobe_command(app, global, action);
+    add_report_command(app, global, action);
     add_bench_command(app, global, action);
 
     std::string names;

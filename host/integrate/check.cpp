@@ -1,6 +1,7 @@
 #include "brdfbake/check.h"
 
 #include <cmath>
+#include <cstdio>
 #include <sstream>
 
 #include "brdfbake/albedo.h"
@@ -126,6 +127,45 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
     }
     r.value_violation = r.nonfinite > 0 || r.min_value < 0.0;
     return r;
+}
+
+std::string check_report_text(const CheckReport& r) {
+    constexpr double kDeg = 180.0 / M_PI;
+    std::ostringstream out;
+    char line[512];
+    out << "check " << r.model << " (Fresnel " << r.fresnel << ")\n";
+    if (r.furnace_analytic)
+        std::snprintf(line, sizeof line, "  energy       %s  max E = %.6f (analytic) at mu = %.4f (%d directions)\n",
+                      r.energy_violation ? "FAIL" : "pass", r.max_albedo, r.max_albedo_mu, r.furnace_directions);
+    else if (r.furnace_samples == 0)
+        std::snprintf(line, sizeof line, "  energy       n/a   the furnace met NaN or Inf (%s)\n", r.nonfinite_where.c_str());
+    else
+        std::snprintf(line, sizeof line,
+                      "  energy       %s  max E = %.6f +- %.1e at mu = %.4f%s (%d directions, %llu samples each, "
+                      "tolerance %.0e)\n",
+                      r.energy_violation ? "FAIL" : "pass", r.max_albedo, r.max_albedo_error, r.max_albedo_mu,
+                      r.max_albedo_phi != 0.0 ? (", phi = " + std::to_string(int(std::lround(r.max_albedo_phi * kDeg))) + " deg").c_str() : "",
+                      r.furnace_directions, (unsigned long long)r.furnace_samples, r.options.energy_tolerance);
+    out << line;
+    if (r.scan_nonfinite > 0)
+        std::snprintf(line, sizeof line, "  reciprocity  n/a   the scan met %llu NaN or Inf values (%llu pairs)\n",
+                      (unsigned long long)r.scan_nonfinite, (unsigned long long)r.pairs);
+    else if (r.max_rel == 0.0)
+        std::snprintf(line, sizeof line, "  reciprocity  pass  f(wo,wi) = f(wi,wo) exactly at every pair (%llu pairs)\n",
+                      (unsigned long long)r.pairs);
+    else
+        std::snprintf(line, sizeof line,
+                      "  reciprocity  %s  max relative error %.2e at theta_i = %.1f, theta_o = %.1f, dphi = %.1f deg "
+                      "(%llu pairs, tolerance %.0e)\n",
+                      r.reciprocity_violation ? "FAIL" : "pass", r.max_rel, r.max_rel_theta_i * kDeg,
+                      r.max_rel_theta_o * kDeg, r.max_rel_dphi * kDeg, (unsigned long long)r.pairs,
+                      r.reciprocity_tolerance);
+    out << line;
+    std::snprintf(line, sizeof line, "  values       %s  %llu NaN or Inf, smallest f = %.3g\n",
+                  r.value_violation ? "FAIL" : "pass", (unsigned long long)r.nonfinite, r.min_value);
+    out << line;
+    out << "verdict: " << (r.passed() ? "PASS" : "VIOLATION") << "\n";
+    return out.str();
 }
 
 }  // namespace brdfbake

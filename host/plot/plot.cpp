@@ -75,7 +75,7 @@ constexpr double kLeftMargin = 0.13;
 double outside_legend_width(const PlotSpec& p) {
     size_t chars = 0;
     for (const Curve& c : p.curves) chars = std::max(chars, c.label.size());
-    return std::min(0.45, 0.06 + 0.0105 * double(chars));
+    return std::min(0.45, 0.09 + 0.0125 * double(chars));
 }
 
 /// Where a panel's axes box ends, as a fraction of its width: room for a colour bar or an Outside

@@ -60,7 +60,7 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
         PlotSpec p;
         p.title = plot_text(t.kind + (model.empty() ? "" : " of " + model));
         p.x.label = axis_label(t.x);
-        p.y.label = plot_text(t.kind);
+        p.y.label = t.channels.size() == 1 ? plot_text(t.channels[0]) : "value";
         p.legend = t.channels.size() > 1 ? LegendPlace::Outside : LegendPlace::None;
         for (size_t c = 0; c < t.channels.size(); ++c)
             p.curves.push_back({plot_text(t.channels[c]), t.x.parameter, t.values[c], ""});

@@ -69,4 +69,8 @@ struct CheckReport {
 /// Runs the three checks. Violations are findings, not errors: only bad input throws.
 CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o);
 
+/// The report as text: one line per check (energy, reciprocity, values) with its numbers, then
+/// "verdict: PASS" or "verdict: VIOLATION" (what `brdfbake check` prints, and the bake report shows).
+std::string check_report_text(const CheckReport& r);
+
 }  // namespace brdfbake

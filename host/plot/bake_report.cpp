@@ -1,0 +1,246 @@
+#include "plot/bake_report.h"
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cstdio>
+#include <filesystem>
+#include <map>
+#include <sstream>
+
+#include "brdfbake/error.h"
+#include "brdfbake/output.h"
+#include "brdfbake/spec.h"
+#include "brdfbake/table.h"
+#include "models/input_file.h"
+#include "plot/plot.h"
+
+namespace brdfbake {
+
+namespace {
+
+namespace fs = std::filesystem;
+using Json = nlohmann::json;
+
+std::string html(const std::string& text) {
+    std::string out;
+    for (char c : text) {
+        switch (c) {
+            case '&': out += "&amp;"; break;
+            case '<': out += "&lt;"; break;
+            case '>': out += "&gt;"; break;
+            case '"': out += "&quot;"; break;
+            default: out += c;
+        }
+    }
+    return out;
+}
+
+std::string number(double v) {
+    char b[32];
+    std::snprintf(b, sizeof b, "%.4g", v);
+    return b;
+}
+
+std::string text_of(const Json& j) {
+    if (j.is_string()) return j.get<std::string>();
+    if (j.is_number()) return number(j.get<double>());
+    return j.dump();
+}
+
+/// The spec of `model` at roughness alpha: the swept parameter set by its key.
+std::string at_alpha(const std::string& model, double alpha) {
+    const size_t colon = model.find(':');
+    return colon == std::string::npos ? model + ":alpha=" + number(alpha)
+                                      : model.substr(0, colon + 1) + "alpha=" + number(alpha) + "," + model.substr(colon + 1);
+}
+
+/// One lobe's check at one roughness: "PASS" or "VIOLATION" and the report's lines.
+struct Verdict {
+    std::string spec, fresnel, text;
+    bool passed = true, ran = false;
+};
+
+Verdict check_lobe(Engine& engine, const std::string& model, const std::string& fresnel, double alpha,
+                   const CheckOptions& options) {
+    Verdict v;
+    v.spec = at_alpha(model, alpha);
+    v.fresnel = fresnel;
+    try {
+        ModelConfig m;
+        try {
+            m = resolve_model(v.spec);
+        } catch (const Error&) {  // a model whose roughness key is not alpha: checked as specified
+            v.spec = model;
+            m = resolve_model(model);
+        }
+        FresnelConfig f = resolve_fresnel("none");
+        if (m.uses_fresnel && fresnel != "none") {
+            try {
+                f = resolve_fresnel(fresnel, 550.0);  // measured metals: at 550 nm
+                if (f.kind != 0 && fresnel.rfind("metal:", 0) == 0) v.fresnel += " at 550 nm";
+            } catch (const Error&) {
+                v.fresnel = "none (" + fresnel + " is not a Fresnel spec check takes)";
+            }
+        }
+        const CheckReport r = run_check(engine, m, f, options);
+        v.text = check_report_text(r);
+        v.passed = r.passed();
+        v.ran = true;
+    } catch (const Error& e) {
+        v.text = std::string("not checked: ") + e.what();
+    }
+    return v;
+}
+
+const char* const kStyle =
+    "body{font-family:system-ui,sans-serif;max-width:1100px;margin:2em auto;padding:0 1em;color:#222}"
+    "h1{font-size:1.6em}h2{font-size:1.25em;margin-top:2em;border-bottom:1px solid #ccc}"
+    "table{border-collapse:collapse;margin:.5em 0}td,th{border:1px solid #ccc;padding:.2em .6em;text-align:left;"
+    "vertical-align:top}th{background:#f3f3f3}img{max-width:100%;border:1px solid #ddd}"
+    "pre{background:#f7f7f7;padding:.5em;overflow-x:auto;font-size:.85em}"
+    ".pass{color:#176b2c;font-weight:bold}.fail{color:#a4161a;font-weight:bold}.note{color:#666}";
+
+}  // namespace
+
+BakeReportOptions::BakeReportOptions() {
+    // A quick look, not the full `check`: half its directions and a quarter of its samples.
+    check.directions = 24;
+    check.samples = 1 << 14;
+    check.resolution = 16;
+    check.phi_resolution = 16;
+}
+
+BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, const BakeReportOptions& options) {
+    const std::string index_path = (fs::path(folder) / "index.json").string();
+    Json index;
+    try {
+        index = Json::parse(read_input_file(index_path, "bake index", std::uintmax_t(64) << 20));
+    } catch (const Json::exception& e) {
+        throw Error("'" + index_path + "' is not a bake index: " + e.what());
+    }
+    if (!index.is_object() || !index.contains("brdfbake_index") || !index.contains("tables"))
+        throw Error("'" + index_path + "' is not an index.json that brdfbake bake wrote");
+    BakeReportSummary summary;
+    const fs::path report_dir = fs::path(folder) / "report";
+    std::error_code ec;
+    fs::create_directories(report_dir, ec);
+    if (ec) throw Error("cannot create '" + report_dir.string() + "': " + ec.message());
+
+    // Every lobe of every material, checked once per (model, Fresnel, roughness end).
+    std::map<std::string, Verdict> verdicts;
+    std::map<std::string, std::vector<std::string>> lobes_of_table;  // file -> verdict keys
+    if (index.contains("materials") && options.checks)
+        for (const Json& mat : index["materials"]) {
+            if (!mat.contains("lobes")) continue;
+            for (const Json& lobe : mat["lobes"]) {
+                const std::string model = lobe.value("model", ""), fresnel = lobe.value("fresnel", "none");
+                if (model.empty()) continue;
+                std::vector<double> alphas;
+                if (lobe.contains("alpha_range") && lobe["alpha_range"].size() == 2) {
+                    alphas.push_back(lobe["alpha_range"][0].get<double>());
+                    if (lobe["alpha_range"][1].get<double>() != alphas[0]) alphas.push_back(lobe["alpha_range"][1].get<double>());
+                }
+                for (double a : alphas) {
+                    const std::string key = model + "|" + fresnel + "|" + number(a);
+                    if (!verdicts.count(key)) {
+                        verdicts[key] = check_lobe(engine, model, fresnel, a, options.check);
+                        summary.lobes_checked += verdicts[key].ran;
+                        summary.lobes_failed += verdicts[key].ran && !verdicts[key].passed;
+                    }
+                    if (mat.contains("tables"))
+                        for (const Json& file : mat["tables"]) {
+                            auto& keys = lobes_of_table[file.get<std::string>()];
+                            if (std::find(keys.begin(), keys.end(), key) == keys.end()) keys.push_back(key);
+                        }
+                }
+            }
+        }
+
+    std::ostringstream o;
+    const std::string scene = index.value("scene", std::string("(scene)"));
+    o << "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\"><title>brdfbake: "
+      << html(fs::path(scene).filename().string()) << "</title><style>" << kStyle << "</style></head><body>\n";
+    o << "<h1>Bake report: " << html(fs::path(scene).filename().string()) << "</h1>\n";
+    o << "<p>Scene <code>" << html(scene) << "</code>, baked by " << html(index.value("tool", std::string("brdfbake")))
+      << "; " << index["tables"].size() << " tables. The numbers come from <code>index.json</code> beside this page.</p>\n";
+    if (index.contains("settings")) {
+        o << "<table><tr><th>setting</th><th>value</th></tr>\n";
+        for (const auto& kv : index["settings"].items())
+            o << "<tr><td>" << html(kv.key()) << "</td><td>" << html(text_of(kv.value())) << "</td></tr>\n";
+        o << "</table>\n";
+    }
+    if (index.contains("warnings") && !index["warnings"].empty()) {
+        o << "<h2>Warnings</h2><ul>\n";
+        for (const Json& w : index["warnings"]) o << "<li>" << html(text_of(w)) << "</li>\n";
+        o << "</ul>\n";
+    }
+    if (index.contains("materials")) {
+        o << "<h2>Materials</h2><table><tr><th>material</th><th>tables</th><th>notes</th></tr>\n";
+        for (const Json& mat : index["materials"]) {
+            o << "<tr><td>" << html(mat.value("name", std::string())) << "</td><td>";
+            if (mat.contains("tables"))
+                for (const Json& f : mat["tables"])
+                    o << "<a href=\"#" << html(f.get<std::string>()) << "\">" << html(f.get<std::string>()) << "</a> ";
+            o << "</td><td>";
+            if (mat.contains("notes"))
+                for (const Json& n : mat["notes"]) o << html(text_of(n)) << "<br>";
+            o << "</td></tr>\n";
+        }
+        o << "</table>\n";
+    }
+    for (const Json& entry : index["tables"]) {
+        const std::string file = entry.value("file", std::string());
+        ++summary.tables;
+        o << "<h2 id=\"" << html(file) << "\">" << html(file) << "</h2>\n";
+        o << "<p>" << html(entry.value("kind", std::string())) << ": " << html(entry.value("quantity", std::string()))
+          << "</p>\n<table>";
+        for (const char* key : {"model", "fresnel", "size", "layout", "precision", "samples_per_cell", "max_error"})
+            if (entry.contains(key))
+                o << "<tr><th>" << key << "</th><td>" << html(text_of(entry[key])) << "</td></tr>";
+        if (entry.contains("serves")) {
+            o << "<tr><th>serves</th><td>";
+            for (const Json& s : entry["serves"]) o << html(text_of(s)) << "<br>";
+            o << "</td></tr>";
+        }
+        if (entry.contains("axes"))
+            for (const Json& a : entry["axes"])
+                o << "<tr><th>axis " << html(a.value("name", std::string())) << "</th><td>" << a.value("size", 0)
+                  << " texels over [" << html(text_of(a["lo"])) << ", " << html(text_of(a["hi"])) << "], "
+                  << html(a.value("mapping", std::string())) << "</td></tr>";
+        if (entry.contains("attributes") && entry["attributes"].contains("method"))
+            o << "<tr><th>method</th><td>" << html(text_of(entry["attributes"]["method"])) << "</td></tr>";
+        o << "</table>\n";
+        // The preview, drawn from the file itself (what a renderer will load).
+        const std::string picture = file + ".png";
+        try {
+            const Table t = read_table((fs::path(folder) / file).string());
+            write_table_preview(t, (report_dir / picture).string());
+            o << "<p><img src=\"report/" << html(picture) << "\" alt=\"preview of " << html(file) << "\"></p>\n";
+            ++summary.previews;
+        } catch (const Error& e) {
+            o << "<p class=\"note\">No preview: " << html(e.what()) << "</p>\n";
+        }
+        if (lobes_of_table.count(file)) {
+            o << "<h3>Check of the lobes it tabulates</h3>\n";
+            for (const std::string& key : lobes_of_table[file]) {
+                const Verdict& v = verdicts[key];
+                o << "<p><code>" << html(v.spec) << "</code>, Fresnel <code>" << html(v.fresnel) << "</code>: "
+                  << (v.ran ? (v.passed ? "<span class=\"pass\">PASS</span>" : "<span class=\"fail\">VIOLATION</span>")
+                            : "<span class=\"note\">not checked</span>")
+                  << "</p><pre>" << html(v.text) << "</pre>\n";
+            }
+        }
+    }
+    if (options.checks)
+        o << "<p class=\"note\">Checks: white furnace over " << options.check.directions << " directions, "
+          << options.check.samples << " samples each; reciprocity over " << options.check.resolution << "&times;"
+          << options.check.resolution << "&times;" << options.check.phi_resolution
+          << " direction pairs; at both ends of each lobe's roughness range. <code>brdfbake check</code> runs the "
+             "full check of one lobe.</p>\n";
+    o << "</body></html>\n";
+    write_file_atomically((fs::path(folder) / "index.html").string(), o.str());
+    return summary;
+}
+
+}  // namespace brdfbake
