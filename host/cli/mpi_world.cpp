@@ -5,6 +5,8 @@
 #ifdef BRDFBAKE_HAVE_MPI
 #include <mpi.h>
 
+#include <chrono>
+#include <cstdio>
 #include <memory>
 #include <string>
 #include <vector>
@@ -37,9 +39,28 @@ public:
     int size() const override { return size_; }
 
     std::vector<std::string> allgather(const std::string& mine) override {
+        const auto t0 = std::chrono::steady_clock::now();
+        std::vector<std::string> out = gather(mine);
+        seconds_ += std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        ++steps_;
+        for (const std::string& p : out) bytes_ += p.size();
+        return out;
+    }
+
+    // $BRDFBAKE_MPI_STATS: rank 0 reports the collective steps (benchmarks/mpi_scaling.sh). The
+    // time in them includes waiting for the slowest rank, so it bounds the communication share.
+    void report() const {
+        if (rank_ != 0 || !std::getenv("BRDFBAKE_MPI_STATS")) return;
+        const double wall = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
+        std::fprintf(stderr, "brdfbake: mpi: %d ranks, %ld steps, %.0f bytes gathered, %.3f s in steps of %.3f s\n",
+                     size_, steps_, bytes_, seconds_, wall);
+    }
+
+private:
+    std::vector<std::string> gather(const std::string& mine) {
         if (mine.size() > size_t(INT32_MAX)) throw Error("a rank's share of the results exceeds 2 GiB; use more ranks");
         const int length = int(mine.size());
-        std::vector<int> lengths(size_t(size_)), offsets(size_t(size_));
+        std::vector<int> lengths(static_cast<size_t>(size_)), offsets(static_cast<size_t>(size_));
         MPI_Allgather(&length, 1, MPI_INT, lengths.data(), 1, MPI_INT, MPI_COMM_WORLD);
         long long total = 0;
         for (int r = 0; r < size_; ++r) {
@@ -55,8 +76,10 @@ public:
         return out;
     }
 
-private:
     int rank_ = 0, size_ = 1;
+    long steps_ = 0;
+    double bytes_ = 0.0, seconds_ = 0.0;
+    std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
 };
 
 std::unique_ptr<MpiWorld> g_world;
@@ -74,6 +97,7 @@ MpiSession::MpiSession() {
 
 MpiSession::~MpiSession() {
     if (!initialised_) return;
+    g_world->report();
     dist::set_world(nullptr);
     g_world.reset();
     MPI_Finalize();
