@@ -2,7 +2,7 @@
 // byte for byte, and a rank that fails ends the job with one error and no file. Built only when
 // CMake found MPI (BRDFBAKE_MPIEXEC is its launcher). Every rank runs PoCL on one thread
 // (POCL_MAX_PTHREAD_COUNT=1), oversubscribed on the two cores of CI.
-#include <catch2/catch_test_macros.hpp>
+#include <catch2/catch.hpp>
 
 #ifdef BRDFBAKE_MPIEXEC
 
@@ -28,7 +28,7 @@ bool exists(const std::string& path) { return ::access(path.c_str(), F_OK) == 0;
 testing::CliResult run_mpi(int ranks, const std::string& command) {
     const std::string base = mpi_path("run");
     const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
-                            "POCL_MAX_PTHREAD_COUNT=1 " BRDFBAKE_MPIEXEC " -q --oversubscribe -np " +
+                            "POCL_MAX_PTHREAD_COUNT=1 timeout 300 " BRDFBAKE_MPIEXEC " -q --oversubscribe -np " +
                             std::to_string(ranks) + " " + command + " >" + base + ".out 2>" + base + ".err";
     const int raw = std::system(cmd.c_str());
     testing::CliResult r;
@@ -68,6 +68,8 @@ TEST_CASE("mpirun -np 2 and -np 3 write the one-process table byte for byte", "[
     SECTION("3D dielectric table") { check_ranks_reproduce("dielectric --model ggx --size 4x3x3 --samples 1024", "dielectric"); }
 }
 
+// Needs the bake folder's lock taken by rank 0 only (host/scene/bake_folder.cpp): otherwise rank 1
+// waits for rank 0's lock while rank 0 waits for rank 1's cells, and the timeout ends the job.
 TEST_CASE("mpirun -np 2 bakes a scene into the files one process writes", "[mpi][device][bake]") {
     const std::string one = mpi_path("bake-1"), two = mpi_path("bake-2");
     const std::string scene = std::string(BRDFBAKE_SOURCE_DIR) + "/tests/data/small_bake.json";
@@ -75,11 +77,7 @@ TEST_CASE("mpirun -np 2 bakes a scene into the files one process writes", "[mpi]
     const auto r = run_mpi(2, std::string(BRDFBAKE_EXE) + " bake " + scene + " -q -o " + two);
     INFO(r.err);
     REQUIRE(r.status == 0);
-    const auto listing = run_cli("show " + one);  // any command: just to be sure the folder is complete
-    for (const std::string name : {"index.json"}) {
-        (void)listing;
-        CHECK(slurp(one + "/" + name).size() > 0);
-    }
+    CHECK(slurp(one + "/index.json").size() > 0);
     // Every file of the one-process folder, byte for byte.
     const std::string diff = "diff -r " + one + " " + two + " >/dev/null";
     CHECK(std::system(diff.c_str()) == 0);
@@ -89,11 +87,8 @@ TEST_CASE("mpirun -np 2 bakes a scene into the files one process writes", "[mpi]
 TEST_CASE("a rank that fails ends the whole job: one error line, non-zero exit, no file", "[mpi][device]") {
     // Rank 1 is given an n,k file it cannot read (a per-rank environment variable, as a site's
     // per-node paths could differ); rank 0 reads a good one.
-    const std::string good = mpi_path("good.yml"), script = mpi_path("rank.sh"), out = mpi_path("fail.exr");
-    {
-        std::ofstream f(good);
-        f << "DATA:\n  - type: tabulated nk\n    data: |\n        0.4 1.5 3.0\n        0.8 2.0 4.0\n";
-    }
+    const std::string good = std::string(BRDFBAKE_SOURCE_DIR) + "/data/nk/Au-Johnson.yml", script = mpi_path("rank.sh"),
+                      out = mpi_path("fail.exr");
     {
         std::ofstream f(script);
         f << "#!/bin/sh\nif [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then nk=" << mpi_path("missing.yml") << "; else nk=" << good
@@ -114,7 +109,6 @@ TEST_CASE("a rank that fails ends the whole job: one error line, non-zero exit, 
         CHECK(r.err.find("missing.yml") != std::string::npos);
         CHECK(!exists(out));
     }
-    std::remove(good.c_str());
     std::remove(script.c_str());
 }
 

@@ -1,7 +1,7 @@
 // Shards (`lut --shard K/N`, `brdfbake merge`) and launch-independent cell values, the basis of
 // both shards and MPI jobs (docs/cluster.md). The reference is always the program's own
 // unsharded run: the property under test is that the split changes no bit of the file.
-#include <catch2/catch_test_macros.hpp>
+#include <catch2/catch.hpp>
 
 #include <unistd.h>
 
