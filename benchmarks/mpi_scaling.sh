@@ -12,8 +12,8 @@ trap 'rm -rf "$work"' EXIT
 export POCL_MAX_PTHREAD_COUNT=1 BRDFBAKE_MPI_STATS=1 OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1
 
 declare -A tables=(
-  [dielectric]="lut dielectric --model ggx --size 16x16x8 --samples 8192"
-  [tolerance]="lut albedo --model torrance-sparrow --size 24x24 --tolerance 1e-4"
+  [dielectric]="lut dielectric --model ggx --size 12x12x6 --samples 8192"
+  [tolerance]="lut albedo --model torrance-sparrow --size 16x16 --tolerance 1e-4"
 )
 
 {
@@ -53,7 +53,7 @@ for name in dielectric tolerance; do
   done
 done
 echo >> "$work/record.md"
-echo "Tables: dielectric = \`${tables[dielectric]}\` (2048 cells); tolerance = \`${tables[tolerance]}\` (576 cells)." >> "$work/record.md"
+echo "Tables: dielectric = \`${tables[dielectric]}\` (864 cells); tolerance = \`${tables[tolerance]}\` (256 cells)." >> "$work/record.md"
 mkdir -p "$(dirname "$record")"
 cp "$work/record.md" "$record"
 cat "$record"

@@ -28,7 +28,7 @@ bool exists(const std::string& path) { return ::access(path.c_str(), F_OK) == 0;
 testing::CliResult run_mpi(int ranks, const std::string& command) {
     const std::string base = mpi_path("run");
     const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
-                            "POCL_MAX_PTHREAD_COUNT=1 timeout 300 " BRDFBAKE_MPIEXEC " -q --oversubscribe -np " +
+                            "POCL_MAX_PTHREAD_COUNT=1 timeout 120 " BRDFBAKE_MPIEXEC " -q --oversubscribe -np " +
                             std::to_string(ranks) + " " + command + " >" + base + ".out 2>" + base + ".err";
     const int raw = std::system(cmd.c_str());
     testing::CliResult r;
