@@ -156,6 +156,7 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(BB_CELL_ARGS,
                               const int method,                /* BB_METHOD_* */
                               const unsigned int seed_lo,      /* Philox key (mc) */
                               const unsigned int seed_hi,
+                              __global const unsigned int* cell_stream, /* mc: each cell's stream */
                               __global real* replica_mean,     /* n_cells * n_replicas */
                               __global unsigned int* bad_count) /* n_cells * n_replicas */
 {
@@ -171,8 +172,10 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(BB_CELL_ARGS,
         real u1, u2;
 #ifdef BB_PHILOX
         if (method == BB_METHOD_MC) {
-            /* Counter (point, replica, cell, "albd"): every sample its own stream position. */
-            philox4x32_ctr_t ctr = {{i, rep, cell, 0x616c6264u}};
+            /* Counter (point, replica, cell stream, "albd"): every sample its own stream position;
+             * the stream is the cell's identity from its content (the host's cell_identity), so
+             * that a cell's value does not depend on the other cells of the launch. */
+            philox4x32_ctr_t ctr = {{i, rep, cell_stream[cell], 0x616c6264u}};
             philox4x32_ctr_t r = philox4x32(ctr, key);
             u1 = bb_unit_from_bits(r.v[0]);
             u2 = bb_unit_from_bits(r.v[1]);

@@ -11,6 +11,7 @@ packages=(
   pkg-config  # the install_consumer test checks brdfbake.pc
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (Debian's /usr/bin/python3)
   libpng-dev  # 16-bit PNG tables (host/io/table_png.cpp)
+  libopenmpi-dev openmpi-bin  # MPI jobs (mpirun -np N brdfbake ...; docs/cluster.md) and their tests
 )
 
 missing=()

@@ -89,5 +89,17 @@ void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& actio
 void add_show_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_report_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_merge_command(CLI::App& app, const GlobalOptions& global, Action& action);
+
+/// Parses and runs one command line (the words after the program's name), as main() does: the
+/// status it exits with; errors printed as one `brdfbake: error:` line (by rank 0 of an MPI job).
+/// `brdfbake merge` runs the shards' command through it.
+int run_command_line(const std::vector<std::string>& arguments);
+/// The words of the command line being run (after the program's name).
+const std::vector<std::string>& command_line();
+/// A shard's command as its part file records it: `words` less --shard, -o/--output and the
+/// options that do not change a table (--device, --max-memory, -v, -q), so that shards run on
+/// different machines belong together; merge runs it with its own -o.
+std::vector<std::string> shard_command(const std::vector<std::string>& words);
 
 }  // namespace brdfbake

@@ -10,7 +10,11 @@
 #include "brdfbake/lut.h"
 #include "brdfbake/output.h"
 #include "brdfbake/table_kinds.h"
+#include "brdfbake/version.h"
 #include "cli/cli.h"
+#include "engine/distributed.h"
+#include "integrate/distributed_compute.h"
+#include "io/part_file.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -33,7 +37,22 @@ struct LutOptions {
     std::string preview;  // default: the output's name with .png
     bool no_preview = false;
     std::string output;
+    std::string shard;  // K/N: compute shard K of N into a part file (brdfbake merge)
 };
+
+// "K/N" as (K, N), 0 <= K < N.
+std::pair<int, int> parse_shard(const std::string& text) {
+    const size_t slash = text.find('/');
+    auto number = [&](const std::string& s) {
+        if (s.empty() || s.size() > 6 || s.find_first_not_of("0123456789") != std::string::npos)
+            throw Error("--shard: '" + text + "' is not K/N (shard K of N, 0 <= K < N, e.g. 3/8)");
+        return std::stoi(s);
+    };
+    if (slash == std::string::npos) number("");
+    const int k = number(text.substr(0, slash)), n = number(text.substr(slash + 1));
+    if (n < 1 || k >= n) throw Error("--shard: '" + text + "' is not K/N with 0 <= K < N");
+    return {k, n};
+}
 
 void parse_size(const std::string& text, LutRequest& r) {
     std::vector<int> dims;
@@ -138,7 +157,16 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     r.tolerance = preset && !method_given ? p.tolerance : choice.tolerance;
     r.precision = preset && !given("--precision") ? p.precision
                                                   : (o.precision == "double" ? Precision::Double : Precision::Float);
-    check_table_path(o.output);
+    const bool sharded = !o.shard.empty();
+    std::pair<int, int> shard{0, 1};
+    if (sharded) {
+        shard = parse_shard(o.shard);
+        if (dist::active()) throw Error("--shard is for separate processes; an MPI job shares the table among its ranks");
+        check_output_path(o.output);  // a part file, whatever its name
+        o.no_preview = true;
+    } else {
+        check_table_path(o.output);
+    }
     check_plot_output(o.preview, "--preview");
     std::string preview = o.preview;
     const std::string stem = o.output.substr(0, o.output.find_last_of('.'));
@@ -150,6 +178,22 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     validate_lut(r);  // every input checked before the device is touched
 
     Engine engine(g.device, g.verbose);
+    if (sharded) {
+        begin_shard(shard.first, shard.second);
+        compute_lut(engine, r);  // this shard's cells recorded, the others placeholders
+        PartFile part;
+        part.command = shard_command(command_line());
+        part.version = BRDFBAKE_VERSION;
+        part.source = source_digest();
+        part.shard = shard.first;
+        part.shards = shard.second;
+        part.cells = shard_records().cells;
+        part.texts = shard_records().texts;
+        write_part_file(part, o.output);
+        std::fprintf(stderr, "brdfbake: wrote %s: shard %d of %d, %zu cells\n", o.output.c_str(), shard.first,
+                     shard.second, part.cells.size());
+        return kExitOk;
+    }
     const Table table = compute_lut(engine, r);
     write_table(table, o.output, o.half);
     if (!o.no_preview) write_table_preview(table, preview);
@@ -215,6 +259,9 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->required();
     cmd->add_option("--preview", o->preview, "preview picture (.png or .svg); default: the output name with .png (NAME.preview.png for a .png table)");
     cmd->add_flag("--no-preview", o->no_preview, "write no preview picture");
+    cmd->add_option("--shard", o->shard,
+                    "K/N: compute shard K of N (0 <= K < N) into the part file -o; `brdfbake merge` joins the N "
+                    "parts into the table (docs/cluster.md)");
 }
 
 }  // namespace brdfbake

@@ -4,15 +4,39 @@
 #include <cstdio>
 #include <cstring>
 #include <iostream>
+#include <string>
+#include <vector>
 
 #include "brdfbake/engine.h"
 #include "brdfbake/error.h"
 #include "brdfbake/memory_limit.h"
 #include "brdfbake/version.h"
 #include "cli/cli.h"
+#include "cli/mpi_world.h"
+#include "engine/distributed.h"
 
-int main(int argc, char** argv) {
-    using namespace brdfbake;
+namespace brdfbake {
+namespace {
+std::vector<std::string> g_command_line;
+}  // namespace
+
+const std::vector<std::string>& command_line() { return g_command_line; }
+
+int run_command_line(const std::vector<std::string>& arguments) {
+    g_command_line = arguments;
+    std::vector<std::string> words{"brdfbake"};
+    words.insert(words.end(), arguments.begin(), arguments.end());
+    std::vector<char*> argv_words;
+    for (std::string& w : words) argv_words.push_back(w.data());
+    const int argc = int(argv_words.size());
+    char** argv = argv_words.data();
+    // In an MPI job the ranks agree at the end, so that a rank that fails after the others'
+    // last step still ends the job (engine/distributed.h); only rank 0 prints the error.
+    auto fail = [](const Error& e) {
+        const Error job = dist::report_failure(e);
+        if (dist::is_writer()) std::cerr << "brdfbake: error: " << job.what() << "\n";
+        return job.exit_code();
+    };
     CLI::App app{"brdfbake " BRDFBAKE_VERSION
                  ": integrate BRDFs in OpenCL kernels (PoCL by default) and write lookup tables and plots"};
     app.require_subcommand(1);
@@ -46,23 +70,19 @@ int main(int argc, char** argv) {
     add_lobe_command(app, global, action);
     add_report_command(app, global, action);
     add_bench_command(app, global, action);
+    add_merge_command(app, global, action);
 
     std::string names;
     for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
     // No arguments: a short usage, not the whole help, and the status of bad input.
-    if (argc < 2) {
-        std::cerr << "brdfbake: error: no command given; usage: brdfbake COMMAND [OPTIONS] with COMMAND one of " << names
-                  << " (brdfbake --help, brdfbake COMMAND --help)\n";
-        return kExitError;
-    }
+    if (argc < 2)
+        return fail(Error("no command given; usage: brdfbake COMMAND [OPTIONS] with COMMAND one of " + names +
+                          " (brdfbake --help, brdfbake COMMAND --help)"));
     // A first word that is neither an option nor a command gets its own message.
     if (argv[1][0] != '-') {
         bool known = false;
         for (const CLI::App* sub : app.get_subcommands({})) known = known || sub->get_name() == argv[1];
-        if (!known) {
-            std::cerr << "brdfbake: error: unknown command '" << argv[1] << "'; commands: " << names << "\n";
-            return kExitError;
-        }
+        if (!known) return fail(Error(std::string("unknown command '") + argv[1] + "'; commands: " + names));
     }
 
     try {
@@ -85,8 +105,7 @@ int main(int argc, char** argv) {
         std::string where = "brdfbake --help";
         for (const CLI::App* sub : app.get_subcommands())
             where = "brdfbake " + sub->get_name() + " --help";
-        std::cerr << "brdfbake: error: " << message << " (see " << where << ")\n";
-        return kExitError;
+        return fail(Error(message + " (see " + where + ")"));
     }
 
     try {
@@ -97,7 +116,7 @@ int main(int argc, char** argv) {
                 throw Error(std::string("--max-memory (or BRDFBAKE_MAX_MEMORY): ") + e.what());
             }
         }
-        if (!quiet) set_progress_sink(&stderr_progress());
+        if (!quiet && dist::is_writer()) set_progress_sink(&stderr_progress());
         const int status = action ? action() : kExitError;
         // What a command printed is its result: a full disk or a closed pipe must not pass as
         // success (stdout is buffered, so a failed write shows at the flush).
@@ -105,22 +124,25 @@ int main(int argc, char** argv) {
         errno = 0;
         if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
             const int err = errno;
-            std::cerr << "brdfbake: error: cannot write standard output"
-                      << (err ? std::string(": ") + std::strerror(err) : std::string()) << "\n";
-            return kExitError;
+            throw Error(std::string("cannot write standard output") +
+                        (err ? std::string(": ") + std::strerror(err) : std::string()));
         }
+        dist::agree();
         return status;
-    } catch (const Error& e) {
-        std::cerr << "brdfbake: error: " << e.what() << "\n";
-        return e.exit_code();
-    } catch (const cl::Error& e) {
-        std::cerr << "brdfbake: error: OpenCL call " << e.what() << " failed: " << cl_error_name(e.err()) << "\n";
-        return kExitError;
-    } catch (const std::bad_alloc&) {
-        std::cerr << "brdfbake: error: out of host memory (try a smaller table or fewer samples)\n";
-        return kExitError;
-    } catch (const std::exception& e) {
-        std::cerr << "brdfbake: error: " << e.what() << "\n";
-        return kExitError;
+    } catch (...) {
+        return fail(dist::describe_failure(std::current_exception()));
     }
+}
+
+}  // namespace brdfbake
+
+int main(int argc, char** argv) {
+    using namespace brdfbake;
+    // An MPI rank (mpirun, srun) joins its job here; a plain run is the one process it always was.
+    // Ranks other than 0 print nothing: their results and errors reach rank 0, which prints.
+    MpiSession mpi;
+    if (!dist::is_writer()) {
+        if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) return kExitError;
+    }
+    return run_command_line(std::vector<std::string>(argv + 1, argv + argc));
 }

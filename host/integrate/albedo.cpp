@@ -20,6 +20,7 @@
 #include "brdfbake/memory_limit.h"
 #include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
+#include "integrate/distributed_compute.h"
 #include "models/key_reader.h"
 #include "models/params.h"
 
@@ -384,6 +385,16 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     RealBuffers bufs(engine, req.precision);
     cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
                b_fp = bufs.input(fparams);
+    // mc: each cell's Philox stream from its content (cell_identity), not its place in the
+    // launch, so that a cell has one value whichever cells share its launch (refinement rounds,
+    // MPI ranks, shards).
+    std::vector<cl_uint> streams;
+    for (const AlbedoCell& c : req.cells) {
+        const std::uint64_t id = cell_identity(c);
+        streams.push_back(cl_uint(id ^ (id >> 32)));
+    }
+    cl::Buffer b_stream(engine.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, streams.size() * sizeof(cl_uint),
+                        streams.data());
     cl::Buffer b_points = bufs.input(lanes == 1 ? shifts
                                      : disk   ? disk_table(shifts, req.replicas, points, lanes, req.precision)
                                               : point_table(shifts, req.replicas, points, lanes, req.precision));
@@ -399,7 +410,7 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
         const int method = req.method == Method::Importance        ? BB_METHOD_IMPORTANCE
                            : req.method == Method::QuasiMonteCarlo ? BB_METHOD_QMC
                                                                    : BB_METHOD_MC;
-        a = set_args(kernel, a, cl_int(method), cl_uint(req.seed), cl_uint(req.seed >> 32));
+        a = set_args(kernel, a, cl_int(method), cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream);
     }
     set_args(kernel, a, b_mean, bad_counts.buffer);
     const double kernel_seconds =
@@ -569,6 +580,7 @@ double azimuth_from_degrees(double degrees) {
 }
 
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
+    if (auto shared = shared_albedo(engine, request)) return std::move(*shared);  // MPI ranks, shards
     if (request.cells.empty()) throw Error("no directions to integrate");
     AlbedoRequest req = request;
     for (auto& c : req.cells) {
@@ -585,6 +597,7 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
 }
 
 DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req) {
+    if (auto shared = shared_dielectric(engine, req)) return std::move(*shared);  // MPI ranks, shards
     if (req.cells.empty()) throw Error("no cells to integrate");
     check_sampling(req.samples, req.replicas);
     for (const auto& c : req.cells)

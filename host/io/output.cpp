@@ -16,6 +16,7 @@
 
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
+#include "engine/distributed.h"
 
 namespace brdfbake {
 
@@ -103,12 +104,31 @@ OutputFile prepare_output(const std::string& path) {
     OutputFile f;
     f.target = resolve_target(path);
     const std::string folder = folder_of(f.target);
-    remove_stale_temporaries(folder);
+    // Only the writing rank judges stale files: a rank on another node cannot see rank 0's process.
+    if (dist::is_writer()) remove_stale_temporaries(folder);
     f.temporary = folder + "/." + name_of(f.target) + ".tmp-" + std::to_string(::getpid());
+    if (!dist::is_writer()) {
+        // An MPI rank other than 0 writes its copy to a private temporary file that commit_output
+        // removes: the same code path on every rank, one file at the target (rank 0's).
+        const char* tmp = std::getenv("TMPDIR");
+        f.temporary = std::string(tmp && *tmp ? tmp : "/tmp") + "/.brdfbake-rank" + std::to_string(dist::rank()) + "-" +
+                      std::to_string(::getpid()) + "-" + name_of(f.target);
+    }
     return f;
 }
 
 void commit_output(const OutputFile& f, const std::string& path) {
+    // In an MPI job no file lands unless every rank has come this far without failing.
+    try {
+        dist::agree();
+    } catch (...) {
+        std::remove(f.temporary.c_str());
+        throw;
+    }
+    if (!dist::is_writer()) {
+        std::remove(f.temporary.c_str());
+        return;
+    }
     if (std::rename(f.temporary.c_str(), f.target.c_str()) != 0) {
         const std::string why = std::strerror(errno);
         std::remove(f.temporary.c_str());
