@@ -16,6 +16,7 @@
 #include <thread>
 
 #include "brdfbake/error.h"
+#include "engine/distributed.h"
 
 namespace brdfbake {
 
@@ -55,6 +56,10 @@ BakeFolder::BakeFolder(const std::string& folder, double wait_seconds) : folder_
     if (folder.empty()) throw Error("-o: give an output folder");
     if (!(wait_seconds >= 0) || !std::isfinite(wait_seconds))
         throw Error("--lock-timeout must be a finite number of seconds, 0 or more");
+    // In an MPI job only the writing rank (rank 0) makes the folder and holds its lock; the other
+    // ranks compute their share of the cells and write nothing (waiting on rank 0's lock would
+    // deadlock the job's collective steps).
+    if (!dist::is_writer()) return;
     try {
         // The folder and its missing parents, each remembered so that a failed bake removes them.
         std::string partial = folder[0] == '/' ? "/" : "";
