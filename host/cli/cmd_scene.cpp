@@ -24,6 +24,7 @@
 #include "brdfbake/table.h"
 #include "brdfbake/version.h"
 #include "cli/cli.h"
+#include "plot/plot.h"
 #include "scene/bake_folder.h"
 #include "scene/scene.h"
 
@@ -44,7 +45,31 @@ struct SceneOptions {
     std::string precision;
     std::string table_format;
     bool half = false;
+    std::string size;                 // MUxALPHA or N
+    std::vector<std::string> tables;  // table kinds replacing every lobe's
+    std::string mu_map, alpha_map;
+    double eta_step = 0.0;
+    std::string preset, target;
 };
+
+/// --size: N (N mu texels and N over the full roughness axis) or MUxALPHA.
+void parse_scene_size(const std::string& text, SceneSettings& s) {
+    std::vector<int> dims;
+    size_t start = 0;
+    while (start <= text.size()) {
+        size_t x = text.find('x', start);
+        if (x == std::string::npos) x = text.size();
+        const std::string d = text.substr(start, x - start);
+        if (d.empty() || d.size() > 5 || d.find_first_not_of("0123456789") != std::string::npos || dims.size() == 2)
+            throw Error("--size: '" + text + "' is not N or MUxALPHA (mu texels x texels of the full roughness axis, "
+                        "e.g. 32x32)");
+        dims.push_back(std::stoi(d));
+        start = x + 1;
+    }
+    s.mu_texels = dims[0];
+    s.alpha_texels = dims.size() > 1 ? dims[1] : dims[0];
+    s.size_from_command_line = true;
+}
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o) {
     cmd->add_option("scene", o.scene, "scene: a brdfbake scene file (.json) or glTF 2.0 (.gltf, .glb)")->required();
@@ -60,6 +85,26 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
     cmd->add_option("--table-format", o.table_format, "table files: exr (default), csv or h")
         ->check(CLI::IsMember({"exr", "csv", "h"}));
     cmd->add_flag("--half", o.half, "half-float EXR channels");
+    cmd->add_option("--size", o.size,
+                    "N or MUxALPHA: mu texels x texels of the full roughness axis (a scene's range gets its share); "
+                    "with --preset or --target, the size of the engine tables too");
+    cmd->add_option("--tables", o.tables, "table kinds for every lobe, replacing the scene's and the defaults "
+                                          "(each lobe takes those it can; comma-separated)")
+        ->delimiter(',');
+    cmd->add_option("--mu-map", o.mu_map, "mu axis coordinate (default linear)")->check(CLI::IsMember({"linear", "sqrt"}));
+    cmd->add_option("--alpha-map", o.alpha_map, "roughness axis coordinate (default roughness)")
+        ->check(CLI::IsMember({"alpha", "roughness"}));
+    cmd->add_option("--eta-step", o.eta_step, "eta spacing of a range of indices (default 0.05)")->check(kPositive);
+    std::vector<std::string> presets;
+    for (const LutPreset& p : lut_presets()) presets.push_back(p.name);
+    cmd->add_option("--preset", o.preset,
+                    "an engine's layout (as lut --preset) for the scene's tables of the preset's kinds and model")
+        ->check(CLI::IsMember(presets));
+    cmd->add_option("--target", o.target,
+                    "gltf: the tables glTF renderers load: lut_ggx (split-sum GGX), lut_charlie and lut_sheen_E when "
+                    "a material has KHR_materials_sheen, and the scene's dielectric tables for transmission")
+        ->check(CLI::IsMember({"gltf"}))
+        ->excludes(cmd->get_option("--preset"));
 }
 
 Plan load_plan(const SceneOptions& o, Scene* loaded = nullptr) {
@@ -70,9 +115,17 @@ Plan load_plan(const SceneOptions& o, Scene* loaded = nullptr) {
     if (o.mu_texels < 0 || o.alpha_texels < 0) throw Error("--mu-texels and --alpha-texels must be positive");
     if (o.mu_texels > 0) s.mu_texels = o.mu_texels;
     if (o.alpha_texels > 0) s.alpha_texels = o.alpha_texels;
+    if (o.mu_texels > 0 || o.alpha_texels > 0) s.size_from_command_line = true;
     if (!o.precision.empty()) s.precision = o.precision == "double" ? Precision::Double : Precision::Float;
     if (!o.table_format.empty()) s.table_format = o.table_format;
     if (o.half) s.half = true;
+    if (!o.size.empty()) parse_scene_size(o.size, s);
+    if (!o.tables.empty()) s.tables = o.tables;
+    if (!o.mu_map.empty()) s.mu_map = o.mu_map;
+    if (!o.alpha_map.empty()) s.alpha_map = o.alpha_map;
+    if (o.eta_step > 0) s.eta_step = o.eta_step;
+    s.preset = o.preset;
+    s.target = o.target;
     check_settings(s);
     Plan plan = make_plan(scene);
     if (loaded) *loaded = std::move(scene);
@@ -179,6 +232,7 @@ struct BakeOptions {
     SceneOptions scene;
     std::string output = "out";
     bool force = false;
+    bool previews = true;
     double lock_timeout = 600.0;  // seconds to wait for another bake into the same folder
 };
 
@@ -308,7 +362,8 @@ json materials_json(const Scene& scene, const Plan& plan) {
 json settings_json(const SceneSettings& s) {
     return {{"samples", s.samples},       {"mu_texels", s.mu_texels}, {"alpha_texels", s.alpha_texels},
             {"eta_step", s.eta_step},     {"mu_map", s.mu_map},       {"alpha_map", s.alpha_map},
-            {"precision", precision_name(s.precision)}, {"format", s.table_format}, {"half", s.half}};
+            {"precision", precision_name(s.precision)}, {"format", s.table_format}, {"half", s.half},
+            {"tables", s.tables}, {"preset", s.preset}, {"target", s.target}};
 }
 
 int run_bake(const BakeOptions& o, const GlobalOptions& g) {
@@ -451,8 +506,15 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         }
         check_finite(table);
         const std::string path = join_path(o.output, t.file);
-        write_table(table, path, plan.settings.half);
+        write_table(table, path, t.half);
         folder.commit();
+        // Its preview beside it (previews/FILE.png), unless --no-previews.
+        std::string preview;
+        if (o.previews) {
+            ::mkdir(join_path(o.output, "previews").c_str(), 0755);
+            preview = "previews/" + t.file + ".png";
+            write_table_preview(table, join_path(o.output, preview));
+        }
         const double seconds = since(t1);
         max_error = std::max(max_error, table.max_error());
 
@@ -483,6 +545,8 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                   {"seconds", std::round(seconds * 1000) / 1000}};
         if (t.eta) e["eta_range"] = {t.eta->lo, t.eta->hi};
         if (r.wavelength_nm > 0) e["wavelength_nm"] = r.wavelength_nm;
+        if (!t.layout.empty()) e["layout"] = t.layout;
+        if (!preview.empty()) e["preview"] = preview;
         // Keep the index in plan order, and written after every table: an interrupted bake
         // keeps what it finished.
         json tables = json::array();
@@ -532,6 +596,7 @@ void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action
     add_scene_options(cmd, o->scene);
     cmd->add_option("-o,--output", o->output, "output folder")->capture_default_str();
     cmd->add_flag("--force", o->force, "recompute tables that are up to date");
+    cmd->add_flag("!--no-previews", o->previews, "write no preview pictures (default: DIR/previews/TABLE.png per table)");
     cmd->add_option("--lock-timeout", o->lock_timeout,
                     "seconds to wait while another bake writes into the same folder; 0: refuse at once")
         ->capture_default_str()
