@@ -12,6 +12,8 @@
 #include <cstdint>
 #include <cstring>
 #include <functional>
+#include <map>
+#include <set>
 #include <fstream>
 #include <sys/stat.h>
 
@@ -397,4 +399,90 @@ TEST_CASE("texture-driven ranges: a metallicRoughness texture holding roughness 
     CHECK(metal->alpha.lo == 0.0);
     CHECK(metal->alpha.hi == Approx(0.64));
     CHECK(lobe_of(m, "scuffed", "dielectric"));  // metallic [0, 1] unknown: both lobes
+}
+
+TEST_CASE("plan and bake: command-line flags override the scene's settings", "[scene][gltf][cli]") {
+    auto plan_json = [](const std::string& args) {
+        const auto r = run_cli("plan " + args + " --format json");
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        return nlohmann::json::parse(r.out);
+    };
+    // --tables: every lobe takes the listed kinds it can; --size, the axis maps, --eta-step.
+    const auto j = plan_json(data("merge.json") + " --tables dfg,dielectric --size 8x16 --mu-map sqrt --alpha-map alpha "
+                                                  "--eta-step 0.1");
+    std::set<std::string> kinds;
+    for (const auto& t : j["tables"]) {
+        kinds.insert(t["kind"].get<std::string>());
+        CHECK(t["axes"][0]["mapping"].get<std::string>().find("sqrt") != std::string::npos);
+        CHECK(t["axes"][0]["size"] == 8);
+        CHECK(t["axes"][1]["name"] == "alpha");
+        if (t["kind"] == "dielectric") {
+            // glasses at eta 1.33 and 1.7: (1.7 - 1.33) / 0.1 -> 5 slices
+            CHECK(t["axes"][2]["size"] == 5);
+        }
+    }
+    CHECK(kinds == std::set<std::string>{"dfg", "dielectric"});
+    // a kind no lobe can take is an error
+    const auto bad = run_cli("plan " + data("merge.json") + " --tables conductor-nope");
+    CHECK(bad.status == 2);
+    // --preset: the tables of the preset's kinds and model in the engine's layout
+    const auto c = plan_json(data("metals_glass.json") + " --preset cycles");
+    std::set<std::string> files;
+    for (const auto& t : c["tables"]) files.insert(t["file"].get<std::string>());
+    CHECK(files.count("cycles-albedo.h"));
+    CHECK(files.count("cycles-eavg.h"));
+    CHECK(files.count("dielectric-ggx.exr"));
+    for (const auto& t : c["tables"])
+        if (t["file"] == "cycles-albedo.h") {
+            CHECK(t["size"] == "32x32");
+            CHECK(t["layout"].get<std::string>().find("Blender Cycles") != std::string::npos);
+        }
+}
+
+TEST_CASE("--target gltf plans the glTF renderers' LUT set", "[scene][gltf][cli]") {
+    auto files_of = [](const std::string& args) {
+        const auto r = run_cli("plan " + args + " --format json");
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        std::map<std::string, nlohmann::json> files;
+        const nlohmann::json j = nlohmann::json::parse(r.out);
+        for (const auto& t : j["tables"]) files[t["file"].get<std::string>()] = t;
+        return files;
+    };
+    // metals and a transmissive glass: lut_ggx, and the glass's dielectric tables
+    auto f = files_of(data("metals_glass.json") + " --target gltf");
+    REQUIRE(f.count("lut_ggx.png"));
+    CHECK(f["lut_ggx.png"]["kind"] == "dfg");
+    CHECK(f["lut_ggx.png"]["size"] == "1024x1024");  // the sample viewer's size
+    CHECK(f.count("dielectric-ggx.exr"));
+    CHECK_FALSE(f.count("albedo-ggx.exr"));
+    CHECK_FALSE(f.count("lut_charlie.png"));
+    // KHR_materials_sheen adds lut_charlie (ashikhmin visibility) and lut_sheen_E (charlie)
+    f = files_of(data("materials.gltf") + " --target gltf --size 16");
+    REQUIRE(f.count("lut_charlie.png"));
+    REQUIRE(f.count("lut_sheen_E.png"));
+    CHECK(f["lut_charlie.png"]["model"] == "sheen:visibility=ashikhmin");
+    CHECK(f["lut_sheen_E.png"]["model"] == "sheen:visibility=charlie");
+    CHECK(f["lut_ggx.png"]["size"] == "16x16");
+    CHECK(f.count("dielectric-eavg-ggx.exr"));  // the bottle glass transmits
+}
+
+TEST_CASE("bake --target gltf writes the LUT set, previews and an index that names the layouts", "[scene][gltf][device]") {
+    const std::string out = fresh_tmp_dir("target");
+    const auto r = run_cli("bake " + data("small_glass.json") + " --target gltf --size 4x4 --samples 64 -o " + out);
+    // (small_glass.json: one transmissive glass; a JSON scene's glass gets the dielectric table)
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto index = nlohmann::json::parse(testing::slurp(out + "/index.json"));
+    std::set<std::string> files;
+    for (const auto& t : index["tables"]) {
+        files.insert(t["file"].get<std::string>());
+        struct stat st;
+        CHECK(::stat((out + "/" + t["preview"].get<std::string>()).c_str(), &st) == 0);
+    }
+    CHECK(files == std::set<std::string>{"lut_ggx.png", "dielectric-ggx.exr"});
+    CHECK(index["settings"]["target"] == "gltf");
+    for (const auto& t : index["tables"])
+        if (t["file"] == "lut_ggx.png") CHECK(t["layout"].get<std::string>().find("glTF Sample Viewer") != std::string::npos);
 }
