@@ -113,11 +113,20 @@ std::string g17(double v) {
 }
 
 /// Samples per second the estimates assume: PoCL on one core of the development machine (AMD
-/// EPYC, float, GGX importance sampling; docs/scenes.md) times the hardware threads.
-constexpr double kSamplesPerSecondPerCore = 1.0e7;
+/// EPYC, float, GGX albedo on the vector path, which `bake` uses; 2 shared cores under load;
+/// benchmarks/results/scene-estimates-amd-epyc-2c.md) times the hardware threads.
+constexpr double kSamplesPerSecondPerCore = 5.0e7;
 
 /// A cold kernel build and first launch on PoCL (docs/scenes.md: 0.35 to 0.55 s for GGX).
 constexpr double kSecondsPerProgram = 0.5;
+
+/// Per table: launches, assembling and writing the file (measured: 0.01 to 0.1 s), and the preview
+/// picture bake writes beside it (MathGL: 0.3 to 0.8 s on the shared development machine).
+constexpr double kSecondsPerTable = 0.05;
+constexpr double kSecondsPerPreview = 0.4;
+
+/// Starting the process, the device and the bake folder (measured: about 0.3 s).
+constexpr double kStartupSeconds = 0.3;
 
 }  // namespace
 
@@ -139,7 +148,7 @@ Plan make_plan(const Scene& scene) {
     plan.settings = s;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     plan.samples_per_second = kSamplesPerSecondPerCore * cores;
-    plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.0e7 (PoCL, float, measured; docs/scenes.md)";
+    plan.throughput_basis = std::to_string(cores) + " hardware threads x 5.0e7 (PoCL, float, measured; docs/scenes.md)";
 
     // Group the needs: one table per (kind, model, Fresnel in the table).
     struct Group {
@@ -298,7 +307,8 @@ Plan make_plan(const Scene& scene) {
         const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
         t.cells = texels * std::uint64_t(kind.cells_per_texel);
         t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
-        t.est_seconds = double(t.samples_total) * kind.sample_cost / plan.samples_per_second;
+        t.est_seconds = double(t.samples_total) * kind.sample_cost / plan.samples_per_second + kSecondsPerTable +
+                        kSecondsPerPreview;
         const int channels = kind.value_channels(r) + 1;  // values + error
         // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while
         // the kernel runs; the finished table holds doubles.
@@ -400,6 +410,7 @@ Plan make_plan(const Scene& scene) {
         for (const std::string& p : t.kind->kernel_programs(t.request)) programs.insert(p);
     plan.programs = int(programs.size());
     plan.build_seconds = kSecondsPerProgram * plan.programs;
+    plan.startup_seconds = kStartupSeconds;
     return plan;
 }
 

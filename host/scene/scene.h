@@ -132,7 +132,7 @@ struct PlannedTable {
     std::vector<std::string> materials;  // material names
     std::uint64_t cells = 0;             // integration cells (texels, or texels x quadrature nodes)
     std::uint64_t samples_total = 0;     // samples x cells (x integrations)
-    double est_seconds = 0.0;
+    double est_seconds = 0.0;            // integrating, writing the file and its preview
     std::uint64_t est_memory = 0;        // bytes, host and device, while computing
     std::uint64_t file_bytes = 0;        // estimated size on disk
     std::string key;                     // canonical request text (hashed)
@@ -150,6 +150,7 @@ struct Plan {
     std::vector<std::string> warnings;
     int programs = 0;                         // kernel programs the bake builds (model x Fresnel kind)
     double build_seconds = 0.0;               // estimated kernel build time (first run; PoCL caches)
+    double startup_seconds = 0.0;             // process, device and folder set-up
     double samples_per_second = 0.0;          // throughput the estimates assume
     std::string throughput_basis;             // where that number comes from
     SceneSettings settings;
