@@ -107,7 +107,7 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
         ->excludes(cmd->get_option("--preset"));
 }
 
-Plan load_plan(const SceneOptions& o, Scene* loaded = nullptr) {
+Plan load_plan(const SceneOptions& o) {
     Scene scene = load_scene(o.scene);
     SceneSettings& s = scene.settings;
     if (o.samples < 0) throw Error("--samples must be positive");
@@ -127,9 +127,7 @@ Plan load_plan(const SceneOptions& o, Scene* loaded = nullptr) {
     s.preset = o.preset;
     s.target = o.target;
     check_settings(s);
-    Plan plan = make_plan(scene);
-    if (loaded) *loaded = std::move(scene);
-    return plan;
+    return make_plan(scene);
 }
 
 // --- kernel build measurement ------------------------------------------------------------------
@@ -346,9 +344,10 @@ json lobe_json(const Lobe& l) {
     return j;
 }
 
-json materials_json(const Scene& scene, const Plan& plan) {
+json materials_json(const Plan& plan) {
+    // The plan's materials: the scene's, with the tables --tables gave them.
     json out = json::array();
-    for (const auto& m : scene.materials) {
+    for (const auto& m : plan.materials) {
         json files = json::array();
         for (const auto& t : plan.tables)
             if (std::find(t.materials.begin(), t.materials.end(), m.name) != t.materials.end()) files.push_back(t.file);
@@ -370,8 +369,7 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
     const auto t0 = Clock::now();
     const SceneOptions& so = o.scene;
     // Everything is checked before the device is touched or a file is written.
-    Scene scene;
-    const Plan plan = load_plan(so, &scene);
+    const Plan plan = load_plan(so);
     if (o.output.empty()) throw Error("-o: give an output folder");
     for (const auto& t : plan.tables)
         if (!t.unavailable.empty())
@@ -434,7 +432,7 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                   {"settings", settings_json(plan.settings)},
                   {"content_hash_algorithm", kContentHashAlgorithm},
                   {"tables", json::array()},
-                  {"materials", materials_json(scene, plan)},
+                  {"materials", materials_json(plan)},
                   {"warnings", plan.warnings}};
     for (size_t i = 0; i < plan.tables.size(); ++i)
         if (fresh[i]) {

@@ -358,6 +358,7 @@ struct MaterialReader {
     std::string name;
     SceneMaterial& out;
     std::vector<std::string>& warnings;
+    std::map<std::string, std::size_t> unread = {};  // texture key -> index of its warning in `warnings`
 
     const json* object(const json* o, const std::string& key) const { return o ? object_at(*o, key, where) : nullptr; }
     double number(const json* o, const std::string& key, double fallback, const std::string& prefix) const {
@@ -382,8 +383,16 @@ struct MaterialReader {
         const std::optional<ChannelRanges> r = texture_ranges(d, t, problem, image);
         static const char* kChannel[] = {"R", "G", "B", "A"};
         if (!r) {
-            warnings.push_back("material '" + name + "': " + key + " (image '" + image + "') cannot be read: " + problem +
-                               "; " + quantity + " planned over the full range [0, " + fmt(factor) + "]");
+            // One warning per texture of the material, naming what its channels hold.
+            const std::string what = quantity + " planned over the full range [0, " + fmt(factor) + "]";
+            const auto seen = unread.find(key);
+            if (seen != unread.end()) {
+                warnings[seen->second] += ", " + what;
+            } else {
+                unread[key] = warnings.size();
+                warnings.push_back("material '" + name + "': " + key + " (image '" + image + "') cannot be read: " + problem +
+                                   "; " + what);
+            }
             out.notes.push_back(quantity + " [0, " + fmt(factor) + "]: " + key + " not read (" + image + ")");
             return {0.0, factor};
         }
