@@ -121,6 +121,17 @@ double alpha_at_centre(const PlannedTable& t, int i) {
     return t.request.alpha_map == "roughness" ? c * c : c;
 }
 
+/// The plan's dielectric table, which must be one `lut` (and so `bake`) accepts as planned.
+const PlannedTable* bakeable_dielectric(const Plan& p) {
+    const PlannedTable* d = find_kind(p, "dielectric");
+    REQUIRE(d);
+    CHECK(d->unavailable.empty());
+    LutRequest r = d->request;
+    apply_eta_axis(*d, r);
+    CHECK_NOTHROW(validate_lut(r));
+    return d;
+}
+
 }  // namespace
 
 TEST_CASE("glTF: a .gltf plans without its geometry buffer", "[gltf][quick]") {
@@ -248,12 +259,7 @@ TEST_CASE("eta at the ends of its range: plan and bake agree, every planned tabl
         INFO(eta);
         const Plan p = make_plan(parse_scene_json(
             std::string(R"({"materials": [{"name": "g", "model": "ggx", "roughness": 0.3, "eta": )") + eta + "}]}", "e.json"));
-        const PlannedTable* d = find_kind(p, "dielectric");
-        REQUIRE(d);
-        CHECK(d->unavailable.empty());
-        LutRequest r = d->request;
-        apply_eta_axis(*d, r);
-        CHECK_NOTHROW(validate_lut(r));
+        const PlannedTable* d = bakeable_dielectric(p);
         // The slice centres the plan states are the axis's, and the scene's extremes where it says so.
         CHECK(centre(d->eta_lo, d->eta_hi, d->depth, 0) == Approx(d->eta_centres.lo).epsilon(1e-12));
         CHECK(centre(d->eta_lo, d->eta_hi, d->depth, d->depth - 1) == Approx(d->eta_centres.hi).epsilon(1e-12));
@@ -279,12 +285,7 @@ TEST_CASE("eta at the ends of its range: plan and bake agree, every planned tabl
         write_text(path, library(std::string(R"({"name": "diamondish", "pbrMetallicRoughness": {"metallicFactor": 0},
                                                "extensions": {"KHR_materials_ior": {"ior": )") + ior + "}}}"));
         const Plan p = make_plan(load_scene(path));
-        const PlannedTable* d = find_kind(p, "dielectric");
-        REQUIRE(d);
-        CHECK(d->unavailable.empty());
-        LutRequest r = d->request;
-        apply_eta_axis(*d, r);
-        CHECK_NOTHROW(validate_lut(r));
+        const PlannedTable* d = bakeable_dielectric(p);
         CHECK(d->eta_centres.hi == Approx(std::min(std::stod(ior), kSceneEtaMax)));
         if (std::stod(ior) > kSceneEtaMax) CHECK(contains(p.warnings, "material 'diamondish': KHR_materials_ior: ior"));
     }

@@ -54,20 +54,15 @@ struct SceneOptions {
 
 /// --size: N (N mu texels and N over the full roughness axis) or MUxALPHA.
 void parse_scene_size(const std::string& text, SceneSettings& s) {
-    std::vector<int> dims;
-    size_t start = 0;
-    while (start <= text.size()) {
-        size_t x = text.find('x', start);
-        if (x == std::string::npos) x = text.size();
-        const std::string d = text.substr(start, x - start);
-        if (d.empty() || d.size() > 5 || d.find_first_not_of("0123456789") != std::string::npos || dims.size() == 2)
-            throw Error("--size: '" + text + "' is not N or MUxALPHA (mu texels x texels of the full roughness axis, "
-                        "e.g. 32x32)");
-        dims.push_back(std::stoi(d));
-        start = x + 1;
-    }
-    s.mu_texels = dims[0];
-    s.alpha_texels = dims.size() > 1 ? dims[1] : dims[0];
+    int mu = 0, alpha = 0;
+    char x = 0, rest = 0;
+    const int n = std::sscanf(text.c_str(), "%5d%c%5d%c", &mu, &x, &alpha, &rest);
+    const bool digits = !text.empty() && text.find_first_not_of("0123456789x") == std::string::npos;
+    if (!digits || !(n == 1 || (n == 3 && x == 'x')))
+        throw Error("--size: '" + text + "' is not N or MUxALPHA (mu texels x texels of the full roughness axis, "
+                    "e.g. 32x32)");
+    s.mu_texels = mu;
+    s.alpha_texels = n == 1 ? mu : alpha;
     s.size_from_command_line = true;
 }
 
