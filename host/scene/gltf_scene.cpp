@@ -581,6 +581,7 @@ SceneMaterial map_material(Document& d, const json& mat, const std::string& name
             l.eta = Interval{1.5, 1.5};
             l.kinds = default_lobe_kinds(l);
             out.notes.push_back("KHR_materials_clearcoat: GGX coat, eta 1.5, roughness " + range_text(r));
+            if (l.alpha.lo < double(BB_ALPHA_MIN)) out.notes.push_back("clearcoat: " + alpha_floor_note(l.alpha.lo));
             out.lobes.push_back(l);
         }
     }
