@@ -347,6 +347,30 @@ TEST_CASE("the plan's texel-centre statement is exact for ranges that start at 0
     CHECK(plan_text(q).find("sit on the scene's extremes") != std::string::npos);
 }
 
+TEST_CASE("a range that ends at the top of the model's alpha range (sheenRoughness 1) plans a table lut accepts",
+          "[gltf][quick]") {
+    const std::string dir = fresh_tmp_dir("sheen1");
+    ::mkdir(dir.c_str(), 0755);
+    // The sheen model takes alpha <= 1 (Estevez and Kulla's fit); before, the half-texel margin
+    // above roughness 1 made the table one lut refuses, and bake failed.
+    write_text(dir + "/s.gltf", R"({"asset": {"version": "2.0"}, "materials": [
+        {"name": "a", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 1}}},
+        {"name": "b", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 0.5}}},
+        {"name": "c", "extensions": {"KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 1}}}]})");
+    const Plan p = make_plan(load_scene(dir + "/s.gltf"));
+    const PlannedTable* t = find_kind(p, "sheen-albedo");
+    REQUIRE(t);
+    CHECK(t->unavailable.empty());
+    CHECK_NOTHROW(validate_lut(t->request));
+    CHECK(t->request.alpha_hi <= 1.0);
+    // the first centre on sheenRoughness 0.5, the last inside [0.5, 1] and said so
+    CHECK(alpha_at_centre(*t, 0) == Approx(0.25).epsilon(1e-12));
+    CHECK(t->alpha_lo_exact);
+    CHECK_FALSE(t->alpha_hi_exact);
+    CHECK(alpha_at_centre(*t, t->request.height - 1) == Approx(t->alpha_centres.hi).epsilon(1e-12));
+    CHECK(plan_text(p).find("the axis stops at the model's largest alpha") != std::string::npos);
+}
+
 TEST_CASE("texture-driven ranges: a metallicRoughness texture holding roughness 0.3..0.6 plans that range",
           "[gltf][quick]") {
     const std::string dir = fresh_tmp_dir("tex");

@@ -76,9 +76,13 @@ std::string centres_text(const PlannedTable& t) {
     if (!t.alpha_lo_exact)
         why.push_back("alpha from " + short_num(t.alpha.lo) + " up to the first centre is read at it (the axis starts at 0 "
                       "and centres never hold alpha below the floor 1e-4)");
-    if (!t.alpha_hi_exact) why.push_back("the top of the alpha range is read at the last centre");
+    if (!t.alpha_hi_exact)
+        why.push_back("alpha from the last centre up to " + short_num(t.alpha.hi) +
+                      " is read at it (the axis stops at the model's largest alpha)");
     if (t.eta && !t.eta_lo_exact)
         why.push_back("eta from " + short_num(t.eta->lo) + " up to the first centre is read at it (the axis starts at 1)");
+    if (t.eta && !t.eta_hi_exact)
+        why.push_back("eta from the last centre up to " + short_num(t.eta->hi) + " is read at it (the axis stops at 100)");
     return s + "; " + join(why, "; ");
 }
 

@@ -25,9 +25,10 @@ using scene_text::join;
 
 /// An axis of `n` texels (texel centres) over [lo, hi] of a coordinate whose first and last texel
 /// centres fall on c_lo and c_hi; a single value gets one texel centred on it. The half-texel
-/// margins never cross `floor`: a single value near it gets a narrower texel, and a range whose
-/// margin would cross it starts at the floor with its last centre still on c_hi (the first centre
-/// is then above c_lo, and lo_exact false).
+/// margins stay within [floor, ceil]: a single value near either gets a narrower texel, and a range
+/// whose margin would cross one starts (or ends) the axis there, keeping the centre at its other
+/// end on the scene's value; the centre at the stopped end is then inside the scene's range, and
+/// lo_exact (hi_exact) false.
 struct AxisPlan {
     double lo, hi;
     int n;
@@ -35,22 +36,56 @@ struct AxisPlan {
     bool lo_exact, hi_exact;
 };
 
-AxisPlan plan_axis(double c_lo, double c_hi, int n_full_range, double full_width, double floor, int max_n) {
+AxisPlan plan_axis(double c_lo, double c_hi, int n_full_range, double full_width, double floor, double ceil, int max_n) {
     const double w = c_hi - c_lo;
     const double tiny = 1e-12 * std::max(1.0, std::fabs(c_hi));
     const double h0 = 0.5 * full_width / n_full_range;
     if (w <= tiny) {
-        const double h = std::min(h0, c_lo - floor);
+        const double h = std::min({h0, c_lo - floor, ceil - c_lo});
         if (h > tiny) return {c_lo - h, c_lo + h, 1, c_lo, c_lo, true, true};
-        return {floor, floor + 2 * h0, 1, floor + h0, floor + h0, false, false};  // on the floor itself
+        // On the floor or the ceiling itself: one texel of the usual width inside the axis.
+        const double lo = c_lo - floor <= tiny ? floor : std::max(floor, ceil - 2 * h0);
+        const double hi = std::min(ceil, lo + 2 * h0);
+        const double mid = 0.5 * (lo + hi);
+        return {lo, hi, 1, mid, mid, false, false};
     }
     int n = int(std::ceil(n_full_range * w / full_width - 1e-9)) + 1;
     n = std::max(2, std::min(n, std::max(2, max_n)));
     const double pad = w / (2.0 * (n - 1));
-    if (c_lo - pad >= floor - tiny) return {std::max(floor, c_lo - pad), c_hi + pad, n, c_lo, c_hi, true, true};
-    const double hi = floor + (c_hi - floor) * n / (n - 0.5);
-    return {floor, hi, n, floor + (hi - floor) * 0.5 / n, c_hi, false, true};
+    double lo = c_lo - pad, hi = c_hi + pad;
+    const bool lo_out = lo < floor - tiny, hi_out = hi > ceil + tiny;
+    if (lo_out && hi_out) {
+        lo = floor;
+        hi = ceil;
+    } else if (lo_out) {
+        lo = floor;  // the last centre stays on c_hi
+        hi = std::min(ceil, floor + (c_hi - floor) * n / (n - 0.5));
+    } else if (hi_out) {
+        hi = ceil;  // the first centre stays on c_lo
+        lo = std::max(floor, (c_lo * n - ceil * 0.5) / (n - 0.5));
+    }
+    lo = std::max(lo, floor);
+    hi = std::min(hi, ceil);
+    const double first = lo + (hi - lo) * 0.5 / n, last = lo + (hi - lo) * (n - 0.5) / n;
+    const double tol = 1e-9 * std::max(1.0, std::fabs(c_hi));
+    return {lo, hi, n, first, last, std::fabs(first - c_lo) <= tol, std::fabs(last - c_hi) <= tol};
 }
+
+/// The largest alpha `model` takes (sheen's fit ends at 1, GGX goes to 10), tried at a few values
+/// from the top; 0 when none is taken.
+double largest_alpha(const std::string& model) {
+    for (double a : {10.0, 9.0, 4.0, 1.0}) {
+        try {
+            resolve_model(model + (model.find(':') == std::string::npos ? ":" : ",") + "alpha=" + format_number(a));
+            return a;
+        } catch (const Error&) {
+        }
+    }
+    return 0.0;
+}
+
+/// The largest eta a table's eta axis takes (validate_lut: 0 < lo < hi <= 100).
+constexpr double kEtaAxisMax = 100.0;
 
 double alpha_coordinate(double alpha, const std::string& map) { return map == "roughness" ? std::sqrt(alpha) : alpha; }
 double alpha_of_coordinate(double c, const std::string& map) { return map == "roughness" ? c * c : c; }
@@ -367,10 +402,14 @@ Plan make_plan(const Scene& scene) {
         const double alpha_floor = double(BB_ALPHA_MIN);
         const double c_lo = alpha_coordinate(std::max(g.alpha.lo, alpha_floor), s.alpha_map);
         const double c_hi = std::max(c_lo, alpha_coordinate(g.alpha.hi, s.alpha_map));
-        const AxisPlan a = plan_axis(c_lo, c_hi, s.alpha_texels, 1.0, 0.0, s.alpha_texels);
-        if (a.hi > 3.0)
+        // The axis stops where the tables' roughness axis does (coordinate 3) or the model's alpha
+        // range ends (sheen: 1), whichever is first.
+        const double top = largest_alpha(g.model);
+        const double ceil = top > 0 ? std::min(3.0, alpha_coordinate(top, s.alpha_map)) : 3.0;
+        if (c_hi > ceil)
             throw Error("alpha up to " + format_number(g.alpha.hi) + " (" + join(g.materials) +
-                        ") is beyond the tables' roughness axis, which stops at coordinate 3");
+                        ") is beyond the tables' roughness axis, which stops at coordinate " + format_number(ceil));
+        const AxisPlan a = plan_axis(c_lo, c_hi, s.alpha_texels, 1.0, 0.0, ceil, s.alpha_texels);
         r.alpha_lo = a.lo;
         r.alpha_hi = a.hi;
         t.alpha_centres = {alpha_of_coordinate(a.first, s.alpha_map), alpha_of_coordinate(a.last, s.alpha_map)};
@@ -385,7 +424,7 @@ Plan make_plan(const Scene& scene) {
             r.height = n_alpha;
         }
         if (g.kind->eta_axis) {
-            const AxisPlan e = plan_axis(g.eta->lo, g.eta->hi, 1, s.eta_step, 1.0, 64);
+            const AxisPlan e = plan_axis(g.eta->lo, g.eta->hi, 1, s.eta_step, 1.0, kEtaAxisMax, 64);
             t.eta_lo = e.lo;
             t.eta_hi = e.hi;
             t.depth = e.n;
