@@ -32,18 +32,19 @@ void write_text(const std::string& path, const std::string& text) {
     std::ofstream(path, std::ios::binary) << text;
 }
 
-/// An 8-bit RGB PNG of w x h pixels, every pixel's channel c from value(x, y, c), in memory.
-std::string png_rgb(int w, int h, const std::function<int(int, int, int)>& value) {
-    std::vector<unsigned char> px(std::size_t(w) * h * 3);
+/// An 8-bit RGB (or RGBA) PNG of w x h pixels, every pixel's channel c from value(x, y, c), in memory.
+std::string png_rgb(int w, int h, const std::function<int(int, int, int)>& value, bool alpha = false) {
+    const int nc = alpha ? 4 : 3;
+    std::vector<unsigned char> px(std::size_t(w) * h * nc);
     for (int y = 0; y < h; ++y)
         for (int x = 0; x < w; ++x)
-            for (int c = 0; c < 3; ++c) px[(std::size_t(y) * w + x) * 3 + c] = (unsigned char)value(x, y, c);
+            for (int c = 0; c < nc; ++c) px[(std::size_t(y) * w + x) * nc + c] = (unsigned char)value(x, y, c);
     png_image img;
     std::memset(&img, 0, sizeof img);
     img.version = PNG_IMAGE_VERSION;
     img.width = png_uint_32(w);
     img.height = png_uint_32(h);
-    img.format = PNG_FORMAT_RGB;
+    img.format = alpha ? PNG_FORMAT_RGBA : PNG_FORMAT_RGB;
     png_alloc_size_t size = 0;
     REQUIRE(png_image_write_to_memory(&img, nullptr, &size, 0, px.data(), 0, nullptr));
     std::string out(size, '\0');
@@ -510,4 +511,44 @@ TEST_CASE("bake --target gltf writes the LUT set, previews and an index that nam
     CHECK(index["settings"]["target"] == "gltf");
     for (const auto& t : index["tables"])
         if (t["file"] == "lut_ggx.png") CHECK(t["layout"].get<std::string>().find("glTF Sample Viewer") != std::string::npos);
+}
+
+TEST_CASE("texture-driven ranges read the channel each extension names; JPEG and KTX2-only textures are named in "
+          "a warning", "[gltf][quick]") {
+    const std::string dir = fresh_tmp_dir("channels");
+    ::mkdir(dir.c_str(), 0755);
+    // One RGBA image, each channel its own range: R 51..102 (0.2..0.4), G 102..153 (0.4..0.6),
+    // B 153..204 (0.6..0.8), A 204..255 (0.8..1).
+    write_text(dir + "/rgba.png", png_rgb(8, 8, [](int x, int y, int c) { return 51 * (c + 1) + (x * 8 + y) * 51 / 63; }, true));
+    auto lo = [](int c) { return 51.0 * (c + 1) / 255; };
+    auto hi = [](int c) { return 51.0 * (c + 2) / 255; };
+    const std::string images = R"("textures": [{"source": 0}, {"source": 1}, {"extensions": {"KHR_texture_basisu": {"source": 2}}}],
+        "images": [{"uri": "rgba.png"}, {"uri": "photo.jpg"}, {"uri": "x.ktx2"}])";
+    write_text(dir + "/photo.jpg", std::string("\xff\xd8\xff\xe0", 4) + std::string(64, '\0'));
+    write_text(dir + "/c.gltf", library(R"({"name": "coated", "pbrMetallicRoughness": {"metallicFactor": 0, "roughnessFactor": 0.5},
+        "extensions": {
+          "KHR_materials_clearcoat": {"clearcoatFactor": 1, "clearcoatRoughnessFactor": 1, "clearcoatRoughnessTexture": {"index": 0}},
+          "KHR_materials_sheen": {"sheenColorFactor": [1, 1, 1], "sheenRoughnessFactor": 1, "sheenRoughnessTexture": {"index": 0}},
+          "KHR_materials_transmission": {"transmissionFactor": 1, "transmissionTexture": {"index": 0}}}},
+        {"name": "photo", "pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 1}}},
+        {"name": "compressed", "pbrMetallicRoughness": {"metallicRoughnessTexture": {"index": 2}}})",
+                                        images));
+    const Scene s = load_scene(dir + "/c.gltf");
+    // clearcoatRoughnessTexture: G; sheenRoughnessTexture: A (KHR_materials_clearcoat, _sheen).
+    const Lobe* coat = lobe_of(s, "coated", "clearcoat");
+    REQUIRE(coat);
+    CHECK(coat->alpha.lo == Approx(lo(1) * lo(1)).epsilon(1e-12));
+    CHECK(coat->alpha.hi == Approx(hi(1) * hi(1)).epsilon(1e-12));
+    const Lobe* sheen = lobe_of(s, "coated", "sheen");
+    REQUIRE(sheen);
+    CHECK(sheen->alpha.lo == Approx(lo(3) * lo(3)).epsilon(1e-12));
+    CHECK(sheen->alpha.hi == Approx(1.0).epsilon(1e-12));
+    // transmissionTexture: R, 0.2..0.4 > 0: transmissive
+    CHECK(lobe_of(s, "coated", "transmission"));
+    CHECK(contains(material_of(s, "coated")->notes, "transmission [0.2, 0.4] from transmissionTexture 'rgba.png'"));
+    // a JPEG and a KTX2-only texture: full ranges, named
+    CHECK(contains(s.warnings, "material 'photo': metallicRoughnessTexture (image 'photo.jpg') cannot be read: it is a JPEG"));
+    CHECK(contains(s.warnings, "material 'compressed': metallicRoughnessTexture (image 'texture 2') cannot be read: its "
+                               "only image is one of KHR_texture_basisu"));
+    CHECK(lobe_of(s, "photo", "metal")->alpha.lo == 0.0);
 }
