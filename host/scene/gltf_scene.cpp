@@ -501,6 +501,8 @@ SceneMaterial map_material(Document& d, const json& mat, const std::string& name
         tinted = m.has_texture(s, "specularColorTexture", sp) ||
                  std::any_of(color.begin(), color.end(), [](double c) { return c != 1.0; });
     }
+    if (const json* v = ext("KHR_materials_volume")) m.number(v, "thicknessFactor", 0.0, "KHR_materials_volume");  // its type
+
     // Metal lobe.
     if (metallic.hi > 0.0) {
         Lobe l;
