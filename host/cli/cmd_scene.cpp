@@ -24,6 +24,7 @@
 #include "brdfbake/table.h"
 #include "brdfbake/version.h"
 #include "cli/cli.h"
+#include "plot/plot.h"
 #include "scene/bake_folder.h"
 #include "scene/scene.h"
 
@@ -44,7 +45,26 @@ struct SceneOptions {
     std::string precision;
     std::string table_format;
     bool half = false;
+    std::string size;                 // MUxALPHA or N
+    std::vector<std::string> tables;  // table kinds replacing every lobe's
+    std::string mu_map, alpha_map;
+    double eta_step = 0.0;
+    std::string preset, target;
 };
+
+/// --size: N (N mu texels and N over the full roughness axis) or MUxALPHA.
+void parse_scene_size(const std::string& text, SceneSettings& s) {
+    int mu = 0, alpha = 0;
+    char x = 0, rest = 0;
+    const int n = std::sscanf(text.c_str(), "%5d%c%5d%c", &mu, &x, &alpha, &rest);
+    const bool digits = !text.empty() && text.find_first_not_of("0123456789x") == std::string::npos;
+    if (!digits || !(n == 1 || (n == 3 && x == 'x')))
+        throw Error("--size: '" + text + "' is not N or MUxALPHA (mu texels x texels of the full roughness axis, "
+                    "e.g. 32x32)");
+    s.mu_texels = mu;
+    s.alpha_texels = n == 1 ? mu : alpha;
+    s.size_from_command_line = true;
+}
 
 void add_scene_options(CLI::App* cmd, SceneOptions& o) {
     cmd->add_option("scene", o.scene, "scene: a brdfbake scene file (.json) or glTF 2.0 (.gltf, .glb)")->required();
@@ -60,9 +80,29 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
     cmd->add_option("--table-format", o.table_format, "table files: exr (default), csv or h")
         ->check(CLI::IsMember({"exr", "csv", "h"}));
     cmd->add_flag("--half", o.half, "half-float EXR channels");
+    cmd->add_option("--size", o.size,
+                    "N or MUxALPHA: mu texels x texels of the full roughness axis (a scene's range gets its share); "
+                    "with --preset or --target, the size of the engine tables too");
+    cmd->add_option("--tables", o.tables, "table kinds for every lobe, replacing the scene's and the defaults "
+                                          "(each lobe takes those it can; comma-separated)")
+        ->delimiter(',');
+    cmd->add_option("--mu-map", o.mu_map, "mu axis coordinate (default linear)")->check(CLI::IsMember({"linear", "sqrt"}));
+    cmd->add_option("--alpha-map", o.alpha_map, "roughness axis coordinate (default roughness)")
+        ->check(CLI::IsMember({"alpha", "roughness"}));
+    cmd->add_option("--eta-step", o.eta_step, "eta spacing of a range of indices (default 0.05)")->check(kPositive);
+    std::vector<std::string> presets;
+    for (const LutPreset& p : lut_presets()) presets.push_back(p.name);
+    cmd->add_option("--preset", o.preset,
+                    "an engine's layout (as lut --preset) for the scene's tables of the preset's kinds and model")
+        ->check(CLI::IsMember(presets));
+    cmd->add_option("--target", o.target,
+                    "gltf: the tables glTF renderers load: lut_ggx (split-sum GGX), lut_charlie and lut_sheen_E when "
+                    "a material has KHR_materials_sheen, and the scene's dielectric tables for transmission")
+        ->check(CLI::IsMember({"gltf"}))
+        ->excludes(cmd->get_option("--preset"));
 }
 
-Plan load_plan(const SceneOptions& o, Scene* loaded = nullptr) {
+Plan load_plan(const SceneOptions& o) {
     Scene scene = load_scene(o.scene);
     SceneSettings& s = scene.settings;
     if (o.samples < 0) throw Error("--samples must be positive");
@@ -70,13 +110,19 @@ Plan load_plan(const SceneOptions& o, Scene* loaded = nullptr) {
     if (o.mu_texels < 0 || o.alpha_texels < 0) throw Error("--mu-texels and --alpha-texels must be positive");
     if (o.mu_texels > 0) s.mu_texels = o.mu_texels;
     if (o.alpha_texels > 0) s.alpha_texels = o.alpha_texels;
+    if (o.mu_texels > 0 || o.alpha_texels > 0) s.size_from_command_line = true;
     if (!o.precision.empty()) s.precision = o.precision == "double" ? Precision::Double : Precision::Float;
     if (!o.table_format.empty()) s.table_format = o.table_format;
     if (o.half) s.half = true;
+    if (!o.size.empty()) parse_scene_size(o.size, s);
+    if (!o.tables.empty()) s.tables = o.tables;
+    if (!o.mu_map.empty()) s.mu_map = o.mu_map;
+    if (!o.alpha_map.empty()) s.alpha_map = o.alpha_map;
+    if (o.eta_step > 0) s.eta_step = o.eta_step;
+    s.preset = o.preset;
+    s.target = o.target;
     check_settings(s);
-    Plan plan = make_plan(scene);
-    if (loaded) *loaded = std::move(scene);
-    return plan;
+    return make_plan(scene);
 }
 
 // --- kernel build measurement ------------------------------------------------------------------
@@ -179,6 +225,7 @@ struct BakeOptions {
     SceneOptions scene;
     std::string output = "out";
     bool force = false;
+    bool previews = true;
     double lock_timeout = 600.0;  // seconds to wait for another bake into the same folder
 };
 
@@ -292,9 +339,10 @@ json lobe_json(const Lobe& l) {
     return j;
 }
 
-json materials_json(const Scene& scene, const Plan& plan) {
+json materials_json(const Plan& plan) {
+    // The plan's materials: the scene's, with the tables --tables gave them.
     json out = json::array();
-    for (const auto& m : scene.materials) {
+    for (const auto& m : plan.materials) {
         json files = json::array();
         for (const auto& t : plan.tables)
             if (std::find(t.materials.begin(), t.materials.end(), m.name) != t.materials.end()) files.push_back(t.file);
@@ -308,15 +356,15 @@ json materials_json(const Scene& scene, const Plan& plan) {
 json settings_json(const SceneSettings& s) {
     return {{"samples", s.samples},       {"mu_texels", s.mu_texels}, {"alpha_texels", s.alpha_texels},
             {"eta_step", s.eta_step},     {"mu_map", s.mu_map},       {"alpha_map", s.alpha_map},
-            {"precision", precision_name(s.precision)}, {"format", s.table_format}, {"half", s.half}};
+            {"precision", precision_name(s.precision)}, {"format", s.table_format}, {"half", s.half},
+            {"tables", s.tables}, {"preset", s.preset}, {"target", s.target}};
 }
 
 int run_bake(const BakeOptions& o, const GlobalOptions& g) {
     const auto t0 = Clock::now();
     const SceneOptions& so = o.scene;
     // Everything is checked before the device is touched or a file is written.
-    Scene scene;
-    const Plan plan = load_plan(so, &scene);
+    const Plan plan = load_plan(so);
     if (o.output.empty()) throw Error("-o: give an output folder");
     for (const auto& t : plan.tables)
         if (!t.unavailable.empty())
@@ -379,7 +427,7 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                   {"settings", settings_json(plan.settings)},
                   {"content_hash_algorithm", kContentHashAlgorithm},
                   {"tables", json::array()},
-                  {"materials", materials_json(scene, plan)},
+                  {"materials", materials_json(plan)},
                   {"warnings", plan.warnings}};
     for (size_t i = 0; i < plan.tables.size(); ++i)
         if (fresh[i]) {
@@ -451,8 +499,15 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
         }
         check_finite(table);
         const std::string path = join_path(o.output, t.file);
-        write_table(table, path, plan.settings.half);
+        write_table(table, path, t.half);
         folder.commit();
+        // Its preview beside it (previews/FILE.png), unless --no-previews.
+        std::string preview;
+        if (o.previews) {
+            ::mkdir(join_path(o.output, "previews").c_str(), 0755);
+            preview = "previews/" + t.file + ".png";
+            write_table_preview(table, join_path(o.output, preview));
+        }
         const double seconds = since(t1);
         max_error = std::max(max_error, table.max_error());
 
@@ -483,6 +538,8 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                   {"seconds", std::round(seconds * 1000) / 1000}};
         if (t.eta) e["eta_range"] = {t.eta->lo, t.eta->hi};
         if (r.wavelength_nm > 0) e["wavelength_nm"] = r.wavelength_nm;
+        if (!t.layout.empty()) e["layout"] = t.layout;
+        if (!preview.empty()) e["preview"] = preview;
         // Keep the index in plan order, and written after every table: an interrupted bake
         // keeps what it finished.
         json tables = json::array();
@@ -532,6 +589,7 @@ void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action
     add_scene_options(cmd, o->scene);
     cmd->add_option("-o,--output", o->output, "output folder")->capture_default_str();
     cmd->add_flag("--force", o->force, "recompute tables that are up to date");
+    cmd->add_flag("!--no-previews", o->previews, "write no preview pictures (default: DIR/previews/TABLE.png per table)");
     cmd->add_option("--lock-timeout", o->lock_timeout,
                     "seconds to wait while another bake writes into the same folder; 0: refuse at once")
         ->capture_default_str()

@@ -1,60 +1,70 @@
-// glTF 2.0 scenes (.gltf, .glb) read with tinygltf and mapped to brdfbake lobes.
+// glTF 2.0 scenes (.gltf, .glb) mapped to brdfbake lobes.
+//
+// Only the JSON document is read (for a .glb its JSON chunk), with nlohmann-json: materials,
+// which materials the mesh primitives and the KHR_materials_variants mappings use, and the
+// images of the textures that decide a range. Geometry buffers are never read, so a .gltf whose
+// .bin is elsewhere, a meshopt- or Draco-compressed file (a buffer without a uri) and a .glb all
+// plan alike. Every value is read with its type checked: a wrong type is an error naming the
+// file, the material and the key.
 //
 // The core metallic-roughness material is GGX with alpha = roughness^2 (Smith height-correlated
 // masking-shadowing, as the glTF specification's appendix B). A metal is a conductor lobe whose
 // Fresnel is Schlick with f0 = baseColor: its albedo and average albedo tables are computed with
 // F = 1 and the Fresnel enters at render time. A non-metal is a dielectric interface with eta 1.5
 // (or KHR_materials_ior): its rough reflection (and, with transmission, transmission) albedo comes
-// from the dielectric table. Textures are not read: a textured factor spans [0, factor]. The
-// extensions that change which tables are needed are mapped; every other extension is reported
-// by name. docs/scenes.md has the table of this mapping.
-#include <tiny_gltf.h>
+// from the dielectric table. A factor multiplied by a texture takes the range of the texture's
+// values (the channel the specification names, times the factor) when the image can be read
+// (texture_image.h), else [0, factor] with a warning naming the image. The extensions that change
+// which tables are needed are mapped; every other extension is reported by name.
+// docs/scenes.md has the table of this mapping.
+#include <sys/stat.h>
 
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 #include <fstream>
 #include <map>
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 
+#include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "models/input_file.h"
 #include "models/key_reader.h"
+#include "scene/json_read.h"
 #include "scene/scene.h"
+#include "scene/texture_image.h"
 
 namespace brdfbake {
 namespace {
 
-/// Images are not needed (textures only widen ranges); skip decoding them.
-bool skip_image(tinygltf::Image*, const int, std::string*, std::string*, int, int, const unsigned char*, int, void*) {
-    return true;
-}
+using json = nlohmann::json;
 
-std::string one_line(std::string s) {
-    for (char& c : s)
-        if (c == '\n' || c == '\r') c = ';';
-    while (!s.empty() && (s.back() == ';' || s.back() == ' ')) s.pop_back();
-    return s;
-}
+/// The largest .gltf document, JSON chunk of a .glb, or image read (bytes).
+constexpr std::uintmax_t kMaxDocumentBytes = std::uintmax_t(256) << 20;
+constexpr std::uintmax_t kMaxImageBytes = std::uintmax_t(256) << 20;
 
 /// The material extensions whose effect on tables is modelled.
 const std::set<std::string> kModelled = {"KHR_materials_ior",          "KHR_materials_specular",
                                          "KHR_materials_transmission", "KHR_materials_volume",
                                          "KHR_materials_clearcoat",    "KHR_materials_anisotropy",
-                                         "KHR_materials_unlit",        "KHR_materials_sheen"};
+                                         "KHR_materials_unlit",        "KHR_materials_sheen",
+                                         "KHR_materials_variants"};
 
-/// Extensions known not to change any table (geometry, textures, lights): reported, nothing else.
+/// Extensions known not to change any table (geometry, textures, lights): reported once, nothing else.
 const std::map<std::string, std::string> kNoTableEffect = {
     {"KHR_texture_transform", "texture coordinates"},
     {"KHR_texture_basisu", "texture compression"},
     {"EXT_texture_webp", "texture format"},
     {"EXT_texture_avif", "texture format"},
     {"KHR_mesh_quantization", "geometry encoding"},
-    {"KHR_draco_mesh_compression", "geometry compression"},
-    {"EXT_meshopt_compression", "geometry compression"},
+    {"KHR_draco_mesh_compression", "geometry compression; geometry is not read"},
+    {"EXT_meshopt_compression", "geometry compression; geometry is not read"},
     {"EXT_mesh_gpu_instancing", "instancing"},
     {"KHR_lights_punctual", "lights"},
-    {"KHR_materials_variants", "material variants (every variant's material is planned)"},
     {"KHR_animation_pointer", "animation"},
     {"KHR_xmp_json_ld", "metadata"},
     {"KHR_materials_emissive_strength", "emission"},
@@ -69,81 +79,380 @@ const std::map<std::string, std::string> kNotModelled = {
                                             "planned from its metallic-roughness values"},
 };
 
-double number(const tinygltf::Value& v, const std::string& key, double fallback) {
-    if (!v.IsObject() || !v.Has(key)) return fallback;
-    const tinygltf::Value& x = v.Get(key);
-    if (!x.IsNumber()) return fallback;
-    return x.GetNumberAsDouble();
-}
-
-bool has_texture(const tinygltf::Value& v, const std::string& key) { return v.IsObject() && v.Has(key) && v.Get(key).IsObject(); }
-
-std::vector<double> number_array(const tinygltf::Value& v, const std::string& key, std::vector<double> fallback) {
-    if (!v.IsObject() || !v.Has(key) || !v.Get(key).IsArray()) return fallback;
-    const tinygltf::Value& a = v.Get(key);
-    std::vector<double> out;
-    for (size_t i = 0; i < a.ArrayLen(); ++i)
-        if (a.Get(int(i)).IsNumber()) out.push_back(a.Get(int(i)).GetNumberAsDouble());
-    return out;
-}
-
-/// A factor with an optional texture multiplying it: the range the material can take.
-Interval factor_range(double factor, bool textured) { return textured ? Interval{0.0, factor} : Interval{factor, factor}; }
-
-Interval square(Interval r) { return {r.lo * r.lo, r.hi * r.hi}; }
-
 std::string fmt(double v) { return format_number(v); }
 
 std::string range_text(Interval r) { return r.lo == r.hi ? fmt(r.lo) : "[" + fmt(r.lo) + ", " + fmt(r.hi) + "]"; }
+
+Interval square(Interval r) { return {r.lo * r.lo, r.hi * r.hi}; }
+
+std::string type_name(const json& v) { return v.type_name(); }
+
+/// The glTF document: its JSON, and where the binary chunk of a .glb lies in the file.
+struct Document {
+    std::string path, dir, label;  // label: "glTF 'PATH'"
+    json j;
+    bool glb = false;
+    std::uint64_t bin_offset = 0, bin_length = 0;
+    bool has_bin = false;
+    std::map<long, std::optional<ChannelRanges>> images;  // decoded, by image index
+    std::map<long, std::string> image_problem;             // why an image cannot be read
+    std::map<long, std::string> image_name;
+};
+
+std::string folder_of(const std::string& path) {
+    const size_t slash = path.find_last_of('/');
+    return slash == std::string::npos ? "" : path.substr(0, slash + 1);
+}
+
+std::uint32_t le32(const std::string& b, std::size_t at) {
+    return std::uint32_t(static_cast<unsigned char>(b[at])) | std::uint32_t(static_cast<unsigned char>(b[at + 1])) << 8 |
+           std::uint32_t(static_cast<unsigned char>(b[at + 2])) << 16 |
+           std::uint32_t(static_cast<unsigned char>(b[at + 3])) << 24;
+}
+
+/// `length` bytes of a regular file from `offset`; throws Error naming `what`.
+std::string read_range(const std::string& path, std::uint64_t offset, std::uint64_t length, const std::string& what) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) throw Error("cannot read " + what + " '" + path + "': " + std::strerror(errno));
+    in.seekg(std::streamoff(offset));
+    std::string out(std::size_t(length), '\0');
+    in.read(&out[0], std::streamsize(length));
+    if (std::uint64_t(in.gcount()) != length) throw Error(what + " '" + path + "' is truncated");
+    return out;
+}
+
+/// Opens the document: a .gltf through read_input_file, a .glb by its header and JSON chunk only
+/// (its binary chunk is read only where an image lies in it).
+Document open_document(const std::string& path) {
+    Document d;
+    d.path = path;
+    d.dir = folder_of(path);
+    d.label = "glTF '" + path + "'";
+    struct stat st;
+    if (::stat(path.c_str(), &st) != 0) throw Error("cannot read scene '" + path + "': " + std::strerror(errno));
+    std::string head;
+    if (S_ISREG(st.st_mode) && st.st_size >= 4) head = read_range(path, 0, 4, "scene");
+    std::string text;
+    if (head == "glTF") {
+        d.glb = true;
+        const std::uint64_t size = std::uint64_t(st.st_size);
+        const auto broken = [&](const std::string& why) { return Error(d.label + " cannot be read: " + why); };
+        if (size < 20) throw broken("truncated .glb (no JSON chunk)");
+        const std::string h = read_range(path, 0, 20, "scene");
+        if (le32(h, 4) != 2) throw broken("glTF binary version " + std::to_string(le32(h, 4)) + " (this build reads 2)");
+        const std::uint64_t total = le32(h, 8), json_length = le32(h, 12);
+        if (total > size) throw broken("truncated .glb (header says " + std::to_string(total) + " bytes, file has " +
+                                       std::to_string(size) + ")");
+        if (le32(h, 16) != 0x4E4F534Au) throw broken("the first chunk of a .glb must be JSON");
+        if (20 + json_length > total) throw broken("truncated .glb (JSON chunk runs past the end)");
+        if (json_length > kMaxDocumentBytes) throw broken("JSON chunk larger than 256 MiB");
+        text = read_range(path, 20, json_length, "scene");
+        const std::uint64_t next = 20 + ((json_length + 3) & ~std::uint64_t(3));
+        if (next + 8 <= total) {
+            const std::string c = read_range(path, next, 8, "scene");
+            if (le32(c, 4) == 0x004E4942u && next + 8 + le32(c, 0) <= total) {
+                d.has_bin = true;
+                d.bin_offset = next + 8;
+                d.bin_length = le32(c, 0);
+            }
+        }
+    } else {
+        text = read_input_file(path, "scene", kMaxDocumentBytes);
+    }
+    d.j = scene_json::parse_strict(text, d.label);
+    if (!d.j.is_object()) throw Error(d.label + " cannot be read: the document is not a JSON object");
+    if (!d.j.contains("asset") || !d.j["asset"].is_object())
+        throw Error(d.label + " cannot be read: no 'asset' object (every glTF file has one)");
+    const json& asset = d.j["asset"];
+    if (!asset.contains("version") || !asset["version"].is_string())
+        throw Error(d.label + " cannot be read: 'asset.version' must be a string");
+    const std::string version = asset["version"].get<std::string>();
+    if (version.rfind("2.", 0) != 0)
+        throw Error(d.label + " cannot be read: glTF version " + version + " (this build reads 2.x)");
+    return d;
+}
+
+// --- typed access: a wrong type is an error naming the file, the material and the key ---------
+
+/// The array at `key` of the document (empty when absent).
+const json& top_array(const Document& d, const char* key) {
+    static const json empty = json::array();
+    if (!d.j.contains(key)) return empty;
+    if (!d.j[key].is_array()) throw Error(d.label + ": '" + key + "' must be an array, not " + type_name(d.j[key]));
+    return d.j[key];
+}
+
+/// An object member that must be an object if present.
+const json* object_at(const json& o, const std::string& key, const std::string& where) {
+    if (!o.is_object() || !o.contains(key)) return nullptr;
+    const json& v = o[key];
+    if (!v.is_object()) throw Error(where + ": '" + key + "' must be an object, not " + type_name(v));
+    return &v;
+}
+
+double number_at(const json* o, const std::string& key, double fallback, const std::string& where) {
+    if (!o || !o->contains(key)) return fallback;
+    const json& v = (*o)[key];
+    if (!v.is_number())
+        throw Error(where + ": '" + key + "' must be a number, not " + type_name(v) + " " + v.dump());
+    return v.get<double>();
+}
+
+long index_at(const json& o, const std::string& key, std::size_t count, const std::string& what, const std::string& where) {
+    const json& v = o[key];
+    if (!v.is_number_integer() || v.get<long long>() < 0)
+        throw Error(where + ": '" + key + "' must be a non-negative whole number, not " + v.dump());
+    const long i = long(v.get<long long>());
+    if (std::size_t(i) >= count)
+        throw Error(where + ": '" + key + "' refers to " + what + " " + std::to_string(i) + ", which does not exist (" +
+                    std::to_string(count) + " in the file)");
+    return i;
+}
+
+std::vector<double> numbers_at(const json* o, const std::string& key, std::vector<double> fallback, const std::string& where) {
+    if (!o || !o->contains(key)) return fallback;
+    const json& a = (*o)[key];
+    if (!a.is_array()) throw Error(where + ": '" + key + "' must be an array of numbers, not " + type_name(a));
+    std::vector<double> out;
+    for (const auto& x : a) {
+        if (!x.is_number()) throw Error(where + ": '" + key + "' must hold numbers, not " + type_name(x) + " " + x.dump());
+        out.push_back(x.get<double>());
+    }
+    return out;
+}
 
 void check_factor(const std::string& where, const std::string& what, double v, double lo, double hi) {
     if (!std::isfinite(v) || v < lo || v > hi)
         throw Error(where + ": " + what + " " + fmt(v) + " is out of range [" + fmt(lo) + ", " + fmt(hi) + "]");
 }
 
-SceneMaterial map_material(const tinygltf::Material& mat, const std::string& name, const std::string& file,
-                           std::vector<std::string>& warnings) {
-    const std::string where = "glTF '" + file + "': material '" + name + "'";
+// --- images: the values a texture holds ----------------------------------------------------------
+
+/// The bytes of image `i`, or nullopt with the reason in `problem`.
+std::optional<std::string> image_bytes(Document& d, long i, std::string& problem, std::string& name) {
+    const json& img = top_array(d, "images")[std::size_t(i)];
+    const std::string where = d.label + ": image " + std::to_string(i);
+    if (!img.is_object()) throw Error(where + " must be an object");
+    name = img.contains("name") && img["name"].is_string() ? img["name"].get<std::string>() : "image " + std::to_string(i);
+    auto from_data_uri = [&](const std::string& uri) -> std::optional<std::string> {
+        const size_t comma = uri.find(',');
+        if (comma == std::string::npos || uri.rfind(";base64", comma) == std::string::npos) {
+            problem = "its data: URI is not base64";
+            return std::nullopt;
+        }
+        std::optional<std::string> bytes = base64_decode(uri.substr(comma + 1));
+        if (!bytes) problem = "its data: URI holds invalid base64";
+        return bytes;
+    };
+    if (img.contains("uri")) {
+        if (!img["uri"].is_string()) throw Error(where + ": 'uri' must be a string");
+        const std::string uri = img["uri"].get<std::string>();
+        if (uri.rfind("data:", 0) == 0) {
+            name += " (data URI)";
+            return from_data_uri(uri);
+        }
+        name = uri;
+        try {
+            return read_input_file(d.dir + percent_decode(uri), "texture image", kMaxImageBytes);
+        } catch (const Error& e) {
+            problem = e.what();
+            return std::nullopt;
+        }
+    }
+    if (!img.contains("bufferView")) {
+        problem = "it has neither a uri nor a bufferView";
+        return std::nullopt;
+    }
+    const json& views = top_array(d, "bufferViews");
+    const long v = index_at(img, "bufferView", views.size(), "buffer view", where);
+    const json& view = views[std::size_t(v)];
+    const std::string vwhere = d.label + ": bufferViews[" + std::to_string(v) + "]";
+    if (!view.is_object() || !view.contains("buffer")) throw Error(vwhere + " has no 'buffer'");
+    const json& buffers = top_array(d, "buffers");
+    const long b = index_at(view, "buffer", buffers.size(), "buffer", vwhere);
+    const double offset = number_at(&view, "byteOffset", 0, vwhere), length = number_at(&view, "byteLength", -1, vwhere);
+    if (!(offset >= 0 && length >= 0)) throw Error(vwhere + ": needs a non-negative 'byteLength' and 'byteOffset'");
+    if (length > double(kMaxImageBytes)) {
+        problem = "it is larger than 256 MiB";
+        return std::nullopt;
+    }
+    const json& buffer = buffers[std::size_t(b)];
+    if (buffer.is_object() && buffer.contains("uri") && buffer["uri"].is_string()) {
+        const std::string uri = buffer["uri"].get<std::string>();
+        if (uri.rfind("data:", 0) == 0) {
+            std::optional<std::string> all = from_data_uri(uri);
+            if (!all) return all;
+            if (offset + length > double(all->size())) {
+                problem = "its buffer view runs past the end of buffer " + std::to_string(b);
+                return std::nullopt;
+            }
+            return all->substr(std::size_t(offset), std::size_t(length));
+        }
+        try {
+            return read_range(d.dir + percent_decode(uri), std::uint64_t(offset), std::uint64_t(length), "buffer");
+        } catch (const Error& e) {
+            problem = std::string("its buffer cannot be read: ") + e.what();
+            return std::nullopt;
+        }
+    }
+    if (d.glb && b == 0 && d.has_bin) {
+        if (offset + length > double(d.bin_length)) {
+            problem = "its buffer view runs past the end of the binary chunk";
+            return std::nullopt;
+        }
+        return read_range(d.path, d.bin_offset + std::uint64_t(offset), std::uint64_t(length), "scene");
+    }
+    problem = "its buffer holds no data in this file (a buffer without a uri outside a .glb)";
+    return std::nullopt;
+}
+
+/// The channel ranges of the image texture `t` uses, decoded once per image; nullopt with the
+/// reason in `problem` and the image's name in `name`.
+std::optional<ChannelRanges> texture_ranges(Document& d, long t, std::string& problem, std::string& name) {
+    const json& tex = top_array(d, "textures")[std::size_t(t)];
+    const std::string where = d.label + ": texture " + std::to_string(t);
+    if (!tex.is_object()) throw Error(where + " must be an object");
+    if (!tex.contains("source")) {
+        // Only an image of a texture-format extension (KTX2, WebP, AVIF).
+        const json* ext = object_at(tex, "extensions", where);
+        name = "texture " + std::to_string(t);
+        problem = ext && !ext->empty() ? "its only image is one of " + ext->begin().key() + ", which this build does not decode"
+                                       : "it has no image";
+        return std::nullopt;
+    }
+    const json& images = top_array(d, "images");
+    const long i = index_at(tex, "source", images.size(), "image", where);
+    auto cached = d.images.find(i);
+    if (cached == d.images.end()) {
+        std::string why, image_name;
+        std::optional<ChannelRanges> ranges;
+        if (std::optional<std::string> bytes = image_bytes(d, i, why, image_name)) {
+            const std::string format = image_format(*bytes);
+            if (format == "png") {
+                try {
+                    ranges = png_channel_ranges(*bytes, "image '" + image_name + "'");
+                } catch (const Error& e) {
+                    why = e.what();
+                }
+            } else if (format == "jpeg") {
+                why = "it is a JPEG, and this build decodes PNG only (libjpeg is not linked)";
+            } else {
+                why = format.empty() ? "its format is not recognised" : "it is " + format + ", which this build does not decode";
+            }
+        }
+        cached = d.images.emplace(i, ranges).first;
+        d.image_problem[i] = why;
+        d.image_name[i] = image_name;
+    }
+    problem = d.image_problem[i];
+    name = d.image_name[i];
+    return cached->second;
+}
+
+// --- materials -------------------------------------------------------------------------------------
+
+/// Reads one material's values with the file and material in every message.
+struct MaterialReader {
+    Document& d;
+    std::string where;  // "glTF 'F': material 'M'"
+    std::string name;
+    SceneMaterial& out;
+    std::vector<std::string>& warnings;
+    std::map<std::string, std::size_t> unread = {};  // texture key -> index of its warning in `warnings`
+
+    const json* object(const json* o, const std::string& key) const { return o ? object_at(*o, key, where) : nullptr; }
+    double number(const json* o, const std::string& key, double fallback, const std::string& prefix) const {
+        return number_at(o, key, fallback, where + (prefix.empty() ? "" : ": " + prefix));
+    }
+    bool has_texture(const json* o, const std::string& key, const std::string& prefix) const {
+        if (!o) return false;
+        const json* t = object_at(*o, key, where + (prefix.empty() ? "" : ": " + prefix));
+        if (!t) return false;
+        if (!t->contains("index")) throw Error(where + ": " + prefix + (prefix.empty() ? "" : ": ") + key + " has no 'index'");
+        index_at(*t, "index", top_array(d, "textures").size(), "texture", where + ": " + key);
+        return true;
+    }
+
+    /// factor x the values the texture at `key` holds in `channel` (0 R, 1 G, 2 B, 3 A); the
+    /// factor alone without a texture; [0, factor] with a warning when the image cannot be read.
+    Interval textured(const json* o, const std::string& key, double factor, int channel, const std::string& quantity,
+                      const std::string& prefix = "") {
+        if (!has_texture(o, key, prefix)) return {factor, factor};
+        const long t = index_at((*o)[key], "index", top_array(d, "textures").size(), "texture", where + ": " + key);
+        std::string problem, image;
+        const std::optional<ChannelRanges> r = texture_ranges(d, t, problem, image);
+        static const char* kChannel[] = {"R", "G", "B", "A"};
+        if (!r) {
+            // One warning per texture of the material, naming what its channels hold.
+            const std::string what = quantity + " planned over the full range [0, " + fmt(factor) + "]";
+            const auto seen = unread.find(key);
+            if (seen != unread.end()) {
+                warnings[seen->second] += ", " + what;
+            } else {
+                unread[key] = warnings.size();
+                warnings.push_back("material '" + name + "': " + key + " (image '" + image + "') cannot be read: " + problem +
+                                   "; " + what);
+            }
+            out.notes.push_back(quantity + " [0, " + fmt(factor) + "]: " + key + " not read (" + image + ")");
+            return {0.0, factor};
+        }
+        const Interval v{r->lo[size_t(channel)] * factor, r->hi[size_t(channel)] * factor};
+        out.notes.push_back(quantity + " " + range_text(v) + " from " + key + " '" + image + "' (" +
+                            std::to_string(r->width) + "x" + std::to_string(r->height) + ", " + kChannel[channel] +
+                            " channel " + range_text({r->lo[size_t(channel)], r->hi[size_t(channel)]}) + " x factor " +
+                            fmt(factor) + ")");
+        return v;
+    }
+};
+
+SceneMaterial map_material(Document& d, const json& mat, const std::string& name, std::vector<std::string>& warnings) {
     SceneMaterial out;
     out.name = name;
+    MaterialReader m{d, d.label + ": material '" + name + "'", name, out, warnings};
+    const std::string& where = m.where;
     const std::string ggx = model_without_alpha("ggx");
+    if (!mat.is_object()) throw Error(where + " must be an object");
 
-    for (const auto& e : mat.extensions) {
-        if (kModelled.count(e.first)) continue;
-        auto nt = kNoTableEffect.find(e.first);
-        if (nt != kNoTableEffect.end()) {
-            warnings.push_back("material '" + name + "': " + e.first + " is not modelled (" + nt->second +
-                               "; does not change the tables)");
-            continue;
+    const json* exts = object_at(mat, "extensions", where);
+    if (exts)
+        for (const auto& e : exts->items()) {
+            if (!e.value().is_object()) throw Error(where + ": extension " + e.key() + " must be an object");
+            if (kModelled.count(e.key())) continue;
+            auto nt = kNoTableEffect.find(e.key());
+            if (nt != kNoTableEffect.end()) {
+                warnings.push_back("material '" + name + "': " + e.key() + " is not modelled (" + nt->second +
+                                   "; does not change the tables)");
+                continue;
+            }
+            auto nm = kNotModelled.find(e.key());
+            warnings.push_back("material '" + name + "': " + e.key() + " is not modelled" +
+                               (nm != kNotModelled.end() ? " (" + nm->second + ")" : "") + "; its other lobes are planned");
         }
-        auto nm = kNotModelled.find(e.first);
-        warnings.push_back("material '" + name + "': " + e.first + " is not modelled" +
-                           (nm != kNotModelled.end() ? " (" + nm->second + ")" : "") + "; its other lobes are planned");
-    }
-    auto ext = [&](const char* key) -> const tinygltf::Value* {
-        auto it = mat.extensions.find(key);
-        return it == mat.extensions.end() ? nullptr : &it->second;
-    };
+    auto ext = [&](const char* key) -> const json* { return exts ? object_at(*exts, key, where) : nullptr; };
     if (ext("KHR_materials_unlit")) {
         out.notes.push_back("KHR_materials_unlit: no BRDF, no table");
         return out;
     }
 
-    const auto& pbr = mat.pbrMetallicRoughness;
-    const bool mr_tex = pbr.metallicRoughnessTexture.index >= 0;
-    check_factor(where, "metallicFactor", pbr.metallicFactor, 0, 1);
-    check_factor(where, "roughnessFactor", pbr.roughnessFactor, 0, 1);
-    const Interval metallic = factor_range(pbr.metallicFactor, mr_tex);
-    const Interval roughness = factor_range(pbr.roughnessFactor, mr_tex);
+    const json* pbr = object_at(mat, "pbrMetallicRoughness", where);
+    const std::string pp = "pbrMetallicRoughness";
+    const double metallic_factor = m.number(pbr, "metallicFactor", 1.0, pp);
+    const double roughness_factor = m.number(pbr, "roughnessFactor", 1.0, pp);
+    check_factor(where, "metallicFactor", metallic_factor, 0, 1);
+    check_factor(where, "roughnessFactor", roughness_factor, 0, 1);
+    // metallicRoughnessTexture: roughness in G, metallic in B (glTF 2.0, 3.9.2).
+    const Interval roughness = m.textured(pbr, "metallicRoughnessTexture", roughness_factor, 1, "roughness", pp);
+    const Interval metallic = m.textured(pbr, "metallicRoughnessTexture", metallic_factor, 2, "metallic", pp);
     Interval alpha = square(roughness);
-    if (mr_tex) out.notes.push_back("metallicRoughnessTexture: roughness " + range_text(roughness) + ", metallic " + range_text(metallic));
-    if (roughness.lo == 0.0) out.notes.push_back("roughness 0 is computed at the alpha floor");
+    if (alpha.lo < double(BB_ALPHA_MIN)) out.notes.push_back(alpha_floor_note(alpha.lo));
 
-    // Anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha (KHR_materials_anisotropy).
-    if (const tinygltf::Value* a = ext("KHR_materials_anisotropy")) {
-        const double strength = number(*a, "anisotropyStrength", 0.0);
+    // Anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha (KHR_materials_anisotropy);
+    // its texture's B channel scales anisotropyStrength.
+    if (const json* a = ext("KHR_materials_anisotropy")) {
+        const std::string ap = "KHR_materials_anisotropy";
+        const double strength = m.number(a, "anisotropyStrength", 0.0, ap);
         check_factor(where, "anisotropyStrength", strength, 0, 1);
-        const Interval s = factor_range(strength, has_texture(*a, "anisotropyTexture"));
+        const Interval s = m.textured(a, "anisotropyTexture", strength, 2, "anisotropyStrength", ap);
         if (s.hi > 0.0) {
             const double at_hi = alpha.hi + (1.0 - alpha.hi) * s.hi * s.hi;
             alpha.hi = std::max(alpha.hi, at_hi);
@@ -155,11 +464,44 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
 
     // Index of refraction.
     double ior = 1.5;
-    if (const tinygltf::Value* e = ext("KHR_materials_ior")) {
-        ior = number(*e, "ior", 1.5);
+    if (const json* e = ext("KHR_materials_ior")) {
+        ior = m.number(e, "ior", 1.5, "KHR_materials_ior");
         if (!std::isfinite(ior) || ior < 1.0 || ior > 1e3)
             throw Error(where + ": KHR_materials_ior: ior " + fmt(ior) + " is out of range [1, 1000]");
+        if (ior > kSceneEtaMax) {
+            auto f0 = [](double n) { return ((n - 1) / (n + 1)) * ((n - 1) / (n + 1)); };
+            warnings.push_back("material '" + name + "': KHR_materials_ior: ior " + fmt(ior) +
+                               " is beyond the dielectric tables' index range (at most " + fmt(kSceneEtaMax) +
+                               "); planned at eta " + fmt(kSceneEtaMax) + " (F0 " + fmt(f0(kSceneEtaMax)) + " instead of " +
+                               fmt(f0(ior)) + ")");
+            out.notes.push_back("ior " + fmt(ior) + " planned at eta " + fmt(kSceneEtaMax) + ", the tables' limit");
+            ior = kSceneEtaMax;
+        }
     }
+
+    // Transmission and specular (read, with their types checked, whether or not a dielectric
+    // lobe uses them).
+    Interval transmission{0.0, 0.0};
+    if (const json* t = ext("KHR_materials_transmission")) {
+        const std::string tp = "KHR_materials_transmission";
+        const double factor = m.number(t, "transmissionFactor", 0.0, tp);
+        check_factor(where, "transmissionFactor", factor, 0, 1);
+        transmission = m.textured(t, "transmissionTexture", factor, 0, "transmission", tp);
+    }
+    const bool transmissive = transmission.hi > 0.0;
+    Interval specular{1.0, 1.0};
+    bool tinted = false;
+    if (const json* s = ext("KHR_materials_specular")) {
+        const std::string sp = "KHR_materials_specular";
+        const double factor = m.number(s, "specularFactor", 1.0, sp);
+        check_factor(where, "specularFactor", factor, 0, 1);
+        specular = m.textured(s, "specularTexture", factor, 3, "specularFactor", sp);
+        const std::vector<double> color = numbers_at(s, "specularColorFactor", {1, 1, 1}, where + ": " + sp);
+        for (double c : color) check_factor(where, "specularColorFactor", c, 0, 1e3);
+        tinted = m.has_texture(s, "specularColorTexture", sp) ||
+                 std::any_of(color.begin(), color.end(), [](double c) { return c != 1.0; });
+    }
+    if (const json* v = ext("KHR_materials_volume")) m.number(v, "thicknessFactor", 0.0, "KHR_materials_volume");  // its type
 
     // Metal lobe.
     if (metallic.hi > 0.0) {
@@ -175,26 +517,7 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
 
     // Dielectric lobe (the non-metal part).
     if (metallic.lo < 1.0) {
-        double transmission = 0.0;
-        bool transmission_tex = false;
-        if (const tinygltf::Value* t = ext("KHR_materials_transmission")) {
-            transmission = number(*t, "transmissionFactor", 0.0);
-            check_factor(where, "transmissionFactor", transmission, 0, 1);
-            transmission_tex = has_texture(*t, "transmissionTexture");
-        }
-        const bool transmissive = transmission > 0.0 || transmission_tex;
-        double specular = 1.0;
-        bool specular_tex = false, tinted = false;
-        if (const tinygltf::Value* s = ext("KHR_materials_specular")) {
-            specular = number(*s, "specularFactor", 1.0);
-            check_factor(where, "specularFactor", specular, 0, 1);
-            specular_tex = has_texture(*s, "specularTexture");
-            const std::vector<double> color = number_array(*s, "specularColorFactor", {1, 1, 1});
-            for (double c : color) check_factor(where, "specularColorFactor", c, 0, 1e3);
-            tinted = has_texture(*s, "specularColorTexture") ||
-                     std::any_of(color.begin(), color.end(), [](double c) { return c != 1.0; });
-        }
-        const bool reflects = (specular > 0.0 || specular_tex) && ior > 1.0;
+        const bool reflects = specular.hi > 0.0 && ior > 1.0;
         if (!reflects && !transmissive) {
             out.notes.push_back(ior == 1.0 ? "ior 1: the dielectric interface does not reflect, no table"
                                            : "KHR_materials_specular: specularFactor 0, no specular reflection");
@@ -209,8 +532,8 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
             l.alpha = alpha;
             l.eta = Interval{ior, ior};
             l.kinds = default_lobe_kinds(l);
-            if (specular != 1.0 || specular_tex)
-                out.notes.push_back("KHR_materials_specular: specularFactor " + range_text(factor_range(specular, specular_tex)) +
+            if (specular.lo != 1.0 || specular.hi != 1.0)
+                out.notes.push_back("KHR_materials_specular: specularFactor " + range_text(specular) +
                                     " scales the reflection albedo (linear in F), same table");
             if (tinted) {
                 // A tinted F0 makes F Schlick with a per-channel f0: E = f0 A + B (split-sum terms).
@@ -221,15 +544,15 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
                 // Rough glass's multiple-scattering compensation (Kulla and Conty 2017) needs the
                 // average of R + T over mu from both sides, as Cycles' ggx_glass_Eavg.
                 l.kinds.push_back(&table_kind(TableKindId::DielectricEavg));
-                out.notes.push_back("KHR_materials_transmission: transmission " +
-                                    range_text(factor_range(transmission, transmission_tex)) +
+                out.notes.push_back("KHR_materials_transmission: transmission " + range_text(transmission) +
                                     ", rough transmission from the dielectric table");
                 bool volume = false;
-                if (const tinygltf::Value* v = ext("KHR_materials_volume")) {
-                    const double thickness = number(*v, "thicknessFactor", 0.0);
+                if (const json* v = ext("KHR_materials_volume")) {
+                    const std::string vp = "KHR_materials_volume";
+                    const double thickness = m.number(v, "thicknessFactor", 0.0, vp);
                     if (!std::isfinite(thickness) || thickness < 0)
                         throw Error(where + ": KHR_materials_volume: thicknessFactor " + fmt(thickness) + " is negative");
-                    volume = thickness > 0.0 || has_texture(*v, "thicknessTexture");
+                    volume = thickness > 0.0 && m.textured(v, "thicknessTexture", thickness, 1, "thickness", vp).hi > 0.0;
                 }
                 out.notes.push_back(volume ? "KHR_materials_volume: refracting volume, both sides of the interface (eta and 1/eta)"
                                            : "thin-walled (no volume): the outside of the interface only");
@@ -241,40 +564,46 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
     }
 
     // Clear coat: a GGX dielectric layer with ior 1.5 (fixed by KHR_materials_clearcoat) and its own
-    // roughness; its reflection albedo weights the base by 1 - E_coat.
-    if (const tinygltf::Value* c = ext("KHR_materials_clearcoat")) {
-        const double factor = number(*c, "clearcoatFactor", 0.0);
+    // roughness; its reflection albedo weights the base by 1 - E_coat. Textures: clearcoat in R,
+    // clearcoat roughness in G.
+    if (const json* c = ext("KHR_materials_clearcoat")) {
+        const std::string cp = "KHR_materials_clearcoat";
+        const double factor = m.number(c, "clearcoatFactor", 0.0, cp);
         check_factor(where, "clearcoatFactor", factor, 0, 1);
-        if (factor > 0.0 || has_texture(*c, "clearcoatTexture")) {
-            const double cr = number(*c, "clearcoatRoughnessFactor", 0.0);
+        if (m.textured(c, "clearcoatTexture", factor, 0, "clearcoat", cp).hi > 0.0) {
+            const double cr = m.number(c, "clearcoatRoughnessFactor", 0.0, cp);
             check_factor(where, "clearcoatRoughnessFactor", cr, 0, 1);
             Lobe l;
             l.role = "clearcoat";
             l.model = ggx;
             l.model_name = "ggx";
             l.fresnel = "dielectric:eta=1.5";
-            const Interval r = factor_range(cr, has_texture(*c, "clearcoatRoughnessTexture"));
+            const Interval r = m.textured(c, "clearcoatRoughnessTexture", cr, 1, "clearcoat roughness", cp);
             l.alpha = square(r);
             l.eta = Interval{1.5, 1.5};
             l.kinds = default_lobe_kinds(l);
             out.notes.push_back("KHR_materials_clearcoat: GGX coat, eta 1.5, roughness " + range_text(r));
+            if (l.alpha.lo < double(BB_ALPHA_MIN)) out.notes.push_back("clearcoat: " + alpha_floor_note(l.alpha.lo));
             out.lobes.push_back(l);
         }
     }
     // Sheen: the Charlie lobe of Estevez and Kulla 2017 with alpha = sheenRoughness^2 and the
     // specification's visibility (charlie), layered over the rest; its directional albedo scales
     // the layer beneath (KHR_materials_sheen, "Sheen layering"). A black sheen adds nothing.
-    if (const tinygltf::Value* s = ext("KHR_materials_sheen")) {
-        const std::vector<double> color = number_array(*s, "sheenColorFactor", {0, 0, 0});
+    // Textures: sheen colour in RGB, sheen roughness in A.
+    if (const json* s = ext("KHR_materials_sheen")) {
+        const std::string sp = "KHR_materials_sheen";
+        const std::vector<double> color = numbers_at(s, "sheenColorFactor", {0, 0, 0}, where + ": " + sp);
         for (double c : color) check_factor(where, "KHR_materials_sheen: sheenColorFactor", c, 0, 1);
-        const double sr = number(*s, "sheenRoughnessFactor", 0.0);
+        const double sr = m.number(s, "sheenRoughnessFactor", 0.0, sp);
         check_factor(where, "KHR_materials_sheen: sheenRoughnessFactor", sr, 0, 1);
-        const bool colored = has_texture(*s, "sheenColorTexture") ||
-                             std::any_of(color.begin(), color.end(), [](double c) { return c > 0.0; });
+        bool colored = false;
+        for (size_t ch = 0; ch < std::min<size_t>(3, color.size()); ++ch)
+            colored = colored || m.textured(s, "sheenColorTexture", color[ch], int(ch), "sheenColor", sp).hi > 0.0;
         if (!colored) {
             out.notes.push_back("KHR_materials_sheen: sheenColorFactor 0, no sheen, no table");
         } else {
-            const Interval r = factor_range(sr, has_texture(*s, "sheenRoughnessTexture"));
+            const Interval r = m.textured(s, "sheenRoughnessTexture", sr, 3, "sheenRoughness", sp);
             Lobe l;
             l.role = "sheen";
             l.model = model_without_alpha("sheen");
@@ -283,7 +612,7 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
             l.kinds = default_lobe_kinds(l);
             out.notes.push_back("KHR_materials_sheen: Charlie sheen, sheenRoughness " + range_text(r) +
                                 ", charlie visibility; its albedo scales the base (1 - max(sheenColor) E)");
-            if (r.lo == 0.0) out.notes.push_back("sheenRoughness 0 is computed at the alpha floor");
+            if (l.alpha.lo < double(BB_ALPHA_MIN)) out.notes.push_back("sheen: " + alpha_floor_note(l.alpha.lo));
             out.lobes.push_back(l);
         }
     }
@@ -294,75 +623,103 @@ SceneMaterial map_material(const tinygltf::Material& mat, const std::string& nam
 }  // namespace
 
 Scene load_gltf_scene(const std::string& path) {
-    {
-        std::ifstream probe(path, std::ios::binary);
-        if (!probe) throw Error("cannot read scene '" + path + "': " + std::strerror(errno));
-    }
-    tinygltf::TinyGLTF loader;
-    loader.SetImageLoader(skip_image, nullptr);
-    tinygltf::Model model;
-    std::string err, warn;
-    const bool binary = path.size() >= 4 && (path.compare(path.size() - 4, 4, ".glb") == 0 ||
-                                             path.compare(path.size() - 4, 4, ".GLB") == 0);
-    bool ok = false;
-    try {
-        ok = binary ? loader.LoadBinaryFromFile(&model, &err, &warn, path)
-                    : loader.LoadASCIIFromFile(&model, &err, &warn, path);
-    } catch (const std::exception& e) {
-        err = e.what();
-        ok = false;
-    }
-    if (!ok) throw Error("glTF '" + path + "' cannot be read: " + (err.empty() ? std::string("invalid file") : one_line(err)));
-
+    Document d = open_document(path);
     Scene scene;
     scene.path = path;
     scene.source = "glTF 2.0";
-    if (!warn.empty()) scene.warnings.push_back("glTF reader: " + one_line(warn));
 
-    // Only the materials that a mesh primitive uses (all of them in a file without meshes: a
-    // material library); a primitive without a material uses the glTF default material.
-    std::set<int> used;
+    // Variant names (KHR_materials_variants), for the notes of the materials they select.
+    std::vector<std::string> variant_names;
+    if (const json* e = object_at(d.j, "extensions", d.label))
+        if (const json* v = object_at(*e, "KHR_materials_variants", d.label + ": extensions"))
+            if (v->contains("variants") && (*v)["variants"].is_array())
+                for (const auto& x : (*v)["variants"])
+                    variant_names.push_back(x.is_object() && x.contains("name") && x["name"].is_string()
+                                                ? x["name"].get<std::string>()
+                                                : "variant " + std::to_string(variant_names.size()));
+
+    // Only the materials that a mesh primitive uses, directly or through a variant mapping (all of
+    // them in a file without meshes: a material library); a primitive without a material uses
+    // the glTF default material.
+    const json& materials = top_array(d, "materials");
+    const json& meshes = top_array(d, "meshes");
+    std::set<long> used;
+    std::map<long, std::set<std::string>> variants_of;
     bool default_used = false;
-    for (const auto& mesh : model.meshes)
-        for (const auto& prim : mesh.primitives) {
-            if (prim.material < 0) default_used = true;
-            else if (prim.material >= int(model.materials.size()))
-                throw Error("glTF '" + path + "': mesh '" + mesh.name + "' refers to material " +
-                            std::to_string(prim.material) + ", which does not exist");
-            else used.insert(prim.material);
+    for (std::size_t mi = 0; mi < meshes.size(); ++mi) {
+        const json& mesh = meshes[mi];
+        const std::string mwhere = d.label + ": mesh " + std::to_string(mi);
+        if (!mesh.is_object() || !mesh.contains("primitives") || !mesh["primitives"].is_array())
+            throw Error(mwhere + " has no 'primitives' array");
+        for (const auto& prim : mesh["primitives"]) {
+            if (!prim.is_object()) throw Error(mwhere + ": a primitive must be an object");
+            if (prim.contains("material")) used.insert(index_at(prim, "material", materials.size(), "material", mwhere));
+            else default_used = true;
+            const json* pe = object_at(prim, "extensions", mwhere);
+            const json* pv = pe ? object_at(*pe, "KHR_materials_variants", mwhere) : nullptr;
+            if (!pv || !pv->contains("mappings")) continue;
+            if (!(*pv)["mappings"].is_array()) throw Error(mwhere + ": KHR_materials_variants 'mappings' must be an array");
+            for (const auto& mapping : (*pv)["mappings"]) {
+                const std::string vwhere = mwhere + ": KHR_materials_variants mapping";
+                if (!mapping.is_object() || !mapping.contains("material"))
+                    throw Error(vwhere + " needs a 'material'");
+                const long mat = index_at(mapping, "material", materials.size(), "material", vwhere);
+                used.insert(mat);
+                if (mapping.contains("variants") && mapping["variants"].is_array())
+                    for (const auto& v : mapping["variants"])
+                        if (v.is_number_integer() && v.get<long long>() >= 0 &&
+                            std::size_t(v.get<long long>()) < variant_names.size())
+                            variants_of[mat].insert(variant_names[std::size_t(v.get<long long>())]);
+            }
         }
-    const bool library = model.meshes.empty();
+    }
+    const bool library = meshes.empty();
 
     std::set<std::string> material_exts;
     std::map<std::string, int> seen_names;
-    for (size_t i = 0; i < model.materials.size(); ++i) {
-        const auto& mat = model.materials[i];
-        std::string name = mat.name.empty() ? "material " + std::to_string(i) : mat.name;
+    for (std::size_t i = 0; i < materials.size(); ++i) {
+        const json& mat = materials[i];
+        std::string name = mat.is_object() && mat.contains("name") && mat["name"].is_string() &&
+                                   !mat["name"].get<std::string>().empty()
+                               ? mat["name"].get<std::string>()
+                               : "material " + std::to_string(i);
         if (seen_names[name]++) name += " #" + std::to_string(i);
-        if (!library && !used.count(int(i))) {
+        if (!library && !used.count(long(i))) {
             SceneMaterial m;
             m.name = name;
-            m.notes.push_back("not used by any mesh primitive, not planned");
+            m.notes.push_back("not used by any mesh primitive or variant, not planned");
             scene.materials.push_back(m);
             continue;
         }
-        for (const auto& e : mat.extensions) material_exts.insert(e.first);
-        scene.materials.push_back(map_material(mat, name, path, scene.warnings));
+        if (mat.is_object() && mat.contains("extensions") && mat["extensions"].is_object())
+            for (const auto& e : mat["extensions"].items()) material_exts.insert(e.key());
+        SceneMaterial m = map_material(d, mat, name, scene.warnings);
+        if (variants_of.count(long(i))) {
+            std::string list;
+            for (const auto& v : variants_of[long(i)]) list += (list.empty() ? "'" : ", '") + v + "'";
+            m.notes.push_back("KHR_materials_variants: material of variant " + list);
+        }
+        scene.materials.push_back(std::move(m));
     }
     if (default_used) {
-        tinygltf::Material def;  // glTF defaults: metallic 1, roughness 1
-        scene.materials.push_back(map_material(def, "(glTF default material)", path, scene.warnings));
+        // glTF defaults: metallic 1, roughness 1.
+        scene.materials.push_back(map_material(d, json::object(), "(glTF default material)", scene.warnings));
     }
-    if (scene.materials.empty()) throw Error("glTF '" + path + "' has no materials and no meshes: nothing to plan");
+    if (scene.materials.empty()) throw Error(d.label + " has no materials and no meshes: nothing to plan");
 
-    for (const auto& e : model.extensionsUsed) {
-        if (material_exts.count(e) || kModelled.count(e)) continue;  // reported per material, or modelled
-        auto nt = kNoTableEffect.find(e);
-        if (nt != kNoTableEffect.end())
-            scene.warnings.push_back("extension " + e + " is not modelled (" + nt->second + "; does not change the tables)");
-        else
-            scene.warnings.push_back("extension " + e + " is not modelled" +
-                                     (kNotModelled.count(e) ? " (" + kNotModelled.at(e) + ")" : ""));
+    if (d.j.contains("extensionsUsed")) {
+        if (!d.j["extensionsUsed"].is_array()) throw Error(d.label + ": 'extensionsUsed' must be an array");
+        for (const auto& x : d.j["extensionsUsed"]) {
+            if (!x.is_string()) throw Error(d.label + ": 'extensionsUsed' must hold strings");
+            const std::string e = x.get<std::string>();
+            if (material_exts.count(e) || kModelled.count(e)) continue;  // reported per material, or modelled
+            auto nt = kNoTableEffect.find(e);
+            if (nt != kNoTableEffect.end())
+                scene.warnings.push_back("extension " + e + " is not modelled (" + nt->second + "; does not change the tables)");
+            else
+                scene.warnings.push_back("extension " + e + " is not modelled" +
+                                         (kNotModelled.count(e) ? " (" + kNotModelled.at(e) + ")" : ""));
+        }
     }
     return scene;
 }

@@ -2,7 +2,9 @@
 // against what the lobe has (the registry entry's requirement).
 #include <algorithm>
 
+#include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "models/key_reader.h"
 #include "scene/scene.h"
 #include "scene/scene_text.h"
 
@@ -25,6 +27,13 @@ const TableKind& lobe_table_kind(const std::string& name, const Lobe& lobe, cons
         throw Error(ctx + ": " + kind->lobe_requirement);
     if (kind->id == TableKindId::SheenAlbedo && lobe.model_name != "sheen") throw Error(ctx + ": " + kind->lobe_requirement);
     return *kind;
+}
+
+std::string alpha_floor_note(double alpha_lo) {
+    return "alpha " + format_number(alpha_lo) + " is planned at the alpha floor " + format_number(double(BB_ALPHA_MIN)) +
+           (alpha_lo == 0.0 ? " (alpha 0 is the smooth limit; a texel centre is never at 0, and the floor is the "
+                              "nearest the tables come to it)"
+                            : "");
 }
 
 std::vector<std::string> kind_names(const std::vector<const TableKind*>& kinds) {

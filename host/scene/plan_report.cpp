@@ -59,6 +59,33 @@ std::string size_text(const PlannedTable& t) {
     return s;
 }
 
+/// Where the texel centres sit against the scene's ranges, exactly: on the extremes, or (where an
+/// axis stops at alpha 0 or eta 1, or the scene's alpha is below the floor) at which parameter.
+std::string centres_text(const PlannedTable& t) {
+    if (!t.layout.empty()) return "the full axes of " + t.layout;
+    const bool eta_exact = !t.eta || (t.eta_lo_exact && t.eta_hi_exact);
+    const bool single = t.alpha.lo == t.alpha.hi && (!t.eta || t.eta->lo == t.eta->hi);
+    if (t.alpha_lo_exact && t.alpha_hi_exact && eta_exact)
+        return single ? "one texel centred on each value" : "the first and last texel centres sit on the scene's extremes";
+    std::string s = "texel centres at alpha " + short_num(t.alpha_centres.lo) +
+                    (t.alpha_centres.lo == t.alpha_centres.hi ? "" : ".." + short_num(t.alpha_centres.hi));
+    if (t.eta)
+        s += ", eta " + short_num(t.eta_centres.lo) +
+             (t.eta_centres.lo == t.eta_centres.hi ? "" : ".." + short_num(t.eta_centres.hi));
+    std::vector<std::string> why;
+    if (!t.alpha_lo_exact)
+        why.push_back("alpha from " + short_num(t.alpha.lo) + " up to the first centre is read at it (the axis starts at 0 "
+                      "and centres never hold alpha below the floor 1e-4)");
+    if (!t.alpha_hi_exact)
+        why.push_back("alpha from the last centre up to " + short_num(t.alpha.hi) +
+                      " is read at it (the axis stops at the model's largest alpha)");
+    if (t.eta && !t.eta_lo_exact)
+        why.push_back("eta from " + short_num(t.eta->lo) + " up to the first centre is read at it (the axis starts at 1)");
+    if (t.eta && !t.eta_hi_exact)
+        why.push_back("eta from the last centre up to " + short_num(t.eta->hi) + " is read at it (the axis stops at 100)");
+    return s + "; " + join(why, "; ");
+}
+
 }  // namespace
 
 std::string plan_text(const Plan& p) {
@@ -96,9 +123,7 @@ std::string plan_text(const Plan& p) {
         };
         o << "\n      scene     alpha " << range(t.alpha);
         if (t.eta) o << ", eta " << range(*t.eta);
-        o << (t.alpha.lo == t.alpha.hi && (!t.eta || t.eta->lo == t.eta->hi)
-                  ? " (one texel centred on each value)\n"
-                  : " (the first and last texel centres sit on the scene's extremes)\n");
+        o << " (" << centres_text(t) << ")\n";
         o << "      serves    " << join(t.serves) << "\n";
         o << "      estimate  " << size_text(t) << ", " << human_count(double(t.samples_total)) << " samples ("
           << r.samples << " per cell), " << human_seconds(t.est_seconds) << ", memory "
@@ -132,8 +157,9 @@ std::string plan_text(const Plan& p) {
         for (const auto& w : p.warnings) o << "  warning: " << w << "\n";
     }
     o << "\ntotal: " << p.tables.size() << " tables, " << human_count(total_samples) << " samples, about "
-      << human_seconds(total_s + p.build_seconds) << " (" << human_seconds(total_s) << " integrating at "
-      << human_count(p.samples_per_second) << " samples/s: " << p.throughput_basis << "; "
+      << human_seconds(total_s + p.build_seconds + p.startup_seconds) << " (" << human_seconds(total_s)
+      << " integrating at " << human_count(p.samples_per_second) << " samples/s and writing each table and its preview: "
+      << p.throughput_basis << "; " << human_seconds(p.startup_seconds) << " start-up; "
       << human_seconds(p.build_seconds) << " for " << p.programs << " kernel build" << (p.programs == 1 ? "" : "s")
       << ", cached by PoCL after the first run), peak memory " << human_bytes(peak_mem) << ", " << human_bytes(disk)
       << " on disk\n";
@@ -181,6 +207,15 @@ std::string plan_json(const Plan& p) {
                   {"available", t.unavailable.empty()}};
         if (r.wavelength_nm > 0) e["wavelength_nm"] = r.wavelength_nm;
         if (t.eta) e["eta_range"] = {t.eta->lo, t.eta->hi};
+        // The parameters at the first and last texel centres, and whether they are the scene's.
+        e["texel_centres"] = {{"alpha", {t.alpha_centres.lo, t.alpha_centres.hi}},
+                              {"alpha_on_scene_extremes", t.alpha_lo_exact && t.alpha_hi_exact}};
+        if (t.eta) {
+            e["texel_centres"]["eta"] = {t.eta_centres.lo, t.eta_centres.hi};
+            e["texel_centres"]["eta_on_scene_extremes"] = t.eta_lo_exact && t.eta_hi_exact;
+        }
+        e["centres_note"] = centres_text(t);
+        if (!t.layout.empty()) e["layout"] = t.layout;
         if (!t.unavailable.empty()) e["unavailable"] = t.unavailable;
         j["tables"].push_back(e);
         total_s += t.est_seconds;
@@ -199,7 +234,8 @@ std::string plan_json(const Plan& p) {
     }
     j["no_table"] = p.no_table;
     j["warnings"] = p.warnings;
-    j["estimate"] = {{"seconds", total_s + p.build_seconds},
+    j["estimate"] = {{"seconds", total_s + p.build_seconds + p.startup_seconds},
+                     {"startup_seconds", p.startup_seconds},
                      {"integration_seconds", total_s},
                      {"kernel_programs", p.programs},
                      {"kernel_build_seconds", p.build_seconds},

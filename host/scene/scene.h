@@ -60,6 +60,11 @@ struct SceneSettings {
     Precision precision = Precision::Float;
     std::string table_format = "exr";  // exr, csv or h
     bool half = false;                 // half-float EXR channels
+    /// Command line only (docs/scenes.md, "Overrides and engine layouts"):
+    std::vector<std::string> tables;   // --tables: every lobe's tables are the listed kinds it can take
+    std::string preset;                // --preset: the preset's kinds (of its model) in the engine's layout
+    std::string target;                // --target gltf: the glTF renderers' LUT set
+    bool size_from_command_line = false;  // --size given: engine-layout tables take it too
 };
 
 struct Scene {
@@ -69,6 +74,11 @@ struct Scene {
     std::vector<std::string> warnings;  // what was not modelled, each naming the feature and where
     SceneSettings settings;
 };
+
+/// The largest relative index of refraction a scene's dielectric lobe is planned at: a JSON scene's
+/// "eta" must lie in (1, kSceneEtaMax]; a glTF ior above it is planned at it, with a warning. The
+/// dielectric tables' eta axis (up to 100) then always has room for its half-texel margin.
+constexpr double kSceneEtaMax = 10.0;
 
 /// Reads a scene by its extension: .json (brdfbake scene), .gltf or .glb (glTF 2.0).
 /// Throws Error naming the file and the problem.
@@ -95,6 +105,10 @@ std::vector<const TableKind*> default_lobe_kinds(const Lobe& lobe);
 /// of refraction, a conductor Fresnel); throws Error prefixed with `ctx`.
 const TableKind& lobe_table_kind(const std::string& name, const Lobe& lobe, const std::string& ctx);
 
+/// The note for a lobe whose alpha starts below the kernels' floor BB_ALPHA_MIN: it is planned at
+/// the floor (alpha 0, the smooth limit, included: a texel centre is never at 0).
+std::string alpha_floor_note(double alpha_lo);
+
 /// The kinds' names, in order.
 std::vector<std::string> kind_names(const std::vector<const TableKind*>& kinds);
 
@@ -107,11 +121,18 @@ struct PlannedTable {
     int depth = 1;
     Interval alpha;                      // the scene's merged alpha range (before texel padding)
     std::optional<Interval> eta;         // the scene's merged eta range
+    /// The first and last texel centres as parameters (alpha; eta), and whether each sits exactly
+    /// on the scene's extreme (false where the axis had to stop at 0 or at eta 1: the centre is
+    /// then the nearest the axis can hold, and values between the extreme and it are clamped).
+    Interval alpha_centres, eta_centres;
+    bool alpha_lo_exact = true, alpha_hi_exact = true, eta_lo_exact = true, eta_hi_exact = true;
+    std::string layout;                  // an engine's layout (--preset, --target): its summary; empty: the scene's
+    bool half = false;                   // half-float EXR channels
     std::vector<std::string> serves;     // "material (role)"
     std::vector<std::string> materials;  // material names
     std::uint64_t cells = 0;             // integration cells (texels, or texels x quadrature nodes)
     std::uint64_t samples_total = 0;     // samples x cells (x integrations)
-    double est_seconds = 0.0;
+    double est_seconds = 0.0;            // integrating, writing the file and its preview
     std::uint64_t est_memory = 0;        // bytes, host and device, while computing
     std::uint64_t file_bytes = 0;        // estimated size on disk
     std::string key;                     // canonical request text (hashed)
@@ -129,6 +150,7 @@ struct Plan {
     std::vector<std::string> warnings;
     int programs = 0;                         // kernel programs the bake builds (model x Fresnel kind)
     double build_seconds = 0.0;               // estimated kernel build time (first run; PoCL caches)
+    double startup_seconds = 0.0;             // process, device and folder set-up
     double samples_per_second = 0.0;          // throughput the estimates assume
     std::string throughput_basis;             // where that number comes from
     SceneSettings settings;

@@ -15,11 +15,13 @@
 #include <sstream>
 #include <thread>
 
+#include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/version.h"
 #include "models/input_file.h"
 #include "models/key_reader.h"
+#include "scene/json_read.h"
 #include "scene/scene_text.h"
 #include "tables/sweep.h"
 
@@ -33,13 +35,6 @@ using scene_text::is_conductor_fresnel;
 
 std::string lower(std::string s) {
     for (char& c : s) c = char(std::tolower(static_cast<unsigned char>(c)));
-    return s;
-}
-
-std::string one_line(std::string s) {
-    for (char& c : s)
-        if (c == '\n' || c == '\r') c = ' ';
-    while (!s.empty() && s.back() == ' ') s.pop_back();
     return s;
 }
 
@@ -166,8 +161,13 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
         try {
             // A measured metal without a wavelength is checked at 550 nm; its conductor tables then
             // hold R, G and B (650, 550, 450 nm), and albedo and eavg tables do not depend on it.
-            const std::string text = string_at(m["fresnel"], w, "fresnel");
+            std::string text = string_at(m["fresnel"], w, "fresnel");
             const std::string fname = fresnel_name(text);
+            // nk:FILE names a file beside the scene (a relative path is read from the scene's folder).
+            if (fname == "nk" && text.size() > 3 && text[3] != '/') {
+                const size_t slash = file.find_last_of('/');
+                if (slash != std::string::npos) text = "nk:" + file.substr(0, slash + 1) + text.substr(3);
+            }
             const bool measured = fname == "metal" || fname == "nk";
             resolve_fresnel(text, measured && wavelength == 0.0 ? 550.0 : wavelength);
             fresnel = measured ? text : resolve_fresnel(text, wavelength).canonical;
@@ -190,16 +190,21 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
         Interval r = interval_at(m[key], w, key);
         if (!split.sweepable)
             throw Error(ctx + ": model '" + split.base.name + "' has no roughness; drop '" + key + "'");
-        if (!(r.lo > 0.0)) throw Error(w.at(key) + " must be positive");
+        if (!(r.lo >= 0.0)) throw Error(w.at(key) + " must not be negative");
         if (std::string(key) == "roughness") r = {r.lo * r.lo, r.hi * r.hi};
         alpha = r;
     }
     if (alpha && split.sweepable) {
-        // The same range check as a model spec's alpha.
-        resolve_model(split.canonical + (split.canonical.find(':') == std::string::npos ? ":" : ",") +
-                      "alpha=" + format_number(alpha->lo));
-        resolve_model(split.canonical + (split.canonical.find(':') == std::string::npos ? ":" : ",") +
-                      "alpha=" + format_number(alpha->hi));
+        // The same range check as a model spec's alpha, for the largest value; values below the
+        // alpha floor are planned at it (alpha 0 is the smooth limit of a microfacet lobe), as in
+        // a glTF scene.
+        try {
+            resolve_model(split.canonical + (split.canonical.find(':') == std::string::npos ? ":" : ",") +
+                          "alpha=" + format_number(std::max(alpha->hi, double(BB_ALPHA_MIN))));
+        } catch (const Error& e) {
+            throw Error(ctx + ": roughness: " + e.what());
+        }
+        if (alpha->lo < double(BB_ALPHA_MIN)) out.notes.push_back(alpha_floor_note(alpha->lo));
     }
 
     // Index of refraction: from a dielectric Fresnel spec, or "eta" (a value or a range).
@@ -214,9 +219,10 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
             throw Error(ctx + ": 'eta' makes a dielectric interface; it cannot go with fresnel '" + fresnel + "'");
         eta = interval_at(m["eta"], w, "eta");
     }
-    if (eta && !(eta->lo > 1.0 && eta->hi <= 10.0))
+    if (eta && !(eta->lo > 1.0 && eta->hi <= kSceneEtaMax))
         throw Error(ctx + ": eta " + format_number(eta->lo) + (eta->lo == eta->hi ? "" : ".." + format_number(eta->hi)) +
-                    " is out of range: tables take the relative index of the denser side, 1 < eta <= 10 (the table "
+                    " is out of range: tables take the relative index of the denser side, 1 < eta <= " +
+                    format_number(kSceneEtaMax) + " (the table "
                     "holds the view from inside, 1/eta, too)");
     if (transmission && !eta)
         throw Error(ctx + ": a transmissive material needs an index of refraction: fresnel \"dielectric:eta=E\" or \"eta\"");
@@ -323,15 +329,7 @@ void check_settings(const SceneSettings& s) {
 }
 
 Scene parse_scene_json(const std::string& text, const std::string& path) {
-    json j;
-    try {
-        j = json::parse(text);
-    } catch (const json::parse_error& e) {
-        std::string what = e.what();
-        const size_t p = what.find("] ");
-        if (what.rfind("[json.exception", 0) == 0 && p != std::string::npos) what = what.substr(p + 2);
-        throw Error("scene '" + path + "' is not valid JSON: " + one_line(what));
-    }
+    const json j = scene_json::parse_strict(text, "scene '" + path + "'");
     if (!j.is_object()) throw Error("scene '" + path + "': expected a JSON object with \"materials\"");
     for (const auto& item : j.items())
         if (item.key() != "materials" && item.key() != "settings" && item.key() != "brdfbake_scene" &&

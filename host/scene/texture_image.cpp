@@ -1,0 +1,148 @@
+// Texture images for texture-driven ranges (texture_image.h): PNG through libpng, data URIs
+// through Boost's base64 iterators.
+#include "scene/texture_image.h"
+
+#include <png.h>
+
+#include <boost/archive/iterators/binary_from_base64.hpp>
+#include <boost/archive/iterators/transform_width.hpp>
+
+#include <algorithm>
+#include <csetjmp>
+#include <cstring>
+#include <vector>
+
+#include "brdfbake/error.h"
+#include "brdfbake/memory_limit.h"
+
+namespace brdfbake {
+
+std::string image_format(const std::string& b) {
+    if (b.size() >= 8 && std::memcmp(b.data(), "\x89PNG\r\n\x1a\n", 8) == 0) return "png";
+    if (b.size() >= 3 && std::memcmp(b.data(), "\xff\xd8\xff", 3) == 0) return "jpeg";
+    if (b.size() >= 12 && std::memcmp(b.data(), "RIFF", 4) == 0 && std::memcmp(b.data() + 8, "WEBP", 4) == 0)
+        return "webp";
+    if (b.size() >= 12 && std::memcmp(b.data(), "\xabKTX 20\xbb", 8) == 0) return "ktx2";
+    return "";
+}
+
+namespace {
+
+struct MemoryReader {
+    const std::string* bytes;
+    std::size_t pos = 0;
+};
+
+void read_from_memory(png_structp png, png_bytep out, png_size_t n) {
+    auto* r = static_cast<MemoryReader*>(png_get_io_ptr(png));
+    if (r->pos + n > r->bytes->size()) png_error(png, "truncated PNG data");
+    std::memcpy(out, r->bytes->data() + r->pos, n);
+    r->pos += n;
+}
+
+void on_png_error(png_structp png, png_const_charp message) {
+    auto* text = static_cast<std::string*>(png_get_error_ptr(png));
+    *text = message;
+    png_longjmp(png, 1);
+}
+
+void on_png_warning(png_structp, png_const_charp) {}
+
+}  // namespace
+
+ChannelRanges png_channel_ranges(const std::string& bytes, const std::string& what) {
+    std::string message;
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &message, on_png_error, on_png_warning);
+    if (!png) throw Error(what + ": cannot start the PNG reader");
+    png_infop info = png_create_info_struct(png);
+    MemoryReader reader{&bytes};
+    std::vector<png_byte> pixels;
+    std::vector<png_bytep> rows;
+    ChannelRanges out;
+    if (setjmp(png_jmpbuf(png))) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        throw Error(what + " is not a readable PNG: " + message);
+    }
+    png_set_read_fn(png, &reader, read_from_memory);
+    png_read_info(png, info);
+    const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+    // Raw sample values: no gamma or colour-space handling, palette and low bit depths expanded.
+    png_set_palette_to_rgb(png);
+    png_set_expand_gray_1_2_4_to_8(png);
+    png_set_tRNS_to_alpha(png);
+    png_set_gray_to_rgb(png);
+    png_set_interlace_handling(png);
+    png_read_update_info(png, info);
+    const int depth = png_get_bit_depth(png, info), channels = png_get_channels(png, info);
+    const std::size_t row_bytes = png_get_rowbytes(png, info);
+    try {
+        check_memory(double(row_bytes) * h, what + " (decoded " + std::to_string(w) + "x" + std::to_string(h) + ")");
+    } catch (const Error&) {
+        png_destroy_read_struct(&png, &info, nullptr);
+        throw;
+    }
+    pixels.resize(row_bytes * h);
+    rows.resize(h);
+    for (png_uint_32 y = 0; y < h; ++y) rows[y] = pixels.data() + row_bytes * y;
+    png_read_image(png, rows.data());
+    png_destroy_read_struct(&png, &info, nullptr);
+
+    const double max_value = depth == 16 ? 65535.0 : 255.0;
+    out.width = int(w);
+    out.height = int(h);
+    std::array<unsigned, 4> lo{~0u, ~0u, ~0u, ~0u}, hi{0, 0, 0, 0};
+    const std::size_t n = std::size_t(w) * h;
+    for (std::size_t p = 0; p < n; ++p)
+        for (int c = 0; c < channels; ++c) {
+            const std::size_t i = p * std::size_t(channels) + std::size_t(c);
+            const unsigned v = depth == 16 ? (unsigned(pixels[2 * i]) << 8) | pixels[2 * i + 1] : pixels[i];
+            lo[size_t(c)] = std::min(lo[size_t(c)], v);
+            hi[size_t(c)] = std::max(hi[size_t(c)], v);
+        }
+    for (int c = 0; c < 4; ++c) {
+        if (c < channels) {
+            out.lo[size_t(c)] = lo[size_t(c)] / max_value;
+            out.hi[size_t(c)] = hi[size_t(c)] / max_value;
+        } else {
+            out.lo[size_t(c)] = out.hi[size_t(c)] = 1.0;  // no alpha channel: opaque
+        }
+    }
+    return out;
+}
+
+std::optional<std::string> base64_decode(const std::string& text) {
+    using namespace boost::archive::iterators;
+    using Decoder = transform_width<binary_from_base64<std::string::const_iterator>, 8, 6>;
+    std::string s;
+    for (char c : text)
+        if (!std::isspace(static_cast<unsigned char>(c))) s += c;
+    // Whole groups of four; the '=' padding decodes as zero bits that are dropped again.
+    if (s.empty() || s.size() % 4 != 0) return std::nullopt;
+    std::size_t pad = 0;
+    while (pad < s.size() && s[s.size() - 1 - pad] == '=') ++pad;
+    if (pad > 2) return std::nullopt;
+    for (std::size_t i = 0; i < pad; ++i) s[s.size() - 1 - i] = 'A';
+    try {
+        std::string out(Decoder(s.begin()), Decoder(s.end()));
+        out.resize(s.size() / 4 * 3 - pad);
+        return out;
+    } catch (const std::exception&) {
+        return std::nullopt;
+    }
+}
+
+std::string percent_decode(const std::string& uri) {
+    std::string out;
+    for (std::size_t i = 0; i < uri.size(); ++i) {
+        if (uri[i] == '%' && i + 2 < uri.size() && std::isxdigit(static_cast<unsigned char>(uri[i + 1])) &&
+            std::isxdigit(static_cast<unsigned char>(uri[i + 2]))) {
+            out += char(std::stoi(uri.substr(i + 1, 2), nullptr, 16));
+            i += 2;
+        } else {
+            out += uri[i];
+        }
+    }
+    return out;
+}
+
+}  // namespace brdfbake
