@@ -7,7 +7,7 @@ packages=(
   cmake g++ make
   pocl-opencl-icd ocl-icd-opencl-dev opencl-clhpp-headers clinfo
   libopenexr-dev catch2 libcli11-dev nlohmann-json3-dev librandom123-dev
-  libboost-math-dev libmgl-dev libyaml-cpp-dev libtinygltf-dev
+  libboost-math-dev libmgl-dev libyaml-cpp-dev
   pkg-config  # the install_consumer test checks brdfbake.pc
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (Debian's /usr/bin/python3)
   libpng-dev  # 16-bit PNG tables (host/io/table_png.cpp)

@@ -322,7 +322,7 @@ std::vector<std::string> directed_cases(const std::string& in, const std::string
         "lut conductor --model ggx --fresnel nk:" + in + "/huge.yml --wavelength 500 --size 4x4 --samples 256 "
         "--no-preview -o " + out + "/table.exr",
         "albedo --model ggx:alpha=0.5 --fresnel nk:" + in + "/huge.yml --wavelength 500 --mu 0.5 --samples 1024 --format json",
-        "bake " + in + "/huge_scene.json -o " + out + "/bake --samples 64 --mu-texels 4 --alpha-texels 4",
+        "bake " + in + "/huge_scene.json -o " + out + "/bake --samples 64 --mu-texels 4 --alpha-texels 4 --no-previews --no-report",
     };
 }
 
@@ -437,7 +437,7 @@ Case make_case(std::uint64_t seed, std::uint64_t index, const std::string& root,
         if (g.chance(0.5)) a << " --samples 64 --mu-texels 4 --alpha-texels 4";
         break;
     default:
-        a << "bake " << scene_file(g, in, nk) << " -o " << out << "/bake --samples 64 --mu-texels 4 --alpha-texels 4";
+        a << "bake " << scene_file(g, in, nk) << " -o " << out << "/bake --samples 64 --mu-texels 4 --alpha-texels 4 --no-previews --no-report";
         if (g.chance(0.3)) a << " --table-format " << g.pick(std::vector<std::string>{"exr", "csv", "h"});
         if (g.chance(0.1)) a << " --half";
         a << precision();

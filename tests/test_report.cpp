@@ -31,6 +31,7 @@ TEST_CASE("bake report: a section and a readable preview per table, no outside a
     const std::string dir = "/tmp/brdfbake-report-" + std::to_string(::getpid());
     fs::remove_all(dir);
     REQUIRE(testing::run_cli("bake " + source_dir() + "/examples/scene.json" + " -o " + dir).status == 0);
+    CHECK(fs::exists(dir + "/index.html"));  // bake writes its report
     const auto r = testing::run_cli("report " + dir);
     REQUIRE(r.status == 0);
     const std::string page = testing::slurp(dir + "/index.html");

@@ -24,6 +24,7 @@
 #include "brdfbake/table.h"
 #include "brdfbake/version.h"
 #include "cli/cli.h"
+#include "plot/bake_report.h"
 #include "plot/plot.h"
 #include "scene/bake_folder.h"
 #include "scene/scene.h"
@@ -226,6 +227,7 @@ struct BakeOptions {
     std::string output = "out";
     bool force = false;
     bool previews = true;
+    bool report = true;  // DIR/index.html, the bake report
     double lock_timeout = 600.0;  // seconds to wait for another bake into the same folder
 };
 
@@ -457,12 +459,26 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                              join_path(o.output, f).c_str());
         }
 
+    // The bake report (DIR/index.html) from the index just written, with each lobe's check.
+    auto write_report = [&](Engine& engine) {
+        if (!o.report) return;
+        BakeReportOptions options;
+        options.draw_missing_previews = false;  // --no-previews holds for the report too
+        const BakeReportSummary s = write_bake_report(engine, o.output, options);
+        std::fprintf(stderr, "brdfbake: report %s: %d lobe checks, %d violations\n",
+                     join_path(o.output, "index.html").c_str(), s.lobes_checked, s.lobes_failed);
+    };
+
     if (to_compute == 0) {
         write_index();
         std::fprintf(stderr,
                      "brdfbake: all %zu tables in %s are up to date (same request hash, file present with its "
                      "content hash); nothing to compute\n",
                      plan.tables.size(), o.output.c_str());
+        if (o.report && !std::ifstream(join_path(o.output, "index.html"))) {
+            Engine engine(g.device, g.verbose);
+            write_report(engine);
+        }
         return kExitOk;
     }
 
@@ -567,6 +583,7 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
                      return s;
                  }().c_str(),
                  max_error, index_path.c_str());
+    write_report(*engine);
     return kExitOk;
 }
 
@@ -590,6 +607,9 @@ void add_bake_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("-o,--output", o->output, "output folder")->capture_default_str();
     cmd->add_flag("--force", o->force, "recompute tables that are up to date");
     cmd->add_flag("!--no-previews", o->previews, "write no preview pictures (default: DIR/previews/TABLE.png per table)");
+    cmd->add_flag("!--no-report", o->report,
+                  "write no bake report (default: DIR/index.html with each table's preview, error, materials and "
+                  "the check of each lobe; `brdfbake report DIR` draws it later)");
     cmd->add_option("--lock-timeout", o->lock_timeout,
                     "seconds to wait while another bake writes into the same folder; 0: refuse at once")
         ->capture_default_str()

@@ -122,10 +122,6 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
     if (!index.is_object() || !index.contains("brdfbake_index") || !index.contains("tables"))
         throw Error("'" + index_path + "' is not an index.json that brdfbake bake wrote");
     BakeReportSummary summary;
-    const fs::path report_dir = fs::path(folder) / "report";
-    std::error_code ec;
-    fs::create_directories(report_dir, ec);
-    if (ec) throw Error("cannot create '" + report_dir.string() + "': " + ec.message());
 
     // Every lobe of every material, checked once per (model, Fresnel, roughness end).
     std::map<std::string, Verdict> verdicts;
@@ -211,15 +207,26 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
         if (entry.contains("attributes") && entry["attributes"].contains("method"))
             o << "<tr><th>method</th><td>" << html(text_of(entry["attributes"]["method"])) << "</td></tr>";
         o << "</table>\n";
-        // The preview, drawn from the file itself (what a renderer will load).
-        const std::string picture = file + ".png";
-        try {
-            const Table t = read_table((fs::path(folder) / file).string());
-            write_table_preview(t, (report_dir / picture).string());
-            o << "<p><img src=\"report/" << html(picture) << "\" alt=\"preview of " << html(file) << "\"></p>\n";
+        // The bake's preview, or one drawn from the file itself (what a renderer will load).
+        const std::string own = entry.value("preview", std::string());
+        if (!own.empty() && fs::exists(fs::path(folder) / own)) {
+            o << "<p><img src=\"" << html(own) << "\" alt=\"preview of " << html(file) << "\"></p>\n";
             ++summary.previews;
-        } catch (const Error& e) {
-            o << "<p class=\"note\">No preview: " << html(e.what()) << "</p>\n";
+        } else if (options.draw_missing_previews) {
+            const std::string picture = "report/" + file + ".png";
+            try {
+                const Table t = read_table((fs::path(folder) / file).string());
+                std::error_code ec;
+                fs::create_directories(fs::path(folder) / "report", ec);
+                if (ec) throw Error("cannot create '" + (fs::path(folder) / "report").string() + "': " + ec.message());
+                write_table_preview(t, (fs::path(folder) / picture).string());
+                o << "<p><img src=\"" << html(picture) << "\" alt=\"preview of " << html(file) << "\"></p>\n";
+                ++summary.previews;
+            } catch (const Error& e) {
+                o << "<p class=\"note\">No preview: " << html(e.what()) << "</p>\n";
+            }
+        } else {
+            o << "<p class=\"note\">No preview (baked with --no-previews).</p>\n";
         }
         if (lobes_of_table.count(file)) {
             o << "<h3>Check of the lobes it tabulates</h3>\n";

@@ -14,6 +14,9 @@ namespace brdfbake {
 
 struct BakeReportOptions {
     bool checks = true;  // run `check` on each lobe (a fraction of a second per lobe)
+    /// Draw a preview into DIR/report/ for a table whose index entry names none (the bake's own
+    /// previews, DIR/previews/, are shown where they exist).
+    bool draw_missing_previews = true;
     CheckOptions check;  // lighter than `check`'s defaults: see bake_report.cpp
     BakeReportOptions();
 };
