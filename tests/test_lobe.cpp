@@ -107,7 +107,12 @@ TEST_CASE("lobe: pictures are written, bad input refused with nothing written", 
                     png).status == 0);
     CHECK(::access(png.c_str(), F_OK) == 0);
     std::remove(png.c_str());
-    for (const std::string args : {"--theta-i 95", "--theta-i -1", "--resolution 2", "--phi-i nan"}) {
+    // The 3D view: a rough lobe's wireframe and a delta lobe's arrow.
+    REQUIRE(run_cli("lobe --model ggx:alpha_x=0.1,alpha_y=0.5 --model mirror --theta-i 45 --view 3d -o " + png).status == 0);
+    CHECK(::access(png.c_str(), F_OK) == 0);
+    std::remove(png.c_str());
+    for (const std::string args : {"--theta-i 95", "--theta-i -1", "--resolution 2", "--phi-i nan", "--view sideways",
+                                   "--view 3d --data /tmp/brdfbake-lobe-3d.csv"}) {
         const auto bad = run_cli("lobe --model ggx:alpha=0.3 " + args + " -o " + png);
         INFO(args);
         CHECK(bad.status == 2);

@@ -4,6 +4,7 @@
 // Several models and incident angles overlay; delta lobes are drawn as an arrow along the
 // mirror direction whose length is their reflectance. The numbers behind the picture go to
 // --data as CSV, computed by the same eval kernel every other command uses.
+#include <array>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -33,6 +34,7 @@ struct LobeOptions {
     std::string precision = "double";
     std::string output;  // picture
     std::string data;    // CSV of the numbers
+    std::string view = "plane";  // plane: the polar plot in the plane of incidence; 3d: the lobe in 3D
 };
 
 /// A direction at angle t (degrees, signed) from the normal in the plane of azimuth phi (degrees):
@@ -48,6 +50,108 @@ struct LobeCurve {
     std::vector<double> theta_o, f, f_cos;  // signed outgoing angle (+: the mirror side)
     double delta_weight = -1.0;             // a delta lobe: its reflectance (else -1)
 };
+
+/// A fixed oblique view of 3D points: the camera looks at the origin from azimuth -60 degrees and
+/// elevation 25 degrees, z (the normal) up on the page; orthographic projection.
+struct View {
+    double x, y;
+};
+View project(double px, double py, double pz) {
+    const double az = -60.0 * kRad, el = 25.0 * kRad;
+    return {-px * std::sin(az) + py * std::cos(az),
+            -px * std::sin(el) * std::cos(az) - py * std::sin(el) * std::sin(az) + pz * std::cos(el)};
+}
+
+/// A polyline of 3D points as a projected curve.
+Curve projected(const std::vector<std::array<double, 3>>& points, const std::string& style) {
+    Curve c;
+    c.style = style;
+    for (const auto& p : points) {
+        const View v = project(p[0], p[1], p[2]);
+        c.x.push_back(v.x);
+        c.y.push_back(v.y);
+    }
+    return c;
+}
+
+/// The lobe in 3D, one panel per model and incident angle: the surface r(wo) = f(wi, wo) cos(theta_i)
+/// over the upper hemisphere, normalised to its peak (or over six decades with --log), drawn as a
+/// wireframe of rings of constant theta_o (blue) and meridians of constant phi_o (grey) in a fixed
+/// oblique view; the base circle, the normal, the incident direction (dotted) and a delta lobe as
+/// an arrow as long as its reflectance.
+void write_lobe_3d(Engine& engine, const LobeOptions& o, const std::vector<ModelConfig>& models,
+                   const FresnelConfig& fresnel, Precision precision, const std::vector<double>& thetas) {
+    constexpr int n_theta = 46, n_phi = 73;  // 2 degrees in theta_o (to 89.9), 5 degrees in phi_o
+    auto direction = [](double t_deg, double p_deg) {
+        const double t = std::min(t_deg, 89.9) * kRad, p = p_deg * kRad;
+        return std::array<double, 3>{std::sin(t) * std::cos(p), std::sin(t) * std::sin(p), std::cos(t)};
+    };
+    Figure fig;
+    for (const ModelConfig& model : models)
+        for (double ti : thetas) {
+            const Vec3 wi = in_plane(-ti, o.phi_i);
+            PlotSpec p;
+            p.axes = false;
+            p.x.lo = p.y.lo = -1.15;
+            p.x.hi = p.y.hi = 1.15;
+            // The spec on a line of its own: a long one (an anisotropic GGX) would run into the next panel.
+            p.title = plot_text(model.canonical) + "\n\\theta_i = " + format_number(ti) + "\\deg";
+            std::vector<std::array<double, 3>> base;
+            for (int j = 0; j <= 72; ++j) base.push_back(direction(90.0, 5.0 * j));
+            p.curves.push_back(projected(base, "h:1"));
+            p.curves.push_back(projected({{0, 0, 0}, {0, 0, 1}}, "k-1"));  // the normal
+            double analytic = 0.0;
+            if (analytic_albedo(model, fresnel, std::cos(ti * kRad), analytic)) {
+                const Vec3 m = in_plane(ti, o.phi_i);
+                p.curves.push_back(projected({{0, 0, 0}, {analytic * m[0], analytic * m[1], analytic * m[2]}}, "r-4A"));
+                p.title += ", delta, R = " + format_number(std::round(analytic * 1e4) / 1e4);
+            } else {
+                std::vector<Vec3> wo, wis;
+                for (int j = 0; j < n_phi; ++j)
+                    for (int i = 0; i < n_theta; ++i) {
+                        const auto d = direction(2.0 * i, 5.0 * j);
+                        wo.push_back({d[0], d[1], d[2]});
+                        wis.push_back(wi);
+                    }
+                const std::vector<double> f = evaluate_on_device(engine, model, fresnel, precision, wo, wis);
+                double peak = 0.0;
+                for (double v : f) {
+                    if (!std::isfinite(v)) throw Error("the model produced NaN or Inf; run `brdfbake check`");
+                    peak = std::max(peak, v * std::cos(ti * kRad));
+                }
+                if (!(peak > 0.0)) throw Error("the lobe of '" + model.canonical + "' is zero everywhere; nothing to draw");
+                const double floor = peak * 1e-6;
+                auto point = [&](int i, int j) {
+                    const size_t k = size_t(j) * n_theta + size_t(i);
+                    const double v = f[k] * std::cos(ti * kRad);
+                    const double r = o.log_scale ? std::log10(std::max(v, floor) / floor) / 6.0 : v / peak;
+                    return std::array<double, 3>{r * wo[k][0], r * wo[k][1], r * wo[k][2]};
+                };
+                for (int i = 5; i < n_theta; i += 5) {  // rings every 10 degrees of theta_o
+                    std::vector<std::array<double, 3>> ring;
+                    for (int j = 0; j < n_phi; ++j) ring.push_back(point(i, j));
+                    p.curves.push_back(projected(ring, "b-1"));
+                }
+                for (int j = 0; j < n_phi - 1; j += 3) {  // meridians every 15 degrees of phi_o
+                    std::vector<std::array<double, 3>> meridian;
+                    for (int i = 0; i < n_theta; ++i) meridian.push_back(point(i, j));
+                    p.curves.push_back(projected(meridian, "h-1"));
+                }
+                char peak_text[40];
+                std::snprintf(peak_text, sizeof peak_text, ", peak %.3g", peak);
+                p.title += peak_text;
+            }
+            p.curves.push_back(projected({{0, 0, 0}, {wi[0], wi[1], wi[2]}}, "k:2"));  // where light comes from
+            fig.panels.push_back(p);
+        }
+    fig.columns = std::min<int>(int(fig.panels.size()), 3);
+    fig.panel_width = 700;
+    fig.panel_height = 700;
+    fig.caption = std::string(o.log_scale ? "radius: log f cos\\theta_i, six decades" : "radius: f cos\\theta_i / peak") +
+                  "; blue: constant \\theta_o (10\\deg apart), grey: constant \\phi_o (15\\deg); dotted: incident "
+                  "direction; red: a delta lobe, length R";
+    write_figure(o.output, fig);
+}
 
 int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
     if (o.models.empty()) throw Error("give --model SPEC (repeatable)");
@@ -70,7 +174,15 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
 
     // The incident direction lies at azimuth phi_i + 180 degrees, so that its mirror direction is
     // at +theta_i in the plane of azimuth phi_i.
+    if (o.view != "plane" && o.view != "3d") throw Error("--view must be plane or 3d");
+    if (o.view == "3d" && (o.output.empty() || !o.data.empty()))
+        throw Error("--view 3d draws a picture (-o FILE.png or FILE.svg); --data writes the plane of incidence, without it");
     Engine engine(g.device, g.verbose);
+    if (o.view == "3d") {
+        write_lobe_3d(engine, o, models, fresnel, precision, thetas);
+        std::fprintf(stderr, "brdfbake: wrote %s\n", o.output.c_str());
+        return kExitOk;
+    }
     std::vector<LobeCurve> curves;
     for (const ModelConfig& model : models)
         for (double ti : thetas) {
@@ -184,6 +296,8 @@ void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals");
     cmd->add_option("--resolution", o->resolution, "outgoing angles over [-90, 90] degrees")->capture_default_str();
     cmd->add_flag("--log", o->log_scale, "radius on a log scale (six decades below the peak)");
+    cmd->add_option("--view", o->view, "plane: polar plot in the plane of incidence; 3d: the lobe over the hemisphere")
+        ->capture_default_str();
     add_precision_option(cmd, o->precision, "evaluation arithmetic");
     cmd->add_option("-o,--output", o->output, "the picture: .png or .svg");
     cmd->add_option("--data", o->data, "the numbers behind it as CSV (- for standard output)");
