@@ -466,7 +466,7 @@ TEST_CASE("plan and bake: command-line flags override the scene's settings", "[s
         }
 }
 
-TEST_CASE("--target gltf plans the glTF renderers' LUT set", "[scene][gltf][cli]") {
+TEST_CASE("target gltf: --target gltf plans the glTF renderers' LUT set", "[scene][gltf][cli]") {
     auto files_of = [](const std::string& args) {
         const auto r = run_cli("plan " + args + " --format json");
         INFO(r.err);
@@ -513,7 +513,7 @@ TEST_CASE("bake --target gltf writes the LUT set, previews and an index that nam
         if (t["file"] == "lut_ggx.png") CHECK(t["layout"].get<std::string>().find("glTF Sample Viewer") != std::string::npos);
 }
 
-TEST_CASE("texture-driven ranges read the channel each extension names; JPEG and KTX2-only textures are named in "
+TEST_CASE("texture-driven ranges read the channel each extension names, JPEG and KTX2-only textures are named in "
           "a warning", "[gltf][quick]") {
     const std::string dir = fresh_tmp_dir("channels");
     ::mkdir(dir.c_str(), 0755);

@@ -99,6 +99,19 @@ TEST_CASE("show: a slice or file it cannot show is refused with nothing written"
     r = run_cli("show " + exr + " --slice 1 --plot " + png);
     CHECK(r.status == 0);
     CHECK(::access(png.c_str(), F_OK) == 0);
+    std::remove(png.c_str());
+    // Curves across the eta axis of the 3D table; refused on a bad axis, or without --curves.
+    r = run_cli("show " + exr + " --curves 0.2,0.8 --along z --at 0.5 --plot " + png);
+    CHECK(r.status == 0);
+    CHECK(::access(png.c_str(), F_OK) == 0);
+    std::remove(png.c_str());
+    for (const std::string args : {" --curves 0.5 --along y", " --along z"}) {
+        r = run_cli("show " + exr + args + " --plot " + png);
+        INFO(args);
+        CHECK(r.status == 2);
+        CHECK(testing::count_lines(r.err) == 1);
+        CHECK(::access(png.c_str(), F_OK) != 0);
+    }
     r = run_cli("show /nonexistent.exr");
     CHECK(r.status == 2);
     CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);

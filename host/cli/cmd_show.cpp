@@ -21,6 +21,8 @@ struct ShowOptions {
     std::string format = "table";
     int slice = -1;  // z-slice of a 3D table; -1: the middle one
     std::string curves;
+    std::string along = "x";  // --curves: the axis the curves run along, x or z
+    double at_x = NAN;        // --along z: the x coordinate of the curves (default: the middle texel)
     std::string plot;
     std::string output;
     bool half = false;
@@ -126,6 +128,39 @@ Table slice_of(const Table& t, int slice) {
     return s;
 }
 
+/// The texel of `axis` whose coordinate is nearest v.
+size_t nearest(const Axis& axis, double v) {
+    size_t best = 0;
+    for (size_t j = 1; j < axis.coordinate.size(); ++j)
+        if (std::fabs(axis.coordinate[j] - v) < std::fabs(axis.coordinate[best] - v)) best = j;
+    return best;
+}
+
+/// Each channel of a 3D table along its z axis (eta) at the y texels nearest `at` and the x texel
+/// nearest at_x (the middle one if NaN).
+void write_curves_along_z(const Table& t, const std::vector<double>& at, double at_x, const std::string& path) {
+    if (t.depth() == 1) throw Error("--along z: the table is not 3D");
+    const size_t x = std::isnan(at_x) ? size_t(t.width() / 2) : nearest(t.x, at_x);
+    PlotSpec p;
+    p.title = plot_text(t.kind + " along " + t.z.name + " at " + t.x.name + " = " + format_number(t.x.coordinate[x]));
+    p.x.label = axis_label(t.z);
+    p.y.label = t.channels.size() == 1 ? plot_text(t.channels[0]) : "value";
+    p.legend = LegendPlace::Outside;
+    for (double v : at) {
+        const size_t y = nearest(t.y, v);
+        for (size_t c = 0; c < t.channels.size(); ++c) {
+            Curve curve;
+            curve.label = plot_text((t.channels.size() > 1 ? t.channels[c] + ", " : std::string()) + t.y.name + " = " +
+                                    format_number(t.y.coordinate[y]));
+            curve.x = t.z.coordinate;
+            for (int z = 0; z < t.depth(); ++z)
+                curve.y.push_back(t.values[c][(size_t(z) * size_t(t.height()) + y) * size_t(t.width()) + x]);
+            p.curves.push_back(curve);
+        }
+    }
+    write_plot(path, p, 1200, 640);
+}
+
 /// Each channel along the x axis at the y texels nearest `at` (values of the y coordinate).
 void write_curves(const Table& t, const std::vector<double>& at, const std::string& path) {
     if (t.height() == 1) throw Error("--curves: a 1D table has one curve; drop --curves");
@@ -160,6 +195,8 @@ int run_show(const ShowOptions& o, const GlobalOptions&) {
         curves = parse_number_list(o.curves, "--curves");
     }
     if (o.slice < -1) throw Error("--slice must be a z texel index (0 or more)");
+    if (o.along != "x" && o.along != "z") throw Error("--along must be x or z");
+    if (o.along == "z" && curves.empty()) throw Error("--along z draws curves; give --curves Y1,Y2,... and --plot");
     const Table t = read_table(o.table);
     const Table slice = slice_of(t, o.slice);  // checks --slice before anything is written
     std::cout << render(t, format);
@@ -167,7 +204,7 @@ int run_show(const ShowOptions& o, const GlobalOptions&) {
         if (curves.empty())
             write_table_preview(o.slice < 0 ? t : slice, o.plot);  // every slice, or the one asked for
         else
-            write_curves(slice, curves, o.plot);
+            o.along == "z" ? write_curves_along_z(t, curves, o.at_x, o.plot) : write_curves(slice, curves, o.plot);
         std::fprintf(stderr, "brdfbake: wrote %s\n", o.plot.c_str());
     }
     if (!o.output.empty()) {
@@ -188,6 +225,9 @@ void add_show_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("--slice", o->slice,
                     "z texel of a 3D table to draw (default: every slice as a small multiple; --curves: the middle one)");
     cmd->add_option("--curves", o->curves, "draw each channel along x at these values of the y axis (with --plot)");
+    cmd->add_option("--along", o->along, "--curves run along x (default) or z, the eta axis of a 3D table")
+        ->capture_default_str();
+    cmd->add_option("--at", o->at_x, "with --along z: the x coordinate of the curves (default: the middle texel)");
     cmd->add_option("--plot", o->plot, "a picture of the slice (.png or .svg): its preview, or --curves");
     cmd->add_option("-o,--output", o->output, "convert: write the table as .exr, .csv, .h, .png or .npy");
     cmd->add_flag("--half", o->half, "with -o FILE.exr: half-float channels");
