@@ -11,6 +11,7 @@ packages=(
   pkg-config  # the install_consumer test checks brdfbake.pc
   pybind11-dev python3-dev python3-numpy python3-pytest  # the Python module and its tests (Debian's /usr/bin/python3)
   libpng-dev  # 16-bit PNG tables (host/io/table_png.cpp)
+  libjpeg-dev  # the ranges of glTF JPEG textures (host/scene/texture_image.cpp)
   libopenmpi-dev openmpi-bin  # MPI jobs (mpirun -np N brdfbake ...; docs/cluster.md) and their tests
 )
 

@@ -4,6 +4,9 @@
 // tests/data; images are written here with libpng's own writer, so the ranges the planner reads
 // are checked against the values put into the file.
 #include <catch2/catch.hpp>
+
+#include <cstdio>
+#include <jpeglib.h>
 #include <png.h>
 
 #include <nlohmann/json.hpp>
@@ -11,6 +14,7 @@
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <cstdlib>
 #include <functional>
 #include <map>
 #include <set>
@@ -513,8 +517,8 @@ TEST_CASE("bake --target gltf writes the LUT set, previews and an index that nam
         if (t["file"] == "lut_ggx.png") CHECK(t["layout"].get<std::string>().find("glTF Sample Viewer") != std::string::npos);
 }
 
-TEST_CASE("texture-driven ranges read the channel each extension names, JPEG and KTX2-only textures are named in "
-          "a warning", "[gltf][quick]") {
+TEST_CASE("texture-driven ranges read the channel each extension names, a corrupt JPEG and KTX2-only textures are "
+          "named in a warning", "[gltf][quick]") {
     const std::string dir = fresh_tmp_dir("channels");
     ::mkdir(dir.c_str(), 0755);
     // One RGBA image, each channel its own range: R 51..102 (0.2..0.4), G 102..153 (0.4..0.6),
@@ -547,8 +551,58 @@ TEST_CASE("texture-driven ranges read the channel each extension names, JPEG and
     CHECK(lobe_of(s, "coated", "transmission"));
     CHECK(contains(material_of(s, "coated")->notes, "transmission [0.2, 0.4] from transmissionTexture 'rgba.png'"));
     // a JPEG and a KTX2-only texture: full ranges, named
-    CHECK(contains(s.warnings, "material 'photo': metallicRoughnessTexture (image 'photo.jpg') cannot be read: it is a JPEG"));
+    CHECK(contains(s.warnings, "material 'photo': metallicRoughnessTexture (image 'photo.jpg') cannot be read: image "
+                               "'photo.jpg' is not a readable JPEG"));
     CHECK(contains(s.warnings, "material 'compressed': metallicRoughnessTexture (image 'texture 2') cannot be read: its "
                                "only image is one of KHR_texture_basisu"));
     CHECK(lobe_of(s, "photo", "metal")->alpha.lo == 0.0);
+}
+
+/// A baseline JPEG of an RGB image, written by libjpeg's own encoder at quality 100.
+static std::string jpeg_rgb(int w, int h, const std::function<int(int, int, int)>& value) {
+    jpeg_compress_struct info {};
+    jpeg_error_mgr err {};
+    info.err = jpeg_std_error(&err);
+    jpeg_create_compress(&info);
+    unsigned char* out = nullptr;
+    unsigned long size = 0;
+    jpeg_mem_dest(&info, &out, &size);
+    info.image_width = unsigned(w);
+    info.image_height = unsigned(h);
+    info.input_components = 3;
+    info.in_color_space = JCS_RGB;
+    jpeg_set_defaults(&info);
+    jpeg_set_quality(&info, 100, TRUE);
+    jpeg_start_compress(&info, TRUE);
+    std::vector<unsigned char> row(size_t(w) * 3);
+    while (info.next_scanline < info.image_height) {
+        for (int x = 0; x < w; ++x)
+            for (int c = 0; c < 3; ++c) row[size_t(x) * 3 + size_t(c)] = (unsigned char)value(x, int(info.next_scanline), c);
+        unsigned char* rows[1] = {row.data()};
+        jpeg_write_scanlines(&info, rows, 1);
+    }
+    jpeg_finish_compress(&info);
+    jpeg_destroy_compress(&info);
+    std::string bytes(reinterpret_cast<char*>(out), size);
+    std::free(out);
+    return bytes;
+}
+
+TEST_CASE("a JPEG metallic-roughness texture whose roughness lies in [0.3, 0.6] plans that range", "[gltf][quick]") {
+    const std::string dir = fresh_tmp_dir("jpeg");
+    ::mkdir(dir.c_str(), 0755);
+    // G (roughness) from 77 to 153 of 255 (0.302 to 0.6), smooth so that JPEG keeps it within a
+    // few levels; R and B 0.
+    write_text(dir + "/mr.jpg", jpeg_rgb(32, 32, [](int x, int y, int c) { return c == 1 ? 77 + (x + 32 * y) * 76 / 1023 : 0; }));
+    write_text(dir + "/m.gltf", library(R"({"name": "brushed", "pbrMetallicRoughness": {"metallicFactor": 1,
+        "roughnessFactor": 1, "metallicRoughnessTexture": {"index": 0}}})",
+                                        R"("textures": [{"source": 0}], "images": [{"uri": "mr.jpg"}])"));
+    const Scene s = load_scene(dir + "/m.gltf");
+    const Lobe* metal = lobe_of(s, "brushed", "metal");
+    REQUIRE(metal);
+    // alpha = roughness^2 at the ends of the decoded G range: JPEG's loss moves them a few levels.
+    const double tol = 4.0 / 255;
+    CHECK(std::sqrt(metal->alpha.lo) == Approx(77.0 / 255).margin(tol));
+    CHECK(std::sqrt(metal->alpha.hi) == Approx(153.0 / 255).margin(tol));
+    CHECK(std::sqrt(metal->alpha.lo) > 0.25);  // not the full range [0, 1]
 }

@@ -335,7 +335,11 @@ std::optional<ChannelRanges> texture_ranges(Document& d, long t, std::string& pr
                     why = e.what();
                 }
             } else if (format == "jpeg") {
-                why = "it is a JPEG, and this build decodes PNG only (libjpeg is not linked)";
+                try {
+                    ranges = jpeg_channel_ranges(*bytes, "image '" + image_name + "'");
+                } catch (const Error& e) {
+                    why = e.what();
+                }
             } else {
                 why = format.empty() ? "its format is not recognised" : "it is " + format + ", which this build does not decode";
             }

@@ -3,6 +3,9 @@
 #include "scene/texture_image.h"
 
 #include <png.h>
+// libjpeg's header needs FILE and size_t declared before it.
+#include <cstdio>
+#include <jpeglib.h>
 
 #include <boost/archive/iterators/binary_from_base64.hpp>
 #include <boost/archive/iterators/transform_width.hpp>
@@ -107,6 +110,69 @@ ChannelRanges png_channel_ranges(const std::string& bytes, const std::string& wh
             out.lo[size_t(c)] = out.hi[size_t(c)] = 1.0;  // no alpha channel: opaque
         }
     }
+    return out;
+}
+
+namespace {
+
+struct JpegFailure {
+    jpeg_error_mgr manager;  // first: libjpeg hands back a pointer to it
+    std::jmp_buf jump;
+    char message[JMSG_LENGTH_MAX];
+};
+
+void on_jpeg_error(j_common_ptr info) {
+    JpegFailure* f = reinterpret_cast<JpegFailure*>(info->err);
+    (*info->err->format_message)(info, f->message);
+    std::longjmp(f->jump, 1);
+}
+
+void on_jpeg_message(j_common_ptr, int) {}  // warnings of a damaged but decodable file: the values decide
+
+}  // namespace
+
+ChannelRanges jpeg_channel_ranges(const std::string& bytes, const std::string& what) {
+    // The decoded values, as a renderer samples them: JPEG is lossy, so the range is that of the
+    // image the renderer sees, compression noise included. Grey images read as R = G = B.
+    jpeg_decompress_struct info {};
+    JpegFailure failure {};
+    info.err = jpeg_std_error(&failure.manager);
+    failure.manager.error_exit = on_jpeg_error;
+    failure.manager.emit_message = on_jpeg_message;
+    std::vector<unsigned char> row;
+    ChannelRanges out;
+    std::array<unsigned, 4> lo{255, 255, 255, 255}, hi{0, 0, 0, 0};
+    if (setjmp(failure.jump)) {
+        jpeg_destroy_decompress(&info);
+        throw Error(what + " is not a readable JPEG: " + failure.message);
+    }
+    jpeg_create_decompress(&info);
+    jpeg_mem_src(&info, reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<unsigned long>(bytes.size()));
+    jpeg_read_header(&info, TRUE);
+    info.out_color_space = JCS_RGB;  // YCbCr and grey both come out as RGB samples
+    jpeg_start_decompress(&info);
+    const unsigned w = info.output_width, h = info.output_height, channels = unsigned(info.output_components);
+    // One row at a time: the memory is a row, whatever the image's size (only its pixel count is read).
+    row.resize(std::size_t(w) * channels);
+    while (info.output_scanline < h) {
+        unsigned char* rows[1] = {row.data()};
+        jpeg_read_scanlines(&info, rows, 1);
+        for (std::size_t p = 0; p < w; ++p)
+            for (unsigned c = 0; c < channels && c < 3; ++c) {
+                const unsigned v = row[p * channels + c];
+                lo[c] = std::min(lo[c], v);
+                hi[c] = std::max(hi[c], v);
+            }
+    }
+    jpeg_finish_decompress(&info);
+    jpeg_destroy_decompress(&info);
+    out.width = int(w);
+    out.height = int(h);
+    for (size_t c = 0; c < 3; ++c) {
+        out.lo[c] = lo[c] / 255.0;
+        out.hi[c] = hi[c] / 255.0;
+    }
+    out.lo[3] = out.hi[3] = 1.0;  // JPEG has no alpha: opaque
     return out;
 }
 

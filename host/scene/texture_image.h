@@ -26,6 +26,10 @@ std::string image_format(const std::string& bytes);
 /// image (check_memory guards the decoded size).
 ChannelRanges png_channel_ranges(const std::string& bytes, const std::string& what);
 
+/// Decodes a baseline or progressive JPEG held in `bytes` (libjpeg) and returns the ranges of its
+/// decoded R, G, B values (A = 1). Throws Error naming `what` for a corrupt image.
+ChannelRanges jpeg_channel_ranges(const std::string& bytes, const std::string& what);
+
 /// RFC 4648 base64 (the payload of a data: URI), through Boost's base64 iterators; nullopt for
 /// text that is not base64.
 std::optional<std::string> base64_decode(const std::string& text);
