@@ -23,8 +23,8 @@ struct Png {
     std::map<std::string, std::string> text;
 };
 
-/// Reads a 16-bit PNG with libpng's own reader, no transformations.
-inline Png read_png(const std::string& path) {
+/// Reads a PNG with libpng's own reader: `transforms` are libpng's PNG_TRANSFORM_* flags.
+inline Png read_png_with(const std::string& path, int transforms) {
     Png p;
     std::FILE* f = std::fopen(path.c_str(), "rb");
     REQUIRE(f != nullptr);
@@ -32,16 +32,16 @@ inline Png read_png(const std::string& path) {
     png_infop info = png_create_info_struct(png);
     REQUIRE(setjmp(png_jmpbuf(png)) == 0);
     png_init_io(png, f);
-    png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+    png_read_png(png, info, transforms, nullptr);
     p.width = int(png_get_image_width(png, info));
     p.height = int(png_get_image_height(png, info));
     p.channels = png_get_channels(png, info);
     p.bit_depth = png_get_bit_depth(png, info);
-    REQUIRE(p.bit_depth == 16);
     png_bytepp rows = png_get_rows(png, info);
+    const int bytes = p.bit_depth == 16 ? 2 : 1;
     for (int y = 0; y < p.height; ++y)
         for (int x = 0; x < p.width * p.channels; ++x)
-            p.samples.push_back(unsigned(rows[y][2 * x]) << 8 | rows[y][2 * x + 1]);
+            p.samples.push_back(bytes == 2 ? unsigned(rows[y][2 * x]) << 8 | rows[y][2 * x + 1] : rows[y][x]);
     png_textp text = nullptr;
     const int n = png_get_text(png, info, &text, nullptr);
     for (int i = 0; i < n; ++i) p.text[text[i].key] = std::string(text[i].text, text[i].text_length);
@@ -50,28 +50,15 @@ inline Png read_png(const std::string& path) {
     return p;
 }
 
-/// An 8-bit RGB(A) PNG (the pictures MathGL writes) with libpng's own reader: samples 0..255,
-/// row-major from the top, channels interleaved.
-inline Png read_png8(const std::string& path) {
-    Png p;
-    std::FILE* f = std::fopen(path.c_str(), "rb");
-    REQUIRE(f != nullptr);
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
-    png_infop info = png_create_info_struct(png);
-    REQUIRE(setjmp(png_jmpbuf(png)) == 0);
-    png_init_io(png, f);
-    png_read_png(png, info, PNG_TRANSFORM_STRIP_16 | PNG_TRANSFORM_EXPAND, nullptr);
-    p.width = int(png_get_image_width(png, info));
-    p.height = int(png_get_image_height(png, info));
-    p.channels = png_get_channels(png, info);
-    p.bit_depth = 8;
-    png_bytepp rows = png_get_rows(png, info);
-    for (int y = 0; y < p.height; ++y)
-        for (int x = 0; x < p.width * p.channels; ++x) p.samples.push_back(rows[y][x]);
-    png_destroy_read_struct(&png, &info, nullptr);
-    std::fclose(f);
+/// Reads a 16-bit PNG (the tables brdfbake writes) with no transformations.
+inline Png read_png(const std::string& path) {
+    Png p = read_png_with(path, PNG_TRANSFORM_IDENTITY);
+    REQUIRE(p.bit_depth == 16);
     return p;
 }
+
+/// An 8-bit RGB(A) picture (MathGL's): samples 0..255, row-major from the top, channels interleaved.
+inline Png read_png8(const std::string& path) { return read_png_with(path, PNG_TRANSFORM_STRIP_16 | PNG_TRANSFORM_EXPAND); }
 
 /// One channel of an EXR file as float, with OpenEXR's reader; sets the image's width and height.
 inline std::vector<float> exr_channel(const std::string& path, const std::string& name, int& w, int& h) {

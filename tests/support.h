@@ -49,11 +49,11 @@ inline std::string slurp(const std::string& path) {
     return s.str();
 }
 
-/// Runs `brdfbake ARGS` through the shell; returns its exit status, stdout and stderr.
-inline CliResult run_cli(const std::string& args) {
+/// Runs a shell command line; returns its exit status, stdout and stderr.
+inline CliResult run_shell(const std::string& command) {
     static int counter = 0;
     const std::string base = "/tmp/brdfbake-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++);
-    const std::string cmd = std::string(BRDFBAKE_EXE) + " " + args + " >" + base + ".out 2>" + base + ".err";
+    const std::string cmd = command + " >" + base + ".out 2>" + base + ".err";
     const int raw = std::system(cmd.c_str());
     CliResult r;
     r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
@@ -63,6 +63,9 @@ inline CliResult run_cli(const std::string& args) {
     std::remove((base + ".err").c_str());
     return r;
 }
+
+/// Runs `brdfbake ARGS` through the shell; returns its exit status, stdout and stderr.
+inline CliResult run_cli(const std::string& args) { return run_shell(std::string(BRDFBAKE_EXE) + " " + args); }
 
 /// Number of lines in a string (for "one clear message").
 inline int count_lines(const std::string& s) {

@@ -27,18 +27,9 @@ bool exists(const std::string& path) { return ::access(path.c_str(), F_OK) == 0;
 // Runs `COMMAND` (a shell word list starting with the program) under mpirun with `ranks` ranks;
 // Open MPI refuses root without these variables, which a CI container usually is.
 testing::CliResult run_mpi(int ranks, const std::string& command) {
-    const std::string base = mpi_path("run");
-    const std::string cmd = "OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
-                            "POCL_MAX_PTHREAD_COUNT=1 timeout 120 " BRDFBAKE_MPIEXEC " -q --oversubscribe -np " +
-                            std::to_string(ranks) + " " + command + " >" + base + ".out 2>" + base + ".err";
-    const int raw = std::system(cmd.c_str());
-    testing::CliResult r;
-    r.status = WIFEXITED(raw) ? WEXITSTATUS(raw) : -1;
-    r.out = slurp(base + ".out");
-    r.err = slurp(base + ".err");
-    std::remove((base + ".out").c_str());
-    std::remove((base + ".err").c_str());
-    return r;
+    return testing::run_shell("OMPI_ALLOW_RUN_AS_ROOT=1 OMPI_ALLOW_RUN_AS_ROOT_CONFIRM=1 OMPI_MCA_rmaps_base_oversubscribe=1 "
+                              "POCL_MAX_PTHREAD_COUNT=1 timeout 120 " BRDFBAKE_MPIEXEC " -q --oversubscribe -np " +
+                              std::to_string(ranks) + " " + command);
 }
 
 // `lut ARGS` in one process and with 2 and 3 ranks: the same bytes.
