@@ -58,7 +58,7 @@ TEST_CASE("rough dielectric with Cycles' transmission shadowing against independ
     const DielectricResult beta = compute_dielectric(testing::engine(), req);
     for (size_t k = 0; k < cells.size(); ++k) {
         double r, t;
-        ref::rough_dielectric_rt(cells[k].mu, cells[k].alpha, cells[k].eta, true, r, t);
+        ref::rough_dielectric_rt(cells[k].mu, cells[k].alpha, cells[k].eta, ref::DielectricShadowing::Cycles, r, t);
         INFO("mu " << cells[k].mu << " alpha " << cells[k].alpha << " eta " << cells[k].eta << ": R "
                    << cyc.reflected[k].value << " vs " << r << ", T " << cyc.transmitted[k].value << " +- "
                    << cyc.transmitted[k].error << " vs " << t << " (Beta form " << beta.transmitted[k].value << ")");

@@ -89,22 +89,23 @@ BB_FN real bb_beta(real a, real b) {
     return bb_exp(lga + diff);
 }
 
-/* One sample of the reflected and transmitted fractions from the disk point d of the visible-
- * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
- * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int correlated, bb_vec2 d) {
+/* The split of the energy arriving from wo at one microfacet wh (wo.wh > 0) [WMLT07 eq. 22]:
+ * F G2_R(wo, wr) reflected into wr = reflect(wo, wh) where wr.z > 0, and (1 - F) G2_T(wo, wt)
+ * transmitted into wt = refract(wo, wh, eta) where wt.z < 0 and there is no total internal
+ * reflection (the shadowing forms of the head of this file). g1o = G1(wo) is the cell's. The
+ * importance sampler (below) divides both by G1(wo), the visible-normal density having taken
+ * G1(wo) D(wh) (wo.wh) / wo.z; the quadrature (dielectric_quadrature.h) multiplies them by
+ * D(wh) (wo.wh) / wo.z. Branch-free: the vector kernels evaluate it on float16/double8 lanes. */
+BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, real eta, int correlated, real g1o) {
     bb_rt out;
-    bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
     real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
     real f = bb_fresnel_dielectric(c, eta);
-    real g1o = bb_ggx_g1(wo, ax, ay);
-    real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
 
     bb_vec3 wr = bb_reflect(wo, wh);
     /* each G2 from its own G1 calls, merged by the compiler (as bb_smith_g2) */
     real g2r = bb_select(bb_g2_separable_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wr, ax, ay)),
                          bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wr, ax, ay)), correlated != 0);
-    out.r = bb_select(BB_R(0.0), f * g2r * inv_g1o, wr.z > BB_R(0.0) && g1o > BB_R(0.0));
+    out.r = bb_select(BB_R(0.0), f * g2r, wr.z > BB_R(0.0));
 
     bb_vec3 wt = bb_refract(wo, wh, c, eta);
     bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
@@ -118,7 +119,20 @@ BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real e
     } else if (correlated == BB_DIELECTRIC_SHADOWING_CYCLES) {
         g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
     }
-    out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t * inv_g1o, wt.z < BB_R(0.0) && g1o > BB_R(0.0));
+    out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t, wt.z < BB_R(0.0));
+    return out;
+}
+
+/* One sample of the reflected and transmitted fractions from the disk point d of the visible-
+ * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
+ * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
+BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int correlated, bb_vec2 d) {
+    bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
+    real g1o = bb_ggx_g1(wo, ax, ay);
+    real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
+    bb_rt out = bb_rough_dielectric_split(wo, wh, ax, ay, eta, correlated, g1o);
+    out.r = bb_select(BB_R(0.0), out.r * inv_g1o, g1o > BB_R(0.0));
+    out.t = bb_select(BB_R(0.0), out.t * inv_g1o, g1o > BB_R(0.0));
     return out;
 }
 
