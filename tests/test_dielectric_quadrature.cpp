@@ -43,7 +43,7 @@ DielectricRequest quadrature_request(const std::vector<DielectricCell>& cells, c
 
 }  // namespace
 
-TEST_CASE("dielectric quadrature: R and T against independent quadrature, three shadowing forms", "[dielectric][device]") {
+TEST_CASE("dielectric quadrature: R and T against independent quadrature in three shadowing forms", "[dielectric][device]") {
     const std::vector<DielectricCell> cells = {{0.5, 0.3, 1.5},   {0.9, 0.6, 1 / 1.5}, {0.3, 0.1, 1.33},
                                                {0.05, 0.5, 1 / 1.5}, {1.0, 0.02, 3.0}, {0.2, 1.0, 1 / 1.33}};
     for (const Form& form : kForms) {
@@ -102,7 +102,7 @@ TEST_CASE("dielectric quadrature: the error estimate is honest from roughness 1e
     CHECK(double(beyond) / runs < 0.01);
 }
 
-TEST_CASE("dielectric to a tolerance: auto meets it, float and double, against the reference", "[dielectric][tolerance][device]") {
+TEST_CASE("dielectric to a tolerance: auto meets it in float and double against the reference", "[dielectric][tolerance][device]") {
     const std::vector<DielectricCell> cells = {{1e-4, 1e-3, 1.5}, {0.02, 0.03, 1 / 1.5}, {0.3, 0.3, 3.0},
                                                {0.7, 1.0, 1.0001}, {1.0, 0.3, 1 / 1.5},   {0.1, 1e-3, 1 / 1.5}};
     for (Precision p : {Precision::Float, Precision::Double}) {

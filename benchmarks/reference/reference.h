@@ -407,7 +407,8 @@ enum class DielectricShadowing { Separable, Beta, Cycles };
 /// relative index eta, in half-vector space: the visible-normal density D(h) (wo.h) / cos_o
 /// times F or 1 - F at the microfacet, times G2: reflection 1/(1 + L_o + L_r) (Heitz 2014 eq. 99)
 /// or G1 G1 (separable), transmission by `shadowing`. The theta_h integral is split at multiples
-/// of alpha so that the adaptive rule sees a narrow lobe.
+/// of alpha so that the adaptive rule sees a narrow lobe (relative tolerance `tol`). Slow (minutes)
+/// for narrow lobes seen from inside at oblique incidence, where T is tiny.
 inline void rough_dielectric_rt(ld mu_o, ld alpha, ld eta, DielectricShadowing shadowing, double& r, double& t,
                                 double tol = 1e-7) {
     const Dir wo = dir_mu(mu_o, 0);
@@ -444,6 +445,9 @@ inline void rough_dielectric_rt(ld mu_o, ld alpha, ld eta, DielectricShadowing s
     // pieces between them, the outer one over theta_h split at multiples of alpha.
     const ld sin_o = std::sqrt(std::max<ld>(0, 1 - mu_o * mu_o));
     const ld c_crit = eta < 1 ? std::sqrt(1 - eta * eta) : -1;
+    // tanh-sinh in phi: the pieces end where 1 - F grows like a square root (total internal
+    // reflection), which the double-exponential rule integrates at full speed.
+    boost::math::quadrature::tanh_sinh<double> tanh_sinh;
     auto split = [&](bool transmit) {
         auto inner = [&](double th) -> double {
             const ld A = mu_o * std::cos((ld)th), B = sin_o * std::sin((ld)th);
@@ -458,15 +462,40 @@ inline void rough_dielectric_rt(ld mu_o, ld alpha, ld eta, DielectricShadowing s
             if (std::cos((ld)th) > 0) cut_at(mu_o / (2 * std::cos((ld)th)));
             if (c_crit > 0) cut_at(c_crit);
             std::sort(cuts.begin(), cuts.end());
+            // Where the refracted direction crosses the horizon (wt.z = 0; eta < 1 only), found
+            // by a scan of 64 points per piece and bisection.
+            auto wt_z = [&](double ph) -> ld {
+                const Dir h = dir(th, ph);
+                const ld c = dot(wo, h), sin2_t = (1 - c * c) / (eta * eta);
+                if (c <= 0 || sin2_t >= 1) return 1;
+                return -wo.z / eta + (c / eta - std::sqrt(1 - sin2_t)) * h.z;
+            };
+            if (transmit && eta < 1) {
+                const std::vector<double> pieces = cuts;
+                for (size_t i = 0; i + 1 < pieces.size(); ++i)
+                    for (int k = 0; k < 64; ++k) {
+                        double lo = pieces[i] + (pieces[i + 1] - pieces[i]) * k / 64.0;
+                        double hi = pieces[i] + (pieces[i + 1] - pieces[i]) * (k + 1) / 64.0;
+                        const bool below = wt_z(lo) < 0;
+                        if (below == (wt_z(hi) < 0)) continue;
+                        for (int b = 0; b < 60; ++b) {
+                            const double mid = 0.5 * (lo + hi);
+                            ((wt_z(mid) < 0) == below ? lo : hi) = mid;
+                        }
+                        cuts.push_back(0.5 * (lo + hi));
+                    }
+                std::sort(cuts.begin(), cuts.end());
+            }
             double sum = 0.0;
             for (size_t i = 0; i + 1 < cuts.size(); ++i) {
                 // A piece where the integrand vanishes (h not facing wo, wr below the horizon,
                 // total internal reflection) is skipped: a relative tolerance cannot be met on 0.
                 const ld c = A + B * std::cos(0.5L * (cuts[i] + cuts[i + 1]));
-                const bool live = c > 0 && (transmit ? c > c_crit : 2 * c * std::cos((ld)th) > mu_o);
-                if (cuts[i + 1] > cuts[i] && live)
-                    sum += integrate([&](double ph) { return integrand(transmit, th, ph); }, cuts[i], cuts[i + 1],
-                                     0.1 * tol);
+                const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
+                const bool live = c > 0 && (transmit ? c > c_crit && wt_z(mid) < 0 : 2 * c * std::cos((ld)th) > mu_o);
+                if (cuts[i + 1] - cuts[i] > 1e-12 && live)
+                    sum += tanh_sinh.integrate([&](double ph, double) { return integrand(transmit, th, ph); }, cuts[i],
+                                               cuts[i + 1], 0.1 * tol);
             }
             return 2 * sum * std::sin(th);
         };
