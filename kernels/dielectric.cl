@@ -59,7 +59,8 @@
     __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                              \
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], BB_R(0.0));                            \
     const real a = (real)cell_alpha[cell], eta = (real)cell_eta[cell];                                 \
-    const real g1o = bb_ggx_g1(wo, a, a);                                                              \
+    const real g1o = bb_ggx_g1(wo, a, a), lo = bb_ggx_lambda(wo, a, a);                                \
+    const real lga_o = correlated == BB_DIELECTRIC_SHADOWING_BETA ? bb_lgamma(BB_R(1.0) + lo) : BB_R(0.0); \
     const real r_cap = bb_dielectric_r_cap(wo, a);                                                     \
     const bb_interval az = bb_dielectric_piece(wo, eta, piece)
 
@@ -86,7 +87,7 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
                     continue;
                 for (unsigned int k = 0; k < n; ++k) {
                     const real w = wt[k] * len * bb_smoothstep_d(x[k]);
-                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, row.cos_phi, row.sin_phi,
+                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              t0 + len * bb_smoothstep(x[k]));
                     const int ok = isfinite(p.r) && isfinite(p.t);
                     bad += ok ? 0u : 1u;
@@ -130,7 +131,7 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS(BB_DIELECTRIC_QUADRATURE_ARGS)
                     continue;
                 for (unsigned int k = 0; k < n; ++k) {
                     const real w = (real)wt[k] * len * bb_smoothstep_d((real)x[k]);
-                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, row.cos_phi, row.sin_phi,
+                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              t0 + len * bb_smoothstep((real)x[k]));
                     const bb_mask ok = isfinite(p.r) & isfinite(p.t);
                     bad += bb_select((bb_mask)0, (bb_mask)1, on & ~ok);
