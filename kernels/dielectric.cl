@@ -6,12 +6,151 @@
  *                             step, their disk points read from the table the host fills once
  *                             for all cells (host/integrate/albedo.cpp, disk_table: W x, W y, W h per
  *                             step; h is not used here), as albedo_replicas_disk does.
- * Build options: [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W]. */
+ * And, built with -D BB_QUADRATURE -D BB_MODEL=<ggx's id> (a program of its own):
+ *   dielectric_quadrature     the Gauss-Legendre product rule in half-vector space
+ *                             (dielectric_quadrature.h), one work-item per (cell, rule, piece).
+ * Build options: [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W] [-D BB_QUADRATURE -D BB_MODEL=id]. */
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/brdf/sampling.h"
 
+#ifdef BB_QUADRATURE
+#include "brdfbake/brdf/dielectric_quadrature.h"
+
+/* Kahan-compensated accumulation (as kernels/albedo.cl). */
+#define BB_KAHAN_ADD(sum, comp, x)       \
+    do {                                 \
+        const real y_ = (x) - (comp);    \
+        const real t_ = (sum) + y_;      \
+        (comp) = (t_ - (sum)) - y_;      \
+        (sum) = t_;                      \
+    } while (0)
+
+/* The arguments of both quadrature kernels. */
+#define BB_DIELECTRIC_QUADRATURE_ARGS                                                                  \
+    __global const bb_scalar *cell_mu, __global const bb_scalar *cell_alpha,                           \
+        __global const bb_scalar *cell_eta, __global const bb_scalar *nodes, const unsigned int n_fine, \
+        const unsigned int n_coarse, const unsigned int n_coarsest, const unsigned int n_cells,         \
+        const int correlated, __global bb_scalar *piece_r, __global bb_scalar *piece_t,                  \
+        __global unsigned int *bad_count
+
+/* The length of a rule's array of nodes: padded to a multiple of the vector width. */
+#ifdef BB_VECTOR_WIDTH
+#define BB_QUAD_PADDED(m) (((m) + BB_VECTOR_WIDTH - 1u) / BB_VECTOR_WIDTH * BB_VECTOR_WIDTH)
+#else
+#define BB_QUAD_PADDED(m) (m)
+#endif
+
+/* The prologue of both: work-item gid is (cell, rule, piece) (returns beyond the last); declares
+ * the rule's n abscissae x and weights wt, the cell's wo, a, eta, g1o, r_cap and the piece's
+ * azimuth interval az. */
+#define BB_DIELECTRIC_QUADRATURE_PROLOGUE                                                              \
+    const unsigned int gid = (unsigned int)get_global_id(0);                                           \
+    if (gid >= n_cells * BB_QUAD_RULES * BB_DIELECTRIC_QUAD_PIECES)                                    \
+        return;                                                                                        \
+    const unsigned int cell = gid / (BB_QUAD_RULES * BB_DIELECTRIC_QUAD_PIECES);                       \
+    const unsigned int rule = (gid / BB_DIELECTRIC_QUAD_PIECES) % BB_QUAD_RULES;                       \
+    const unsigned int piece = gid % BB_DIELECTRIC_QUAD_PIECES;                                        \
+    const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);                 \
+    __global const bb_scalar* x =                                                                      \
+        nodes + (rule == 0u ? 0u                                                                       \
+                            : (rule == 1u ? 2u * BB_QUAD_PADDED(n_fine)                                \
+                                          : 2u * (BB_QUAD_PADDED(n_fine) + BB_QUAD_PADDED(n_coarse)))); \
+    __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                              \
+    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], BB_R(0.0));                            \
+    const real a = (real)cell_alpha[cell], eta = (real)cell_eta[cell];                                 \
+    const real g1o = bb_ggx_g1(wo, a, a), lo = bb_ggx_lambda(wo, a, a);                                \
+    const real lga_o = correlated == BB_DIELECTRIC_SHADOWING_BETA ? bb_lgamma(BB_R(1.0) + lo) : BB_R(0.0); \
+    const real r_cap = bb_dielectric_r_cap(wo, a);                                                     \
+    const bb_interval az = bb_dielectric_piece(wo, eta, piece)
+
 #ifndef BB_VECTOR_WIDTH
+
+/* Work-item gid is (cell, rule, piece): rule 0 has n_fine nodes per axis, 1 n_coarse, 2
+ * n_coarsest (the host's error estimate compares them); piece is the azimuth interval of
+ * bb_dielectric_piece. `nodes` holds each rule's abscissae in [0, 1] and then its weights (summing
+ * to 1), fine, coarse, coarsest, as for albedo_quadrature. Writes the piece's share of R and T
+ * (counted twice: delta in [0, pi] stands for [-pi, pi]) and the number of non-finite nodes. */
+__kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
+    BB_DIELECTRIC_QUADRATURE_PROLOGUE;
+    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
+    unsigned int bad = 0;
+    if (az.hi > az.lo) {
+        for (unsigned int j = 0; j < n; ++j) {
+            const real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(x[j]);
+            const real w_delta = BB_R(2.0) * wt[j] * (az.hi - az.lo) * bb_smoothstep_d(x[j]);
+            const bb_dielectric_row row = bb_make_dielectric_row(wo, a, eta, r_cap, delta);
+            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0);
+            for (int s = 0; s < BB_DIELECTRIC_QUAD_SEGMENTS; ++s) {
+                const real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
+                if (!(len > BB_R(0.0)))
+                    continue;
+                for (unsigned int k = 0; k < n; ++k) {
+                    const real w = wt[k] * len * bb_smoothstep_d(x[k]);
+                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
+                                                             t0 + len * bb_smoothstep(x[k]));
+                    const int ok = isfinite(p.r) && isfinite(p.t);
+                    bad += ok ? 0u : 1u;
+                    BB_KAHAN_ADD(rr, rc, ok ? w * p.r : BB_R(0.0));
+                    BB_KAHAN_ADD(tr, tc, ok ? w * p.t : BB_R(0.0));
+                }
+            }
+            BB_KAHAN_ADD(sr, cr, w_delta * rr);
+            BB_KAHAN_ADD(st, ct, w_delta * tr);
+        }
+    }
+    piece_r[gid] = sr;
+    piece_t[gid] = st;
+    bad_count[gid] = bad;
+}
+
+#else /* BB_VECTOR_WIDTH */
+
+#pragma clang diagnostic ignored "-Wpass-failed"
+
+/* The same rule with one row per lane: rows j0 .. j0 + W - 1 of the piece on the W lanes (their
+ * azimuths, their segment ends), the radial nodes k one at a time for all W rows. The same nodes,
+ * weights and functions as the scalar kernel, so the same sums to rounding. The node arrays are
+ * padded to a multiple of W with weight 0: such lanes are neither summed nor counted. */
+__kernel void BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS(BB_DIELECTRIC_QUADRATURE_ARGS) {
+    BB_DIELECTRIC_QUADRATURE_PROLOGUE;
+    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
+    bb_mask bad = 0;
+    if (bb_all(az.hi > az.lo)) {
+        for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
+            const real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
+            const bb_mask live = wj > BB_R(0.0);
+            const real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(xj);
+            const real w_delta = BB_R(2.0) * wj * (az.hi - az.lo) * bb_smoothstep_d(xj);
+            const bb_dielectric_row row = bb_make_dielectric_row(wo, a, eta, r_cap, delta);
+            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0);
+            for (int s = 0; s < BB_DIELECTRIC_QUAD_SEGMENTS; ++s) {
+                const real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
+                const bb_mask on = live & (len > BB_R(0.0));
+                if (bb_all(!on))
+                    continue;
+                for (unsigned int k = 0; k < n; ++k) {
+                    const real w = (real)wt[k] * len * bb_smoothstep_d((real)x[k]);
+                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
+                                                             t0 + len * bb_smoothstep((real)x[k]));
+                    const bb_mask ok = isfinite(p.r) & isfinite(p.t);
+                    bad += bb_select((bb_mask)0, (bb_mask)1, on & ~ok);
+                    BB_KAHAN_ADD(rr, rc, bb_select(BB_R(0.0), w * p.r, on & ok));
+                    BB_KAHAN_ADD(tr, tc, bb_select(BB_R(0.0), w * p.t, on & ok));
+                }
+            }
+            BB_KAHAN_ADD(sr, cr, bb_select(BB_R(0.0), w_delta * rr, live));
+            BB_KAHAN_ADD(st, ct, bb_select(BB_R(0.0), w_delta * tr, live));
+        }
+    }
+    piece_r[gid] = bb_lane_sum(sr, cr);
+    piece_t[gid] = bb_lane_sum(st, ct);
+    bad_count[gid] = bb_lane_count(bad);
+}
+
+#endif /* BB_VECTOR_WIDTH */
+
+#elif !defined(BB_VECTOR_WIDTH)
 
 __kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const real* cell_mu, __global const real* cell_alpha,
                                   __global const real* cell_eta, __global const real* shifts,

@@ -22,39 +22,6 @@ DielectricResult run(const std::vector<DielectricCell>& cells, std::uint64_t sam
     return compute_dielectric(testing::engine(), r);
 }
 
-// Reference R and T from Walter et al. 2007 written in half-vector space: the visible-normal
-// density G1(wo) D(h) (wo.h) / cos_o times the energy split F / 1 - F at each microfacet, times
-// the height-correlated G2 / G1(wo) of the outgoing direction (Heitz 2014 eq. 99, 100).
-void reference_rt(double mu, double alpha, double eta, double& r, double& t) {
-    const ref::Dir wo = ref::dir_mu(mu, 0.0);
-    auto split = [&](bool transmit) {
-        return ref::integrate_facing(
-            [&](double th, double ph) -> double {
-                const ref::Dir h = ref::dir(th, ph);
-                const double c = double(ref::dot(wo, h));
-                const double F = ref::fresnel_dielectric(c, eta);
-                const double lo = double(ref::ggx_lambda(wo, alpha, alpha));
-                const double vis = double(ref::ggx_d(h, alpha, alpha)) * c / mu;  // D (wo.h) / cos_o
-                if (!transmit) {
-                    const ref::Dir wi = ref::reflect(wo, h);
-                    if (wi.z <= 0) return 0.0;
-                    return vis * F / (1 + lo + double(ref::ggx_lambda(wi, alpha, alpha)));
-                }
-                const double sin2_t = (1 - c * c) / (eta * eta);
-                if (sin2_t >= 1) return 0.0;
-                const double cos_t = std::sqrt(1 - sin2_t);
-                const ref::Dir wt = {-wo.x / eta + (c / eta - cos_t) * h.x, -wo.y / eta + (c / eta - cos_t) * h.y,
-                                     -wo.z / eta + (c / eta - cos_t) * h.z};
-                if (wt.z >= 0) return 0.0;
-                const double lt = double(ref::ggx_lambda({wt.x, wt.y, -wt.z}, alpha, alpha));
-                return vis * (1 - F) * std::tgamma(1 + lo) * std::tgamma(1 + lt) / std::tgamma(2 + lo + lt);
-            },
-            mu, 0.0, M_PI / 2, 1e-7);
-    };
-    r = split(false);
-    t = split(true);
-}
-
 }  // namespace
 
 TEST_CASE("a nearly smooth dielectric reflects F and transmits 1 - F from both sides", "[dielectric][device]") {
@@ -78,7 +45,7 @@ TEST_CASE("rough dielectric R and T match independent quadrature", "[dielectric]
     const DielectricResult res = run(cells);
     for (size_t k = 0; k < cells.size(); ++k) {
         double r, t;
-        reference_rt(cells[k].mu, cells[k].alpha, cells[k].eta, r, t);
+        ref::rough_dielectric_rt(cells[k].mu, cells[k].alpha, cells[k].eta, ref::DielectricShadowing::Beta, r, t);
         INFO("cell " << k << ": R " << res.reflected[k].value << " vs " << r << ", T " << res.transmitted[k].value
                      << " vs " << t);
         CHECK(std::fabs(res.reflected[k].value - r) <= res.reflected[k].error);

@@ -58,7 +58,7 @@ TEST_CASE("rough dielectric with Cycles' transmission shadowing against independ
     const DielectricResult beta = compute_dielectric(testing::engine(), req);
     for (size_t k = 0; k < cells.size(); ++k) {
         double r, t;
-        ref::rough_dielectric_rt(cells[k].mu, cells[k].alpha, cells[k].eta, true, r, t);
+        ref::rough_dielectric_rt(cells[k].mu, cells[k].alpha, cells[k].eta, ref::DielectricShadowing::Cycles, r, t);
         INFO("mu " << cells[k].mu << " alpha " << cells[k].alpha << " eta " << cells[k].eta << ": R "
                    << cyc.reflected[k].value << " vs " << r << ", T " << cyc.transmitted[k].value << " +- "
                    << cyc.transmitted[k].error << " vs " << t << " (Beta form " << beta.transmitted[k].value << ")");
@@ -126,7 +126,7 @@ TEST_CASE("dielectric-eavg equals 2 int (R + T) mu dmu of the dielectric table's
 }
 
 TEST_CASE("dielectric-eavg: bad requests give one line and exit status 2", "[dielectric-eavg][cli]") {
-    for (const char* args : {"--model beckmann --size 4x1x2", "--model ggx --size 4x1x2 --tolerance 1e-4",
+    for (const char* args : {"--model beckmann --size 4x1x2", "--model ggx --size 4x1x2 --method qmc",
                              "--model ggx --size 4x1x2 --eta-range 0.5,2", "--model ggx --fresnel schlick:f0=0.04 --size 4x1x2",
                              "--model ggx:transmission_shadowing=snell --size 4x1x2"}) {
         const testing::CliResult r =
@@ -187,4 +187,35 @@ TEST_CASE("dielectric-eavg takes the grid conventions: edge texels hold the clos
     const double f0_lo = std::pow(0.2 / 2.2, 2), f0_hi = std::pow(49.0 / 51.0, 2);
     CHECK(f.z.lo == Approx(f0_lo).epsilon(1e-12));
     CHECK(f.z.hi == Approx(f0_hi).epsilon(1e-12));
+}
+
+TEST_CASE("dielectric-eavg to a tolerance: auto (quadrature) meets it and agrees with importance sampling",
+          "[dielectric-eavg][tolerance][device]") {
+    LutRequest lr;
+    lr.kind = "dielectric-eavg";
+    lr.model = "ggx";
+    lr.width = 3;
+    lr.height = 1;
+    lr.depth = 2;
+    lr.eta_lo = 1.2;
+    lr.eta_hi = 2.0;
+    lr.alpha_lo = 0.05;
+    lr.tolerance.tolerance = 1e-4;
+    lr.tolerance.auto_method = true;
+    lr.tolerance.max_samples = std::uint64_t(1) << 22;
+    const Table q = compute_lut(testing::engine(), lr);
+    LutRequest sampled = lr;
+    sampled.tolerance = ToleranceRequest{};
+    sampled.samples = 1 << 16;
+    const Table s = compute_lut(testing::engine(), sampled);
+    REQUIRE(q.error.size() == s.error.size());
+    for (size_t k = 0; k < q.error.size(); ++k) {
+        CHECK(q.error[k] <= 1e-4);
+        for (int c = 0; c < 2; ++c) {
+            INFO("texel " << k << " " << q.channels[c] << ": " << q.values[c][k] << " +- " << q.error[k] << " vs "
+                          << s.values[c][k] << " +- " << s.error[k]);
+            CHECK(std::fabs(q.values[c][k] - s.values[c][k]) <= q.error[k] + s.error[k]);
+            CHECK(q.values[c][k] <= 1.0 + q.error[k]);  // energy conservation
+        }
+    }
 }

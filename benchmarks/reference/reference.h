@@ -399,37 +399,113 @@ inline double albedo_sheen_ashikhmin_normal(double alpha) {
 // The rough GGX dielectric interface (Walter et al. 2007) with either height-correlated
 // transmission shadowing (issue 18).
 
+/// The shadowing of transmission (brdf/rough_dielectric.h's BB_DIELECTRIC_SHADOWING_*): G1 G1;
+/// the Beta function B(1 + L_o, 1 + L_t) (Heitz 2014 eq. 100); 1/(1 + L_o + L_t) as Blender Cycles.
+enum class DielectricShadowing { Separable, Beta, Cycles };
+
 /// The energy fractions R and T of a rough GGX interface for light from wo (mu_o, phi_o = 0),
 /// relative index eta, in half-vector space: the visible-normal density D(h) (wo.h) / cos_o
-/// times F or 1 - F at the microfacet, times G2 / ... with G2 height-correlated: reflection
-/// 1/(1 + L_o + L_r) (Heitz 2014 eq. 99); transmission the Beta function B(1 + L_o, 1 + L_t)
-/// (Heitz 2014 eq. 100) or, as Blender Cycles writes it, 1/(1 + L_o + L_t).
-inline void rough_dielectric_rt(ld mu_o, ld alpha, ld eta, bool cycles, double& r, double& t, double tol = 1e-7) {
+/// times F or 1 - F at the microfacet, times G2: reflection 1/(1 + L_o + L_r) (Heitz 2014 eq. 99)
+/// or G1 G1 (separable), transmission by `shadowing`. The theta_h integral is split at multiples
+/// of alpha so that the adaptive rule sees a narrow lobe (relative tolerance `tol`). Slow (minutes)
+/// for narrow lobes seen from inside at oblique incidence, where T is tiny.
+inline void rough_dielectric_rt(ld mu_o, ld alpha, ld eta, DielectricShadowing shadowing, double& r, double& t,
+                                double tol = 1e-7) {
     const Dir wo = dir_mu(mu_o, 0);
+    const ld lo = ggx_lambda(wo, alpha, alpha);
+    auto integrand = [&](bool transmit, double th, double ph) -> double {
+        const Dir h = dir(th, ph);
+        const ld c = dot(wo, h);
+        const ld F = fresnel_dielectric(double(c), double(eta));
+        const ld vis = ggx_d(h, alpha, alpha) * c / mu_o;
+        if (!transmit) {
+            const Dir wi = reflect(wo, h);
+            if (wi.z <= 0) return 0.0;
+            const ld li = ggx_lambda(wi, alpha, alpha);
+            const ld g2 = shadowing == DielectricShadowing::Separable ? 1 / ((1 + lo) * (1 + li)) : 1 / (1 + lo + li);
+            return double(vis * F * g2);
+        }
+        const ld sin2_t = (1 - c * c) / (eta * eta);
+        if (sin2_t >= 1) return 0.0;
+        const ld cos_t = std::sqrt(1 - sin2_t);
+        const Dir wt = {-wo.x / eta + (c / eta - cos_t) * h.x, -wo.y / eta + (c / eta - cos_t) * h.y,
+                        -wo.z / eta + (c / eta - cos_t) * h.z};
+        if (wt.z >= 0) return 0.0;
+        const ld lt = ggx_lambda({wt.x, wt.y, -wt.z}, alpha, alpha);
+        const ld g2 = shadowing == DielectricShadowing::Separable ? 1 / ((1 + lo) * (1 + lt))
+                      : shadowing == DielectricShadowing::Cycles
+                          ? 1 / (1 + lo + lt)
+                          : std::exp(std::lgamma(1 + lo) + std::lgamma(1 + lt) - std::lgamma(2 + lo + lt));
+        return double(vis * (1 - F) * g2);
+    };
+    // Per theta_h the azimuths phi of h in [0, pi] (the integrand is even in phi) where the
+    // integrand has a cut or a kink, in closed form from wo.h = A + B cos(phi), A = mu_o cos(th),
+    // B = sin_o sin(th): wo.h = 0 (visibility), wr.z = 2 (wo.h) cos(th) - mu_o = 0 (reflection),
+    // wo.h = sqrt(1 - eta^2) (total internal reflection, eta < 1). The inner integral runs over the
+    // pieces between them, the outer one over theta_h split at multiples of alpha.
+    const ld sin_o = std::sqrt(std::max<ld>(0, 1 - mu_o * mu_o));
+    const ld c_crit = eta < 1 ? std::sqrt(1 - eta * eta) : -1;
+    // tanh-sinh in phi: the pieces end where 1 - F grows like a square root (total internal
+    // reflection), which the double-exponential rule integrates at full speed.
+    boost::math::quadrature::tanh_sinh<double> tanh_sinh;
     auto split = [&](bool transmit) {
-        return integrate_facing(
-            [&](double th, double ph) -> double {
-                const Dir h = dir(th, ph);
-                const ld c = dot(wo, h);
-                const ld F = fresnel_dielectric(double(c), double(eta));
-                const ld lo = ggx_lambda(wo, alpha, alpha);
-                const ld vis = ggx_d(h, alpha, alpha) * c / mu_o;
-                if (!transmit) {
-                    const Dir wi = reflect(wo, h);
-                    if (wi.z <= 0) return 0.0;
-                    return double(vis * F / (1 + lo + ggx_lambda(wi, alpha, alpha)));
+        auto inner = [&](double th) -> double {
+            const ld A = mu_o * std::cos((ld)th), B = sin_o * std::sin((ld)th);
+            std::vector<double> cuts = {0.0, double(kPi)};
+            auto cut_at = [&](ld c) {  // phi where wo.h = c
+                if (B > 1e-300L) {
+                    const ld x = (c - A) / B;
+                    if (x > -1 && x < 1) cuts.push_back(double(std::acos(x)));
                 }
-                const ld sin2_t = (1 - c * c) / (eta * eta);
-                if (sin2_t >= 1) return 0.0;
-                const ld cos_t = std::sqrt(1 - sin2_t);
-                const Dir wt = {-wo.x / eta + (c / eta - cos_t) * h.x, -wo.y / eta + (c / eta - cos_t) * h.y,
-                                -wo.z / eta + (c / eta - cos_t) * h.z};
-                if (wt.z >= 0) return 0.0;
-                const ld lt = ggx_lambda({wt.x, wt.y, -wt.z}, alpha, alpha);
-                const ld g2 = cycles ? 1 / (1 + lo + lt) : std::tgamma(1 + lo) * std::tgamma(1 + lt) / std::tgamma(2 + lo + lt);
-                return double(vis * (1 - F) * g2);
-            },
-            mu_o, 0.0, double(kPi / 2), tol);
+            };
+            cut_at(0);
+            if (std::cos((ld)th) > 0) cut_at(mu_o / (2 * std::cos((ld)th)));
+            if (c_crit > 0) cut_at(c_crit);
+            std::sort(cuts.begin(), cuts.end());
+            // Where the refracted direction crosses the horizon (wt.z = 0; eta < 1 only), found
+            // by a scan of 64 points per piece and bisection.
+            auto wt_z = [&](double ph) -> ld {
+                const Dir h = dir(th, ph);
+                const ld c = dot(wo, h), sin2_t = (1 - c * c) / (eta * eta);
+                if (c <= 0 || sin2_t >= 1) return 1;
+                return -wo.z / eta + (c / eta - std::sqrt(1 - sin2_t)) * h.z;
+            };
+            if (transmit && eta < 1) {
+                const std::vector<double> pieces = cuts;
+                for (size_t i = 0; i + 1 < pieces.size(); ++i)
+                    for (int k = 0; k < 64; ++k) {
+                        double lo = pieces[i] + (pieces[i + 1] - pieces[i]) * k / 64.0;
+                        double hi = pieces[i] + (pieces[i + 1] - pieces[i]) * (k + 1) / 64.0;
+                        const bool below = wt_z(lo) < 0;
+                        if (below == (wt_z(hi) < 0)) continue;
+                        for (int b = 0; b < 60; ++b) {
+                            const double mid = 0.5 * (lo + hi);
+                            ((wt_z(mid) < 0) == below ? lo : hi) = mid;
+                        }
+                        cuts.push_back(0.5 * (lo + hi));
+                    }
+                std::sort(cuts.begin(), cuts.end());
+            }
+            double sum = 0.0;
+            for (size_t i = 0; i + 1 < cuts.size(); ++i) {
+                // A piece where the integrand vanishes (h not facing wo, wr below the horizon,
+                // total internal reflection) is skipped: a relative tolerance cannot be met on 0.
+                const ld c = A + B * std::cos(0.5L * (cuts[i] + cuts[i + 1]));
+                const double mid = 0.5 * (cuts[i] + cuts[i + 1]);
+                const bool live = c > 0 && (transmit ? c > c_crit && wt_z(mid) < 0 : 2 * c * std::cos((ld)th) > mu_o);
+                if (cuts[i + 1] - cuts[i] > 1e-12 && live)
+                    sum += tanh_sinh.integrate([&](double ph, double) { return integrand(transmit, th, ph); }, cuts[i],
+                                               cuts[i + 1], 0.1 * tol);
+            }
+            return 2 * sum * std::sin(th);
+        };
+        std::vector<double> breaks = {0.0};
+        for (double k : {3.0, 30.0, 300.0})
+            if (std::atan(double(k * alpha)) < double(kPi / 2) - 1e-9) breaks.push_back(std::atan(double(k * alpha)));
+        breaks.push_back(double(kPi / 2));
+        double sum = 0.0;
+        for (size_t i = 0; i + 1 < breaks.size(); ++i) sum += integrate(inner, breaks[i], breaks[i + 1], tol);
+        return sum;
     };
     r = split(false);
     t = split(true);

@@ -9,6 +9,7 @@
 #include <sstream>
 #include <type_traits>
 
+#include "brdfbake/brdf/dielectric_quadrature.h"
 #include "brdfbake/brdf/integrands.h"
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/microfacet.h"
@@ -596,13 +597,110 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
     return result;
 }
 
-DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req) {
-    if (auto shared = shared_dielectric(engine, req)) return std::move(*shared);  // MPI ranks, shards
-    if (req.cells.empty()) throw Error("no cells to integrate");
+namespace {
+
+std::string dielectric_nonfinite_where(const DielectricRequest& req, size_t c) {
+    std::ostringstream m;
+    m << "the rough dielectric produced NaN or Inf at mu = " << req.cells[c].mu << ", alpha = " << req.cells[c].alpha
+      << ", eta = " << req.cells[c].eta;
+    return m.str();
+}
+
+int dielectric_shadowing(const DielectricRequest& req) {
+    return !req.correlated            ? BB_DIELECTRIC_SHADOWING_SEPARABLE
+           : req.cycles_transmission ? BB_DIELECTRIC_SHADOWING_CYCLES
+                                     : BB_DIELECTRIC_SHADOWING_BETA;
+}
+
+// The half-vector rule of brdf/dielectric_quadrature.h: per cell, rule and azimuth piece one
+// work-item; a cell's R and T are the sums over its pieces, each with the error of
+// quadrature_error from the three rules, plus the floating-point bound and the part of the
+// measure the rows leave out beyond their slope cap (at most BB_EPS_REAL / 16 of R + T).
+DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricRequest& req) {
+    if (req.samples == 0) throw Error("--samples must be positive");
+    const unsigned n = quadrature_order(req.samples), m = n / 2, l = std::max(1u, n / 4);
+    constexpr size_t kSlots = BB_QUAD_RULES * BB_DIELECTRIC_QUAD_PIECES;
+    const size_t n_cells = req.cells.size(), n_items = n_cells * kSlots;
+
+    BuildRequest build;
+    build.kernel_file = "dielectric.cl";
+    build.precision = req.precision;
+    build.defines = {{"BB_MODEL", std::to_string(BB_MODEL_GGX)}, {"BB_QUADRATURE", "1"}};
+    // The vector path (dielectric_quadrature_rows): one row of the rule per lane.
+    build.has_vector_path = true;
+    build.vector_width = req.vector_width;
+    const unsigned lanes = engine.vector_width(build);
+    check_memory(sampling_bytes(n_cells, n_items * 2, 2.0 * (n + m + l + 3 * lanes), 1, req.precision),
+                 "integrating " + std::to_string(n_cells) + " dielectric cells by quadrature");
+    cl::Program& program = engine.program(build);
+
+    std::vector<double> nodes, mus, alphas, etas;
+    append_gauss_legendre(n, nodes, lanes);
+    append_gauss_legendre(m, nodes, lanes);
+    append_gauss_legendre(l, nodes, lanes);
+    for (const auto& c : req.cells) {
+        mus.push_back(c.mu);
+        alphas.push_back(c.alpha);
+        etas.push_back(c.eta);
+    }
+    RealBuffers bufs(engine, req.precision);
+    cl::Buffer b_mu = bufs.input(mus), b_alpha = bufs.input(alphas), b_eta = bufs.input(etas),
+               b_nodes = bufs.input(nodes);
+    cl::Buffer b_r = bufs.output(n_items), b_t = bufs.output(n_items);
+    const NonFiniteCounts bad_counts(engine, n_items);
+    cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS)
+                                         : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_QUADRATURE));
+    set_args(kernel, 0, b_mu, b_alpha, b_eta, b_nodes, cl_uint(n), cl_uint(m), cl_uint(l), cl_uint(n_cells),
+             cl_int(dielectric_shadowing(req)), b_r, b_t, bad_counts.buffer);
+    const double kernel_seconds =
+        run_items(engine, kernel, n_items, 2.0 * double(n) * n,
+                  "rough dielectric of " + std::to_string(n_cells) + " cells by quadrature, " + std::to_string(n) +
+                      " nodes");
+    const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
+    const std::vector<cl_uint> bad = bad_counts.read(engine);
+
+    DielectricResult result;
+    result.kernel_seconds = kernel_seconds;
+    result.vector_width = lanes;
+    std::ostringstream text;
+    text << "Gauss-Legendre product rule in half-vector space, " << n << " x " << n
+         << " nodes per azimuth piece and row segment (up to " << BB_DIELECTRIC_QUAD_PIECES << " x "
+         << BB_DIELECTRIC_QUAD_SEGMENTS << "), error from the " << m << "- and " << l << "-node rules";
+    result.method = text.str();
+    const double fp_bound = tolerance_floor(req.precision);
+    const double tail = (req.precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7) / 16.0;
+    const std::uint64_t nodes_per_cell = std::uint64_t(BB_DIELECTRIC_QUAD_PIECES) * BB_DIELECTRIC_QUAD_SEGMENTS *
+                                         (std::uint64_t(n) * n + std::uint64_t(m) * m + std::uint64_t(l) * l);
+    result.samples_per_cell = nodes_per_cell;
+    for (size_t c = 0; c < n_cells; ++c) {
+        double sum[2][BB_QUAD_RULES] = {};
+        std::uint64_t n_bad = 0;
+        for (unsigned rule = 0; rule < BB_QUAD_RULES; ++rule)
+            for (unsigned piece = 0; piece < BB_DIELECTRIC_QUAD_PIECES; ++piece) {
+                const size_t slot = c * kSlots + rule * BB_DIELECTRIC_QUAD_PIECES + piece;
+                sum[0][rule] += r[slot];
+                sum[1][rule] += t[slot];
+                n_bad += bad[slot];
+            }
+        if (n_bad > 0)
+            throw NonFiniteError(dielectric_nonfinite_where(req, c) + " (" + std::to_string(n_bad) +
+                                     " quadrature nodes); refusing to report a result",
+                                 c, n_bad);
+        for (int channel = 0; channel < 2; ++channel) {
+            AlbedoValue v;
+            v.value = sum[channel][0];
+            v.error = quadrature_error(sum[channel][0], sum[channel][1], sum[channel][2], false) +
+                      fp_bound * std::max(std::fabs(v.value), 1e-3) + tail;
+            v.samples = nodes_per_cell;
+            v.method = Method::Quadrature;
+            (channel == 0 ? result.reflected : result.transmitted).push_back(v);
+        }
+    }
+    return result;
+}
+
+DielectricResult compute_dielectric_sampled(Engine& engine, const DielectricRequest& req) {
     check_sampling(req.samples, req.replicas);
-    for (const auto& c : req.cells)
-        if (!(c.mu > 0.0 && c.mu <= 1.0) || !(c.alpha >= BB_ALPHA_MIN) || !(c.eta > 0.0) || !std::isfinite(c.eta))
-            throw Error("dielectric cell out of range (mu in (0, 1], alpha >= 1e-4, eta > 0)");
     const std::uint64_t points = req.samples / req.replicas;
     const size_t n_cells = req.cells.size(), n_items = n_cells * req.replicas;
 
@@ -639,9 +737,7 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS_DISK)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
     set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(points), cl_uint(req.replicas), cl_uint(n_cells),
-             cl_int(!req.correlated            ? BB_DIELECTRIC_SHADOWING_SEPARABLE
-                    : req.cycles_transmission ? BB_DIELECTRIC_SHADOWING_CYCLES
-                                              : BB_DIELECTRIC_SHADOWING_BETA),
+             cl_int(dielectric_shadowing(req)),
              b_r, b_t, bad_counts.buffer);
     const double kernel_seconds =
         run_items(engine, kernel, n_items, double(points),
@@ -655,14 +751,35 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     result.kernel_seconds = kernel_seconds;
     result.method = method_text(Method::Importance, req.replicas, points);
     result.vector_width = lanes;
-    auto where = [&](size_t c) {
-        std::ostringstream m;
-        m << "the rough dielectric produced NaN or Inf at mu = " << req.cells[c].mu << ", alpha = " << req.cells[c].alpha
-          << ", eta = " << req.cells[c].eta;
-        return m.str();
-    };
+    auto where = [&](size_t c) { return dielectric_nonfinite_where(req, c); };
     result.reflected = summarize(r, bad, req.replicas, result.samples_per_cell, req.precision, where);
     result.transmitted = summarize(t, bad, req.replicas, result.samples_per_cell, req.precision, where);
+    for (auto* channel : {&result.reflected, &result.transmitted})
+        for (AlbedoValue& v : *channel) {
+            v.samples = result.samples_per_cell;
+            v.method = Method::Importance;
+        }
+    return result;
+}
+
+}  // namespace
+
+DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req) {
+    if (auto shared = shared_dielectric(engine, req)) return std::move(*shared);  // MPI ranks, shards
+    if (req.cells.empty()) throw Error("no cells to integrate");
+    for (const auto& c : req.cells)
+        if (!(c.mu > 0.0 && c.mu <= 1.0) || !(c.alpha >= BB_ALPHA_MIN) || !(c.eta > 0.0) || !std::isfinite(c.eta))
+            throw Error("dielectric cell out of range (mu in (0, 1], alpha >= 1e-4, eta > 0)");
+    if (req.method != Method::Importance && req.method != Method::Quadrature)
+        throw Error(std::string("the rough dielectric is integrated by importance sampling or quadrature, not ") +
+                    method_name(req.method));
+    DielectricResult result =
+        req.method == Method::Quadrature ? compute_dielectric_quadrature(engine, req) : compute_dielectric_sampled(engine, req);
+    for (size_t c = 0; c < result.reflected.size(); ++c)
+        for (const AlbedoValue* v : {&result.reflected[c], &result.transmitted[c]})
+            if (!std::isfinite(v->value) || !std::isfinite(v->error))
+                throw NonFiniteError(dielectric_nonfinite_where(req, c) + " (the integral overflows); refusing to report a result",
+                                     c, 1);
     return result;
 }
 

@@ -128,6 +128,7 @@ std::uint64_t settings_key(const AlbedoRequest& q) {
 std::uint64_t settings_key(const DielectricRequest& q) {
     Hasher h;
     h.add('D');
+    h.add(int(q.method));
     h.add(q.correlated);
     h.add(q.cycles_transmission);
     h.add(q.samples);

@@ -20,6 +20,35 @@ double cell_error(const std::vector<AlbedoValue>& channels) {
 
 }  // namespace
 
+void check_tolerance(double tolerance, Precision precision) {
+    if (!(tolerance > 0.0) || !std::isfinite(tolerance)) throw Error("--tolerance must be a positive number");
+    const double floor = tolerance_floor(precision);
+    if (tolerance < 2.0 * floor) {
+        // The tolerance asked of each integral (a table that adds several gives each a share).
+        char text[160];
+        std::snprintf(text, sizeof text, "--tolerance: %.3g per integral is below what %s arithmetic can certify (about %.2g)",
+                      tolerance, precision_name(precision), 2.0 * floor);
+        throw Error(std::string(text) + (precision == Precision::Float ? "; use --precision double" : ""));
+    }
+}
+
+std::vector<RefineStep> tolerance_steps(const ToleranceRequest& tol, Method method) {
+    // (method, samples) steps, each a round over the cells still above the tolerance.
+    // Quadrature first (auto): its error falls exponentially for smooth lobes; importance
+    // sampling, whose error falls like N^-0.9 with randomised QMC, takes the cells where the
+    // rule stalls (kinks such as Torrance-Sparrow's V-groove min()). Work grows 4x per step.
+    std::vector<RefineStep> steps;
+    if (tol.auto_method || method == Method::Quadrature)
+        for (std::uint64_t s = 4 * 16 * 16; s <= std::min<std::uint64_t>(tol.max_samples, 4ull * 512 * 512); s *= 4)
+            steps.push_back({Method::Quadrature, s});
+    if (tol.auto_method || method != Method::Quadrature) {
+        const Method sampler = tol.auto_method ? Method::Importance : method;
+        for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples; s *= 4) steps.push_back({sampler, s});
+    }
+    if (steps.empty()) throw Error("--max-samples is too small for a first round");
+    return steps;
+}
+
 RefineOutcome refine_to_tolerance(size_t n_cells, const std::vector<RefineStep>& steps, const RefineOptions& options,
                                   const RefineIntegrate& integrate) {
     RefineOutcome out;
@@ -66,34 +95,28 @@ RefineOutcome refine_to_tolerance(size_t n_cells, const std::vector<RefineStep>&
     return out;
 }
 
-AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
-    if (!(tol.tolerance > 0.0) || !std::isfinite(tol.tolerance))
-        throw Error("--tolerance must be a positive number");
-    const double floor = tolerance_floor(req.precision);
-    if (tol.tolerance < 2.0 * floor)
-    {
-        // The tolerance asked of each integral (a table that adds several gives each a share).
-        char text[160];
-        std::snprintf(text, sizeof text, "--tolerance: %.3g per integral is below what %s arithmetic can certify (about %.2g)",
-                      tol.tolerance, precision_name(req.precision), 2.0 * floor);
-        throw Error(std::string(text) + (req.precision == Precision::Float ? "; use --precision double" : ""));
+namespace {
+
+// "tolerance 1e-4: 30 cells by quadrature (1024 points), ...; 3 rounds", from the outcome.
+std::string tolerance_method_text(double tolerance, const RefineOutcome& o) {
+    std::ostringstream m;
+    m << "tolerance " << tolerance << ": ";
+    bool first = true;
+    for (const auto& kv : o.met_by) {
+        m << (first ? "" : ", ") << kv.second << (kv.second == 1 ? " cell" : " cells") << " by " << kv.first;
+        first = false;
     }
+    m << "; " << o.rounds << (o.rounds == 1 ? " round" : " rounds");
+    return m.str();
+}
+
+}  // namespace
+
+AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
+    check_tolerance(tol.tolerance, req.precision);
     if (req.cells.empty()) throw Error("no directions to integrate");
 
-    // The plan: (method, samples) steps, each a round over the cells still above the tolerance.
-    // Quadrature first (auto): its error falls exponentially for smooth lobes; importance
-    // sampling, whose error falls like N^-0.9 with randomised QMC, takes the cells where the
-    // rule stalls (kinks such as Torrance-Sparrow's V-groove min()). Work grows 4x per step.
-    std::vector<RefineStep> steps;
-    const bool quad_first = tol.auto_method || req.method == Method::Quadrature;
-    if (quad_first)
-        for (std::uint64_t s = 4 * 16 * 16; s <= std::min<std::uint64_t>(tol.max_samples, 4ull * 512 * 512); s *= 4)
-            steps.push_back({Method::Quadrature, s});
-    if (tol.auto_method || req.method != Method::Quadrature) {
-        const Method sampler = tol.auto_method ? Method::Importance : req.method;
-        for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples; s *= 4) steps.push_back({sampler, s});
-    }
-    if (steps.empty()) throw Error("--max-samples is too small for a first round");
+    const std::vector<RefineStep> steps = tolerance_steps(tol, req.method);
 
     RefineOptions options;
     options.tolerance = tol.tolerance;
@@ -127,15 +150,7 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
         result.values[c].samples = o.spent[c];  // every round's samples, not just the kept one's
         result.samples_per_cell = std::max(result.samples_per_cell, o.spent[c]);
     }
-    std::ostringstream m;
-    m << "tolerance " << tol.tolerance << ": ";
-    bool first = true;
-    for (const auto& kv : o.met_by) {
-        m << (first ? "" : ", ") << kv.second << (kv.second == 1 ? " cell" : " cells") << " by " << kv.first;
-        first = false;
-    }
-    m << "; " << result.rounds << (result.rounds == 1 ? " round" : " rounds");
-    result.method = m.str();
+    result.method = tolerance_method_text(tol.tolerance, o);
 
     if (!o.missed.empty()) {
         size_t worst = o.missed.front();
@@ -150,6 +165,58 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
         throw Error(e.str(), kExitViolation);
     }
     return result;
+}
+
+
+DielectricResult compute_dielectric_to_tolerance(Engine& engine, const DielectricRequest& req, const ToleranceRequest& tol) {
+    check_tolerance(tol.tolerance, req.precision);
+    if (req.cells.empty()) throw Error("no cells to integrate");
+    const std::vector<RefineStep> steps = tolerance_steps(tol, req.method);
+    RefineOptions options;
+    options.tolerance = tol.tolerance;
+    // Importance rounds alone replace each estimate by the next (their errors fall steadily);
+    // with quadrature rounds in the plan a cell keeps its best estimate, as the albedo's does.
+    options.keep_best = steps.front().method == Method::Quadrature;
+    options.verbose = engine.verbose();
+    const RefineOutcome o =
+        refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
+            DielectricRequest r = req;
+            r.method = step.method;
+            r.samples = step.samples;
+            r.cells.clear();
+            for (size_t c : todo) r.cells.push_back(req.cells[c]);
+            const DielectricResult part = compute_dielectric(engine, r);
+            RefineRound round;
+            for (size_t i = 0; i < todo.size(); ++i) round.values.push_back({part.reflected[i], part.transmitted[i]});
+            round.method = part.method;
+            round.kernel_seconds = part.kernel_seconds;
+            round.vector_width = part.vector_width;
+            return round;
+        });
+    DielectricResult out;
+    out.kernel_seconds = o.kernel_seconds;
+    out.vector_width = o.vector_width;
+    for (size_t c = 0; c < req.cells.size(); ++c) {
+        out.reflected.push_back(o.values[c][0]);
+        out.transmitted.push_back(o.values[c][1]);
+        out.samples_per_cell = std::max(out.samples_per_cell, o.spent[c]);
+    }
+    out.method = tolerance_method_text(tol.tolerance, o);
+    if (!o.missed.empty()) {
+        size_t worst = o.missed.front();
+        auto error_of = [&](size_t c) { return std::max(out.reflected[c].error, out.transmitted[c].error); };
+        for (size_t c : o.missed)
+            if (error_of(c) > error_of(worst)) worst = c;
+        const DielectricCell& w = req.cells[worst];
+        std::ostringstream e;
+        e << "--tolerance " << tol.tolerance << " not met at " << o.missed.size() << " of " << req.cells.size()
+          << " dielectric cells within " << tol.max_samples << " samples per cell; worst: mu = " << w.mu
+          << ", alpha = " << w.alpha << ", eta = " << w.eta << ", error estimate " << error_of(worst)
+          << ". Raise --max-samples, " << (req.precision == Precision::Float ? "use --precision double, " : "")
+          << "or loosen the tolerance";
+        throw Error(e.str(), kExitViolation);
+    }
+    return out;
 }
 
 }  // namespace brdfbake

@@ -51,6 +51,17 @@ struct RefineOutcome {
     std::uint64_t last_step_samples = 0; // the samples of the last step that ran
 };
 
+/// The plan of a tolerance run, one place for every kind: with the auto method (or `method`
+/// Quadrature) the quadrature rules of 16 to 512 nodes per axis first (samples 4 n^2, 4x the
+/// work per step; their error falls exponentially for smooth integrands), then, with the auto
+/// method or a sampling `method`, importance sampling (or that method) from 2^14 samples up to
+/// tolerance.max_samples, 4x per step, for the cells the rule cannot certify. Throws Error when
+/// max_samples leaves no step.
+std::vector<RefineStep> tolerance_steps(const ToleranceRequest& tolerance, Method method);
+
+/// The refusal of a tolerance below what `precision` can certify (twice tolerance_floor).
+void check_tolerance(double tolerance, Precision precision);
+
 /// Runs `steps` in order until every cell's error is at most options.tolerance or the steps
 /// run out; never throws for missed cells (the caller words that error).
 RefineOutcome refine_to_tolerance(size_t n_cells, const std::vector<RefineStep>& steps, const RefineOptions& options,

@@ -2,62 +2,15 @@
 // from inside (1/eta), over (mu_o, alpha, eta).
 #include <algorithm>
 #include <limits>
-#include <sstream>
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/error.h"
-#include "integrate/refine.h"
 #include "tables/lut_common.h"
 
 namespace brdfbake {
 namespace tables {
 namespace {
-
-// The rough dielectric to a tolerance: importance sampling in rounds of 4x the samples over the
-// cells whose larger error (R or T) is still above it; each round's estimate replaces the last.
-DielectricResult dielectric_to_tolerance(Engine& engine, const DielectricRequest& req, const ToleranceRequest& tol) {
-    if (tol.tolerance < 2.0 * tolerance_floor(req.precision))
-        throw Error("--tolerance is below what " + std::string(precision_name(req.precision)) +
-                    " arithmetic can certify");
-    std::vector<RefineStep> steps;
-    for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples; s *= 4) steps.push_back({Method::Importance, s});
-    RefineOptions options;
-    options.tolerance = tol.tolerance;
-    options.keep_best = false;
-    const RefineOutcome o =
-        refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
-            DielectricRequest r = req;
-            r.samples = step.samples;
-            r.cells.clear();
-            for (size_t c : todo) r.cells.push_back(req.cells[c]);
-            const DielectricResult part = compute_dielectric(engine, r);
-            RefineRound round;
-            for (size_t i = 0; i < todo.size(); ++i) round.values.push_back({part.reflected[i], part.transmitted[i]});
-            round.kernel_seconds = part.kernel_seconds;
-            return round;
-        });
-    if (!o.missed.empty()) {
-        const DielectricCell& first = req.cells[o.missed.front()];
-        std::ostringstream e;
-        e << "--tolerance " << tol.tolerance << " not met at " << o.missed.size() << " of " << req.cells.size()
-          << " dielectric texels within " << tol.max_samples << " samples per texel (first: mu = " << first.mu
-          << ", alpha = " << first.alpha << ", eta = " << first.eta << "); raise --max-samples or loosen the tolerance";
-        throw Error(e.str(), kExitViolation);
-    }
-    DielectricResult out;
-    out.kernel_seconds = o.kernel_seconds;
-    out.samples_per_cell = o.last_step_samples;
-    for (const auto& v : o.values) {
-        out.reflected.push_back(v[0]);
-        out.transmitted.push_back(v[1]);
-    }
-    std::ostringstream m;
-    m << "importance sampling, randomised Hammersley, refined to tolerance " << tol.tolerance << " (at most "
-      << out.samples_per_cell << " samples per texel)";
-    out.method = m.str();
-    return out;
-}
 
 Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
     Table t;
@@ -72,6 +25,7 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
     DielectricRequest dr;
     dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
     dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
+    dr.method = r.method;
     dr.samples = r.samples;
     dr.precision = r.precision;
     for (int side = 0; side < 2; ++side)
@@ -91,7 +45,7 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
         }
     DielectricResult res;
     if (!on_device.cells.empty()) {
-        const DielectricResult part = r.tolerance.tolerance > 0.0 ? dielectric_to_tolerance(engine, on_device, r.tolerance)
+        const DielectricResult part = r.tolerance.tolerance > 0.0 ? compute_dielectric_to_tolerance(engine, on_device, r.tolerance)
                                                                   : compute_dielectric(engine, on_device);
         res = part;
         res.reflected.assign(dr.cells.size(), AlbedoValue{});
@@ -139,8 +93,9 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
 }
 
 void validate_dielectric(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
-    if (r.method != Method::Importance || (r.tolerance.tolerance > 0.0 && !r.tolerance.auto_method))
-        throw Error("the dielectric table is computed by importance sampling only; use --method importance or auto");
+    if (r.method != Method::Importance && r.method != Method::Quadrature)
+        throw Error("the dielectric table is computed by importance sampling or quadrature; use --method auto, "
+                    "importance or quadrature");
     if (m.id != BB_MODEL_GGX) throw Error("the dielectric table is computed for GGX microfacets; use --model ggx");
     if (f.kind != BB_FRESNEL_NONE) throw Error("the dielectric table uses the exact dielectric Fresnel term; drop --fresnel");
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)

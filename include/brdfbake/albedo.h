@@ -136,6 +136,10 @@ struct DielectricRequest {
     /// With correlated: T shadowed by 1/(1 + L_o + L_t) as Blender Cycles does, instead of the
     /// Beta-function form of Heitz 2014 eq. 100 (brdf/rough_dielectric.h).
     bool cycles_transmission = false;
+    /// Importance (visible-normal sampling, replicas) or Quadrature (the half-vector rule of
+    /// brdf/dielectric_quadrature.h: n = sqrt(samples / 4) nodes per axis, error from the n/2- and
+    /// n/4-node rules). Other methods are refused.
+    Method method = Method::Importance;
     std::uint64_t samples = 1u << 18;
     unsigned replicas = 16;
     Precision precision = Precision::Float;
@@ -155,7 +159,16 @@ struct DielectricResult {
 };
 
 /// Reflected and transmitted energy fractions of a rough dielectric (kernels/dielectric.cl).
+/// Each cell's value depends only on the cell and the request's other fields, never on which
+/// other cells share the request.
 DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& request);
+
+/// The same to a tolerance: the plan of tolerance_steps (quadrature first for the auto method
+/// or --method quadrature, then importance sampling for the cells the rule cannot certify),
+/// every round over the cells still above it. Throws Error (exit status 1) naming the worst cell
+/// when cells remain above it.
+DielectricResult compute_dielectric_to_tolerance(Engine& engine, const DielectricRequest& request,
+                                                 const ToleranceRequest& tolerance);
 
 /// The cells for a list of mu values at one azimuth, all with the same model parameters.
 std::vector<AlbedoCell> cells_for(const std::vector<double>& mus, double phi, const ParamBlock& params);

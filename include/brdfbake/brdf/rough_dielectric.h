@@ -66,7 +66,16 @@ BB_FN real bb_stirling_tail(real z) {
  * difference, so that no two large logarithms cancel (at b = 1e6 each is about 1.3e7):
  *   D = -(b' - 1/2) log1p(d/b') - d log c' + d + tail(b') - tail(c') - log(P_b / P_c),
  * d = c' - b', P the shift's product (1 without a shift). Branch-free: the vector kernels use it. */
-BB_FN real bb_beta(real a, real b) {
+BB_FN real bb_lgamma(real a) {
+#ifdef __OPENCL_C_VERSION__
+    return lgamma(a);
+#else
+    return std::lgamma(a);
+#endif
+}
+
+/* B(a, b) given lga = log Gamma(a) (a cell's constant: the quadrature computes it once). */
+BB_FN real bb_beta_lga(real a, real b, real lga) {
     real c = a + b;
     bb_mask sb = b < BB_R(8.0), sc = c < BB_R(8.0);
     real pb = BB_R(1.0), pc = BB_R(1.0);
@@ -81,30 +90,30 @@ BB_FN real bb_beta(real a, real b) {
     real d = a + bb_select(BB_R(0.0), BB_R(8.0), sc) - bb_select(BB_R(0.0), BB_R(8.0), sb);
     real diff = -(bs - BB_R(0.5)) * bb_log1p(d / bs) - d * bb_log(cs) + d + bb_stirling_tail(bs) -
                 bb_stirling_tail(cs) - bb_log(pb / pc);
-#ifdef __OPENCL_C_VERSION__
-    real lga = lgamma(a);
-#else
-    real lga = std::lgamma(a);
-#endif
     return bb_exp(lga + diff);
 }
 
-/* One sample of the reflected and transmitted fractions from the disk point d of the visible-
- * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
- * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int correlated, bb_vec2 d) {
+BB_FN real bb_beta(real a, real b) { return bb_beta_lga(a, b, bb_lgamma(a)); }
+
+/* The split of the energy arriving from wo at one microfacet wh (wo.wh > 0) [WMLT07 eq. 22]:
+ * F G2_R(wo, wr) reflected into wr = reflect(wo, wh) where wr.z > 0, and (1 - F) G2_T(wo, wt)
+ * transmitted into wt = refract(wo, wh, eta) where wt.z < 0 and there is no total internal
+ * reflection (the shadowing forms of the head of this file). g1o = G1(wo), lo = Lambda(wo) and
+ * lga_o = log Gamma(1 + lo) are the cell's (bb_rough_dielectric_cell). The
+ * importance sampler (below) divides both by G1(wo), the visible-normal density having taken
+ * G1(wo) D(wh) (wo.wh) / wo.z; the quadrature (dielectric_quadrature.h) multiplies them by
+ * D(wh) (wo.wh) / wo.z. Branch-free: the vector kernels evaluate it on float16/double8 lanes. */
+BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, real eta, int correlated, real g1o,
+                                      real lo, real lga_o) {
     bb_rt out;
-    bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
     real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
     real f = bb_fresnel_dielectric(c, eta);
-    real g1o = bb_ggx_g1(wo, ax, ay);
-    real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
 
     bb_vec3 wr = bb_reflect(wo, wh);
     /* each G2 from its own G1 calls, merged by the compiler (as bb_smith_g2) */
-    real g2r = bb_select(bb_g2_separable_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wr, ax, ay)),
-                         bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wr, ax, ay)), correlated != 0);
-    out.r = bb_select(BB_R(0.0), f * g2r * inv_g1o, wr.z > BB_R(0.0) && g1o > BB_R(0.0));
+    real g1r = bb_ggx_g1(wr, ax, ay);
+    real g2r = bb_select(bb_g2_separable_from_g1(g1o, g1r), bb_g2_correlated_from_g1(g1o, g1r), correlated != 0);
+    out.r = bb_select(BB_R(0.0), f * g2r, wr.z > BB_R(0.0));
 
     bb_vec3 wt = bb_refract(wo, wh, c, eta);
     bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
@@ -113,12 +122,27 @@ BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real e
      * (the Beta function's log-gammas are the costliest part of a sample) */
     real g2t = g1o * g1t;
     if (correlated == BB_DIELECTRIC_SHADOWING_BETA) {
-        real lo = bb_ggx_lambda(wo, ax, ay), lt = bb_ggx_lambda(wt_up, ax, ay);
-        g2t = bb_select(BB_R(0.0), bb_beta(BB_R(1.0) + lo, BB_R(1.0) + lt), g1o > BB_R(0.0) && g1t > BB_R(0.0));
+        real lt = bb_ggx_lambda(wt_up, ax, ay);
+        g2t = bb_select(BB_R(0.0), bb_beta_lga(BB_R(1.0) + lo, BB_R(1.0) + lt, lga_o), g1o > BB_R(0.0) && g1t > BB_R(0.0));
     } else if (correlated == BB_DIELECTRIC_SHADOWING_CYCLES) {
         g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
     }
-    out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t * inv_g1o, wt.z < BB_R(0.0) && g1o > BB_R(0.0));
+    out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t, wt.z < BB_R(0.0));
+    return out;
+}
+
+/* One sample of the reflected and transmitted fractions from the disk point d of the visible-
+ * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
+ * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
+BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int correlated, bb_vec2 d) {
+    bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
+    real g1o = bb_ggx_g1(wo, ax, ay);
+    real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
+    real lo = bb_ggx_lambda(wo, ax, ay);
+    bb_rt out = bb_rough_dielectric_split(wo, wh, ax, ay, eta, correlated, g1o, lo,
+                                          correlated == BB_DIELECTRIC_SHADOWING_BETA ? bb_lgamma(BB_R(1.0) + lo) : BB_R(0.0));
+    out.r = bb_select(BB_R(0.0), out.r * inv_g1o, g1o > BB_R(0.0));
+    out.t = bb_select(BB_R(0.0), out.t * inv_g1o, g1o > BB_R(0.0));
     return out;
 }
 

@@ -1,0 +1,204 @@
+/* Quadrature of the rough dielectric's reflected and transmitted energy fractions (R, T of
+ * rough_dielectric.h) in half-vector space, shared by the host and kernels/dielectric.cl.
+ *
+ * Both fractions are integrals over the microfacet normal m of the visible-normal measure
+ * D(m) (wo.m) / wo.z [H14 eq. 38; WMLT07 eq. 22], split at each microfacet as the importance
+ * sampler splits it (bb_rough_dielectric_split):
+ *   R = int D(m) (wo.m)/wo.z  F(wo.m) G2_R(wo, wr)        dm  over wr = reflect(wo, m) above,
+ *   T = int D(m) (wo.m)/wo.z  (1 - F(wo.m)) G2_T(wo, wt)  dm  over wt = refract(wo, m) below,
+ * with no Jacobian of the reflection or refraction map (the integral runs over m, not over the
+ * outgoing direction). The sampler's estimator is this integrand divided by the visible-normal
+ * density G1(wo) D (wo.m)/wo.z, so both methods integrate the same function.
+ *
+ * m is parameterised as the albedo's half-vector rule does (integrands.h): azimuth delta of m
+ * (phi_o = 0; the lobe is isotropic, so delta runs over [0, pi] and counts twice), slope
+ * tan(theta_m) = a sinh(t) along the row. Each row is cut where the integrand has a kink or a
+ * square-root edge, so that it is smooth on every segment:
+ *   t_R  where wr reaches the horizon (bb_quad_tan_max, as for the albedo);
+ *   t_V  where wo.m = 0 (tan = wo.z / -B for B = sin_o cos(delta) < 0; none for B >= 0);
+ *   t_a, t_b  for eta < 1, where wo.m = c_crit = sqrt(1 - eta^2), the edge of total internal
+ *        reflection: wo.m = A cos(theta) + B sin(theta) = rho cos(theta - phi0) gives
+ *        theta = phi0 -+ acos(c_crit / rho) in closed form; 1 - F grows like sqrt(wo.m - c_crit)
+ *        there [Born and Wolf 1.5.4];
+ *   t_w  for eta < 1, where the refracted direction reaches the horizon (wt.z = 0), found by
+ *        bisection between t_a and t_b where wt.z changes sign there.
+ * Each segment [t0, t1] is integrated through the smoothstep map t = t0 + (t1 - t0) S(x),
+ * S(x) = x^2 (3 - 2x), whose Jacobian 6x(1 - x) vanishes at both ends: a square-root edge
+ * becomes sqrt(S(x)) ~ x, smooth for the Gauss-Legendre rule. The azimuth is cut the same way:
+ * [0, delta*], [delta*, pi/2], [pi/2, pi], delta* where the whole row falls under total
+ * internal reflection (rho(delta*) = c_crit; pi/2 if no row does), pi/2 where rows change from
+ * unbounded (B >= 0) to ending at wo.m = 0.
+ *
+ * GGX has no slope beyond which D vanishes: rows with B >= 0 end at slope r_cap. The part of the
+ * visible-normal measure beyond slope r is at most a^2/r^2 + 2 a^2 tan(theta_o)/r (the GGX slope
+ * density a^2/(pi (a^2 + r^2)^2) times 1 + r tan(theta_o) >= (wo.m)/(wo.z cos(theta_m))), so
+ * r_cap = a^2 (1 + 2 tan(theta_o)) / eps + a leaves out less than eps = BB_EPS_REAL / 16 of R + T.
+ *
+ * References: [H14] Heitz, "Understanding the Masking-Shadowing Function in Microfacet-Based
+ * BRDFs", JCGT 3(2), 2014; [WMLT07] Walter et al., "Microfacet Models for Refraction through
+ * Rough Surfaces", EGSR 2007. */
+#ifndef BRDFBAKE_BRDF_DIELECTRIC_QUADRATURE_H
+#define BRDFBAKE_BRDF_DIELECTRIC_QUADRATURE_H
+
+#include "brdfbake/brdf/integrands.h"
+#include "brdfbake/brdf/rough_dielectric.h"
+
+/* Azimuth pieces per cell and rule, and segments per row (the kernel's output layout is per cell
+ * BB_QUAD_RULES x BB_DIELECTRIC_QUAD_PIECES sums of R and of T, rule-major). */
+#define BB_DIELECTRIC_QUAD_PIECES 3
+#define BB_DIELECTRIC_QUAD_SEGMENTS 5
+/* The kernel entry point (kernels/dielectric.cl, built with -D BB_QUADRATURE). */
+#define BB_ENTRY_DIELECTRIC_QUADRATURE dielectric_quadrature
+#define BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS dielectric_quadrature_rows
+
+/* The smoothstep map of a segment: S(x) = x^2 (3 - 2x) and its derivative 6x(1 - x). */
+BB_FN real bb_smoothstep(real x) { return x * x * (BB_R(3.0) - BB_R(2.0) * x); }
+BB_FN real bb_smoothstep_d(real x) { return BB_R(6.0) * x * (BB_R(1.0) - x); }
+
+/* The slope where every row ends (see the head of this file). */
+BB_FN real bb_dielectric_r_cap(bb_vec3 wo, real a) {
+    real tan_o = wo.x / wo.z; /* phi_o = 0: wo.x = sin(theta_o) */
+    return a * a * (BB_R(1.0) + BB_R(2.0) * tan_o) / (BB_EPS_REAL / BB_R(16.0)) + a;
+}
+
+/* The row coordinate t = asinh(r/a) of slope r. */
+BB_FN real bb_dielectric_t_of_r(real r, real a) {
+    real x = r / a;
+    return bb_log(x + bb_sqrt(x * x + BB_R(1.0)));
+}
+
+/* The slope tan(theta) of polar angle theta, 0 below 0 and r_cap from pi/2 on. */
+BB_FN real bb_dielectric_r_of_theta(real theta, real r_cap) {
+    real c = bb_cos(theta), s = bb_sin(theta);
+    real r = bb_select(r_cap, bb_min(r_cap, s / c), c > BB_R(0.0));
+    return bb_select(r, BB_R(0.0), theta <= BB_R(0.0));
+}
+
+/* The cosine of the critical angle of total internal reflection, sqrt(1 - eta^2) for eta < 1,
+ * and 0 for eta >= 1 (no such angle). */
+BB_FN real bb_dielectric_c_crit(real eta) { return bb_safe_sqrt((BB_R(1.0) - eta) * (BB_R(1.0) + eta)); }
+
+/* The azimuth interval [lo, hi] of piece 0, 1 or 2 (see the head of this file). */
+typedef struct {
+    real lo, hi;
+} bb_interval;
+
+BB_FN bb_interval bb_dielectric_piece(bb_vec3 wo, real eta, unsigned int piece) {
+    const real q = BB_R(0.5) * BB_PI;
+    real cc = bb_dielectric_c_crit(eta), sin_o = wo.x;
+    /* rho(delta)^2 = wo.z^2 + sin_o^2 cos^2(delta) = c_crit^2 */
+    real cos_star = bb_safe_sqrt((cc - wo.z) * (cc + wo.z)) / bb_select(BB_R(1.0), sin_o, sin_o > BB_R(0.0));
+    real star = bb_select(q, bb_atan2(bb_safe_sqrt(BB_R(1.0) - cos_star * cos_star), cos_star),
+                          eta < BB_R(1.0) && wo.z < cc && sin_o > BB_R(0.0) && cos_star <= BB_R(1.0));
+    bb_interval out;
+    out.lo = piece == 0u ? BB_R(0.0) : (piece == 1u ? star : q);
+    out.hi = piece == 0u ? star : (piece == 1u ? q : BB_R(2.0) * q);
+    return out;
+}
+
+/* One row: the half vectors at azimuth delta, its segments [t[k], t[k + 1]] ascending. */
+typedef struct {
+    real cos_phi, sin_phi;
+    real t[BB_DIELECTRIC_QUAD_SEGMENTS + 1];
+} bb_dielectric_row;
+
+/* The half vector at row coordinate t, and D J there (J = dm / (dt d delta)), from D J cos(theta_m)
+ * as the albedo's rule forms it (bb_quad_halfvector_point). */
+typedef struct {
+    bb_vec3 h;
+    real dj;
+} bb_dielectric_node;
+
+BB_FN bb_dielectric_node bb_dielectric_node_at(real cos_phi, real sin_phi, real a, real t) {
+    real em1 = bb_expm1(t);
+    real sinh_t = BB_R(0.5) * em1 * (em1 + BB_R(2.0)) / (em1 + BB_R(1.0));
+    real cosh_t = sinh_t + BB_R(1.0) / (em1 + BB_R(1.0));
+    real r = a * sinh_t;
+    real ch = BB_R(1.0) / bb_sqrt(BB_R(1.0) + r * r);
+    real sh = r * ch;
+    bb_dielectric_node n;
+    n.h = bb_v3(sh * cos_phi, sh * sin_phi, ch);
+    real djc = a * r * cosh_t * bb_quad_slope_density(bb_make_quad_dist(BB_QUAD_GGX, a, a, BB_R(0.0)), a * a, r);
+    n.dj = djc * bb_sqrt(BB_R(1.0) + r * r);
+    return n;
+}
+
+/* wt.z of the refracted direction at row coordinate t (negative: transmitted below). */
+BB_FN real bb_dielectric_wt_z(bb_vec3 wo, real cos_phi, real sin_phi, real a, real eta, real t) {
+    bb_dielectric_node n = bb_dielectric_node_at(cos_phi, sin_phi, a, t);
+    real c = bb_clamp(bb_dot(wo, n.h), BB_R(0.0), BB_R(1.0));
+    return bb_refract(wo, n.h, c, eta).z;
+}
+
+/* Swaps a and b into ascending order (a sorting-network comparator). */
+#define BB_SORT2(a, b)                   \
+    do {                                 \
+        const real lo_ = bb_min((a), (b)); \
+        (b) = bb_max((a), (b));          \
+        (a) = lo_;                       \
+    } while (0)
+
+BB_FN bb_dielectric_row bb_make_dielectric_row(bb_vec3 wo, real a, real eta, real r_cap, real delta) {
+    bb_dielectric_row row;
+    row.cos_phi = bb_cos(delta);
+    row.sin_phi = bb_sin(delta);
+    real A = wo.z, sin_o = wo.x, B = sin_o * row.cos_phi;
+    /* wo.m = 0 and wr.z = 0 */
+    real r_v = bb_select(r_cap, bb_min(r_cap, A / -B), B < BB_R(0.0));
+    real r_r = bb_min(bb_quad_tan_max(A, sin_o, row.cos_phi), r_v);
+    /* the edges of total internal reflection, wo.m = c_crit */
+    real cc = bb_dielectric_c_crit(eta);
+    real rho = bb_sqrt(A * A + B * B), phi0 = bb_atan2(B, A);
+    real psi = bb_atan2(bb_safe_sqrt((rho - cc) * (rho + cc)), cc);
+    bb_mask crit = eta < BB_R(1.0) && rho > cc;
+    real r_a = bb_select(BB_R(0.0), bb_min(bb_dielectric_r_of_theta(phi0 - psi, r_cap), r_v), crit);
+    real r_b = bb_select(BB_R(0.0), bb_min(bb_dielectric_r_of_theta(phi0 + psi, r_cap), r_v), crit);
+    real t_v = bb_dielectric_t_of_r(r_v, a);
+    real t_a = bb_dielectric_t_of_r(r_a, a), t_b = bb_dielectric_t_of_r(r_b, a);
+    real t_r = bb_dielectric_t_of_r(r_r, a);
+    /* where wt reaches the horizon between t_a and t_b: bisection where wt.z changes sign */
+    real t_w = t_v;
+    real g_a = bb_dielectric_wt_z(wo, row.cos_phi, row.sin_phi, a, eta, t_a);
+    real g_b = bb_dielectric_wt_z(wo, row.cos_phi, row.sin_phi, a, eta, t_b);
+    bb_mask cross = crit && t_b > t_a && ((g_a < BB_R(0.0)) != (g_b < BB_R(0.0)));
+    if (!bb_all(!cross)) {
+        real lo = t_a, hi = t_b;
+        /* 40 halvings of at most t ~ 50: the cut lands within 5e-11 of the horizon, where the
+         * integrand is continuous with a jump of slope, so the rule's error from it is ~1e-21 */
+        for (int k = 0; k < 40; ++k) {
+            real mid = BB_R(0.5) * (lo + hi);
+            bb_mask same = (bb_dielectric_wt_z(wo, row.cos_phi, row.sin_phi, a, eta, mid) < BB_R(0.0)) == (g_a < BB_R(0.0));
+            lo = bb_select(lo, mid, same);
+            hi = bb_select(mid, hi, same);
+        }
+        t_w = bb_select(t_v, BB_R(0.5) * (lo + hi), cross);
+    }
+    BB_SORT2(t_a, t_b);
+    BB_SORT2(t_w, t_r);
+    BB_SORT2(t_a, t_w);
+    BB_SORT2(t_b, t_r);
+    BB_SORT2(t_b, t_w);
+    row.t[0] = BB_R(0.0);
+    row.t[1] = t_a;
+    row.t[2] = t_b;
+    row.t[3] = t_w;
+    row.t[4] = t_r;
+    row.t[5] = t_v;
+    return row;
+}
+
+/* The integrand at row coordinate t: D J (wo.m)/wo.z times the microfacet's split, so that
+ * R = sum over pieces, rows and segments of (weights) x .r, and T likewise with .t. */
+BB_FN bb_rt bb_dielectric_quad_point(bb_vec3 wo, real a, real eta, int correlated, real g1o, real lo, real lga_o,
+                                     real cos_phi, real sin_phi, real t) {
+    bb_dielectric_node n = bb_dielectric_node_at(cos_phi, sin_phi, a, t);
+    real c = bb_dot(wo, n.h);
+    real w = n.dj * c / wo.z;
+    bb_rt s = bb_rough_dielectric_split(wo, n.h, a, a, eta, correlated, g1o, lo, lga_o);
+    bb_mask ok = c > BB_R(0.0);
+    s.r = bb_select(BB_R(0.0), w * s.r, ok);
+    s.t = bb_select(BB_R(0.0), w * s.t, ok);
+    return s;
+}
+
+#endif /* BRDFBAKE_BRDF_DIELECTRIC_QUADRATURE_H */
