@@ -43,14 +43,6 @@
 #include "brdfbake/brdf/integrands.h"
 #endif
 
-/* Kahan-compensated accumulation: a float sum of 2^16 terms keeps ~1e-7 relative accuracy. */
-#define BB_KAHAN_ADD(sum, comp, x)       \
-    do {                                 \
-        const real y_ = (x) - (comp);    \
-        const real t_ = (sum) + y_;      \
-        (comp) = (t_ - (sum)) - y_;      \
-        (sum) = t_;                      \
-    } while (0)
 
 /* Reads the cell's parameters (into every lane of a vector build); 0 if any is not finite. A
  * non-finite parameter would hide behind the models' guards (x > 0 is false for NaN) and turn
@@ -96,12 +88,6 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
         const unsigned int n_coarse, const unsigned int n_coarsest, const unsigned int n_cells,   \
         __global bb_scalar *piece_sum, __global unsigned int *bad_count
 
-/* The length of a rule's array of nodes: padded to a multiple of the vector width. */
-#ifdef BB_VECTOR_WIDTH
-#define BB_QUAD_PADDED(m) (((m) + BB_VECTOR_WIDTH - 1u) / BB_VECTOR_WIDTH * BB_VECTOR_WIDTH)
-#else
-#define BB_QUAD_PADDED(m) (m)
-#endif
 
 /* The prologue of the quadrature kernels: work-item gid is (cell, rule, piece) (returns beyond
  * the last): rule 0 has n_fine nodes per axis, rule 1 n_coarse, rule 2 n_coarsest (the error

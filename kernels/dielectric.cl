@@ -17,14 +17,6 @@
 #ifdef BB_QUADRATURE
 #include "brdfbake/brdf/dielectric_quadrature.h"
 
-/* Kahan-compensated accumulation (as kernels/albedo.cl). */
-#define BB_KAHAN_ADD(sum, comp, x)       \
-    do {                                 \
-        const real y_ = (x) - (comp);    \
-        const real t_ = (sum) + y_;      \
-        (comp) = (t_ - (sum)) - y_;      \
-        (sum) = t_;                      \
-    } while (0)
 
 /* The arguments of both quadrature kernels. */
 #define BB_DIELECTRIC_QUADRATURE_ARGS                                                                  \
@@ -34,12 +26,6 @@
         const int correlated, __global bb_scalar *piece_r, __global bb_scalar *piece_t,                  \
         __global unsigned int *bad_count
 
-/* The length of a rule's array of nodes: padded to a multiple of the vector width. */
-#ifdef BB_VECTOR_WIDTH
-#define BB_QUAD_PADDED(m) (((m) + BB_VECTOR_WIDTH - 1u) / BB_VECTOR_WIDTH * BB_VECTOR_WIDTH)
-#else
-#define BB_QUAD_PADDED(m) (m)
-#endif
 
 /* The prologue of both: work-item gid is (cell, rule, piece) (returns beyond the last); declares
  * the rule's n abscissae x and weights wt, the cell's wo, a, eta, g1o, r_cap and the piece's

@@ -39,7 +39,7 @@ struct LutRequest {
     std::vector<std::string> axes;
     std::vector<std::string> flip;  // axes stored from their upper end (texel 0 at hi)
     std::uint64_t samples = 1u << 18;   // per texel (per mu node for eavg)
-    Method method = Method::Importance; // with a fixed sample count; the dielectric table: importance only
+    Method method = Method::Importance; // with a fixed sample count; the dielectric tables: importance or quadrature
     ToleranceRequest tolerance;         // tolerance.tolerance > 0: refine every texel to it instead
     Precision precision = Precision::Float;
 };

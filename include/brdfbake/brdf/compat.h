@@ -208,4 +208,21 @@ BB_FN unsigned int bb_lane_count(bb_mask m) {
 }
 #endif
 
+/* Kernel helpers both kernel files use (kernels/albedo.cl, kernels/dielectric.cl). */
+/* Kahan-compensated accumulation: a float sum of 2^16 terms keeps ~1e-7 relative accuracy. */
+#define BB_KAHAN_ADD(sum, comp, x)       \
+    do {                                 \
+        const real y_ = (x) - (comp);    \
+        const real t_ = (sum) + y_;      \
+        (comp) = (t_ - (sum)) - y_;      \
+        (sum) = t_;                      \
+    } while (0)
+
+/* The length of a rule's array of nodes: padded to a multiple of the vector width. */
+#ifdef BB_VECTOR_WIDTH
+#define BB_QUAD_PADDED(m) (((m) + BB_VECTOR_WIDTH - 1u) / BB_VECTOR_WIDTH * BB_VECTOR_WIDTH)
+#else
+#define BB_QUAD_PADDED(m) (m)
+#endif
+
 #endif /* BRDFBAKE_BRDF_COMPAT_H */

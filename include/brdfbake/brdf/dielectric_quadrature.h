@@ -47,9 +47,6 @@
  * BB_QUAD_RULES x BB_DIELECTRIC_QUAD_PIECES sums of R and of T, rule-major). */
 #define BB_DIELECTRIC_QUAD_PIECES 3
 #define BB_DIELECTRIC_QUAD_SEGMENTS 5
-/* The kernel entry point (kernels/dielectric.cl, built with -D BB_QUADRATURE). */
-#define BB_ENTRY_DIELECTRIC_QUADRATURE dielectric_quadrature
-#define BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS dielectric_quadrature_rows
 
 /* The smoothstep map of a segment: S(x) = x^2 (3 - 2x) and its derivative 6x(1 - x). */
 BB_FN real bb_smoothstep(real x) { return x * x * (BB_R(3.0) - BB_R(2.0) * x); }

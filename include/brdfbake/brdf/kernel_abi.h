@@ -23,6 +23,10 @@
 /* -D BB_QUADRATURE: the scalar rule, and with -D BB_VECTOR_WIDTH one row per lane. */
 #define BB_ENTRY_ALBEDO_QUADRATURE albedo_quadrature
 #define BB_ENTRY_ALBEDO_QUADRATURE_ROWS albedo_quadrature_rows
+/* The rough dielectric by quadrature (kernels/dielectric.cl built with -D BB_QUADRATURE; output
+ * layout in brdf/dielectric_quadrature.h): scalar, and one row of the rule per lane. */
+#define BB_ENTRY_DIELECTRIC_QUADRATURE dielectric_quadrature
+#define BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS dielectric_quadrature_rows
 
 /* The `method` argument of BB_ENTRY_ALBEDO_REPLICAS: the point source and the warp. */
 #define BB_METHOD_IMPORTANCE 0 /* the model's sampler, randomised Hammersley points */
