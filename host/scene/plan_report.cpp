@@ -157,11 +157,12 @@ std::string plan_text(const Plan& p) {
         for (const auto& w : p.warnings) o << "  warning: " << w << "\n";
     }
     o << "\ntotal: " << p.tables.size() << " tables, " << human_count(total_samples) << " samples, about "
-      << human_seconds(total_s + p.build_seconds + p.startup_seconds) << " (" << human_seconds(total_s)
+      << human_seconds(total_s + p.build_seconds + p.startup_seconds + p.report_seconds) << " (" << human_seconds(total_s)
       << " integrating at " << human_count(p.samples_per_second) << " samples/s and writing each table and its preview: "
       << p.throughput_basis << "; " << human_seconds(p.startup_seconds) << " start-up; "
       << human_seconds(p.build_seconds) << " for " << p.programs << " kernel build" << (p.programs == 1 ? "" : "s")
-      << ", cached by PoCL after the first run), peak memory " << human_bytes(peak_mem) << ", " << human_bytes(disk)
+      << ", cached by PoCL after the first run; " << human_seconds(p.report_seconds) << " for the report's "
+      << p.report_checks << " lobe check" << (p.report_checks == 1 ? "" : "s") << ", skipped by --no-report), peak memory " << human_bytes(peak_mem) << ", " << human_bytes(disk)
       << " on disk\n";
     return o.str();
 }
@@ -234,8 +235,10 @@ std::string plan_json(const Plan& p) {
     }
     j["no_table"] = p.no_table;
     j["warnings"] = p.warnings;
-    j["estimate"] = {{"seconds", total_s + p.build_seconds + p.startup_seconds},
+    j["estimate"] = {{"seconds", total_s + p.build_seconds + p.startup_seconds + p.report_seconds},
                      {"startup_seconds", p.startup_seconds},
+                     {"report_seconds", p.report_seconds},
+                     {"report_checks", p.report_checks},
                      {"integration_seconds", total_s},
                      {"kernel_programs", p.programs},
                      {"kernel_build_seconds", p.build_seconds},

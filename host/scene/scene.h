@@ -151,6 +151,8 @@ struct Plan {
     int programs = 0;                         // kernel programs the bake builds (model x Fresnel kind)
     double build_seconds = 0.0;               // estimated kernel build time (first run; PoCL caches)
     double startup_seconds = 0.0;             // process, device and folder set-up
+    int report_checks = 0;                    // lobe checks of the bake report (index.html)
+    double report_seconds = 0.0;              // their estimated time (bake --no-report skips them)
     double samples_per_second = 0.0;          // throughput the estimates assume
     std::string throughput_basis;             // where that number comes from
     SceneSettings settings;
