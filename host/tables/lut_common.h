@@ -76,6 +76,8 @@ TableKind dielectric_kind();
 TableKind conductor_kind();
 TableKind sheen_albedo_kind();
 TableKind dielectric_eavg_kind();
+TableKind gen_schlick_kind();
+TableKind gen_schlick_ior_kind();
 
 }  // namespace tables
 }  // namespace brdfbake
