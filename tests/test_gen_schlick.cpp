@@ -13,6 +13,7 @@
 #include "brdfbake/lut.h"
 #include "brdfbake/spec.h"
 #include "reference/gen_schlick_reference.h"
+#include "models/key_reader.h"
 #include "models/params.h"
 #include "support.h"
 

@@ -13,6 +13,7 @@
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/error.h"
+#include "models/key_reader.h"
 #include "tables/lut_common.h"
 
 namespace brdfbake {
