@@ -6,8 +6,14 @@
 //   gen-schlick:      w = (1 - cos)^exponent, exponent = 5 (1 - z) / z  (z = 1/2: Schlick's 5),
 //   gen-schlick-ior:  w = (F_dielectric(cos, eta) - F0) / (1 - F0), F0 = ((eta - 1)/(eta + 1))^2,
 //                     eta = (1 + z^2) / (1 - z^2)  (z = sqrt((eta - 1)/(eta + 1))),
-// z clamped to [1e-4, 0.99] as Cycles computes its texels. docs/tables.md says how Cycles'
-// Monte-Carlo estimator differs (it averages F over visible normals).
+// z clamped to [1e-4, 0.99] as Cycles computes its texels. The README's "Generalized-Schlick
+// tables" says how Cycles' Monte-Carlo estimator differs (it averages F over visible normals).
+//
+// dfg-f82: the split sum of an F82-tint metal (Kutz et al. 2021; the OpenPBR Surface
+// specification; Hoffman 2019), whose F = F0 + (1 - F0)(1 - cos)^5 - b cos (1 - cos)^6 needs a
+// third channel beside Karis' A and B: C, the lobe weighted by cos (1 - cos)^6; specular =
+// F0 A + B - b C. (Cycles reads its ggx_gen_schlick_s at exponent 5 for F82-tint and leaves the
+// b term out of its albedo estimate: bsdf_microfacet.h marks it as a TODO.)
 #include <algorithm>
 #include <cmath>
 
@@ -110,6 +116,44 @@ Table compute_gen_schlick_ior(Engine& engine, const LutRequest& r, const ModelCo
     return gen_schlick_table(engine, r, m, true);
 }
 
+/// The F82 edge weight alone, F = cos (1 - cos)^6 (f0 = f90 = 0, b = -1).
+FresnelConfig f82_edge_weight() {
+    FresnelConfig f;
+    f.kind = BB_FRESNEL_GEN_SCHLICK;
+    f.params[BB_GEN_SCHLICK_EXPONENT] = 5.0;
+    f.params[BB_GEN_SCHLICK_B] = -1.0;
+    f.canonical = "cos (1 - cos)^6 (the F82 edge term)";
+    return f;
+}
+
+/// A = E - B, B and C, each integral to a third of the tolerance; the error their sum.
+Table compute_dfg_f82(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    const double third = 1.0 / 3.0;
+    const AlbedoResult e = integrate(engine, r, m, resolve_fresnel("none"), g.cells, third);
+    const AlbedoResult b = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), g.cells, third);
+    const AlbedoResult c = integrate(engine, r, m, f82_edge_weight(), g.cells, third);
+    t.channels = {"A", "B", "C"};
+    t.values.assign(3, {});
+    for (size_t i = 0; i < g.cells.size(); ++i) {
+        t.values[0].push_back(e.values[i].value - b.values[i].value);
+        t.values[1].push_back(b.values[i].value);
+        t.values[2].push_back(c.values[i].value);
+        t.error.push_back(e.values[i].error + b.values[i].error + c.values[i].error);
+    }
+    t.quantity = "split-sum terms of an F82-tint metal: A = integral of (f/F)(1 - (1 - wo.wh)^5) cos, B = integral of "
+                 "(f/F)(1 - wo.wh)^5 cos, C = integral of (f/F)(wo.wh)(1 - wo.wh)^6 cos; specular = F0 A + B - b C";
+    describe(t, r, m, "factored out (split sum with the F82 term)", e.method, e.samples_per_cell, g.clamped);
+    return std::move(g.table);
+}
+
+std::vector<std::string> dfg_f82_programs(const LutRequest& r) {
+    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick", "albedo|" + r.model + "|gen-schlick"};
+}
+
+int three(const LutRequest&) { return 3; }
+
 std::vector<std::string> gen_schlick_programs(const LutRequest& r) {
     return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|gen-schlick"};
 }
@@ -156,6 +200,18 @@ TableKind gen_schlick_ior_kind() {
                      "generalized-Schlick factor s(mu_o, alpha, z) of the dielectric remapped to f0..f90, "
                      "eta = (1 + z^2)/(1 - z^2) (Cycles' ggx_gen_schlick_ior_s)",
                      true);
+}
+
+TableKind dfg_f82_kind() {
+    TableKind k = variant_of(dfg_kind(), TableKindId::DfgF82, "dfg-f82",
+                             "split-sum terms A, B and the F82-tint edge term C = integral of (f/F) (wo.wh)(1 - wo.wh)^6 "
+                             "cos over (mu_o, alpha); specular = F0 A + B - b C (Kutz et al. 2021, OpenPBR)",
+                             compute_dfg_f82);
+    k.kernel_programs = dfg_f82_programs;
+    k.plan_fresnel = "factored out (split sum with the F82 term)";
+    k.value_channels = three;
+    k.integrations = three;
+    return k;
 }
 
 }  // namespace tables
