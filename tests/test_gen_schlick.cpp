@@ -6,6 +6,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <fstream>
 
@@ -35,6 +36,18 @@ TEST_CASE("gen-schlick Fresnel: Schlick's form with a free f90 and exponent", "[
     for (double mu : {0.0, 0.3, 1.0}) CHECK(fresnel_at(d, mu) == Approx(0.04 + 0.96 * std::pow(1 - mu, 5)).margin(1e-15));
     // exponent 0: f90 at every angle.
     CHECK(fresnel_at(resolve_fresnel("gen-schlick:f0=0.1,f90=0.6,exponent=0"), 0.4) == Approx(0.6));
+}
+
+TEST_CASE("gen-schlick-ior Fresnel: the dielectric's curve from F0 to 1 remapped to f0..f90", "[genschlick][quick]") {
+    // Cycles' negative-exponent generalized Schlick, with the textbook dielectric (Born & Wolf).
+    for (double eta : {1.5, 7.5}) {
+        const FresnelConfig f = resolve_fresnel("gen-schlick-ior:f0=0.1,f90=0.8,eta=" + format_number(eta));
+        const double d0 = std::pow((eta - 1) / (eta + 1), 2);
+        for (double mu : {0.05, 0.3, 0.7, 1.0}) {
+            const double w = std::clamp((ref::fresnel_dielectric(mu, eta) - d0) / (1 - d0), 0.0, 1.0);
+            CHECK(fresnel_at(f, mu) == Approx(0.1 + 0.7 * w).margin(1e-14));
+        }
+    }
 }
 
 TEST_CASE("f82-tint Fresnel: F(1) = f0, F(0) = 1, F(1/7) = tint x Schlick's F(1/7)", "[genschlick][quick]") {
@@ -190,6 +203,8 @@ TEST_CASE("gen-schlick: bad keys and requests give one line and exit status 2", 
           "albedo --model ggx --fresnel gen-schlick:f0=0.5,exponent=-1 --size 4x4",
           "albedo --model ggx --fresnel gen-schlick:f0=0.5,exponent=nan --size 4x4",
           "albedo --model ggx --fresnel gen-schlick:f0=0.5,tint=0.5 --size 4x4",  // unknown key
+          "albedo --model ggx --fresnel gen-schlick-ior:f0=0.5,eta=0.8 --size 4x4",  // eta below 1
+          "albedo --model ggx --fresnel gen-schlick-ior:f0=0.5 --size 4x4",          // eta is required
           "albedo --model ggx --fresnel f82-tint:f0=0.9 --size 4x4",               // tint is required
           "albedo --model ggx --fresnel f82-tint:f0=0.9,tint=1.5 --size 4x4",
           "albedo --model ggx --fresnel f82-tint:f0=0.02,tint=0 --size 4x4"}) {  // F dips below 0

@@ -3,6 +3,7 @@
 // (reference.h's albedo_halfvector), in long double where the integrand is formed.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 
 #include "reference.h"
@@ -36,13 +37,14 @@ inline double ggx_gen_schlick_s(ld mu_o, ld alpha, ld exponent, double tol = 1e-
     return ew / e;
 }
 
-/// The same with w = (F(cos, eta) - F0) / (1 - F0), F the textbook dielectric (Born & Wolf) and
-/// F0 = ((eta - 1)/(eta + 1))^2 (Cycles' ggx_gen_schlick_ior_s).
+/// The same with w = clamp((F(cos, eta) - F0) / (1 - F0), 0, 1), F the textbook dielectric (Born &
+/// Wolf) and F0 = ((eta - 1)/(eta + 1))^2 (Cycles' ggx_gen_schlick_ior_s; the clamp as Cycles'
+/// fresnel_generalized_schlick: a high index's F dips below F0 before Brewster's angle).
 inline double ggx_gen_schlick_ior_s(ld mu_o, ld alpha, double eta, double tol = 1e-10) {
     const double f0 = std::pow((eta - 1) / (eta + 1), 2);
     const double e = ggx_albedo_weighted(mu_o, alpha, [](ld) { return ld(1); }, tol);
     const double ew = ggx_albedo_weighted(
-        mu_o, alpha, [&](ld c) { return ld((fresnel_dielectric(double(c), eta) - f0) / (1 - f0)); }, tol);
+        mu_o, alpha, [&](ld c) { return ld(std::clamp((fresnel_dielectric(double(c), eta) - f0) / (1 - f0), 0.0, 1.0)); }, tol);
     return ew / e;
 }
 

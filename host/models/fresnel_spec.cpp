@@ -1,6 +1,6 @@
 // The Fresnel registry: which Fresnel terms exist, their keys and ranges:
 //   none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, conductor-approx:eta=E,k=K,
-//   gen-schlick:f0=F0,f90=F90,exponent=P, f82-tint:f0=F0,tint=T,
+//   gen-schlick:f0=F0,f90=F90,exponent=P, f82-tint:f0=F0,tint=T, gen-schlick-ior:f0=F0,f90=F90,eta=E,
 //   metal:Al|Au|Ag|Cu and nk:FILE.yml (tabulated n,k at --wavelength NM).
 #include <cmath>
 #include <cstdio>
@@ -21,7 +21,7 @@ constexpr Range kEta{0.0, kMaxOpticalConstant, true};
 constexpr Range kExtinction{0.0, kMaxOpticalConstant};
 
 const char kKnown[] =
-    "known: none, schlick:f0=F0, gen-schlick:f0=F0,f90=F90,exponent=P, f82-tint:f0=F0,tint=T, dielectric:eta=E, "
+    "known: none, schlick:f0=F0, gen-schlick:f0=F0,f90=F90,exponent=P, f82-tint:f0=F0,tint=T, gen-schlick-ior:f0=F0,f90=F90,eta=E, dielectric:eta=E, "
     "conductor:eta=E,k=K, conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml";
 
 // The generalized Schlick exponent: 0 (F = f90 everywhere) to far beyond Cycles' largest table
@@ -113,6 +113,16 @@ FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
         f.params[BB_GEN_SCHLICK_EXPONENT] = exponent;
         f.canonical = "gen-schlick:f0=" + format_number(f0) + ",f90=" + format_number(f90) +
                       ",exponent=" + format_number(exponent);
+    } else if (spec.name == "gen-schlick-ior") {
+        f.kind = BB_FRESNEL_GEN_SCHLICK_IOR;
+        const double f0 = keys.required_number("f0", {0.0, 1.0}, "reflectance at normal incidence");
+        const double f90 = keys.number("f90", 1.0, {0.0, 1.0});
+        const double eta = keys.required_number("eta", {1.0, kMaxOpticalConstant}, "index whose dielectric curve drives F, >= 1");
+        f.params[BB_GEN_SCHLICK_F0] = f0;
+        f.params[BB_GEN_SCHLICK_F90] = f90;
+        f.params[BB_GEN_SCHLICK_IOR_ETA] = eta;
+        f.params[BB_GEN_SCHLICK_IOR_ETA_M1] = eta - 1.0;
+        f.canonical = "gen-schlick-ior:f0=" + format_number(f0) + ",f90=" + format_number(f90) + ",eta=" + format_number(eta);
     } else if (spec.name == "f82-tint") {
         const double f0 = keys.required_number("f0", {0.0, 1.0}, "reflectance at normal incidence");
         const double tint = keys.required_number("tint", {0.0, 1.0}, "F at 82 deg relative to Schlick's");

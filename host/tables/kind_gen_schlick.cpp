@@ -4,7 +4,7 @@
 // the lobe's albedo under F = f0 + (f90 - f0) w(cos) is E mix(f0, f90, s), E its albedo at F = 1.
 // Since F is linear in f0 and f90, s = E_w / E is exact, with E_w the albedo weighted by w:
 //   gen-schlick:      w = (1 - cos)^exponent, exponent = 5 (1 - z) / z  (z = 1/2: Schlick's 5),
-//   gen-schlick-ior:  w = (F_dielectric(cos, eta) - F0) / (1 - F0), F0 = ((eta - 1)/(eta + 1))^2,
+//   gen-schlick-ior:  w = clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, 1), F0 = ((eta - 1)/(eta + 1))^2,
 //                     eta = (1 + z^2) / (1 - z^2)  (z = sqrt((eta - 1)/(eta + 1))),
 // z clamped to [1e-4, 0.99] as Cycles computes its texels. The README's "Generalized-Schlick
 // tables" says how Cycles' Monte-Carlo estimator differs (it averages F over visible normals).
@@ -44,66 +44,62 @@ Axis cycles_z_axis(const LutRequest& r, bool ior) {
     return a;
 }
 
-/// The weight w's Fresnel term at a texel's exponent or eta.
-FresnelConfig weight_fresnel(bool ior, double parameter) {
+/// The weight w's Fresnel term at a texel's exponent or eta: f0 = 0, f90 = 1.
+FresnelConfig weight_fresnel(bool ior, double parameter, double eta_m1) {
     FresnelConfig f;
-    if (ior) {
-        f.kind = BB_FRESNEL_DIELECTRIC;
-        f.params[BB_FRESNEL_ETA] = parameter;
-        f.params[BB_FRESNEL_ETA_M1] = parameter - 1.0;
-        f.canonical = "dielectric:eta=" + format_number(parameter);
-        return f;
-    }
-    f.kind = BB_FRESNEL_GEN_SCHLICK;
+    f.kind = ior ? BB_FRESNEL_GEN_SCHLICK_IOR : BB_FRESNEL_GEN_SCHLICK;
     f.params[BB_GEN_SCHLICK_F0] = 0.0;
     f.params[BB_GEN_SCHLICK_F90] = 1.0;
-    f.params[BB_GEN_SCHLICK_EXPONENT] = parameter;
-    f.canonical = "gen-schlick:f0=0,f90=1,exponent=" + format_number(parameter);
+    if (ior) {
+        f.params[BB_GEN_SCHLICK_IOR_ETA] = parameter;
+        f.params[BB_GEN_SCHLICK_IOR_ETA_M1] = eta_m1;
+        f.canonical = "gen-schlick-ior:f0=0,f90=1,eta=" + format_number(parameter);
+    } else {
+        f.params[BB_GEN_SCHLICK_EXPONENT] = parameter;
+        f.canonical = "gen-schlick:f0=0,f90=1,exponent=" + format_number(parameter);
+    }
     return f;
 }
 
-/// F0 of the remap at a texel: ((eta - 1)/(eta + 1))^2 for the ior table, 0 for the exponent one.
-double remap_f0(bool ior, double parameter) { return ior ? std::pow((parameter - 1.0) / (parameter + 1.0), 2) : 0.0; }
-
-/// s = E_w / E per texel, E_w = (E_F - F0 E) / (1 - F0) with E_F the albedo under the texel's
-/// Fresnel term, and its error ((err_F + F0 err_E) / (1 - F0) + s err_E) / E. With a tolerance, E is
-/// first found at half of it to learn its smallest value E_min; then E goes to E_min (1 - F0_max) / 4
-/// of it and each slice's E_F to E_min (1 - F0) / 2, which keeps that error within 3/4 of it.
+/// s = E_w / E per texel and its error (err_w + s err_E) / E. With a tolerance, E is first found
+/// at half of it to learn its smallest value E_min; then both integrals go to E_min / 2 of it,
+/// which keeps that error within (1 + s) / 2 of it.
 Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& m, bool ior) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
     t.z = cycles_z_axis(r, ior);
+    std::vector<double> eta_m1;  // eta - 1 = 2 z^2 / (1 - z^2), exact where eta is near 1
+    for (double z : t.z.coordinate) {
+        const double zc = std::clamp(z, kZLo, kZHi);
+        eta_m1.push_back(2 * zc * zc / (1 - zc * zc));
+    }
     const FresnelConfig none = resolve_fresnel("none");
     AlbedoResult e = integrate(engine, r, m, none, g.cells, 0.5);
-    double e_min = 1.0, f0_max = 0.0;
+    double e_min = 1.0;
     for (const auto& v : e.values) e_min = std::min(e_min, v.value);
     if (!(e_min > 0.0)) throw Error("the lobe reflects nothing at some texel (E = 0): s is undefined there");
-    for (double p : t.z.parameter) f0_max = std::max(f0_max, remap_f0(ior, p));
-    const bool tolerance = r.tolerance.tolerance > 0.0;
-    if (tolerance) e = integrate(engine, r, m, none, g.cells, e_min * (1.0 - f0_max) / 4);
+    if (r.tolerance.tolerance > 0.0) e = integrate(engine, r, m, none, g.cells, e_min / 2);
     const size_t plane = g.cells.size();
     t.channels = {"s"};
     t.values.assign(1, std::vector<double>(plane * t.z.parameter.size()));
     t.error.assign(plane * t.z.parameter.size(), 0.0);
     for (size_t k = 0; k < t.z.parameter.size(); ++k) {
-        const double p = t.z.parameter[k], f0 = remap_f0(ior, p);
-        const AlbedoResult w = integrate(engine, r, m, weight_fresnel(ior, p), g.cells, e_min * (1.0 - f0) / 2);
+        const AlbedoResult w = integrate(engine, r, m, weight_fresnel(ior, t.z.parameter[k], eta_m1[k]), g.cells, e_min / 2);
         for (size_t c = 0; c < plane; ++c) {
             const double ev = e.values[c].value, ee = e.values[c].error;
             if (!(ev > 0.0)) throw Error("the lobe reflects nothing at some texel (E = 0): s is undefined there");
-            const double ew = (w.values[c].value - f0 * ev) / (1.0 - f0);
-            const double ew_err = (w.values[c].error + f0 * ee) / (1.0 - f0);
+            const double ew = w.values[c].value, ew_err = w.values[c].error;
             const double s = ew / ev;
             // s lies in [0, 1] (0 <= w <= 1); clamping a value off by rounding only moves it closer.
             t.values[0][k * plane + c] = std::clamp(s, 0.0, 1.0);
             t.error[k * plane + c] = (ew_err + std::fabs(s) * ee) / ev;
         }
     }
-    t.quantity = ior ? "generalized-Schlick factor s = E_w / E with w = (F_dielectric(cos, eta) - F0) / (1 - F0): the "
-                       "lobe's albedo under Cycles' dielectric-remapped F from f0 to f90 is E mix(f0, f90, s)"
+    t.quantity = ior ? "generalized-Schlick factor s = E_w / E with w = clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, "
+                       "1): the lobe's albedo under Cycles' dielectric-remapped F from f0 to f90 is E mix(f0, f90, s)"
                      : "generalized-Schlick factor s = E_w / E with w = (1 - cos)^exponent: the lobe's albedo under "
                        "F = f0 + (f90 - f0)(1 - cos)^exponent is E mix(f0, f90, s)";
-    describe(t, r, m, ior ? "dielectric at each texel's eta, remapped to [0, 1]" : "(1 - cos)^exponent at each texel",
+    describe(t, r, m, ior ? "dielectric at each texel's eta, remapped to [0, 1] and clamped" : "(1 - cos)^exponent at each texel",
              e.method, e.samples_per_cell, g.clamped);
     return std::move(g.table);
 }
@@ -159,7 +155,7 @@ std::vector<std::string> gen_schlick_programs(const LutRequest& r) {
 }
 
 std::vector<std::string> gen_schlick_ior_programs(const LutRequest& r) {
-    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|dielectric"};
+    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|gen-schlick-ior"};
 }
 
 void validate_gen_schlick(const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {

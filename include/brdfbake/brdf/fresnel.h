@@ -46,6 +46,7 @@
 #define BB_FRESNEL_CONDUCTOR 3
 #define BB_FRESNEL_CONDUCTOR_APPROX 4
 #define BB_FRESNEL_GEN_SCHLICK 5
+#define BB_FRESNEL_GEN_SCHLICK_IOR 6
 
 /* Parameter slots. */
 #define BB_SCHLICK_F0 0
@@ -60,6 +61,10 @@
 #define BB_GEN_SCHLICK_F90 1
 #define BB_GEN_SCHLICK_EXPONENT 2
 #define BB_GEN_SCHLICK_B 3
+/* generalized Schlick driven by a dielectric (f0 and f90 in slots 0 and 1):
+ * F = f0 + (f90 - f0) clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, 1) */
+#define BB_GEN_SCHLICK_IOR_ETA 2
+#define BB_GEN_SCHLICK_IOR_ETA_M1 3 /* eta - 1, exact (see BB_FRESNEL_ETA_M1) */
 
 /* The two polarised reflectances of one evaluation. */
 typedef struct {
@@ -153,6 +158,19 @@ BB_FN real bb_fresnel_dielectric_rp(real cos_theta, real eta) {
 BB_FN real bb_fresnel_dielectric(real cos_theta, real eta) {
     bb_fresnel_sp r = bb_fresnel_dielectric_sp(cos_theta, eta);
     return BB_R(0.5) * (r.rs + r.rp);
+}
+
+/* The exact dielectric's curve between its own F0 = ((eta - 1)/(eta + 1))^2 and 1, remapped to
+ * f0..f90 (Blender Cycles' generalized Schlick with a negative exponent, the Principled BSDF's
+ * dielectric specular: intern/cycles/kernel/closure/bsdf_microfacet.h). The weight is clamped to
+ * [0, 1] as Cycles clamps it: a high index's unpolarised F dips below its F0 before Brewster's
+ * angle. */
+BB_FN real bb_fresnel_gen_schlick_ior(real cos_theta, real f0, real f90, real eta, real eta_m1) {
+    bb_fresnel_sp r = bb_fresnel_dielectric_sp_m1(cos_theta, eta, eta_m1);
+    real q = eta_m1 / (eta + BB_R(1.0)); /* (eta - 1)/(eta + 1), exact near eta = 1 */
+    real F0 = q * q;
+    real w = bb_clamp((BB_R(0.5) * (r.rs + r.rp) - F0) / (BB_R(1.0) - F0), BB_R(0.0), BB_R(1.0));
+    return f0 + (f90 - f0) * w;
 }
 
 /* ---------------------------------------------------------- exact conductor */
@@ -272,6 +290,11 @@ BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, real cos_theta) {
                                         fp.v[BB_GEN_SCHLICK_EXPONENT], fp.v[BB_GEN_SCHLICK_B]);
         return bb_make_fresnel_sp(f, f);
     }
+    case BB_FRESNEL_GEN_SCHLICK_IOR: {
+        real f = bb_fresnel_gen_schlick_ior(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+                                            fp.v[BB_GEN_SCHLICK_IOR_ETA], fp.v[BB_GEN_SCHLICK_IOR_ETA_M1]);
+        return bb_make_fresnel_sp(f, f);
+    }
     default:
         return bb_make_fresnel_sp(BB_R(1.0), BB_R(1.0));
     }
@@ -294,6 +317,9 @@ BB_FN real bb_fresnel_eval(int kind, bb_params fp, real cos_theta) {
     case BB_FRESNEL_GEN_SCHLICK:
         return bb_fresnel_gen_schlick(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
                                       fp.v[BB_GEN_SCHLICK_EXPONENT], fp.v[BB_GEN_SCHLICK_B]);
+    case BB_FRESNEL_GEN_SCHLICK_IOR:
+        return bb_fresnel_gen_schlick_ior(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+                                          fp.v[BB_GEN_SCHLICK_IOR_ETA], fp.v[BB_GEN_SCHLICK_IOR_ETA_M1]);
     default: {
         bb_fresnel_sp r = bb_fresnel_eval_sp(kind, fp, cos_theta);
         return BB_R(0.5) * (r.rs + r.rp);
