@@ -76,6 +76,9 @@ TableKind dielectric_kind();
 TableKind conductor_kind();
 TableKind sheen_albedo_kind();
 TableKind dielectric_eavg_kind();
+TableKind gen_schlick_kind();
+TableKind gen_schlick_ior_kind();
+TableKind dfg_f82_kind();
 
 }  // namespace tables
 }  // namespace brdfbake

@@ -66,6 +66,13 @@ void cycles(LutRequest& r) {
     if (r.kind == "eavg") {
         r.width = 32;
         r.height = 1;
+    } else if (r.kind == "gen-schlick" || r.kind == "gen-schlick-ior") {
+        // table_ggx_gen_schlick_s and table_ggx_gen_schlick_ior_s[(z * 16 + y) * 16 + x]: x and y
+        // as above, z = i/15 on the kind's own z axis (cycles_z: Cycles' exponent or eta
+        // parameterisation, clamped to [1e-4, 0.99]), read by lookup_table_read_3D.
+        r.width = r.height = r.depth = 16;
+        r.eta_map = "cycles";  // names the z axis cycles_z for --axes
+        r.axes = {"roughness", "mu", "cycles_z"};
     } else {
         r.width = r.height = 32;
         r.axes = {"roughness", "mu"};
@@ -96,10 +103,12 @@ const std::vector<LutPreset>& lut_presets() {
          filament},
         {"three", "three.js", "src/renderers/shaders/DFGLUTData.js", {"dfg"}, "exr", true,
          "16 x 16, x = roughness, y = NoV, texel centres, R = A (scale), G = B (bias), half-float EXR (RG16F)", three},
-        {"cycles", "Blender Cycles", "table_ggx_E, table_ggx_Eavg (intern/cycles/scene/shader.tables)",
-         {"albedo", "eavg"}, "h", false,
-         "32 x 32 (32 for eavg), x = roughness, y = mu, edge texels (i/31), mu floored at 1e-4, double precision "
-         "to 5e-7, C header",
+        {"cycles", "Blender Cycles",
+         "table_ggx_E, table_ggx_Eavg, table_ggx_gen_schlick_s, table_ggx_gen_schlick_ior_s "
+         "(intern/cycles/scene/shader.tables)",
+         {"albedo", "eavg", "gen-schlick", "gen-schlick-ior"}, "h", false,
+         "32 x 32 (32 for eavg; 16 x 16 x 16 for gen-schlick, gen-schlick-ior with z = cycles_z), x = roughness, "
+         "y = mu, edge texels (i/(N - 1)), mu floored at 1e-4, double precision to 5e-7, C header",
          cycles},
         {"unreal", "Unreal Engine", "PreIntegratedGF (EnvBRDF)", {"dfg"}, "png", false,
          "128 x 32, x = NoV, y = roughness, texel centres, R = A, G = B, 16-bit PNG", unreal},

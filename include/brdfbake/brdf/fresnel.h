@@ -30,6 +30,10 @@
  *   [PBR2] Pharr & Humphreys, "Physically Based Rendering", 2nd ed., sec. 8.2.1 eq. 8.3
  *          (FrCond: the approximate conductor reflectance of the course notes).
  *   [S94]  Schlick 1994, "An Inexpensive BRDF Model for Physically-based Rendering", eq. 24.
+ *   [H19]  Hoffman 2019, "Fresnel Equations Considered Harmful" (MAM workshop): Schlick's form
+ *          with a free F90 and exponent, and the F82 edge term that fits metals' dip near 82 deg.
+ *   [K21]  Kutz, Hasan, Edmondson 2021, "Novel aspects of the Adobe Standard Material" (Adobe
+ *          technical report): F82-tint, which the OpenPBR Surface specification adopts for metals.
  */
 #ifndef BRDFBAKE_BRDF_FRESNEL_H
 #define BRDFBAKE_BRDF_FRESNEL_H
@@ -41,6 +45,8 @@
 #define BB_FRESNEL_DIELECTRIC 2
 #define BB_FRESNEL_CONDUCTOR 3
 #define BB_FRESNEL_CONDUCTOR_APPROX 4
+#define BB_FRESNEL_GEN_SCHLICK 5
+#define BB_FRESNEL_GEN_SCHLICK_IOR 6
 
 /* Parameter slots. */
 #define BB_SCHLICK_F0 0
@@ -50,6 +56,15 @@
  * functions compute it from eta. float cannot hold an eta close to 1 (1.0001f = 1 + 1.00017e-4,
  * 1.7e-4 off in eta - 1, and F ~ (eta - 1)^2); its distance from 1 it holds exactly. */
 #define BB_FRESNEL_ETA_M1 1
+/* generalized Schlick (and F82-tint): F = f0 + (f90 - f0)(1 - cos)^exponent - b cos (1 - cos)^6 */
+#define BB_GEN_SCHLICK_F0 0
+#define BB_GEN_SCHLICK_F90 1
+#define BB_GEN_SCHLICK_EXPONENT 2
+#define BB_GEN_SCHLICK_B 3
+/* generalized Schlick driven by a dielectric (f0 and f90 in slots 0 and 1):
+ * F = f0 + (f90 - f0) clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, 1) */
+#define BB_GEN_SCHLICK_IOR_ETA 2
+#define BB_GEN_SCHLICK_IOR_ETA_M1 3 /* eta - 1, exact (see BB_FRESNEL_ETA_M1) */
 
 /* The two polarised reflectances of one evaluation. */
 typedef struct {
@@ -75,6 +90,21 @@ BB_FN real bb_fresnel_schlick(real cos_theta, real f0) {
     real m = bb_clamp(BB_R(1.0) - cos_theta, BB_R(0.0), BB_R(1.0));
     real m2 = m * m;
     return f0 + (BB_R(1.0) - f0) * (m2 * m2 * m);
+}
+
+/* ------------------------------------------------------ generalized Schlick */
+
+/* Schlick's form with a free f90 and exponent (Blender Cycles' generalized Schlick) and the F82
+ * edge term of [H19] and [K21]:
+ *   F = f0 + (f90 - f0)(1 - cos)^exponent - b cos (1 - cos)^6.
+ * Linear in f0, f90 and b, so a table of the lobe weighted by (1 - cos)^exponent (f0 = 0,
+ * f90 = 1) and by cos (1 - cos)^6 serves every colour. Not clamped: an F82-tint term with a
+ * small f0 can go below 0, which resolve_fresnel rejects for the f82-tint spelling. exponent = 0
+ * gives f90 at every angle (pow(0, 0) = 1); cos is clamped to [0, 1]. */
+BB_FN real bb_fresnel_gen_schlick(real cos_theta, real f0, real f90, real exponent, real b) {
+    real m = bb_clamp(BB_R(1.0) - cos_theta, BB_R(0.0), BB_R(1.0));
+    real m3 = m * m * m;
+    return f0 + (f90 - f0) * bb_pow(m, exponent) - b * (BB_R(1.0) - m) * (m3 * m3);
 }
 
 /* --------------------------------------------------------- exact dielectric */
@@ -128,6 +158,19 @@ BB_FN real bb_fresnel_dielectric_rp(real cos_theta, real eta) {
 BB_FN real bb_fresnel_dielectric(real cos_theta, real eta) {
     bb_fresnel_sp r = bb_fresnel_dielectric_sp(cos_theta, eta);
     return BB_R(0.5) * (r.rs + r.rp);
+}
+
+/* The exact dielectric's curve between its own F0 = ((eta - 1)/(eta + 1))^2 and 1, remapped to
+ * f0..f90 (Blender Cycles' generalized Schlick with a negative exponent, the Principled BSDF's
+ * dielectric specular: intern/cycles/kernel/closure/bsdf_microfacet.h). The weight is clamped to
+ * [0, 1] as Cycles clamps it: a high index's unpolarised F dips below its F0 before Brewster's
+ * angle. */
+BB_FN real bb_fresnel_gen_schlick_ior(real cos_theta, real f0, real f90, real eta, real eta_m1) {
+    bb_fresnel_sp r = bb_fresnel_dielectric_sp_m1(cos_theta, eta, eta_m1);
+    real q = eta_m1 / (eta + BB_R(1.0)); /* (eta - 1)/(eta + 1), exact near eta = 1 */
+    real F0 = q * q;
+    real w = bb_clamp((BB_R(0.5) * (r.rs + r.rp) - F0) / (BB_R(1.0) - F0), BB_R(0.0), BB_R(1.0));
+    return f0 + (f90 - f0) * w;
 }
 
 /* ---------------------------------------------------------- exact conductor */
@@ -242,6 +285,16 @@ BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, real cos_theta) {
         return bb_fresnel_conductor_sp(cos_theta, fp.v[BB_FRESNEL_ETA], fp.v[BB_FRESNEL_K]);
     case BB_FRESNEL_CONDUCTOR_APPROX:
         return bb_fresnel_conductor_approx_sp(cos_theta, fp.v[BB_FRESNEL_ETA], fp.v[BB_FRESNEL_K]);
+    case BB_FRESNEL_GEN_SCHLICK: {
+        real f = bb_fresnel_gen_schlick(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+                                        fp.v[BB_GEN_SCHLICK_EXPONENT], fp.v[BB_GEN_SCHLICK_B]);
+        return bb_make_fresnel_sp(f, f);
+    }
+    case BB_FRESNEL_GEN_SCHLICK_IOR: {
+        real f = bb_fresnel_gen_schlick_ior(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+                                            fp.v[BB_GEN_SCHLICK_IOR_ETA], fp.v[BB_GEN_SCHLICK_IOR_ETA_M1]);
+        return bb_make_fresnel_sp(f, f);
+    }
     default:
         return bb_make_fresnel_sp(BB_R(1.0), BB_R(1.0));
     }
@@ -261,6 +314,12 @@ BB_FN real bb_fresnel_eval(int kind, bb_params fp, real cos_theta) {
         return BB_R(1.0);
     case BB_FRESNEL_SCHLICK:
         return bb_fresnel_schlick(cos_theta, fp.v[BB_SCHLICK_F0]);
+    case BB_FRESNEL_GEN_SCHLICK:
+        return bb_fresnel_gen_schlick(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+                                      fp.v[BB_GEN_SCHLICK_EXPONENT], fp.v[BB_GEN_SCHLICK_B]);
+    case BB_FRESNEL_GEN_SCHLICK_IOR:
+        return bb_fresnel_gen_schlick_ior(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+                                          fp.v[BB_GEN_SCHLICK_IOR_ETA], fp.v[BB_GEN_SCHLICK_IOR_ETA_M1]);
     default: {
         bb_fresnel_sp r = bb_fresnel_eval_sp(kind, fp, cos_theta);
         return BB_R(0.5) * (r.rs + r.rp);

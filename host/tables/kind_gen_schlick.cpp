@@ -1,0 +1,214 @@
+// Blender Cycles' generalized-Schlick tables (intern/cycles/app/cycles_precompute.cpp,
+// ggx_gen_schlick_s and ggx_gen_schlick_ior_s; read in bsdf_microfacet_estimate_albedo of
+// intern/cycles/kernel/closure/bsdf_microfacet.h): the factor s(mu_o, roughness, z) with which
+// the lobe's albedo under F = f0 + (f90 - f0) w(cos) is E mix(f0, f90, s), E its albedo at F = 1.
+// Since F is linear in f0 and f90, s = E_w / E is exact, with E_w the albedo weighted by w:
+//   gen-schlick:      w = (1 - cos)^exponent, exponent = 5 (1 - z) / z  (z = 1/2: Schlick's 5),
+//   gen-schlick-ior:  w = clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, 1), F0 = ((eta - 1)/(eta + 1))^2,
+//                     eta = (1 + z^2) / (1 - z^2)  (z = sqrt((eta - 1)/(eta + 1))),
+// z clamped to [1e-4, 0.99] as Cycles computes its texels. The README's "Generalized-Schlick
+// tables" says how Cycles' Monte-Carlo estimator differs (it averages F over visible normals).
+//
+// dfg-f82: the split sum of an F82-tint metal (Kutz et al. 2021; the OpenPBR Surface
+// specification; Hoffman 2019), whose F = F0 + (1 - F0)(1 - cos)^5 - b cos (1 - cos)^6 needs a
+// third channel beside Karis' A and B: C, the lobe weighted by cos (1 - cos)^6; specular =
+// F0 A + B - b C. (Cycles reads its ggx_gen_schlick_s at exponent 5 for F82-tint and leaves the
+// b term out of its albedo estimate: bsdf_microfacet.h marks it as a TODO.)
+#include <algorithm>
+#include <cmath>
+
+#include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/error.h"
+#include "models/key_reader.h"
+#include "tables/lut_common.h"
+
+namespace brdfbake {
+namespace tables {
+namespace {
+
+/// Cycles' z clamp (cycles_precompute.cpp clamps its z coordinate to [1e-4, 0.99]).
+constexpr double kZLo = 1e-4, kZHi = 0.99;
+
+/// The z axis (the kind's own; --eta-range does not apply): z over [0, 1] with the request's
+/// texel placement, the parameter clamped as Cycles computes it.
+Axis cycles_z_axis(const LutRequest& r, bool ior) {
+    Axis a = make_axis("cycles_z",
+                       ior ? "eta = (1 + z^2) / (1 - z^2), z clamped to [1e-4, 0.99] (Cycles' ggx_gen_schlick_ior_s)"
+                           : "exponent = 5 (1 - z) / z, z clamped to [1e-4, 0.99] (Cycles' ggx_gen_schlick_s)",
+                       0.0, 1.0, r.depth, r.texels);
+    a.parameter_name = ior ? "eta" : "exponent";
+    for (double z : a.coordinate) {
+        const double zc = std::clamp(z, kZLo, kZHi), z2 = zc * zc;
+        a.parameter.push_back(ior ? (1.0 + z2) / (1.0 - z2) : 5.0 * (1.0 - zc) / zc);
+    }
+    return a;
+}
+
+/// The weight w's Fresnel term at a texel's exponent or eta: f0 = 0, f90 = 1.
+FresnelConfig weight_fresnel(bool ior, double parameter, double eta_m1) {
+    FresnelConfig f;
+    f.kind = ior ? BB_FRESNEL_GEN_SCHLICK_IOR : BB_FRESNEL_GEN_SCHLICK;
+    f.params[BB_GEN_SCHLICK_F0] = 0.0;
+    f.params[BB_GEN_SCHLICK_F90] = 1.0;
+    if (ior) {
+        f.params[BB_GEN_SCHLICK_IOR_ETA] = parameter;
+        f.params[BB_GEN_SCHLICK_IOR_ETA_M1] = eta_m1;
+        f.canonical = "gen-schlick-ior:f0=0,f90=1,eta=" + format_number(parameter);
+    } else {
+        f.params[BB_GEN_SCHLICK_EXPONENT] = parameter;
+        f.canonical = "gen-schlick:f0=0,f90=1,exponent=" + format_number(parameter);
+    }
+    return f;
+}
+
+/// s = E_w / E per texel and its error (err_w + s err_E) / E. With a tolerance, E is first found
+/// at half of it to learn its smallest value E_min; then both integrals go to E_min / 2 of it,
+/// which keeps that error within (1 + s) / 2 of it.
+Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& m, bool ior) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    t.z = cycles_z_axis(r, ior);
+    std::vector<double> eta_m1;  // eta - 1 = 2 z^2 / (1 - z^2), exact where eta is near 1
+    for (double z : t.z.coordinate) {
+        const double zc = std::clamp(z, kZLo, kZHi);
+        eta_m1.push_back(2 * zc * zc / (1 - zc * zc));
+    }
+    const FresnelConfig none = resolve_fresnel("none");
+    AlbedoResult e = integrate(engine, r, m, none, g.cells, 0.5);
+    double e_min = 1.0;
+    for (const auto& v : e.values) e_min = std::min(e_min, v.value);
+    if (!(e_min > 0.0)) throw Error("the lobe reflects nothing at some texel (E = 0): s is undefined there");
+    if (r.tolerance.tolerance > 0.0) e = integrate(engine, r, m, none, g.cells, e_min / 2);
+    const size_t plane = g.cells.size();
+    t.channels = {"s"};
+    t.values.assign(1, std::vector<double>(plane * t.z.parameter.size()));
+    t.error.assign(plane * t.z.parameter.size(), 0.0);
+    for (size_t k = 0; k < t.z.parameter.size(); ++k) {
+        const AlbedoResult w = integrate(engine, r, m, weight_fresnel(ior, t.z.parameter[k], eta_m1[k]), g.cells, e_min / 2);
+        for (size_t c = 0; c < plane; ++c) {
+            const double ev = e.values[c].value, ee = e.values[c].error;
+            if (!(ev > 0.0)) throw Error("the lobe reflects nothing at some texel (E = 0): s is undefined there");
+            const double ew = w.values[c].value, ew_err = w.values[c].error;
+            const double s = ew / ev;
+            // s lies in [0, 1] (0 <= w <= 1); clamping a value off by rounding only moves it closer.
+            t.values[0][k * plane + c] = std::clamp(s, 0.0, 1.0);
+            t.error[k * plane + c] = (ew_err + std::fabs(s) * ee) / ev;
+        }
+    }
+    t.quantity = ior ? "generalized-Schlick factor s = E_w / E with w = clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, "
+                       "1): the lobe's albedo under Cycles' dielectric-remapped F from f0 to f90 is E mix(f0, f90, s)"
+                     : "generalized-Schlick factor s = E_w / E with w = (1 - cos)^exponent: the lobe's albedo under "
+                       "F = f0 + (f90 - f0)(1 - cos)^exponent is E mix(f0, f90, s)";
+    describe(t, r, m, ior ? "dielectric at each texel's eta, remapped to [0, 1] and clamped" : "(1 - cos)^exponent at each texel",
+             e.method, e.samples_per_cell, g.clamped);
+    return std::move(g.table);
+}
+
+Table compute_gen_schlick(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
+    return gen_schlick_table(engine, r, m, false);
+}
+
+Table compute_gen_schlick_ior(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
+    return gen_schlick_table(engine, r, m, true);
+}
+
+/// The F82 edge weight alone, F = cos (1 - cos)^6 (f0 = f90 = 0, b = -1).
+FresnelConfig f82_edge_weight() {
+    FresnelConfig f;
+    f.kind = BB_FRESNEL_GEN_SCHLICK;
+    f.params[BB_GEN_SCHLICK_EXPONENT] = 5.0;
+    f.params[BB_GEN_SCHLICK_B] = -1.0;
+    f.canonical = "cos (1 - cos)^6 (the F82 edge term)";
+    return f;
+}
+
+/// A = E - B, B and C, each integral to a third of the tolerance; the error their sum.
+Table compute_dfg_f82(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    const double third = 1.0 / 3.0;
+    const AlbedoResult e = integrate(engine, r, m, resolve_fresnel("none"), g.cells, third);
+    const AlbedoResult b = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), g.cells, third);
+    const AlbedoResult c = integrate(engine, r, m, f82_edge_weight(), g.cells, third);
+    t.channels = {"A", "B", "C"};
+    t.values.assign(3, {});
+    for (size_t i = 0; i < g.cells.size(); ++i) {
+        t.values[0].push_back(e.values[i].value - b.values[i].value);
+        t.values[1].push_back(b.values[i].value);
+        t.values[2].push_back(c.values[i].value);
+        t.error.push_back(e.values[i].error + b.values[i].error + c.values[i].error);
+    }
+    t.quantity = "split-sum terms of an F82-tint metal: A = integral of (f/F)(1 - (1 - wo.wh)^5) cos, B = integral of "
+                 "(f/F)(1 - wo.wh)^5 cos, C = integral of (f/F)(wo.wh)(1 - wo.wh)^6 cos; specular = F0 A + B - b C";
+    describe(t, r, m, "factored out (split sum with the F82 term)", e.method, e.samples_per_cell, g.clamped);
+    return std::move(g.table);
+}
+
+std::vector<std::string> dfg_f82_programs(const LutRequest& r) {
+    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick", "albedo|" + r.model + "|gen-schlick"};
+}
+
+int three(const LutRequest&) { return 3; }
+
+std::vector<std::string> gen_schlick_programs(const LutRequest& r) {
+    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|gen-schlick"};
+}
+
+std::vector<std::string> gen_schlick_ior_programs(const LutRequest& r) {
+    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|gen-schlick-ior"};
+}
+
+void validate_gen_schlick(const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
+    if (!m.uses_fresnel)
+        throw Error("the " + r.kind + " table weights the lobe's Fresnel term; model '" + m.name + "' has none");
+    if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
+        throw Error(r.kind + " table depth must be 1 to 1024 and width x height x depth at most 4M texels");
+    for (const auto* names : {&r.axes, &r.flip})
+        for (const std::string& n : *names)
+            if (n == "eta" || n == "f0")
+                throw Error("the " + r.kind + " table's z axis is cycles_z (name it with --eta-map cycles), not " + n);
+}
+
+int two(const LutRequest&) { return 2; }
+
+TableKind make_kind(TableKindId id, const std::string& name, const std::string& description, bool ior) {
+    TableKind k(id, name, description, ior ? gen_schlick_ior_programs : gen_schlick_programs,
+                ior ? compute_gen_schlick_ior : compute_gen_schlick);
+    k.eta_axis = true;  // a z axis: sizes WxHxD, --texels edge needs 2 per axis
+    k.fresnel_factored_out = true;
+    k.plan_fresnel = "factored out (generalized Schlick: E mix(f0, f90, s))";
+    k.integrations = two;  // per texel: its slice's E_w, and E (shared by the slices, found twice with a tolerance)
+    k.validate = validate_gen_schlick;
+    return k;
+}
+
+}  // namespace
+
+TableKind gen_schlick_kind() {
+    return make_kind(TableKindId::GenSchlick, "gen-schlick",
+                     "generalized-Schlick factor s(mu_o, alpha, z), albedo E mix(f0, f90, s) under F = f0 + (f90 - f0)"
+                     "(1 - cos)^exponent, exponent = 5 (1 - z)/z (Cycles' ggx_gen_schlick_s)",
+                     false);
+}
+
+TableKind gen_schlick_ior_kind() {
+    return make_kind(TableKindId::GenSchlickIor, "gen-schlick-ior",
+                     "generalized-Schlick factor s(mu_o, alpha, z) of the dielectric remapped to f0..f90, "
+                     "eta = (1 + z^2)/(1 - z^2) (Cycles' ggx_gen_schlick_ior_s)",
+                     true);
+}
+
+TableKind dfg_f82_kind() {
+    TableKind k = variant_of(dfg_kind(), TableKindId::DfgF82, "dfg-f82",
+                             "split-sum terms A, B and the F82-tint edge term C = integral of (f/F) (wo.wh)(1 - wo.wh)^6 "
+                             "cos over (mu_o, alpha); specular = F0 A + B - b C (Kutz et al. 2021, OpenPBR)",
+                             compute_dfg_f82);
+    k.kernel_programs = dfg_f82_programs;
+    k.plan_fresnel = "factored out (split sum with the F82 term)";
+    k.value_channels = three;
+    k.integrations = three;
+    return k;
+}
+
+}  // namespace tables
+}  // namespace brdfbake
