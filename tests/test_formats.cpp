@@ -13,6 +13,7 @@
 #include <png.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <fstream>
@@ -194,9 +195,10 @@ TEST_CASE("EXR through Imf::RgbaInputFile: every table kind shows non-zero, docu
                             continue;
                         }
                         const double want = view[size_t(s)] < 0 ? 0.0 : t.values[size_t(view[size_t(s)])][i];
-                        // Half a unit in the last place of the stored type (half: 11 significant
-                        // bits; float: 24) at most; the RGBA reader converts float to half.
-                        const double ulp = want == 0 ? 0 : std::ldexp(1.0, std::ilogb(want) - 10);
+                        // Half a unit in the last place of half (11 significant bits), which the
+                        // RGBA reader converts every channel to, and never finer than half's
+                        // subnormal spacing 2^-24 (a gen-schlick s of 1e-8 reads back as 0).
+                        const double ulp = want == 0 ? 0 : std::max(std::ldexp(1.0, std::ilogb(want) - 10), 0x1p-24);
                         CHECK(std::fabs(rgba[s] - want) <= 0.5 * ulp * (half ? 1.0 : 1.0 + 1e-3) + 1e-30);
                     }
                     if (view[0] >= 0) CHECK(rgba[0] != 0.0f);

@@ -58,7 +58,8 @@ std::string tmp_path(const std::string& name) { return "/tmp/brdfbake-lut-" + st
 
 TEST_CASE("the table-kind registry: every kind once, found by name and id, unknown names listed", "[lut][quick]") {
     const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms",
-                                               "sheen-albedo", "dielectric-eavg"};
+                                               "sheen-albedo", "dielectric-eavg", "gen-schlick", "gen-schlick-ior",
+                                               "dfg-f82"};
     REQUIRE(table_kinds().size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         const TableKind* k = table_kinds()[i];
@@ -77,7 +78,7 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
                       "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms, "
-                      "sheen-albedo, dielectric-eavg");
+                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82");
 }
 
 TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {

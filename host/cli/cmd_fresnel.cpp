@@ -300,6 +300,8 @@ const char* kind_name(int kind) {
     case BB_FRESNEL_DIELECTRIC: return "dielectric";
     case BB_FRESNEL_CONDUCTOR: return "conductor";
     case BB_FRESNEL_CONDUCTOR_APPROX: return "conductor-approx";
+    case BB_FRESNEL_GEN_SCHLICK: return "gen-schlick";  // also f82-tint, its special case
+    case BB_FRESNEL_GEN_SCHLICK_IOR: return "gen-schlick-ior";
     default: return "unknown";
     }
 }

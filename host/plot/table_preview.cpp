@@ -41,7 +41,8 @@ std::string axis_label(const Axis& a) {
     if (a.name == "roughness") return "roughness r  (\\alpha = r^2)";
     if (a.name == "eta") return "\\eta";
     if (a.name == "f0") return "F_0 = ((\\eta - 1)/(\\eta + 1))^2";
-    if (a.name == "cycles_z") return "z = F_0^{1/4}  (Cycles' \\eta axis)";
+    if (a.name == "cycles_z" && a.parameter_name == "eta") return "z = F_0^{1/4}  (Cycles' \\eta axis)";
+    if (a.name == "cycles_z") return "z  (Cycles' " + plot_text(a.parameter_name) + " axis)";
     if (a.name == "theta_i") return "\\theta_i (degrees)";
     if (a.name == "theta_o") return "\\theta_o (degrees)";
     return plot_text(a.name);
@@ -95,7 +96,9 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
             PlotSpec p;
             p.title = plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")";
             if (t.depth() > 1) p.title += ", " + axis_label(t.z) + " = " + number(t.z.coordinate[size_t(z)]);
-            if (t.depth() > 1 && t.z.name != "eta") p.title += " (\\eta = " + number(t.z.parameter[size_t(z)]) + ")";
+            if (t.depth() > 1 && t.z.name != "eta" && !t.z.parameter_name.empty())
+                p.title += " (" + (t.z.parameter_name == "eta" ? std::string("\\eta") : plot_text(t.z.parameter_name)) +
+                           " = " + number(t.z.parameter[size_t(z)]) + ")";
             p.x.label = axis_label(t.x);
             p.y.label = axis_label(t.y);
             p.legend = LegendPlace::None;

@@ -177,6 +177,9 @@ TableKind make_kind(TableKindId id, const std::string& name, const std::string& 
     k.eta_axis = true;  // a z axis: sizes WxHxD, --texels edge needs 2 per axis
     k.fresnel_factored_out = true;
     k.plan_fresnel = "factored out (generalized Schlick: E mix(f0, f90, s))";
+    k.lobe_requirement = std::string("a ") + name +
+                         " table spans its own z axis (Cycles' z: " + (ior ? "the index of refraction" : "the exponent") +
+                         "); the lobe's Fresnel must be generalized Schlick (gen-schlick" + (ior ? "-ior" : "") + ":...)";
     k.integrations = two;  // per texel: its slice's E_w, and E (shared by the slices, found twice with a tolerance)
     k.validate = validate_gen_schlick;
     return k;
