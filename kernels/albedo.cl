@@ -104,10 +104,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     const unsigned int cell = gid / BB_QUAD_SLOTS, rule = (gid / BB_QUAD_PIECES) % BB_QUAD_RULES, \
                        piece = gid % BB_QUAD_PIECES, q = piece >> 1;                              \
     const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);           \
-    __global const bb_scalar* x =                                                                 \
-        nodes + (rule == 0u ? 0u                                                                  \
-                            : (rule == 1u ? 2u * BB_QUAD_PADDED(n_fine)                           \
-                                          : 2u * (BB_QUAD_PADDED(n_fine) + BB_QUAD_PADDED(n_coarse)))); \
+    __global const bb_scalar* x = BB_QUAD_RULE_NODES(nodes, rule, n_fine, n_coarse);              \
     __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                         \
     bb_params p, fp;                                                                              \
     const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \

@@ -38,10 +38,7 @@
     const unsigned int rule = (gid / BB_DIELECTRIC_QUAD_PIECES) % BB_QUAD_RULES;                       \
     const unsigned int piece = gid % BB_DIELECTRIC_QUAD_PIECES;                                        \
     const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);                 \
-    __global const bb_scalar* x =                                                                      \
-        nodes + (rule == 0u ? 0u                                                                       \
-                            : (rule == 1u ? 2u * BB_QUAD_PADDED(n_fine)                                \
-                                          : 2u * (BB_QUAD_PADDED(n_fine) + BB_QUAD_PADDED(n_coarse)))); \
+    __global const bb_scalar* x = BB_QUAD_RULE_NODES(nodes, rule, n_fine, n_coarse);                   \
     __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                              \
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], BB_R(0.0));                            \
     const real a = (real)cell_alpha[cell], eta = (real)cell_eta[cell];                                 \

@@ -225,4 +225,11 @@ BB_FN unsigned int bb_lane_count(bb_mask m) {
 #define BB_QUAD_PADDED(m) (m)
 #endif
 
+/* The nodes and weights of rule `rule` (0 fine, 1 coarse, 2 coarsest) in the host's node table:
+ * each rule's nodes then its weights, each padded to the vector width. */
+#define BB_QUAD_RULE_NODES(nodes, rule, n_fine, n_coarse)                                   \
+    ((nodes) + ((rule) == 0u ? 0u                                                           \
+                             : ((rule) == 1u ? 2u * BB_QUAD_PADDED(n_fine)                  \
+                                             : 2u * (BB_QUAD_PADDED(n_fine) + BB_QUAD_PADDED(n_coarse)))))
+
 #endif /* BRDFBAKE_BRDF_COMPAT_H */
