@@ -20,14 +20,17 @@
  *        reflection: wo.m = A cos(theta) + B sin(theta) = rho cos(theta - phi0) gives
  *        theta = phi0 -+ acos(c_crit / rho) in closed form; 1 - F grows like sqrt(wo.m - c_crit)
  *        there [Born and Wolf 1.5.4];
- *   t_w  for eta < 1, where the refracted direction reaches the horizon (wt.z = 0), found by
- *        bisection between t_a and t_b where wt.z changes sign there.
+ *   t_w, t_x  for eta < 1, where the refracted direction reaches the horizon (wt.z = 0): up to
+ *        two crossings per row, in closed form (bb_dielectric_t_horizon); with the Cycles form
+ *        G2_T falls linearly to 0 there, a kink the rule must not straddle.
  * Each segment [t0, t1] is integrated through the smoothstep map t = t0 + (t1 - t0) S(x),
  * S(x) = x^2 (3 - 2x), whose Jacobian 6x(1 - x) vanishes at both ends: a square-root edge
- * becomes sqrt(S(x)) ~ x, smooth for the Gauss-Legendre rule. The azimuth is cut the same way:
- * [0, delta*], [delta*, pi/2], [pi/2, pi], delta* where the whole row falls under total
- * internal reflection (rho(delta*) = c_crit; pi/2 if no row does), pi/2 where rows change from
- * unbounded (B >= 0) to ending at wo.m = 0.
+ * becomes sqrt(S(x)) ~ x, smooth for the Gauss-Legendre rule. The azimuth is cut the same way,
+ * where the rows' structure changes: [0, delta_h], [delta_h, delta*], [delta*, pi/2], [pi/2, pi],
+ * delta_h where the edge of total internal reflection meets the horizon (sin_o cos(delta_h) =
+ * c_crit: beyond it the far end of the row is no longer transmitting; 0 if it never does),
+ * delta* where the whole row falls under total internal reflection (rho(delta*) = c_crit; pi/2
+ * if no row does), pi/2 where rows change from unbounded (B >= 0) to ending at wo.m = 0.
  *
  * GGX has no slope beyond which D vanishes: rows with B >= 0 end at slope r_cap. The part of the
  * visible-normal measure beyond slope r is at most a^2/r^2 + 2 a^2 tan(theta_o)/r (the GGX slope
@@ -45,8 +48,8 @@
 
 /* Azimuth pieces per cell and rule, and segments per row (the kernel's output layout is per cell
  * BB_QUAD_RULES x BB_DIELECTRIC_QUAD_PIECES sums of R and of T, rule-major). */
-#define BB_DIELECTRIC_QUAD_PIECES 3
-#define BB_DIELECTRIC_QUAD_SEGMENTS 5
+#define BB_DIELECTRIC_QUAD_PIECES 4
+#define BB_DIELECTRIC_QUAD_SEGMENTS 6
 
 /* The smoothstep map of a segment: S(x) = x^2 (3 - 2x) and its derivative 6x(1 - x). */
 BB_FN real bb_smoothstep(real x) { return x * x * (BB_R(3.0) - BB_R(2.0) * x); }
@@ -75,7 +78,7 @@ BB_FN real bb_dielectric_r_of_theta(real theta, real r_cap) {
  * and 0 for eta >= 1 (no such angle). */
 BB_FN real bb_dielectric_c_crit(real eta) { return bb_safe_sqrt((BB_R(1.0) - eta) * (BB_R(1.0) + eta)); }
 
-/* The azimuth interval [lo, hi] of piece 0, 1 or 2 (see the head of this file). */
+/* The azimuth interval [lo, hi] of piece 0 to 3 (see the head of this file). */
 typedef struct {
     real lo, hi;
 } bb_interval;
@@ -83,13 +86,18 @@ typedef struct {
 BB_FN bb_interval bb_dielectric_piece(bb_vec3 wo, real eta, unsigned int piece) {
     const real q = BB_R(0.5) * BB_PI;
     real cc = bb_dielectric_c_crit(eta), sin_o = wo.x;
+    real inv_sin_o = BB_R(1.0) / bb_select(BB_R(1.0), sin_o, sin_o > BB_R(0.0));
     /* rho(delta)^2 = wo.z^2 + sin_o^2 cos^2(delta) = c_crit^2 */
-    real cos_star = bb_safe_sqrt((cc - wo.z) * (cc + wo.z)) / bb_select(BB_R(1.0), sin_o, sin_o > BB_R(0.0));
+    real cos_star = bb_safe_sqrt((cc - wo.z) * (cc + wo.z)) * inv_sin_o;
     real star = bb_select(q, bb_atan2(bb_safe_sqrt(BB_R(1.0) - cos_star * cos_star), cos_star),
                           eta < BB_R(1.0) && wo.z < cc && sin_o > BB_R(0.0) && cos_star <= BB_R(1.0));
+    /* sin_o cos(delta) = c_crit: the edge of total internal reflection meets the horizon */
+    real cos_h = cc * inv_sin_o;
+    real edge = bb_select(BB_R(0.0), bb_min(star, bb_atan2(bb_safe_sqrt(BB_R(1.0) - cos_h * cos_h), cos_h)),
+                          eta < BB_R(1.0) && sin_o > BB_R(0.0) && cos_h <= BB_R(1.0));
     bb_interval out;
-    out.lo = piece == 0u ? BB_R(0.0) : (piece == 1u ? star : q);
-    out.hi = piece == 0u ? star : (piece == 1u ? q : BB_R(2.0) * q);
+    out.lo = piece == 0u ? BB_R(0.0) : (piece == 1u ? edge : (piece == 2u ? star : q));
+    out.hi = piece == 0u ? edge : (piece == 1u ? star : (piece == 2u ? q : BB_R(2.0) * q));
     return out;
 }
 
@@ -120,11 +128,24 @@ BB_FN bb_dielectric_node bb_dielectric_node_at(real cos_phi, real sin_phi, real 
     return n;
 }
 
-/* wt.z of the refracted direction at row coordinate t (negative: transmitted below). */
-BB_FN real bb_dielectric_wt_z(bb_vec3 wo, real cos_phi, real sin_phi, real a, real eta, real t) {
-    bb_dielectric_node n = bb_dielectric_node_at(cos_phi, sin_phi, a, t);
-    real c = bb_clamp(bb_dot(wo, n.h), BB_R(0.0), BB_R(1.0));
-    return bb_refract(wo, n.h, c, eta).z;
+/* Where the refracted direction reaches the horizon along the row at azimuth delta (eta < 1):
+ * the row coordinate of one of the two crossings, or t_none where that one does not exist.
+ * A microfacet m that refracts wo into a horizontal wt = (cos psi, sin psi, 0) is
+ * m = (wo + eta wt) / |wo + eta wt| [WMLT07 eq. 16, the generalized half vector], valid where
+ * wt lies on the far side of m, wt.m < 0, i.e. sin_o cos(psi) < -eta (no such m for eta >= 1:
+ * its z would be negative). m lies on the row (azimuth delta) where
+ * eta sin(psi - delta) = sin_o sin(delta): with s = sin_o sin(delta) / eta and k = +-sqrt(1 - s^2)
+ * (the two crossings, `branch` +1 or -1), cos(psi - delta) = k, and the slope of m along the row
+ * is (sin_o cos(delta) + eta k) / wo.z, counted only where positive (m on the row's side). */
+BB_FN real bb_dielectric_t_horizon(bb_vec3 wo, real a, real eta, real r_cap, real cos_d, real sin_d, real branch,
+                                   real t_none) {
+    real sin_o = wo.x;
+    real s = sin_o * sin_d / eta;
+    real k = branch * bb_safe_sqrt((BB_R(1.0) - s) * (BB_R(1.0) + s));
+    real cos_psi = cos_d * k - sin_d * s;
+    real r = (sin_o * cos_d + eta * k) / wo.z;
+    bb_mask ok = eta < BB_R(1.0) && bb_fabs(s) <= BB_R(1.0) && sin_o * cos_psi < -eta && r > BB_R(0.0) && r < r_cap;
+    return bb_select(t_none, bb_dielectric_t_of_r(bb_select(BB_R(1.0), r, ok), a), ok);
 }
 
 /* Swaps a and b into ascending order (a sorting-network comparator). */
@@ -153,34 +174,27 @@ BB_FN bb_dielectric_row bb_make_dielectric_row(bb_vec3 wo, real a, real eta, rea
     real t_v = bb_dielectric_t_of_r(r_v, a);
     real t_a = bb_dielectric_t_of_r(r_a, a), t_b = bb_dielectric_t_of_r(r_b, a);
     real t_r = bb_dielectric_t_of_r(r_r, a);
-    /* where wt reaches the horizon between t_a and t_b: bisection where wt.z changes sign */
-    real t_w = t_v;
-    real g_a = bb_dielectric_wt_z(wo, row.cos_phi, row.sin_phi, a, eta, t_a);
-    real g_b = bb_dielectric_wt_z(wo, row.cos_phi, row.sin_phi, a, eta, t_b);
-    bb_mask cross = crit && t_b > t_a && ((g_a < BB_R(0.0)) != (g_b < BB_R(0.0)));
-    if (!bb_all(!cross)) {
-        real lo = t_a, hi = t_b;
-        /* 40 halvings of at most t ~ 50: the cut lands within 5e-11 of the horizon, where the
-         * integrand is continuous with a jump of slope, so the rule's error from it is ~1e-21 */
-        for (int k = 0; k < 40; ++k) {
-            real mid = BB_R(0.5) * (lo + hi);
-            bb_mask same = (bb_dielectric_wt_z(wo, row.cos_phi, row.sin_phi, a, eta, mid) < BB_R(0.0)) == (g_a < BB_R(0.0));
-            lo = bb_select(lo, mid, same);
-            hi = bb_select(mid, hi, same);
-        }
-        t_w = bb_select(t_v, BB_R(0.5) * (lo + hi), cross);
-    }
+    /* where wt reaches the horizon: up to two crossings, in closed form */
+    real t_w = bb_min(t_v, bb_dielectric_t_horizon(wo, a, eta, r_cap, row.cos_phi, row.sin_phi, BB_R(1.0), t_v));
+    real t_x = bb_min(t_v, bb_dielectric_t_horizon(wo, a, eta, r_cap, row.cos_phi, row.sin_phi, BB_R(-1.0), t_v));
+    /* sort t_a, t_b, t_w, t_x, t_r: an optimal 9-comparator network for 5 values [Knuth, TAOCP 3,
+     * 5.3.4] */
     BB_SORT2(t_a, t_b);
+    BB_SORT2(t_x, t_r);
     BB_SORT2(t_w, t_r);
+    BB_SORT2(t_w, t_x);
+    BB_SORT2(t_a, t_x);
     BB_SORT2(t_a, t_w);
     BB_SORT2(t_b, t_r);
+    BB_SORT2(t_b, t_x);
     BB_SORT2(t_b, t_w);
     row.t[0] = BB_R(0.0);
     row.t[1] = t_a;
     row.t[2] = t_b;
     row.t[3] = t_w;
-    row.t[4] = t_r;
-    row.t[5] = t_v;
+    row.t[4] = t_x;
+    row.t[5] = t_r;
+    row.t[6] = t_v;
     return row;
 }
 
