@@ -7,8 +7,10 @@
  *                             for all cells (host/integrate/albedo.cpp, disk_table: W x, W y, W h per
  *                             step; h is not used here), as albedo_replicas_disk does.
  * And, built with -D BB_QUADRATURE -D BB_MODEL=<ggx's id> (a program of its own):
- *   dielectric_quadrature     the Gauss-Legendre product rule in half-vector space
- *                             (dielectric_quadrature.h), one work-item per (cell, rule, piece).
+ *   dielectric_quadrature     the product rule in half-vector space (dielectric_quadrature.h),
+ *                             one work-item per (cell, rule, piece): three Gauss-Legendre rules,
+ *                             or (embedded) one Gauss-Kronrod rule whose work-item also sums its
+ *                             embedded Gauss rule from the same nodes into the rule-1 slot.
  * Build options: [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W] [-D BB_QUADRATURE -D BB_MODEL=id]. */
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/rough_dielectric.h"
@@ -23,13 +25,14 @@
     __global const bb_scalar *cell_mu, __global const bb_scalar *cell_alpha,                           \
         __global const bb_scalar *cell_eta, __global const bb_scalar *nodes, const unsigned int n_fine, \
         const unsigned int n_coarse, const unsigned int n_coarsest, const unsigned int n_cells,         \
-        const int correlated, __global bb_scalar *piece_r, __global bb_scalar *piece_t,                  \
-        __global unsigned int *bad_count
+        const unsigned int embedded, const int correlated, __global bb_scalar *piece_r,                  \
+        __global bb_scalar *piece_t, __global unsigned int *bad_count
 
 
-/* The prologue of both: work-item gid is (cell, rule, piece) (returns beyond the last); declares
- * the rule's n abscissae x and weights wt, the cell's wo, a, eta, g1o, r_cap and the piece's
- * azimuth interval az. */
+/* The prologue of both: work-item gid is (cell, rule, piece) (returns beyond the last, and for
+ * rules 1 and 2 of an embedded pair, whose rule-0 item computes both); declares the rule's n
+ * abscissae x and weights wt, the embedded rule's weights wg (0 at the nodes it lacks; only with
+ * `embedded`), the cell's wo, a, eta, g1o, r_cap and the piece's azimuth interval az. */
 #define BB_DIELECTRIC_QUADRATURE_PROLOGUE                                                              \
     const unsigned int gid = (unsigned int)get_global_id(0);                                           \
     if (gid >= n_cells * BB_QUAD_RULES * BB_DIELECTRIC_QUAD_PIECES)                                    \
@@ -37,9 +40,12 @@
     const unsigned int cell = gid / (BB_QUAD_RULES * BB_DIELECTRIC_QUAD_PIECES);                       \
     const unsigned int rule = (gid / BB_DIELECTRIC_QUAD_PIECES) % BB_QUAD_RULES;                       \
     const unsigned int piece = gid % BB_DIELECTRIC_QUAD_PIECES;                                        \
+    if (embedded != 0u && rule != 0u)                                                                  \
+        return;                                                                                        \
     const unsigned int n = rule == 0u ? n_fine : (rule == 1u ? n_coarse : n_coarsest);                 \
     __global const bb_scalar* x = BB_QUAD_RULE_NODES(nodes, rule, n_fine, n_coarse);                   \
     __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                              \
+    __global const bb_scalar* wg = wt + BB_QUAD_PADDED(n);                                             \
     const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], BB_R(0.0));                            \
     const real a = (real)cell_alpha[cell], eta = (real)cell_eta[cell];                                 \
     const real g1o = bb_ggx_g1(wo, a, a), lo = bb_ggx_lambda(wo, a, a);                                \
@@ -56,35 +62,51 @@
  * (counted twice: delta in [0, pi] stands for [-pi, pi]) and the number of non-finite nodes. */
 __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
     BB_DIELECTRIC_QUADRATURE_PROLOGUE;
-    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
+    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0), gr = BB_R(0.0), gt = BB_R(0.0);
     unsigned int bad = 0;
     if (az.hi > az.lo) {
         for (unsigned int j = 0; j < n; ++j) {
             const real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(x[j]);
-            const real w_delta = BB_R(2.0) * wt[j] * (az.hi - az.lo) * bb_smoothstep_d(x[j]);
+            const real w_delta = BB_R(2.0) * (az.hi - az.lo) * bb_smoothstep_d(x[j]);
             const bb_dielectric_row row = bb_make_dielectric_row(wo, a, eta, r_cap, delta);
-            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0);
+            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0), er = BB_R(0.0), et = BB_R(0.0);
             for (int s = 0; s < BB_DIELECTRIC_QUAD_SEGMENTS; ++s) {
                 const real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
                 if (!(len > BB_R(0.0)))
                     continue;
                 for (unsigned int k = 0; k < n; ++k) {
-                    const real w = wt[k] * len * bb_smoothstep_d(x[k]);
+                    const real jac = len * bb_smoothstep_d(x[k]);
                     const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              t0 + len * bb_smoothstep(x[k]));
                     const int ok = isfinite(p.r) && isfinite(p.t);
                     bad += ok ? 0u : 1u;
-                    BB_KAHAN_ADD(rr, rc, ok ? w * p.r : BB_R(0.0));
-                    BB_KAHAN_ADD(tr, tc, ok ? w * p.t : BB_R(0.0));
+                    BB_KAHAN_ADD(rr, rc, ok ? wt[k] * jac * p.r : BB_R(0.0));
+                    BB_KAHAN_ADD(tr, tc, ok ? wt[k] * jac * p.t : BB_R(0.0));
+                    if (embedded != 0u && ok) {
+                        er += wg[k] * jac * p.r;
+                        et += wg[k] * jac * p.t;
+                    }
                 }
             }
-            BB_KAHAN_ADD(sr, cr, w_delta * rr);
-            BB_KAHAN_ADD(st, ct, w_delta * tr);
+            BB_KAHAN_ADD(sr, cr, wt[j] * w_delta * rr);
+            BB_KAHAN_ADD(st, ct, wt[j] * w_delta * tr);
+            if (embedded != 0u) {
+                gr += wg[j] * w_delta * er;
+                gt += wg[j] * w_delta * et;
+            }
         }
     }
     piece_r[gid] = sr;
     piece_t[gid] = st;
     bad_count[gid] = bad;
+    if (embedded != 0u) {
+        piece_r[gid + BB_DIELECTRIC_QUAD_PIECES] = gr;
+        piece_t[gid + BB_DIELECTRIC_QUAD_PIECES] = gt;
+        bad_count[gid + BB_DIELECTRIC_QUAD_PIECES] = 0u;
+        piece_r[gid + 2u * BB_DIELECTRIC_QUAD_PIECES] = BB_R(0.0); /* the unused rule-2 slot */
+        piece_t[gid + 2u * BB_DIELECTRIC_QUAD_PIECES] = BB_R(0.0);
+        bad_count[gid + 2u * BB_DIELECTRIC_QUAD_PIECES] = 0u;
+    }
 }
 
 #else /* BB_VECTOR_WIDTH */
@@ -97,38 +119,56 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
  * padded to a multiple of W with weight 0: such lanes are neither summed nor counted. */
 __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS(BB_DIELECTRIC_QUADRATURE_ARGS) {
     BB_DIELECTRIC_QUADRATURE_PROLOGUE;
-    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
+    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0), gr = BB_R(0.0), gt = BB_R(0.0);
     bb_mask bad = 0;
     if (bb_all(az.hi > az.lo)) {
         for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
             const real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
             const bb_mask live = wj > BB_R(0.0);
             const real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(xj);
-            const real w_delta = BB_R(2.0) * wj * (az.hi - az.lo) * bb_smoothstep_d(xj);
+            const real w_delta = BB_R(2.0) * (az.hi - az.lo) * bb_smoothstep_d(xj);
             const bb_dielectric_row row = bb_make_dielectric_row(wo, a, eta, r_cap, delta);
-            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0);
+            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0), er = BB_R(0.0), et = BB_R(0.0);
             for (int s = 0; s < BB_DIELECTRIC_QUAD_SEGMENTS; ++s) {
                 const real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
                 const bb_mask on = live & (len > BB_R(0.0));
                 if (bb_all(!on))
                     continue;
                 for (unsigned int k = 0; k < n; ++k) {
-                    const real w = (real)wt[k] * len * bb_smoothstep_d((real)x[k]);
+                    const real jac = len * bb_smoothstep_d((real)x[k]);
                     const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              t0 + len * bb_smoothstep((real)x[k]));
                     const bb_mask ok = isfinite(p.r) & isfinite(p.t);
                     bad += bb_select((bb_mask)0, (bb_mask)1, on & ~ok);
-                    BB_KAHAN_ADD(rr, rc, bb_select(BB_R(0.0), w * p.r, on & ok));
-                    BB_KAHAN_ADD(tr, tc, bb_select(BB_R(0.0), w * p.t, on & ok));
+                    const real pr = bb_select(BB_R(0.0), jac * p.r, on & ok), pt = bb_select(BB_R(0.0), jac * p.t, on & ok);
+                    BB_KAHAN_ADD(rr, rc, (real)wt[k] * pr);
+                    BB_KAHAN_ADD(tr, tc, (real)wt[k] * pt);
+                    if (embedded != 0u) {
+                        er += (real)wg[k] * pr;
+                        et += (real)wg[k] * pt;
+                    }
                 }
             }
-            BB_KAHAN_ADD(sr, cr, bb_select(BB_R(0.0), w_delta * rr, live));
-            BB_KAHAN_ADD(st, ct, bb_select(BB_R(0.0), w_delta * tr, live));
+            BB_KAHAN_ADD(sr, cr, bb_select(BB_R(0.0), wj * w_delta * rr, live));
+            BB_KAHAN_ADD(st, ct, bb_select(BB_R(0.0), wj * w_delta * tr, live));
+            if (embedded != 0u) {
+                const real gj = bb_vload(wg + j0);
+                gr += bb_select(BB_R(0.0), gj * w_delta * er, live);
+                gt += bb_select(BB_R(0.0), gj * w_delta * et, live);
+            }
         }
     }
     piece_r[gid] = bb_lane_sum(sr, cr);
     piece_t[gid] = bb_lane_sum(st, ct);
     bad_count[gid] = bb_lane_count(bad);
+    if (embedded != 0u) {
+        piece_r[gid + BB_DIELECTRIC_QUAD_PIECES] = bb_lane_sum(gr, BB_R(0.0));
+        piece_t[gid + BB_DIELECTRIC_QUAD_PIECES] = bb_lane_sum(gt, BB_R(0.0));
+        bad_count[gid + BB_DIELECTRIC_QUAD_PIECES] = 0u;
+        piece_r[gid + 2u * BB_DIELECTRIC_QUAD_PIECES] = (bb_scalar)0; /* the unused rule-2 slot */
+        piece_t[gid + 2u * BB_DIELECTRIC_QUAD_PIECES] = (bb_scalar)0;
+        bad_count[gid + 2u * BB_DIELECTRIC_QUAD_PIECES] = 0u;
+    }
 }
 
 #endif /* BB_VECTOR_WIDTH */

@@ -2,9 +2,12 @@
 
 #include <Random123/philox.h>
 #include <Random123/uniform.hpp>
+#include <boost/math/quadrature/gauss.hpp>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
 #include <boost/math/special_functions/legendre.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <sstream>
 #include <type_traits>
@@ -459,6 +462,33 @@ void append_gauss_legendre(unsigned n, std::vector<double>& out, unsigned lanes 
     out.resize(out.size() + padded - rule.size(), 0.0);
 }
 
+// The (2g + 1)-point Gauss-Kronrod rule on [0, 1] and its embedded g-point Gauss rule
+// [Kronrod 1965; Laurie, Math. Comp. 66, 1997], from Boost.Math: the abscissae, the Kronrod
+// weights, then the Gauss weights (0 at the Kronrod-only nodes), each padded to a multiple of
+// lanes as append_gauss_legendre pads. One set of nodes gives both sums: the Kronrod sum is the
+// value and its distance to the Gauss sum the error estimate.
+template <unsigned K>
+void append_gauss_kronrod(std::vector<double>& out, unsigned lanes) {
+    constexpr unsigned G = (K - 1) / 2;
+    using kronrod = boost::math::quadrature::gauss_kronrod<double, K>;
+    using gauss = boost::math::quadrature::gauss<double, G>;
+    std::vector<std::array<double, 3>> rule;  // abscissa on [0, 1], Kronrod weight, Gauss weight
+    for (size_t i = 0; i < kronrod::abscissa().size(); ++i) {
+        const double z = kronrod::abscissa()[i], wk = 0.5 * kronrod::weights()[i];
+        double wg = 0.0;
+        for (size_t j = 0; j < gauss::abscissa().size(); ++j)
+            if (std::fabs(gauss::abscissa()[j] - z) < 1e-13) wg = 0.5 * gauss::weights()[j];
+        rule.push_back({0.5 * (1.0 + z), wk, wg});
+        if (z != 0.0) rule.push_back({0.5 * (1.0 - z), wk, wg});
+    }
+    std::sort(rule.begin(), rule.end());
+    const size_t padded = (rule.size() + lanes - 1) / lanes * lanes;
+    for (int column = 0; column < 3; ++column) {
+        for (const auto& r : rule) out.push_back(r[column]);
+        out.resize(out.size() + padded - rule.size(), column == 0 ? 0.5 : 0.0);
+    }
+}
+
 // The error of the n-node rule from the n/2- and n/4-node rules. For an integrand that is smooth
 // on the domain the Gauss-Legendre error falls geometrically, e(n) ~ r^(2n): the difference
 // d1 = |Q(n) - Q(n/2)| ~ e(n/2) is then about the square of d2 = |Q(n/2) - Q(n/4)| (relative
@@ -612,13 +642,37 @@ int dielectric_shadowing(const DielectricRequest& req) {
                                      : BB_DIELECTRIC_SHADOWING_BETA;
 }
 
+// The rule of the dielectric's quadrature for a budget of `samples` nodes per azimuth piece and
+// row segment: the Gauss-Kronrod rule with about sqrt(samples) points per axis up to 61 (16^2:
+// 15 points, 32^2: 31, 64^2: 61; the
+// estimate of its error costs no extra node), then three Gauss-Legendre rules n, n/2 and n/4
+// with n the even number nearest sqrt(samples) (quadrature_error).
+struct DielectricRule {
+    unsigned kronrod = 0;  // 15, 31 or 61 points; 0: the Gauss-Legendre triple
+    unsigned n = 0, m = 0, l = 0;
+};
+
+DielectricRule dielectric_rule(std::uint64_t samples) {
+    DielectricRule rule;
+    if (samples <= 16 * 16) rule.kronrod = 15;
+    else if (samples <= 32 * 32) rule.kronrod = 31;
+    else if (samples <= 64 * 64) rule.kronrod = 61;
+    if (rule.kronrod) {
+        rule.n = rule.kronrod;
+        return rule;
+    }
+    rule.n = 2 * quadrature_order(samples), rule.m = rule.n / 2, rule.l = rule.n / 4;
+    return rule;
+}
+
 // The half-vector rule of brdf/dielectric_quadrature.h: per cell, rule and azimuth piece one
-// work-item; a cell's R and T are the sums over its pieces, each with the error of
-// quadrature_error from the three rules, plus the floating-point bound and the part of the
-// measure the rows leave out beyond their slope cap (at most BB_EPS_REAL / 16 of R + T).
+// work-item; a cell's R and T are the sums over its pieces, each with an error estimate (the
+// Kronrod sum's distance to its embedded Gauss sum, or quadrature_error from the three
+// Gauss-Legendre rules) plus the floating-point bound and the part of the measure the rows leave
+// out beyond their slope cap (at most BB_EPS_REAL / 16 of R + T).
 DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricRequest& req) {
     if (req.samples == 0) throw Error("--samples must be positive");
-    const unsigned n = quadrature_order(req.samples), m = n / 2, l = std::max(1u, n / 4);
+    const DielectricRule rule = dielectric_rule(req.samples);
     constexpr size_t kSlots = BB_QUAD_RULES * BB_DIELECTRIC_QUAD_PIECES;
     const size_t n_cells = req.cells.size(), n_items = n_cells * kSlots;
 
@@ -630,14 +684,20 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
     build.has_vector_path = true;
     build.vector_width = req.vector_width;
     const unsigned lanes = engine.vector_width(build);
-    check_memory(sampling_bytes(n_cells, n_items * 2, 2.0 * (n + m + l + 3 * lanes), 1, req.precision),
+    check_memory(sampling_bytes(n_cells, n_items * 2, 3.0 * (rule.n + rule.m + rule.l + 3 * lanes), 1, req.precision),
                  "integrating " + std::to_string(n_cells) + " dielectric cells by quadrature");
     cl::Program& program = engine.program(build);
 
     std::vector<double> nodes, mus, alphas, etas;
-    append_gauss_legendre(n, nodes, lanes);
-    append_gauss_legendre(m, nodes, lanes);
-    append_gauss_legendre(l, nodes, lanes);
+    switch (rule.kronrod) {
+        case 15: append_gauss_kronrod<15>(nodes, lanes); break;
+        case 31: append_gauss_kronrod<31>(nodes, lanes); break;
+        case 61: append_gauss_kronrod<61>(nodes, lanes); break;
+        default:
+            append_gauss_legendre(rule.n, nodes, lanes);
+            append_gauss_legendre(rule.m, nodes, lanes);
+            append_gauss_legendre(rule.l, nodes, lanes);
+    }
     for (const auto& c : req.cells) {
         mus.push_back(c.mu);
         alphas.push_back(c.alpha);
@@ -650,11 +710,15 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
     const NonFiniteCounts bad_counts(engine, n_items);
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_QUADRATURE));
-    set_args(kernel, 0, b_mu, b_alpha, b_eta, b_nodes, cl_uint(n), cl_uint(m), cl_uint(l), cl_uint(n_cells),
-             cl_int(dielectric_shadowing(req)), b_r, b_t, bad_counts.buffer);
+    set_args(kernel, 0, b_mu, b_alpha, b_eta, b_nodes, cl_uint(rule.n), cl_uint(rule.m), cl_uint(rule.l),
+             cl_uint(n_cells), cl_uint(rule.kronrod ? 1 : 0), cl_int(dielectric_shadowing(req)), b_r, b_t,
+             bad_counts.buffer);
+    const std::uint64_t per_piece = rule.kronrod ? std::uint64_t(rule.n) * rule.n
+                                                 : std::uint64_t(rule.n) * rule.n + std::uint64_t(rule.m) * rule.m +
+                                                       std::uint64_t(rule.l) * rule.l;
     const double kernel_seconds =
-        run_items(engine, kernel, n_items, 2.0 * double(n) * n,
-                  "rough dielectric of " + std::to_string(n_cells) + " cells by quadrature, " + std::to_string(n) +
+        run_items(engine, kernel, n_items, double(per_piece) * BB_DIELECTRIC_QUAD_SEGMENTS / BB_QUAD_RULES,
+                  "rough dielectric of " + std::to_string(n_cells) + " cells by quadrature, " + std::to_string(rule.n) +
                       " nodes");
     const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
     const std::vector<cl_uint> bad = bad_counts.read(engine);
@@ -663,23 +727,26 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
     result.kernel_seconds = kernel_seconds;
     result.vector_width = lanes;
     std::ostringstream text;
-    text << "Gauss-Legendre product rule in half-vector space, " << n << " x " << n
-         << " nodes per azimuth piece and row segment (up to " << BB_DIELECTRIC_QUAD_PIECES << " x "
-         << BB_DIELECTRIC_QUAD_SEGMENTS << "), error from the " << m << "- and " << l << "-node rules";
+    text << (rule.kronrod ? "Gauss-Kronrod" : "Gauss-Legendre") << " product rule in half-vector space, " << rule.n
+         << " x " << rule.n << " nodes per azimuth piece and row segment (up to " << BB_DIELECTRIC_QUAD_PIECES << " x "
+         << BB_DIELECTRIC_QUAD_SEGMENTS << "), error from the ";
+    if (rule.kronrod)
+        text << "embedded " << (rule.n - 1) / 2 << "-node Gauss rule";
+    else
+        text << rule.m << "- and " << rule.l << "-node rules";
     result.method = text.str();
     const double fp_bound = tolerance_floor(req.precision);
     const double tail = (req.precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7) / 16.0;
-    const std::uint64_t nodes_per_cell = std::uint64_t(BB_DIELECTRIC_QUAD_PIECES) * BB_DIELECTRIC_QUAD_SEGMENTS *
-                                         (std::uint64_t(n) * n + std::uint64_t(m) * m + std::uint64_t(l) * l);
+    const std::uint64_t nodes_per_cell = std::uint64_t(BB_DIELECTRIC_QUAD_PIECES) * BB_DIELECTRIC_QUAD_SEGMENTS * per_piece;
     result.samples_per_cell = nodes_per_cell;
     for (size_t c = 0; c < n_cells; ++c) {
         double sum[2][BB_QUAD_RULES] = {};
         std::uint64_t n_bad = 0;
-        for (unsigned rule = 0; rule < BB_QUAD_RULES; ++rule)
+        for (unsigned q = 0; q < BB_QUAD_RULES; ++q)
             for (unsigned piece = 0; piece < BB_DIELECTRIC_QUAD_PIECES; ++piece) {
-                const size_t slot = c * kSlots + rule * BB_DIELECTRIC_QUAD_PIECES + piece;
-                sum[0][rule] += r[slot];
-                sum[1][rule] += t[slot];
+                const size_t slot = c * kSlots + q * BB_DIELECTRIC_QUAD_PIECES + piece;
+                sum[0][q] += r[slot];
+                sum[1][q] += t[slot];
                 n_bad += bad[slot];
             }
         if (n_bad > 0)
@@ -687,9 +754,10 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
                                      " quadrature nodes); refusing to report a result",
                                  c, n_bad);
         for (int channel = 0; channel < 2; ++channel) {
+            const double* q = sum[channel];
             AlbedoValue v;
-            v.value = sum[channel][0];
-            v.error = quadrature_error(sum[channel][0], sum[channel][1], sum[channel][2], false) +
+            v.value = q[0];
+            v.error = (rule.kronrod ? std::fabs(q[0] - q[1]) : quadrature_error(q[0], q[1], q[2], false)) +
                       fp_bound * std::max(std::fabs(v.value), 1e-3) + tail;
             v.samples = nodes_per_cell;
             v.method = Method::Quadrature;
