@@ -74,10 +74,12 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
                 const real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
                 if (!(len > BB_R(0.0)))
                     continue;
+                const int tail = row.t[s + 1] >= row.t[BB_DIELECTRIC_QUAD_SEGMENTS];
                 for (unsigned int k = 0; k < n; ++k) {
-                    const real jac = len * bb_smoothstep_d(x[k]);
+                    const bb_segment_node node = bb_dielectric_segment_node(t0, len, tail, x[k]);
+                    const real jac = node.dt;
                     const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
-                                                             t0 + len * bb_smoothstep(x[k]));
+                                                             node.t);
                     const int ok = isfinite(p.r) && isfinite(p.t);
                     bad += ok ? 0u : 1u;
                     BB_KAHAN_ADD(rr, rc, ok ? wt[k] * jac * p.r : BB_R(0.0));
@@ -134,10 +136,12 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS(BB_DIELECTRIC_QUADRATURE_ARGS)
                 const bb_mask on = live & (len > BB_R(0.0));
                 if (bb_all(!on))
                     continue;
+                const bb_mask tail = row.t[s + 1] >= row.t[BB_DIELECTRIC_QUAD_SEGMENTS];
                 for (unsigned int k = 0; k < n; ++k) {
-                    const real jac = len * bb_smoothstep_d((real)x[k]);
+                    const bb_segment_node node = bb_dielectric_segment_node(t0, len, tail, (real)x[k]);
+                    const real jac = node.dt;
                     const bb_rt p = bb_dielectric_quad_point(wo, a, eta, correlated, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
-                                                             t0 + len * bb_smoothstep((real)x[k]));
+                                                             node.t);
                     const bb_mask ok = isfinite(p.r) & isfinite(p.t);
                     bad += bb_select((bb_mask)0, (bb_mask)1, on & ~ok);
                     const real pr = bb_select(BB_R(0.0), jac * p.r, on & ok), pt = bb_select(BB_R(0.0), jac * p.t, on & ok);

@@ -177,21 +177,28 @@ TEST_CASE("dielectric quadrature: the row-per-lane kernel gives the scalar kerne
     for (double mu : {1e-3, 0.3, 1.0})
         for (double alpha : {1e-3, 0.3, 1.0})
             for (double eta : {1.0001, 1.5, 1.0 / 1.5}) cells.push_back({mu, alpha, eta});
-    for (Precision p : {Precision::Float, Precision::Double}) {
-        if (p == Precision::Double && !testing::engine().device().fp64) continue;
-        DielectricRequest r = quadrature_request(cells, kForms[0], 32, p);
-        r.vector_width = 1;
-        const DielectricResult s = compute_dielectric(testing::engine(), r);
-        r.vector_width = 0;
-        const DielectricResult v = compute_dielectric(testing::engine(), r);
-        CHECK(s.vector_width == 1);
-        const double tol = p == Precision::Float ? 2e-5 : 1e-12;
-        for (size_t i = 0; i < cells.size(); ++i) {
-            INFO(precision_name(p) << " mu " << cells[i].mu << " alpha " << cells[i].alpha << " eta " << cells[i].eta
-                                   << ": R " << s.reflected[i].value << " vs " << v.reflected[i].value << ", T "
-                                   << s.transmitted[i].value << " vs " << v.transmitted[i].value);
-            CHECK(std::fabs(s.reflected[i].value - v.reflected[i].value) <= tol);
-            CHECK(std::fabs(s.transmitted[i].value - v.transmitted[i].value) <= tol);
+    // n = 16: the 31-point Kronrod rule and its embedded Gauss rule; 64: three Gauss-Legendre rules.
+    for (unsigned n : {16u, 64u})
+        for (Precision p : {Precision::Float, Precision::Double}) {
+            if (p == Precision::Double && !testing::engine().device().fp64) continue;
+            DielectricRequest r = quadrature_request(cells, kForms[0], n, p);
+            r.vector_width = 1;
+            const DielectricResult s = compute_dielectric(testing::engine(), r);
+            r.vector_width = 0;
+            const DielectricResult v = compute_dielectric(testing::engine(), r);
+            CHECK(s.vector_width == 1);
+            const double tol = p == Precision::Float ? 2e-5 : 1e-12;
+            for (size_t i = 0; i < cells.size(); ++i) {
+                INFO(precision_name(p) << " n " << n << " mu " << cells[i].mu << " alpha " << cells[i].alpha << " eta "
+                                       << cells[i].eta << ": R " << s.reflected[i].value << " +- " << s.reflected[i].error
+                                       << " vs " << v.reflected[i].value << " +- " << v.reflected[i].error << ", T "
+                                       << s.transmitted[i].value << " +- " << s.transmitted[i].error << " vs "
+                                       << v.transmitted[i].value << " +- " << v.transmitted[i].error);
+                CHECK(std::fabs(s.reflected[i].value - v.reflected[i].value) <= tol);
+                CHECK(std::fabs(s.transmitted[i].value - v.transmitted[i].value) <= tol);
+                // The error estimates are differences of such sums: equal to twice the rounding.
+                CHECK(std::fabs(s.reflected[i].error - v.reflected[i].error) <= 2 * tol + 0.01 * s.reflected[i].error);
+                CHECK(std::fabs(s.transmitted[i].error - v.transmitted[i].error) <= 2 * tol + 0.01 * s.transmitted[i].error);
+            }
         }
-    }
 }

@@ -643,25 +643,27 @@ int dielectric_shadowing(const DielectricRequest& req) {
 }
 
 // The rule of the dielectric's quadrature for a budget of `samples` nodes per azimuth piece and
-// row segment: the Gauss-Kronrod rule with about sqrt(samples) points per axis up to 61 (16^2:
-// 15 points, 32^2: 31, 64^2: 61; the
-// estimate of its error costs no extra node), then three Gauss-Legendre rules n, n/2 and n/4
-// with n the even number nearest sqrt(samples) (quadrature_error).
+// row segment, side = sqrt(samples) nodes per axis: below 128, the largest Gauss-Kronrod rule of
+// Boost.Math's (15, 21, 31, 41, 51 or 61 points) within side + 1/2, whose embedded Gauss rule
+// estimates its error at no extra node; from 128 on, three Gauss-Legendre rules n, n/2 and n/4
+// with n the even number nearest side (quadrature_error). compute_dielectric_to_tolerance's plan
+// (refine.cpp) spends the budgets 21^2, 31^2, 61^2, 128^2, 256^2 and 512^2.
 struct DielectricRule {
-    unsigned kronrod = 0;  // 15, 31 or 61 points; 0: the Gauss-Legendre triple
+    unsigned kronrod = 0;  // points of the Gauss-Kronrod rule; 0: the Gauss-Legendre triple
     unsigned n = 0, m = 0, l = 0;
 };
 
 DielectricRule dielectric_rule(std::uint64_t samples) {
+    const double side = std::sqrt(double(samples));
     DielectricRule rule;
-    if (samples <= 16 * 16) rule.kronrod = 15;
-    else if (samples <= 32 * 32) rule.kronrod = 31;
-    else if (samples <= 64 * 64) rule.kronrod = 61;
-    if (rule.kronrod) {
+    if (side < 128.0) {
+        rule.kronrod = 15;
+        for (unsigned k : {21u, 31u, 41u, 51u, 61u})
+            if (k <= side + 0.5) rule.kronrod = k;
         rule.n = rule.kronrod;
         return rule;
     }
-    rule.n = 2 * quadrature_order(samples), rule.m = rule.n / 2, rule.l = rule.n / 4;
+    rule.n = 2 * unsigned(std::lround(side / 2.0)), rule.m = rule.n / 2, rule.l = rule.n / 4;
     return rule;
 }
 
@@ -691,7 +693,10 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
     std::vector<double> nodes, mus, alphas, etas;
     switch (rule.kronrod) {
         case 15: append_gauss_kronrod<15>(nodes, lanes); break;
+        case 21: append_gauss_kronrod<21>(nodes, lanes); break;
         case 31: append_gauss_kronrod<31>(nodes, lanes); break;
+        case 41: append_gauss_kronrod<41>(nodes, lanes); break;
+        case 51: append_gauss_kronrod<51>(nodes, lanes); break;
         case 61: append_gauss_kronrod<61>(nodes, lanes); break;
         default:
             append_gauss_legendre(rule.n, nodes, lanes);

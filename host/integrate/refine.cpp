@@ -33,14 +33,21 @@ void check_tolerance(double tolerance, Precision precision) {
 }
 
 std::vector<RefineStep> tolerance_steps(const ToleranceRequest& tol, Method method) {
+    std::vector<std::uint64_t> quadrature;
+    for (std::uint64_t s = 4 * 16 * 16; s <= 4ull * 512 * 512; s *= 4) quadrature.push_back(s);
+    return tolerance_steps(tol, method, quadrature);
+}
+
+std::vector<RefineStep> tolerance_steps(const ToleranceRequest& tol, Method method,
+                                        const std::vector<std::uint64_t>& quadrature_samples) {
     // (method, samples) steps, each a round over the cells still above the tolerance.
     // Quadrature first (auto): its error falls exponentially for smooth lobes; importance
     // sampling, whose error falls like N^-0.9 with randomised QMC, takes the cells where the
     // rule stalls (kinks such as Torrance-Sparrow's V-groove min()). Work grows 4x per step.
     std::vector<RefineStep> steps;
     if (tol.auto_method || method == Method::Quadrature)
-        for (std::uint64_t s = 4 * 16 * 16; s <= std::min<std::uint64_t>(tol.max_samples, 4ull * 512 * 512); s *= 4)
-            steps.push_back({Method::Quadrature, s});
+        for (std::uint64_t s : quadrature_samples)
+            if (s <= tol.max_samples) steps.push_back({Method::Quadrature, s});
     if (tol.auto_method || method != Method::Quadrature) {
         const Method sampler = tol.auto_method ? Method::Importance : method;
         for (std::uint64_t s = std::uint64_t(1) << 14; s <= tol.max_samples; s *= 4) steps.push_back({sampler, s});
@@ -171,7 +178,10 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
 DielectricResult compute_dielectric_to_tolerance(Engine& engine, const DielectricRequest& req, const ToleranceRequest& tol) {
     check_tolerance(tol.tolerance, req.precision);
     if (req.cells.empty()) throw Error("no cells to integrate");
-    const std::vector<RefineStep> steps = tolerance_steps(tol, req.method);
+    // The dielectric's rules (dielectric_rule in albedo.cpp): Gauss-Kronrod of 21, 31 and 61
+    // points, whose error estimates cost no extra node, then Gauss-Legendre of 128 to 512.
+    const std::vector<RefineStep> steps =
+        tolerance_steps(tol, req.method, {21 * 21, 31 * 31, 61 * 61, 128 * 128, 256 * 256, 512 * 512});
     RefineOptions options;
     options.tolerance = tol.tolerance;
     // Importance rounds alone replace each estimate by the next (their errors fall steadily);

@@ -59,6 +59,11 @@ struct RefineOutcome {
 /// max_samples leaves no step.
 std::vector<RefineStep> tolerance_steps(const ToleranceRequest& tolerance, Method method);
 
+/// The same with the quadrature rounds' budgets given (those up to tolerance.max_samples run):
+/// the rough dielectric's rules differ from the albedo's.
+std::vector<RefineStep> tolerance_steps(const ToleranceRequest& tolerance, Method method,
+                                        const std::vector<std::uint64_t>& quadrature_samples);
+
 /// The refusal of a tolerance below what `precision` can certify (twice tolerance_floor).
 void check_tolerance(double tolerance, Precision precision);
 

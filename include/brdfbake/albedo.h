@@ -138,9 +138,9 @@ struct DielectricRequest {
     bool cycles_transmission = false;
     /// Importance (visible-normal sampling, replicas) or Quadrature (the half-vector rule of
     /// brdf/dielectric_quadrature.h with about sqrt(samples) nodes per axis, per azimuth piece and
-    /// row segment: the 15-, 31- or 61-point Gauss-Kronrod rule, its error from the embedded Gauss
-    /// rule; beyond 61 x 61, the Gauss-Legendre rule of n nodes, its error from the n/2- and
-    /// n/4-node rules). Other methods are refused.
+    /// row segment: below 128, a Gauss-Kronrod rule of 15 to 61 points, its error from the
+    /// embedded Gauss rule; from 128 on, the Gauss-Legendre rule of n nodes, its error from the
+    /// n/2- and n/4-node rules). Other methods are refused.
     Method method = Method::Importance;
     std::uint64_t samples = 1u << 18;
     unsigned replicas = 16;

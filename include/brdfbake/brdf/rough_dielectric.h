@@ -42,17 +42,18 @@ typedef struct {
  * points away from the surface on the far side. cos_t from sin^2_t = (1 - c^2)/eta^2. Returns
  * the zero vector under total internal reflection. */
 BB_FN bb_vec3 bb_refract(bb_vec3 wo, bb_vec3 wh, real c, real eta) {
-    real sin2_t = bb_sin2_from_cos(c) / (eta * eta);
+    real inv_eta = BB_R(1.0) / eta; /* the same for every sample of a cell: computed once */
+    real sin2_t = bb_sin2_from_cos(c) * (inv_eta * inv_eta);
     real cos_t = bb_safe_sqrt(BB_R(1.0) - sin2_t);
-    bb_vec3 wt = bb_add(bb_scale(wo, BB_R(-1.0) / eta), bb_scale(wh, c / eta - cos_t));
+    bb_vec3 wt = bb_add(bb_scale(wo, -inv_eta), bb_scale(wh, c * inv_eta - cos_t));
     return bb_scale(wt, bb_select(BB_R(1.0), BB_R(0.0), sin2_t >= BB_R(1.0)));
 }
 
 /* The Stirling series of log Gamma(z) without its (z - 1/2) log z - z + log(2 pi)/2 part, for
  * z >= 8: 1/(12 z) - 1/(360 z^3) + 1/(1260 z^5) - 1/(1680 z^7) + 1/(1188 z^9), truncation
  * below 691/(360360 z^11) < 2.2e-13. */
-BB_FN real bb_stirling_tail(real z) {
-    real r = BB_R(1.0) / z, r2 = r * r;
+BB_FN real bb_stirling_tail_inv(real r) { /* given r = 1/z (the caller has it) */
+    real r2 = r * r;
     real s = BB_R(1.0) / BB_R(1680.0) - r2 * (BB_R(1.0) / BB_R(1188.0));
     s = BB_R(1.0) / BB_R(1260.0) - r2 * s;
     s = BB_R(1.0) / BB_R(360.0) - r2 * s;
@@ -88,9 +89,13 @@ BB_FN real bb_beta_lga(real a, real b, real lga) {
     pc = bb_select(BB_R(1.0), pc, sc);
     /* d = c' - b' from a and the shifts, not by subtracting c' (rounded) from b' */
     real d = a + bb_select(BB_R(0.0), BB_R(8.0), sc) - bb_select(BB_R(0.0), BB_R(8.0), sb);
-    real diff = -(bs - BB_R(0.5)) * bb_log1p(d / bs) - d * bb_log(cs) + d + bb_stirling_tail(bs) -
-                bb_stirling_tail(cs) - bb_log(pb / pc);
-    return bb_exp(lga + diff);
+    /* two divisions for 1/b', 1/c' and P_c / P_b: q = 1/(c' P_b) gives the last two (c' P_b
+     * stays below 1e31 where b' does: P_b = 1 from b' = 8 on) */
+    real inv_bs = BB_R(1.0) / bs, q = BB_R(1.0) / (cs * pb);
+    real diff = -(bs - BB_R(0.5)) * bb_log1p(d * inv_bs) - d * bb_log(cs) + d + bb_stirling_tail_inv(inv_bs) -
+                bb_stirling_tail_inv(q * pb);
+    /* exp(-log(P_b / P_c)) as the quotient itself: P_c / P_b lies within 1e-8 and 1e9 */
+    return bb_exp(lga + diff) * (pc * cs * q);
 }
 
 BB_FN real bb_beta(real a, real b) { return bb_beta_lga(a, b, bb_lgamma(a)); }
@@ -117,15 +122,20 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, 
 
     bb_vec3 wt = bb_refract(wo, wh, c, eta);
     bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
-    real g1t = bb_ggx_g1(wt_up, ax, ay);
     /* correlated is the same for every sample (and every lane): only its branch is computed
      * (the Beta function's log-gammas are the costliest part of a sample) */
-    real g2t = g1o * g1t;
+    real g2t;
     if (correlated == BB_DIELECTRIC_SHADOWING_BETA) {
+        /* G1(wt) = 1 / (1 + lt) > 0 where wt_up.z > 0 and lt is finite (it is not where
+         * 2z(s + z) underflows, as G1's closed form then gives 0) */
         real lt = bb_ggx_lambda(wt_up, ax, ay);
-        g2t = bb_select(BB_R(0.0), bb_beta_lga(BB_R(1.0) + lo, BB_R(1.0) + lt, lga_o), g1o > BB_R(0.0) && g1t > BB_R(0.0));
-    } else if (correlated == BB_DIELECTRIC_SHADOWING_CYCLES) {
-        g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
+        g2t = bb_select(BB_R(0.0), bb_beta_lga(BB_R(1.0) + lo, BB_R(1.0) + lt, lga_o),
+                        g1o > BB_R(0.0) && wt_up.z > BB_R(0.0) && lt < BB_R(1e30));
+    } else {
+        real g1t = bb_ggx_g1(wt_up, ax, ay);
+        g2t = g1o * g1t;
+        if (correlated == BB_DIELECTRIC_SHADOWING_CYCLES)
+            g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
     }
     out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t, wt.z < BB_R(0.0));
     return out;
