@@ -1,7 +1,8 @@
 // The command line's progress display (brdfbake/progress.h): on a terminal a bar on stderr that
 // redraws in place (done, rate, time left), also while a long launch reports nothing (a ticker
 // thread redraws the clock); otherwise a plain line every 5 s, or at each further tenth after at
-// least a second. A stage that ends within a second prints nothing, so short runs stay quiet.
+// least a second. A stage that ends within a second prints nothing, so short runs stay quiet
+// (BRDFBAKE_PROGRESS_DELAY sets that second).
 #include <sys/ioctl.h>
 #include <unistd.h>
 
@@ -10,6 +11,7 @@
 #include <cmath>
 #include <condition_variable>
 #include <cstdio>
+#include <cstdlib>
 #include <mutex>
 #include <string>
 #include <thread>
@@ -64,7 +66,14 @@ std::string describe(const ProgressState& s, double elapsed, double left, std::s
 
 class StderrProgress : public ProgressSink {
 public:
-    StderrProgress() : tty_(::isatty(2) != 0) {}
+    StderrProgress() : tty_(::isatty(2) != 0) {
+        // BRDFBAKE_PROGRESS_DELAY=S: show stages that run longer than S seconds (default 1).
+        if (const char* d = std::getenv("BRDFBAKE_PROGRESS_DELAY")) {
+            char* end = nullptr;
+            const double v = std::strtod(d, &end);
+            if (end != d && *end == '\0' && v >= 0 && v < 1e6) delay_ = v;
+        }
+    }
 
     ~StderrProgress() override {
         {
@@ -115,7 +124,7 @@ private:
     void draw(bool ticking) {
         const double moved = since(received_);
         const double elapsed = state_.elapsed + moved;
-        if (!shown_ && elapsed < 1.0) return;  // quick stages say nothing
+        if (!shown_ && elapsed < delay_) return;  // quick stages say nothing
         if (tty_) {
             if (shown_ && since(last_draw_) < (ticking ? 0.5 : 0.1)) return;
             bar(elapsed, moved);
@@ -161,6 +170,7 @@ private:
     }
 
     const bool tty_;
+    double delay_ = 1.0;
     std::mutex mutex_;
     std::condition_variable wake_;
     std::thread ticker_;
