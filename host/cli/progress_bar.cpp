@@ -111,6 +111,14 @@ public:
         draw(false);
     }
 
+    void message(const std::string& text) override {
+        std::lock_guard<std::mutex> lock(mutex_);
+        const bool bar_shown = tty_ && shown_ && active_;
+        std::fprintf(stderr, "%s%s\n", bar_shown ? "\r\033[K" : "", text.c_str());
+        if (bar_shown) bar(state_.elapsed + since(received_), since(received_));
+        std::fflush(stderr);
+    }
+
 private:
     void tick() {
         std::unique_lock<std::mutex> lock(mutex_);

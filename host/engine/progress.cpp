@@ -189,6 +189,15 @@ void report_progress(const std::string& what, std::uint64_t done, std::uint64_t 
     if (finished) g_loose_open = false;
 }
 
+void progress_message(const std::string& line) {
+    if (ProgressSink* sink = g_sink.load()) {
+        sink->message(line);
+        return;
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+    std::fflush(stderr);
+}
+
 std::string progress_duration(double seconds) {
     char s[48];
     const long t = std::lround(std::max(0.0, seconds));

@@ -36,6 +36,8 @@ public:
     virtual ~ProgressSink() = default;
     /// A stage changed (at most once per report; the sink decides what to draw and when).
     virtual void update(const ProgressState& state) = 0;
+    /// A line of a log written while stages run (a terminal's bar is cleared for it and redrawn).
+    virtual void message(const std::string& line) = 0;
 };
 
 /// Installs the sink (nullptr: none). The caller keeps it alive while computations run.
@@ -66,6 +68,10 @@ private:
 /// A launch's report: `done` of `total` units of `what` are finished (done == total: it ended).
 /// Inside a stage it is that stage's step; outside any, a stage of its own.
 void report_progress(const std::string& what, std::uint64_t done, std::uint64_t total);
+
+/// Writes one line (without its newline) to stderr through the sink, so that it does not run
+/// into a progress bar; without a sink, straight to stderr.
+void progress_message(const std::string& line);
 
 /// "12 s", "3 min 5 s", "1 h 2 min": a duration for progress and estimates.
 std::string progress_duration(double seconds);
