@@ -259,16 +259,22 @@ json timed_run(Engine& engine, const Options& o, const Family& fam, const std::v
     return run;
 }
 
+/// The auto method to `tol` within the study's sample limit.
+ToleranceRequest auto_tolerance(const Options& o, double tol) {
+    ToleranceRequest t;
+    t.tolerance = tol;
+    t.auto_method = true;
+    t.max_samples = o.max_samples;
+    return t;
+}
+
 /// The --tolerance mode (auto: quadrature, then importance) on each cell alone, so that one
 /// cell that cannot meet the tolerance does not hide the others.
 json tolerance_run(Engine& engine, const Options& o, const Family& fam, const Cell& c, Precision p, double tol) {
     json out = {{"family", fam.key}, {"spec", c.spec}, {"mu", c.mu}, {"easy", c.easy},
                 {"precision", precision_name(p)}, {"tolerance", tol}, {"reference", c.ref}};
     AlbedoRequest req = request_for(fam, {&c}, Method::Importance, p, 0);
-    ToleranceRequest t;
-    t.tolerance = tol;
-    t.auto_method = true;
-    t.max_samples = o.max_samples;
+    const ToleranceRequest t = auto_tolerance(o, tol);
     const double t0 = now();
     try {
         const AlbedoResult r = compute_albedo_to_tolerance(engine, req, t);
@@ -448,10 +454,7 @@ void dielectric_study(Engine& engine, const Options& o, json& j) {
                 if (tol == pt.second && tol == 1e-4 && d["runs"].back().value("tolerance", 0.0) == tol) continue;
                 json run = {{"method", "auto"}, {"precision", precision_name(pt.first)}, {"tolerance", tol},
                             {"cells", json::array()}};
-                ToleranceRequest t;
-                t.tolerance = tol;
-                t.auto_method = true;
-                t.max_samples = o.max_samples;
+                const ToleranceRequest t = auto_tolerance(o, tol);
                 const double t0 = now();
                 try {
                     const DielectricResult r =
