@@ -336,8 +336,10 @@ void dielectric_references(std::vector<DielectricStudyCell>& cells, double coars
             ref::rough_dielectric_rt(c.cell.mu, c.cell.alpha, c.cell.eta, ref::DielectricShadowing::Beta, rc, tc, coarse);
             ref::rough_dielectric_rt(c.cell.mu, c.cell.alpha, c.cell.eta, ref::DielectricShadowing::Beta, c.r, c.t, fine);
             c.seconds = now() - t0;
-            c.r_unc = std::max(std::fabs(c.r - rc), floor);
-            c.t_unc = std::max(std::fabs(c.t - tc), floor);
+            // The reference's tolerance is relative: it cannot vouch for digits below fine x value,
+            // even where the two tolerances agree.
+            c.r_unc = std::max({std::fabs(c.r - rc), fine * std::fabs(c.r), floor});
+            c.t_unc = std::max({std::fabs(c.t - tc), fine * std::fabs(c.t), floor});
             c.certain = std::isfinite(c.r) && std::isfinite(c.t) && std::max(c.r_unc, c.t_unc) <= max_unc;
         }
     };
@@ -574,7 +576,7 @@ std::string dielectric_markdown(const json& d) {
           "Reference: `ref::rough_dielectric_rt` (benchmarks/reference/reference.h: adaptive Gauss-Kronrod in "
           "theta_h, tanh-sinh pieces in phi_h cut in closed form) at tolerance "
        << sci(d["reference_tolerances"][1].get<double>(), 0) << ", its uncertainty the difference from "
-       << sci(d["reference_tolerances"][0].get<double>(), 0) << " (cells less certain than 1e-8 dropped); "
+       << sci(d["reference_tolerances"][0].get<double>(), 0) << " and at least the tolerance times the value (cells less certain than 1e-8 dropped); "
        << fixed(d["reference_seconds"].get<double>(), 1) << " s wall. Time: the kernel's per cell (median of "
           "repeated runs after a warm-up); wall: the whole call per cell. *Beyond 3x*: channels (R or T of a cell) "
           "whose true error, less the reference's uncertainty, exceeds 3x the estimate.\n\n";

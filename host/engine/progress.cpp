@@ -31,6 +31,7 @@ std::vector<Frame> g_frames;  // the open stages, outermost first
 Frame g_loose;                // a launch reporting outside any stage
 bool g_loose_open = false;
 std::uint64_t g_next_id = 1;
+int g_silenced = 0;  // open ProgressSilence objects
 
 double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
 
@@ -109,7 +110,8 @@ ProgressState state_of(const Frame& f, const Step& s, bool finished) {
 
 void publish(bool finished) {
     ProgressSink* sink = g_sink.load();
-    if (!sink || g_frames.empty()) return;
+    // A stage's end always reaches the sink (one shown before a silence began must not stay drawn).
+    if (!sink || g_frames.empty() || (g_silenced > 0 && !finished)) return;
     sink->update(state_of(g_frames.front(), step_of(0), finished));
 }
 
@@ -161,9 +163,20 @@ void ProgressStage::update(std::uint64_t done, const std::string& step, std::uin
     publish(false);
 }
 
+ProgressSilence::ProgressSilence() {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    ++g_silenced;
+}
+
+ProgressSilence::~ProgressSilence() {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    --g_silenced;
+}
+
 void report_progress(const std::string& what, std::uint64_t done, std::uint64_t total) {
     if (!g_sink.load()) return;
     std::lock_guard<std::mutex> lock(g_mutex);
+    if (g_silenced > 0) return;
     const double fraction = total ? std::min(1.0, double(done) / double(total)) : 1.0;
     if (!g_frames.empty()) {
         Frame& f = g_frames.back();

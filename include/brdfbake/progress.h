@@ -65,6 +65,17 @@ private:
     std::size_t depth_;
 };
 
+/// While one lives, no stage or launch is shown (the stages still nest): for a front end that
+/// draws its own progress over many computations, as `bake` does, so that two displays do not
+/// draw over each other. progress_message still writes.
+class ProgressSilence {
+public:
+    ProgressSilence();
+    ~ProgressSilence();
+    ProgressSilence(const ProgressSilence&) = delete;
+    ProgressSilence& operator=(const ProgressSilence&) = delete;
+};
+
 /// A launch's report: `done` of `total` units of `what` are finished (done == total: it ended).
 /// Inside a stage it is that stage's step; outside any, a stage of its own.
 void report_progress(const std::string& what, std::uint64_t done, std::uint64_t total);
