@@ -202,10 +202,18 @@ constexpr double kReferencePeak[2] = {118.0, 65.0};
 constexpr double kReferenceRate[6][2] = {{1.16e9, 4.66e8}, {6.18e8, 4.04e8}, {8.61e8, 4.66e8},
                                          {3.50e8, 1.39e8}, {1.71e7, 1.07e7}, {1.66e8, 9.76e7}};
 constexpr double kKernelCallSeconds = 5e-4;     // a compute_albedo call's own cost (scaling sweep, 8x8 table)
-constexpr double kBaselineCallSeconds = 0.005;  // a baseline call's (thread start-up: 0.2 to 24 ms there)
+constexpr double kBaselineCallSeconds = 0.01;  // a baseline call's (thread start-up: 0.2 to 24 ms there)
 constexpr double kEngineSeconds = 0.3;          // the engine and its warm albedo program
 constexpr double kColdBuildSeconds[2] = {2.3, 0.7};  // the first cold build of a process, and a later one
 constexpr double kKindCellSeconds = 2.5e-5;     // an integration cell of a table at 1e-4 (the albedo's: 16 us)
+
+/// The timing options of the kind rows: with sized tables (kind_seconds), repeats until twice
+/// a run's length rather than min_seconds, so that a row costs a few runs.
+BenchOptions kind_timing(const BenchOptions& o) {
+    BenchOptions k = o;
+    if (o.kind_seconds > 0) k.min_seconds = std::min(o.min_seconds, 2.0 * o.kind_seconds);
+    return k;
+}
 
 /// The phases of a run and their estimated seconds, in the order run_bench runs them.
 struct BenchPhase {
@@ -252,8 +260,12 @@ std::vector<BenchPhase> plan_bench(const BenchOptions& o, const baseline::Peak& 
                 // figure: kinds differ several-fold).
                 const double texels = k->one_dimensional ? std::sqrt(double(o.kind_texels)) : double(o.kind_texels);
                 const double cells = texels * k->cells_per_texel * k->sample_cost;
-                t += o.kind_seconds > 0 ? 0.03 + 2.0 * o.kind_seconds + median_cost(o.kind_seconds, o)
-                                        : 2.0 * cells * kKindCellSeconds / speed(p) + 0.05;
+                // Sized: a tiny warm-up, the sizing runs, the timed ones; double's kernels about
+                // 1.5x float's (the slowest kinds' smallest tables outlast kind_seconds).
+                t += o.kind_seconds > 0
+                         ? (0.03 + 2.0 * o.kind_seconds + median_cost(o.kind_seconds, kind_timing(o))) *
+                               (p == Precision::Double ? 1.5 : 1.0)
+                         : 2.0 * cells * kKindCellSeconds / speed(p) + 0.05;
             }
             plan.push_back({"table kinds, " + pname, t});
         }
@@ -405,7 +417,7 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
     // The estimate, then the run as one progress stage in estimated milliseconds, a phase a
     // step; what runs inside (a table's refinement) shows as part of the step.
     const std::vector<BenchPhase> plan = plan_bench(o, peak, precisions);
-    double estimate = kEngineSeconds;
+    double estimate = kEngineSeconds + (o.quick ? 0.05 : 0.3);  // the engine, the FMA probe
     for (const BenchPhase& ph : plan) estimate += ph.estimate;
     log << "bench: about " << progress_duration(estimate) << " (" << (o.quick ? "quick" : o.kind_seconds > 0 ? "short" : "full")
         << " run; estimated from this machine's FMA peak and the development machine's timings; longer while "
@@ -430,6 +442,14 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
         phases.push_back({{"phase", ph.name}, {"estimated_seconds", ph.estimate}});
         stage.update(done_ms, ph.name, std::uint64_t(ph.estimate * 1e3 + 0.5));
         phase_start = t;
+    };
+    // Part `index` of `count` of the current phase (a table kind): its share of the estimate,
+    // so that what runs inside it (a refinement) moves the bar within that share only.
+    auto sub_step = [&](const std::string& name, size_t index, size_t count) {
+        if (next_phase == 0 || count == 0) return;
+        const BenchPhase& ph = plan[next_phase - 1];
+        const double share = ph.estimate * 1e3 / double(count);
+        stage.update(done_ms + std::uint64_t(share * double(index)), ph.name + ": " + name, std::uint64_t(share));
     };
     j["peak"] = {{"gflops_float", peak.gflops_float},
                  {"gflops_double", peak.gflops_double},
@@ -610,7 +630,10 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
             const Precision p = pname == "double" ? Precision::Double : Precision::Float;
             if (std::find(precisions.begin(), precisions.end(), p) == precisions.end()) continue;
             phase("table kinds, " + pname);
-            for (const TableKind* k : table_kinds()) {
+            const BenchOptions timing = kind_timing(o);
+            for (size_t ki = 0; ki < table_kinds().size(); ++ki) {
+                const TableKind* k = table_kinds()[ki];
+                sub_step(k->name, ki, table_kinds().size());
                 json row = {{"kind", k->name}, {"precision", precision_name(p)}, {"tolerance", o.kind_tolerance}};
                 try {
                     // A 1D kind (its texels hold an integral over mu each) as long as a side of the 2D tables.
@@ -667,7 +690,7 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
                             compute_lut(engine, r);
                             return now() - t1;
                         },
-                        o);
+                        timing);
                     row["first_run_seconds"] = first;
                     row["seconds"] = t;
                     row["texels_per_second"] = n_texels / t;

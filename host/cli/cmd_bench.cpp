@@ -1,6 +1,7 @@
 // `brdfbake bench`: the short benchmark (the quick mode of brdfbake-bench, same harness):
-// the GGX albedo kernel against the OpenMP baseline of benchmarks/, the FMA peak, kernel
-// build times. --full runs the whole suite; --json / --markdown keep the report.
+// the GGX albedo kernel against the OpenMP baseline of benchmarks/, the FMA peak, and a row per
+// table kind of the registry; it prints its estimated length first. --full runs the whole suite
+// (with kernel build times); --json / --markdown keep the report.
 #include <iostream>
 #include <memory>
 #include <streambuf>
@@ -82,7 +83,7 @@ int run_bench_command(const BenchCmdOptions& o, const GlobalOptions& g) {
 
 void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     const auto [cmd, o] = add_command<BenchCmdOptions>(
-        app, "bench", "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak", global,
+        app, "bench", "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak, and every table kind", global,
         action, run_bench_command);
     cmd->add_flag("--full", o->full, "the whole suite (as brdfbake-bench): larger tables, repeated runs, sweeps");
     // 0 is these options' "not given"; given, they must be positive.

@@ -92,8 +92,8 @@ ProgressState state_of(const Frame& f, const Step& s, bool finished) {
     st.total = f.total;
     st.unit = f.unit;
     st.done_word = f.done_word;
-    st.step = s.text;
-    st.step_fraction = s.fraction;
+    st.step = finished ? std::string() : s.text;  // an ended stage is shown by its name alone
+    st.step_fraction = finished ? -1.0 : s.fraction;
     st.fraction = finished ? 1.0 : frame_fraction(f, s);
     st.elapsed = seconds_between(f.start, now);
     st.finished = finished;
