@@ -27,9 +27,11 @@ struct Frame {
 
 std::atomic<ProgressSink*> g_sink{nullptr};
 std::mutex g_mutex;
-std::vector<Frame> g_frames;  // the open stages, outermost first
-Frame g_loose;                // a launch reporting outside any stage
-bool g_loose_open = false;
+// Per thread: the open stages, outermost first (stages nest within the thread that runs the
+// work; two threads computing at once, as the Python module allows, each have their own).
+thread_local std::vector<Frame> g_frames;
+thread_local Frame g_loose;  // a launch reporting outside any stage
+thread_local bool g_loose_open = false;
 std::uint64_t g_next_id = 1;
 int g_silenced = 0;  // open ProgressSilence objects
 

@@ -45,7 +45,7 @@ void set_progress_sink(ProgressSink* sink);
 
 /// A stage of work made of several launches or steps, open while the object lives. Stages
 /// nest: an inner stage, and the launches' report_progress, become the step of the stage that
-/// encloses them, so the display stays on the outermost one. One thread reports at a time.
+/// encloses them, so the display stays on the outermost one. Stages nest per thread.
 class ProgressStage {
 public:
     /// `total` units named `unit` (empty: the stage counts no units). `estimable`: the stage's
