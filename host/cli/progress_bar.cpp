@@ -39,29 +39,43 @@ std::string rate_text(double per_second, const std::string& unit) {
 /// The percentage shown: 100 only when the stage ended.
 double percent(const ProgressState& s) { return s.finished ? 100.0 : std::min(99.0, std::floor(100.0 * s.fraction)); }
 
-/// The state in words, without the percentage: "what: 820 of 2048 cells certified, 68 cells/s;
-/// step 35%" and the clock "(12 s, about 5.0 s left in this step)".
-std::string describe(const ProgressState& s, double elapsed, double left, std::string& clock) {
-    std::string text = s.what;
-    std::string detail;
+/// The state in words, without the percentage: what runs ("rough dielectric of 4096 cells to
+/// tolerance 0.0001"), the detail ("820 of 2048 cells certified, 68 cells/s; round 3: ... 35%")
+/// and the clock ("12 s, about 5.0 s left in this step").
+struct Words {
+    std::string what, counts, rate, step, clock;
+    /// The detail: counts, rate and step, each if there is one.
+    std::string detail(bool with_rate = true) const {
+        std::string d = counts;
+        if (with_rate && !rate.empty()) d += ", " + rate;
+        if (!step.empty()) d += (d.empty() ? "" : "; ") + step;
+        return d;
+    }
+    std::string text() const { return detail().empty() ? what : what + ": " + detail(); }
+};
+
+Words describe(const ProgressState& s, double elapsed, double left) {
+    Words w;
+    w.what = s.what;
     if (!s.unit.empty() && s.total > 0) {
-        detail = std::to_string(s.done) + " of " + std::to_string(s.total) + " " + s.unit +
-                 (s.done_word.empty() ? "" : " " + s.done_word);
-        if (s.done > 0 && elapsed > 0.5) detail += ", " + rate_text(double(s.done) / elapsed, s.unit);
+        w.counts = std::to_string(s.done) + " of " + std::to_string(s.total) + " " + s.unit +
+                   (s.done_word.empty() ? "" : " " + s.done_word);
+        if (s.done > 0 && elapsed > 0.5) w.rate = rate_text(double(s.done) / elapsed, s.unit);
     }
     if (!s.step.empty()) {
-        if (!detail.empty()) detail += "; ";
-        detail += s.step;
+        w.step = s.step;
         if (s.step_fraction >= 0) {
             char p[16];
             std::snprintf(p, sizeof p, " %.0f%%", 100 * s.step_fraction);
-            detail += p;
+            w.step += p;
         }
     }
-    if (!detail.empty()) text += ": " + detail;
-    clock = progress_duration(elapsed);
-    if (left >= 0 && !s.finished) clock += ", about " + progress_duration(left) + " left" + (s.left_is_step ? " in this step" : "");
-    return text;
+    w.clock = progress_duration(elapsed);
+    // A step's estimate ends with its launch; a finished launch says nothing of the step's rest.
+    const bool step_left = s.left_is_step && s.step_fraction < 0.999;
+    if (left >= 0 && !s.finished && (!s.left_is_step || step_left))
+        w.clock += ", about " + progress_duration(left) + " left" + (s.left_is_step ? " in this step" : "");
+    return w;
 }
 
 class StderrProgress : public ProgressSink {
@@ -153,28 +167,34 @@ private:
     }
 
     void bar(double elapsed, double moved) {
-        std::string clock;
-        const std::string text = describe(state_, elapsed, left_now(moved), clock);
+        const Words w = describe(state_, elapsed, left_now(moved));
         const int width = 24, filled = int(state_.fraction * width + 0.5);
         char head[64];
         std::snprintf(head, sizeof head, "[%s%s] %3.0f%%  ", std::string(size_t(filled), '#').c_str(),
                       std::string(size_t(width - filled), '.').c_str(), percent(state_));
-        std::string all = head + text + "  " + clock;
-        // One terminal line: a line that wraps cannot be redrawn in place.
+        const std::string tail = "  " + w.clock;
+        std::string all = head + w.text() + tail;
+        // One terminal line (a line that wraps cannot be redrawn in place): where the whole does
+        // not fit, the stage's name goes first, then the rate, then the rest is cut.
         struct winsize ws {};
         if (::ioctl(2, TIOCGWINSZ, &ws) == 0 && ws.ws_col > 8 && all.size() >= ws.ws_col) {
             const size_t keep = size_t(ws.ws_col) - 1;
-            const std::string tail = "  " + clock;
-            all = tail.size() + 20 < keep ? all.substr(0, keep - tail.size() - 3) + "..." + tail : all.substr(0, keep);
+            std::string body = w.detail().empty() ? w.what : w.detail();
+            if (std::string(head).size() + body.size() + tail.size() > keep && !w.detail(false).empty())
+                body = w.detail(false);
+            all = head + body + tail;
+            if (all.size() > keep)
+                all = std::string(head).size() + tail.size() + 20 < keep
+                          ? std::string(head) + body.substr(0, keep - std::string(head).size() - tail.size() - 3) + "..." + tail
+                          : all.substr(0, keep);
         }
         std::fprintf(stderr, "\r\033[K%s", all.c_str());
     }
 
     void line() {
         const double moved = state_.finished ? 0.0 : since(received_);
-        std::string clock;
-        const std::string text = describe(state_, state_.elapsed + moved, left_now(moved), clock);
-        std::fprintf(stderr, "brdfbake: %3.0f%% of %s (%s)\n", percent(state_), text.c_str(), clock.c_str());
+        const Words w = describe(state_, state_.elapsed + moved, left_now(moved));
+        std::fprintf(stderr, "brdfbake: %3.0f%% of %s (%s)\n", percent(state_), w.text().c_str(), w.clock.c_str());
     }
 
     const bool tty_;
