@@ -1,4 +1,5 @@
-// brdfbake-tradeoff: speed against accuracy of the albedo methods (issue 7). For GGX, Beckmann,
+// brdfbake-tradeoff: speed against accuracy of the albedo methods (issue 7) and of the rough
+// dielectric's R and T (issue 20; --dielectric-only runs those rows alone). For GGX, Beckmann,
 // Torrance-Sparrow (GGX and Blinn distributions) and Oren-Nayar over easy and hard cells, every
 // method (importance, qmc, mc, quadrature) in float and double across sample counts: the true
 // error against independent host references (tradeoff_refs.h), the error estimate, whether the
@@ -258,16 +259,22 @@ json timed_run(Engine& engine, const Options& o, const Family& fam, const std::v
     return run;
 }
 
+/// The auto method to `tol` within the study's sample limit.
+ToleranceRequest auto_tolerance(const Options& o, double tol) {
+    ToleranceRequest t;
+    t.tolerance = tol;
+    t.auto_method = true;
+    t.max_samples = o.max_samples;
+    return t;
+}
+
 /// The --tolerance mode (auto: quadrature, then importance) on each cell alone, so that one
 /// cell that cannot meet the tolerance does not hide the others.
 json tolerance_run(Engine& engine, const Options& o, const Family& fam, const Cell& c, Precision p, double tol) {
     json out = {{"family", fam.key}, {"spec", c.spec}, {"mu", c.mu}, {"easy", c.easy},
                 {"precision", precision_name(p)}, {"tolerance", tol}, {"reference", c.ref}};
     AlbedoRequest req = request_for(fam, {&c}, Method::Importance, p, 0);
-    ToleranceRequest t;
-    t.tolerance = tol;
-    t.auto_method = true;
-    t.max_samples = o.max_samples;
+    const ToleranceRequest t = auto_tolerance(o, tol);
     const double t0 = now();
     try {
         const AlbedoResult r = compute_albedo_to_tolerance(engine, req, t);
@@ -286,6 +293,188 @@ json tolerance_run(Engine& engine, const Options& o, const Family& fam, const Ce
     }
     out["wall_seconds"] = now() - t0;
     return out;
+}
+
+// ------------------------------------------------------------------------------------------
+// The rough dielectric (issue 20): R and T of the GGX interface (height-correlated, Beta-form
+// transmission shadowing) per method, against the Boost.Math reference of
+// benchmarks/reference/reference.h (ref::rough_dielectric_rt), as the albedo rows are judged.
+
+struct DielectricStudyCell {
+    DielectricCell cell;
+    double r = NAN, t = NAN, r_unc = NAN, t_unc = NAN, seconds = 0.0;
+    bool certain = false;
+};
+
+/// The grid: alpha from a narrow to the widest lobe, mu from grazing to normal, light from
+/// outside (eta = 1.5) and from inside (1/1.5, total internal reflection).
+std::vector<DielectricStudyCell> dielectric_cells(bool quick) {
+    const std::vector<double> alphas = quick ? std::vector<double>{0.1, 0.5} : std::vector<double>{0.01, 0.1, 0.5, 1.0};
+    const std::vector<double> mus = quick ? std::vector<double>{0.3, 1.0} : std::vector<double>{0.02, 0.3, 1.0};
+    const std::vector<double> etas = quick ? std::vector<double>{1.5} : std::vector<double>{1.5, 1 / 1.5};
+    std::vector<DielectricStudyCell> cells;
+    for (double eta : etas)
+        for (double alpha : alphas)
+            for (double mu : mus) {
+                DielectricStudyCell c;
+                c.cell = {mu, alpha, eta};
+                cells.push_back(c);
+            }
+    return cells;
+}
+
+/// The references at two tolerances (the finer one the value, the difference its uncertainty),
+/// on all cores.
+void dielectric_references(std::vector<DielectricStudyCell>& cells, double coarse, double fine, double floor,
+                           double max_unc) {
+    std::atomic<size_t> next{0};
+    auto work = [&] {
+        for (size_t i = next++; i < cells.size(); i = next++) {
+            DielectricStudyCell& c = cells[i];
+            const double t0 = now();
+            double rc, tc;
+            ref::rough_dielectric_rt(c.cell.mu, c.cell.alpha, c.cell.eta, ref::DielectricShadowing::Beta, rc, tc, coarse);
+            ref::rough_dielectric_rt(c.cell.mu, c.cell.alpha, c.cell.eta, ref::DielectricShadowing::Beta, c.r, c.t, fine);
+            c.seconds = now() - t0;
+            // The reference's tolerance is relative: it cannot vouch for digits below fine x value,
+            // even where the two tolerances agree.
+            c.r_unc = std::max({std::fabs(c.r - rc), fine * std::fabs(c.r), floor});
+            c.t_unc = std::max({std::fabs(c.t - tc), fine * std::fabs(c.t), floor});
+            c.certain = std::isfinite(c.r) && std::isfinite(c.t) && std::max(c.r_unc, c.t_unc) <= max_unc;
+        }
+    };
+    std::vector<std::thread> pool;
+    for (unsigned t = 0; t < std::max(1u, std::thread::hardware_concurrency()); ++t) pool.emplace_back(work);
+    for (auto& t : pool) t.join();
+}
+
+/// The cells' R and T against their references: max true errors, and the dishonest channels
+/// (true error less the reference's uncertainty above 3x the estimate).
+void judge_dielectric(json& run, const DielectricResult& res, const std::vector<const DielectricStudyCell*>& cells) {
+    double max_r = 0.0, max_t = 0.0, max_est = 0.0;
+    int dishonest = 0;
+    for (size_t i = 0; i < cells.size(); ++i) {
+        const DielectricStudyCell& c = *cells[i];
+        const double er = std::fabs(res.reflected[i].value - c.r), et = std::fabs(res.transmitted[i].value - c.t);
+        max_r = std::max(max_r, er);
+        max_t = std::max(max_t, et);
+        max_est = std::max({max_est, res.reflected[i].error, res.transmitted[i].error});
+        dishonest += (er - c.r_unc > 3.0 * res.reflected[i].error) + (et - c.t_unc > 3.0 * res.transmitted[i].error);
+        run["cells"].push_back({{"mu", c.cell.mu}, {"alpha", c.cell.alpha}, {"eta", c.cell.eta},
+                                {"R", res.reflected[i].value}, {"R_estimate", res.reflected[i].error},
+                                {"R_reference", c.r}, {"R_true_error", er}, {"T", res.transmitted[i].value},
+                                {"T_estimate", res.transmitted[i].error}, {"T_reference", c.t}, {"T_true_error", et}});
+    }
+    run["max_true_error_R"] = max_r;
+    run["max_true_error_T"] = max_t;
+    run["max_estimate"] = max_est;
+    run["dishonest_channels"] = dishonest;
+}
+
+DielectricRequest dielectric_request(const std::vector<const DielectricStudyCell*>& cells, Method m, Precision p,
+                                     std::uint64_t samples) {
+    DielectricRequest r;
+    for (const DielectricStudyCell* c : cells) r.cells.push_back(c->cell);
+    r.method = m;
+    r.precision = p;
+    r.samples = samples;
+    r.correlated = true;  // Beta-form transmission shadowing (cycles_transmission false)
+    return r;
+}
+
+/// The dielectric study: fixed-sample runs of quadrature and importance sampling, then the auto
+/// method to tolerances, each over every certain cell; results into j["dielectric"].
+void dielectric_study(Engine& engine, const Options& o, json& j) {
+    std::vector<DielectricStudyCell> cells = dielectric_cells(o.quick);
+    const double coarse = 1e-8, fine = 1e-10, floor = 1e-13, max_unc = 1e-8;
+    std::cerr << "brdfbake-tradeoff: " << cells.size() << " dielectric references\n";
+    const double t_ref = now();
+    dielectric_references(cells, coarse, fine, floor, max_unc);
+    json d;
+    d["reference_seconds"] = now() - t_ref;
+    d["reference_tolerances"] = {coarse, fine};
+    d["cells"] = json::array();
+    std::vector<const DielectricStudyCell*> certain;
+    for (const DielectricStudyCell& c : cells) {
+        d["cells"].push_back({{"mu", c.cell.mu}, {"alpha", c.cell.alpha}, {"eta", c.cell.eta}, {"R", c.r}, {"T", c.t},
+                              {"R_uncertainty", c.r_unc}, {"T_uncertainty", c.t_unc}, {"seconds", c.seconds},
+                              {"certain", c.certain}});
+        if (c.certain) certain.push_back(&c);
+    }
+    std::cerr << "brdfbake-tradeoff: dielectric references took " << d["reference_seconds"].get<double>() << " s\n";
+    d["runs"] = json::array();
+    if (!certain.empty()) {
+        struct Plan {
+            Method method;
+            std::vector<std::uint64_t> samples;
+        };
+        const std::vector<Plan> plans = {
+            {Method::Quadrature, o.quick ? std::vector<std::uint64_t>{4 * 16 * 16}
+                                         : std::vector<std::uint64_t>{4 * 16 * 16, 4 * 32 * 32, 4 * 64 * 64, 4 * 128 * 128}},
+            {Method::Importance, o.quick ? std::vector<std::uint64_t>{1u << 12}
+                                         : std::vector<std::uint64_t>{1u << 12, 1u << 14, 1u << 16, 1u << 18, 1u << 20}}};
+        for (const Plan& plan : plans)
+            for (Precision p : o.precisions) {
+                try {
+                    compute_dielectric(engine, dielectric_request(certain, plan.method, p, plan.samples.front()));  // the build
+                } catch (const Error&) {
+                }
+                for (std::uint64_t s : plan.samples) {
+                    json run = {{"method", method_name(plan.method)}, {"precision", precision_name(p)},
+                                {"samples", s}, {"cells", json::array()}};
+                    const DielectricRequest req = dielectric_request(certain, plan.method, p, s);
+                    try {
+                        std::vector<double> kernel, wall;
+                        DielectricResult first;
+                        double spent = 0.0;
+                        while (true) {
+                            const double t0 = now();
+                            DielectricResult r = compute_dielectric(engine, req);
+                            wall.push_back(now() - t0);
+                            kernel.push_back(r.kernel_seconds);
+                            if (kernel.size() == 1) first = std::move(r);
+                            spent += wall.back();
+                            const int runs = int(kernel.size());
+                            if (runs >= o.max_runs || (runs >= o.min_runs && spent >= o.min_seconds) || spent > 2.0) break;
+                        }
+                        run["repeats"] = kernel.size();
+                        run["kernel_seconds_per_cell"] = median(kernel) / double(certain.size());
+                        run["wall_seconds_per_cell"] = median(wall) / double(certain.size());
+                        judge_dielectric(run, first, certain);
+                    } catch (const Error& e) {
+                        run["failed"] = e.what();
+                    }
+                    std::cerr << "  dielectric " << method_name(plan.method) << " " << precision_name(p) << " " << s
+                              << (run.contains("failed") ? ": failed" : "") << "\n";
+                    d["runs"].push_back(run);
+                }
+            }
+        // The auto method (quadrature, then importance for the cells the rule cannot certify).
+        for (const auto& pt : o.tolerances) {
+            if (std::find(o.precisions.begin(), o.precisions.end(), pt.first) == o.precisions.end()) continue;
+            for (double tol : {1e-4, pt.second}) {
+                if (tol == pt.second && tol == 1e-4 && d["runs"].back().value("tolerance", 0.0) == tol) continue;
+                json run = {{"method", "auto"}, {"precision", precision_name(pt.first)}, {"tolerance", tol},
+                            {"cells", json::array()}};
+                const ToleranceRequest t = auto_tolerance(o, tol);
+                const double t0 = now();
+                try {
+                    const DielectricResult r =
+                        compute_dielectric_to_tolerance(engine, dielectric_request(certain, Method::Importance, pt.first, 0), t);
+                    run["wall_seconds_per_cell"] = (now() - t0) / double(certain.size());
+                    run["kernel_seconds_per_cell"] = r.kernel_seconds / double(certain.size());
+                    run["estimator"] = r.method;
+                    judge_dielectric(run, r, certain);
+                    run["met"] = std::max(run["max_true_error_R"].get<double>(), run["max_true_error_T"].get<double>()) <= tol;
+                } catch (const Error& e) {
+                    run["failed"] = e.what();
+                }
+                std::cerr << "  dielectric auto " << precision_name(pt.first) << " " << tol << "\n";
+                d["runs"].push_back(run);
+            }
+        }
+    }
+    j["dielectric"] = d;
 }
 
 // ------------------------------------------------------------------------------------------
@@ -376,6 +565,42 @@ const json* best_within(const json& runs, const std::string& family, bool easy, 
         }
     }
     return best;
+}
+
+std::string dielectric_markdown(const json& d) {
+    std::ostringstream md;
+    md << "## The rough dielectric: R and T\n\n"
+          "GGX interface, height-correlated reflection shadowing and Beta-form transmission shadowing (Heitz 2014 "
+          "eq. 99-100), `compute_dielectric` over all certain cells in one call per row (the path of `brdfbake lut "
+          "dielectric`); auto: `compute_dielectric_to_tolerance` (quadrature rounds, then importance sampling). "
+          "Reference: `ref::rough_dielectric_rt` (benchmarks/reference/reference.h: adaptive Gauss-Kronrod in "
+          "theta_h, tanh-sinh pieces in phi_h cut in closed form) at tolerance "
+       << sci(d["reference_tolerances"][1].get<double>(), 0) << ", its uncertainty the difference from "
+       << sci(d["reference_tolerances"][0].get<double>(), 0) << " and at least the tolerance times the value (cells less certain than 1e-8 dropped); "
+       << fixed(d["reference_seconds"].get<double>(), 1) << " s wall. Time: the kernel's per cell (median of "
+          "repeated runs after a warm-up); wall: the whole call per cell. *Beyond 3x*: channels (R or T of a cell) "
+          "whose true error, less the reference's uncertainty, exceeds 3x the estimate.\n\n";
+    size_t n_certain = 0;
+    for (const auto& c : d["cells"]) n_certain += c["certain"].get<bool>();
+    md << "Cells: " << n_certain << " of " << d["cells"].size()
+       << " certain (alpha, mu and eta of each in the JSON).\n\n"
+          "| method | precision | points or tolerance | kernel ms/cell | wall ms/cell | max true error R | max true "
+          "error T | max estimate | beyond 3x |\n| --- | --- | ---: | ---: | ---: | ---: | ---: | ---: | ---: |\n";
+    for (const auto& r : d["runs"]) {
+        md << "| " << r["method"].get<std::string>() << " | " << r["precision"].get<std::string>() << " | "
+           << (r.contains("tolerance") ? "tol " + sci(r["tolerance"].get<double>(), 0)
+                                       : std::to_string(r["samples"].get<std::uint64_t>()))
+           << " | ";
+        if (r.contains("failed")) {
+            md << "failed: " << r["failed"].get<std::string>() << " | | | | | |\n";
+            continue;
+        }
+        md << sci(r["kernel_seconds_per_cell"].get<double>() * 1e3, 2) << " | "
+           << sci(r["wall_seconds_per_cell"].get<double>() * 1e3, 2) << " | " << sci(r["max_true_error_R"].get<double>())
+           << " | " << sci(r["max_true_error_T"].get<double>()) << " | " << sci(r["max_estimate"].get<double>()) << " | "
+           << r["dishonest_channels"].get<int>() << " of " << 2 * r["cells"].size() << " |\n";
+    }
+    return md.str();
 }
 
 std::string markdown(const json& j, const Options& o) {
@@ -618,6 +843,9 @@ int main(int argc, char** argv) {
                        "file name stem (default: tradeoff-<machine>, -quick with --quick)",
                        "also draw max true error against time per cell (.png or .svg)");
     app.add_option("--families", only, "comma-separated family keys to run (ggx, beckmann, ts-ggx, ts-blinn, oren-nayar)");
+    bool dielectric_only = false;
+    app.add_flag("--dielectric-only", dielectric_only,
+                 "only the rough dielectric rows (R and T per method), into tradeoff-dielectric-<machine>");
     return parse_and_run(app, argc, argv, "brdfbake-tradeoff", [&] {
         const bool quick = report.quick;
         std::string name = report.name;
@@ -635,7 +863,9 @@ int main(int argc, char** argv) {
             }
             o.families = keep;
         }
-        if (name.empty()) name = "tradeoff-" + bench_machine_name() + (quick ? "-quick" : "");
+        if (name.empty())
+            name = std::string(dielectric_only ? "tradeoff-dielectric-" : "tradeoff-") + bench_machine_name() +
+                   (quick ? "-quick" : "");
 
         json j;
         j["name"] = name;
@@ -650,6 +880,27 @@ int main(int argc, char** argv) {
                         {"date", utc_date()},
                         {"loadavg_start", bench_loadavg()}};
         if (!dev.fp64) o.precisions = {Precision::Float};
+        j["machine"]["name"] = bench_machine_name();
+        if (dielectric_only) {
+            dielectric_study(engine, o, j);
+            j["machine"]["loadavg_end"] = bench_loadavg();
+            j["seconds"] = now() - t_start;
+            const json& m = j["machine"];
+            std::ostringstream md;
+            md << "# brdfbake speed against accuracy, the rough dielectric: " << name << "\n\nMachine: "
+               << m["name"].get<std::string>() << " (" << m["cpu"].get<std::string>() << ", "
+               << m["cores"].get<unsigned>() << " cores, " << m["pocl_version"].get<std::string>() << "); "
+               << m["date"].get<std::string>() << "; load average " << m["loadavg_start"].get<std::string>()
+               << " at the start, " << m["loadavg_end"].get<std::string>() << " at the end. brdfbake "
+               << j["brdfbake_version"].get<std::string>() << ", `brdfbake-tradeoff --dielectric-only"
+               << (quick ? " --quick" : "") << "`; " << fixed(j["seconds"].get<double>(), 0) << " s.\n\n"
+               << dielectric_markdown(j["dielectric"]);
+            std::filesystem::create_directories(out_dir);
+            write_file_atomically(out_dir + "/" + name + ".json", json_lines(j) + "\n");
+            write_file_atomically(out_dir + "/" + name + ".md", md.str());
+            std::cerr << "brdfbake-tradeoff: wrote " << out_dir << "/" << name << ".json and .md\n";
+            return 0;
+        }
 
         // References.
         std::vector<Cell> cells = make_cells(o);
@@ -706,9 +957,11 @@ int main(int argc, char** argv) {
             std::cerr << "  tolerance " << pt.second << " " << precision_name(pt.first) << " done\n";
         }
 
+        dielectric_study(engine, o, j);
+
         j["machine"]["loadavg_end"] = bench_loadavg();
         j["seconds"] = now() - t_start;
-        const std::string md = markdown(j, o);
+        const std::string md = markdown(j, o) + "\n" + dielectric_markdown(j["dielectric"]);
         std::filesystem::create_directories(out_dir);
         write_file_atomically(out_dir + "/" + name + ".json", json_lines(j) + "\n");
         write_file_atomically(out_dir + "/" + name + ".md", md);

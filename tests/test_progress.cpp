@@ -5,9 +5,12 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <regex>
+#include <vector>
 
+#include "brdfbake/progress.h"
 #include "support.h"
 
 using testing::run_cli;
@@ -68,4 +71,159 @@ TEST_CASE("progress: a bar redrawn in place on a terminal", "[cli][progress]") {
     CHECK(text.find("brdfbake:  ") == std::string::npos);      // not the plain lines
     std::remove(out.c_str());
     std::remove(log.c_str());
+}
+
+namespace {
+
+// Commands of about 2 s each on the 2-core development machine. BRDFBAKE_PROGRESS_DELAY=0 shows
+// their progress from the start, so that the forms are tested however fast the machine (a run
+// shorter than the default second would show nothing, as it should).
+const std::string kShow = "BRDFBAKE_PROGRESS_DELAY=0 ";
+const std::string kDielectric =
+    "lut dielectric --model ggx --size 16x16x8 --eta-range 1,3 --tolerance 1e-4 --no-preview -o ";
+const std::string kCheck = "check --model ggx:alpha=0.5 --resolution 256 --phi-resolution 256";
+const std::string kReciprocity = "reciprocity --model ggx:alpha=0.5 --resolution 256 --phi-resolution 256 -o ";
+
+testing::CliResult run_shown(const std::string& args) {
+    return testing::run_shell(kShow + std::string(BRDFBAKE_EXE) + " " + args);
+}
+
+/// The lines of `text` that match `re`, with their first group as a number.
+std::vector<double> matches(const std::string& text, const std::regex& re) {
+    std::vector<double> out;
+    for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it)
+        out.push_back(std::stod((*it)[1].str()));
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("progress: a tolerance table reports cells certified over its rounds", "[cli][progress]") {
+    const std::string a = scratch("d1.csv"), b = scratch("d2.csv");
+    const auto shown = run_shown(kDielectric + a);
+    REQUIRE(shown.status == 0);
+    INFO(shown.err);
+    // 16x16x8 texels, two sides of the interface: 4096 cells, counted as they are certified.
+    const std::regex line(
+        R"(brdfbake: +[0-9]+% of rough dielectric of 4096 cells to tolerance 0.0001: ([0-9]+) of 4096 cells certified)");
+    const std::vector<double> certified = matches(shown.err, line);
+    REQUIRE(certified.size() >= 2);
+    CHECK(certified.front() == 0);       // the first line, at the start of round 1
+    CHECK(certified.back() == 4096);     // the last: every cell met the tolerance
+    CHECK(std::is_sorted(certified.begin(), certified.end()));
+    CHECK(shown.err.find("brdfbake: 100% of rough dielectric") != std::string::npos);
+    CHECK(shown.err.find('\r') == std::string::npos);
+    const auto quiet = testing::run_shell(kShow + std::string(BRDFBAKE_EXE) + " --quiet " + kDielectric + b);
+    REQUIRE(quiet.status == 0);
+    CHECK(quiet.err.find("% of") == std::string::npos);
+    CHECK(testing::slurp(a) == testing::slurp(b));  // the display changes no number
+    std::remove(a.c_str());
+    std::remove(b.c_str());
+}
+
+TEST_CASE("progress: check and reciprocity report their scans", "[cli][progress]") {
+    const auto shown = run_shown(kCheck);
+    REQUIRE(shown.status == 0);
+    INFO(shown.err);
+    // The stage from its start to its end (the lines between, naming the scan or the furnace,
+    // depend on the machine's speed).
+    CHECK(std::regex_search(shown.err, std::regex(R"(brdfbake: +0% of check of ggx:alpha=0.5)")));
+    CHECK(shown.err.find("brdfbake: 100% of check of ggx:alpha=0.5") != std::string::npos);
+    const auto quiet = run_shown("--quiet " + kCheck);
+    REQUIRE(quiet.status == 0);
+    CHECK(quiet.err.find("% of") == std::string::npos);
+    CHECK(quiet.out == shown.out);
+
+    const std::string a = scratch("r1.exr"), b = scratch("r2.exr");
+    const auto map = run_shown(kReciprocity + a);
+    REQUIRE(map.status == 0);
+    INFO(map.err);
+    // The scan runs in slices of theta_o rows, each reported: percentages that only grow.
+    const std::vector<double> pct =
+        matches(map.err, std::regex(R"(brdfbake: +([0-9]+)% of reciprocity scan of 256x256 directions x 256 azimuths)"));
+    REQUIRE(pct.size() >= 2);
+    CHECK(std::is_sorted(pct.begin(), pct.end()));
+    CHECK(pct.back() == 100);
+    const auto quiet_map = run_shown("--quiet " + kReciprocity + b);
+    REQUIRE(quiet_map.status == 0);
+    CHECK(quiet_map.err.find("% of") == std::string::npos);
+    CHECK(testing::slurp(a) == testing::slurp(b));
+    std::remove(a.c_str());
+    std::remove(b.c_str());
+}
+
+TEST_CASE("progress: a tolerance table's bar on a terminal", "[cli][progress]") {
+    const std::string out = scratch("td.csv"), log = scratch("ttyd.log");
+    const std::string cmd = "script -qec '" + kShow + std::string(BRDFBAKE_EXE) + " " + kDielectric + out + "' " +
+                            log + " >/dev/null 2>&1";
+    REQUIRE(WEXITSTATUS(std::system(cmd.c_str())) == 0);
+    const std::string text = testing::slurp(log);
+    INFO(text);
+    CHECK(std::regex_search(
+        text, std::regex(R"(\r\x1b\[K\[[#.]+\] +[0-9]+%  rough dielectric of 4096 cells to tolerance 0.0001: [0-9]+ of 4096 cells certified)")));
+    CHECK(text.find("brdfbake:  ") == std::string::npos);  // not the plain lines
+    std::remove(out.c_str());
+    std::remove(log.c_str());
+}
+
+namespace {
+
+/// Keeps every state and message it is given.
+struct RecordingSink : brdfbake::ProgressSink {
+    std::vector<brdfbake::ProgressState> states;
+    std::vector<std::string> messages;
+    void update(const brdfbake::ProgressState& s) override { states.push_back(s); }
+    void message(const std::string& line) override { messages.push_back(line); }
+};
+
+}  // namespace
+
+TEST_CASE("progress stages: steps, launches and nested stages fold into the outermost", "[progress][quick]") {
+    using namespace brdfbake;
+    RecordingSink sink;
+    set_progress_sink(&sink);
+    {
+        ProgressStage outer("outer", 4, "cells", "certified", false);
+        REQUIRE(!sink.states.empty());
+        const std::uint64_t id = sink.states.back().stage_id;
+        outer.update(1, "round 1", 2);
+        CHECK(sink.states.back().step == "round 1");
+        CHECK(sink.states.back().fraction == Approx(0.25));
+        // A launch inside the step: its fraction places the step within the stage.
+        report_progress("launch of 8 items", 4, 8);
+        CHECK(sink.states.back().step == "round 1");
+        CHECK(sink.states.back().step_fraction == Approx(0.5));
+        CHECK(sink.states.back().fraction == Approx((1 + 0.5 * 2) / 4.0));
+        CHECK(sink.states.back().left_is_step);  // not estimable: the time left is the step's
+        {
+            ProgressStage inner("inner", 10, "cells");
+            inner.update(5, "part");
+            const ProgressState& s = sink.states.back();
+            CHECK(s.stage_id == id);  // still the outer stage on display
+            CHECK(s.what == "outer");
+            CHECK(s.step.find("round 1; inner (5 of 10 cells): part") == 0);
+            CHECK(s.step_fraction == Approx(0.5));
+        }
+        CHECK(!sink.states.back().finished);  // the inner stage's end is not the outer's
+        outer.update(4);
+        {
+            ProgressSilence quiet;
+            const size_t n = sink.states.size();
+            outer.update(4, "silenced");
+            report_progress("launch", 1, 2);
+            CHECK(sink.states.size() == n);
+        }
+    }
+    CHECK(sink.states.back().finished);
+    CHECK(sink.states.back().fraction == 1.0);
+    CHECK(sink.states.back().step.empty());
+    // Outside any stage, a launch is a stage of its own that may end without a last report.
+    report_progress("alone", 1, 3);
+    CHECK(sink.states.back().what == "alone");
+    CHECK(!sink.states.back().closes);
+    report_progress("alone", 3, 3);
+    CHECK(sink.states.back().finished);
+    progress_message("a line");
+    CHECK(sink.messages == std::vector<std::string>{"a line"});
+    set_progress_sink(nullptr);
 }

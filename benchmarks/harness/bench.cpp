@@ -12,6 +12,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iomanip>
+#include <optional>
 #include <sstream>
 #include <thread>
 
@@ -21,8 +22,12 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "brdfbake/lut.h"
 #include "brdfbake/memory_limit.h"
 #include "brdfbake/output.h"
+#include "brdfbake/progress.h"
+#include "brdfbake/spec.h"
+#include "brdfbake/table_kinds.h"
 #include "brdfbake/version.h"
 #include "plot/plot.h"
 
@@ -106,6 +111,27 @@ double time_median(Run run, const BenchOptions& o) {
     return median(t);
 }
 
+/// time_median for a run whose first result was needed anyway (a baseline's checked table):
+/// `first` is that run's time, taken as the figure when it lasted min_seconds or more.
+template <typename Run>
+double time_median_from(double first, Run run, const BenchOptions& o) {
+    if (o.quick || first >= o.min_seconds) return first;
+    std::vector<double> t;
+    double total = 0.0;
+    while (t.empty() || (total < o.min_seconds && int(t.size()) < o.max_runs)) {
+        t.push_back(run());
+        total += t.back();
+    }
+    return median(t);
+}
+
+/// What time_median spends on a run of `run` seconds (its first run and the timed ones).
+double median_cost(double run, const BenchOptions& o) {
+    if (o.quick || run >= o.min_seconds) return run;
+    const double runs = std::min<double>(o.max_runs, std::max(1.0, std::ceil(o.min_seconds / std::max(run, 1e-6))));
+    return run + runs * run;
+}
+
 struct TableCells {
     std::vector<double> mu, alpha;
 };
@@ -166,6 +192,136 @@ std::string sci(double v) {
     return s.str();
 }
 
+/* The estimate of a run's length, printed before it starts: the work of each measurement at the
+ * rates measured on the development machine (the 2-core AVX-512 EPYC of
+ * benchmarks/results/amd-epyc-2c-avx512.md; FMA peak 118 GFLOP/s float, 65 double), scaled by
+ * this machine's FMA peak against that one's. Samples per second, float and double, in the
+ * order of the throughput rows: the kernel, the tuned baseline (strict, -ffast-math, the
+ * kernel's arithmetic), the plain baseline (strict, -ffast-math). */
+constexpr double kReferencePeak[2] = {118.0, 65.0};
+constexpr double kReferenceRate[6][2] = {{1.16e9, 4.66e8}, {6.18e8, 4.04e8}, {8.61e8, 4.66e8},
+                                         {3.50e8, 1.39e8}, {1.71e7, 1.07e7}, {1.66e8, 9.76e7}};
+constexpr double kKernelCallSeconds = 5e-4;     // a compute_albedo call's own cost (scaling sweep, 8x8 table)
+constexpr double kBaselineCallSeconds = 0.01;  // a baseline call's (thread start-up: 0.2 to 24 ms there)
+constexpr double kEngineSeconds = 0.3;          // the engine and its warm albedo program
+constexpr double kColdBuildSeconds[2] = {2.3, 0.7};  // the first cold build of a process, and a later one
+constexpr double kKindCellSeconds = 2.5e-5;     // an integration cell of a table at 1e-4 (the albedo's: 16 us)
+
+/// The timing options of the kind rows: with sized tables (kind_seconds), repeats until twice
+/// a run's length rather than min_seconds, so that a row costs a few runs.
+BenchOptions kind_timing(const BenchOptions& o) {
+    BenchOptions k = o;
+    if (o.kind_seconds > 0) k.min_seconds = std::min(o.min_seconds, 2.0 * o.kind_seconds);
+    return k;
+}
+
+/// The phases of a run and their estimated seconds, in the order run_bench runs them.
+struct BenchPhase {
+    std::string name;
+    double estimate = 0.0;
+};
+
+std::vector<BenchPhase> plan_bench(const BenchOptions& o, const baseline::Peak& peak, const std::vector<Precision>& precisions) {
+    std::vector<BenchPhase> plan;
+    auto speed = [&](Precision p) {
+        const int i = p == Precision::Double ? 1 : 0;
+        const double here = p == Precision::Double ? peak.gflops_double : peak.gflops_float;
+        return here > 0 ? here / kReferencePeak[i] : 1.0;
+    };
+    auto run_seconds = [&](int impl, Precision p, double work) {
+        const int i = p == Precision::Double ? 1 : 0;
+        return (impl == 0 ? kKernelCallSeconds : kBaselineCallSeconds) + work / (kReferenceRate[impl][i] * speed(p));
+    };
+    if (o.build_times)
+        plan.push_back({"kernel builds", kColdBuildSeconds[0] + kColdBuildSeconds[1] * double(precisions.size() - 1) +
+                                             0.1 * double(precisions.size())});
+    const double work = double(o.table) * o.table * double(o.samples);
+    for (Precision p : precisions) {
+        double t = run_seconds(0, p, work) + median_cost(run_seconds(0, p, work), o);
+        for (int impl = 1; impl < 6; ++impl) t += median_cost(run_seconds(impl, p, work), o);
+        plan.push_back({std::string("throughput, ") + precision_name(p), t});
+    }
+    double sweep = 0.0;
+    auto point = [&](int n, std::uint64_t samples) {
+        const double w = double(n) * n * double(samples);
+        sweep += median_cost(run_seconds(0, Precision::Float, w), o) + median_cost(run_seconds(1, Precision::Float, w), o);
+    };
+    for (int n : o.scaling_sizes) point(n, o.scaling_size_samples);
+    for (std::uint64_t s : o.scaling_samples) point(o.scaling_samples_table, s);
+    plan.push_back({"scaling sweeps", sweep});
+    if (o.kind_texels > 0)
+        for (const std::string& pname : o.kind_precisions) {
+            const Precision p = pname == "double" ? Precision::Double : Precision::Float;
+            if (std::find(precisions.begin(), precisions.end(), p) == precisions.end()) continue;
+            double t = 0.0;
+            for (const TableKind* k : table_kinds()) {
+                // Adaptive sizes: two tiny runs, then runs of about kind_seconds. Fixed sizes:
+                // the table's integration cells at the albedo table's cost per cell (a rough
+                // figure: kinds differ several-fold).
+                const double texels = k->one_dimensional ? std::sqrt(double(o.kind_texels)) : double(o.kind_texels);
+                const double cells = texels * k->cells_per_texel * k->sample_cost;
+                // Sized: a tiny warm-up, the sizing runs, the timed ones; double's kernels about
+                // 1.5x float's (the slowest kinds' smallest tables outlast kind_seconds).
+                t += o.kind_seconds > 0
+                         ? (0.03 + 2.0 * o.kind_seconds + median_cost(o.kind_seconds, kind_timing(o))) *
+                               (p == Precision::Double ? 1.5 : 1.0)
+                         : 2.0 * cells * kKindCellSeconds / speed(p) + 0.05;
+            }
+            plan.push_back({"table kinds, " + pname, t});
+        }
+    return plan;
+}
+
+/// The --size of a kind's table with about `texels` texels: N x N for a 2D kind, N texels for
+/// a 1D kind, W x W x W/2 for a kind with an eta axis (W x 1 x W/2 for a 1D one).
+std::vector<int> kind_size(const TableKind& k, double texels) {
+    texels = std::max(texels, 1.0);
+    if (k.eta_axis && k.one_dimensional) {
+        const int w = std::max(2, int(std::lround(std::sqrt(2.0 * texels))));
+        return {w, 1, std::max(1, w / 2)};
+    }
+    if (k.eta_axis) {
+        const int w = std::max(2, int(std::lround(std::cbrt(2.0 * texels))));
+        return {w, w, std::max(1, w / 2)};
+    }
+    if (k.one_dimensional) return {std::max(2, int(std::lround(texels)))};
+    const int side = std::max(2, int(std::lround(std::sqrt(texels))));
+    return {side, side};
+}
+
+double texel_count(const LutRequest& r, const TableKind& k) {
+    return double(r.width) * (k.one_dimensional ? 1 : r.height) * (k.eta_axis ? r.depth : 1);
+}
+
+/// A request of kind `k` that the registry's own checks accept: the first model of
+/// model_names() and Fresnel term (none, then a conductor's) that validate_lut takes, so that
+/// every kind, a new one too, gets a row without a list here. Empty kind when none fits.
+LutRequest kind_request(const TableKind& k, double texels, double tolerance, Precision p) {
+    for (const char* fresnel : {"none", "conductor:eta=0.2,k=3"})
+        for (const std::string& model : model_names()) {
+            LutRequest r;
+            r.kind = k.name;
+            r.model = model;
+            r.fresnel = fresnel;
+            set_lut_size(r, kind_size(k, texels));
+            r.tolerance.tolerance = tolerance;
+            r.precision = p;
+            try {
+                validate_lut(r);
+                return r;
+            } catch (const Error&) {
+            }
+        }
+    return LutRequest{};
+}
+
+std::string size_text(const LutRequest& r, const TableKind& k) {
+    std::string s = std::to_string(r.width);
+    if (!k.one_dimensional) s += "x" + std::to_string(r.height);
+    if (k.eta_axis) s += "x" + std::to_string(r.depth);
+    return s;
+}
+
 }  // namespace
 
 BenchOptions BenchOptions::quick_options() {
@@ -179,6 +335,8 @@ BenchOptions BenchOptions::quick_options() {
     o.scaling_samples_table = 8;
     o.min_seconds = 0.0;
     o.max_runs = 1;
+    o.kind_texels = 16;
+    o.kind_precisions = {"float"};
     return o;
 }
 
@@ -253,19 +411,57 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
 
     // (c) the FMA probe.
     const baseline::Peak peak = baseline::fma_peak(o.quick ? 0.05 : 0.3);
+    std::vector<Precision> precisions = {Precision::Float};
+    if (dev.fp64) precisions.push_back(Precision::Double);
+
+    // The estimate, then the run as one progress stage in estimated milliseconds, a phase a
+    // step; what runs inside (a table's refinement) shows as part of the step.
+    const std::vector<BenchPhase> plan = plan_bench(o, peak, precisions);
+    double estimate = kEngineSeconds + (o.quick ? 0.05 : 0.3);  // the engine, the FMA probe
+    for (const BenchPhase& ph : plan) estimate += ph.estimate;
+    log << "bench: about " << progress_duration(estimate) << " (" << (o.quick ? "quick" : o.kind_seconds > 0 ? "short" : "full")
+        << " run; estimated from this machine's FMA peak and the development machine's timings; longer while "
+           "PoCL's kernel cache is cold)\n";
+    std::uint64_t total_ms = 0;
+    for (const BenchPhase& ph : plan) total_ms += std::uint64_t(ph.estimate * 1e3 + 0.5);
+    ProgressStage stage("bench", total_ms);
+    std::uint64_t done_ms = 0;
+    size_t next_phase = 0;
+    json phases = json::array();
+    double phase_start = now();
+    // Starts the named phase: the previous one ends (its time recorded beside its estimate).
+    auto phase = [&](const std::string& name) {
+        const double t = now();
+        if (next_phase > 0) {
+            phases.back()["seconds"] = t - phase_start;
+            done_ms += std::uint64_t(plan[next_phase - 1].estimate * 1e3 + 0.5);
+        }
+        while (next_phase < plan.size() && plan[next_phase].name != name) ++next_phase;  // a skipped phase
+        if (next_phase >= plan.size()) return;
+        const BenchPhase& ph = plan[next_phase++];
+        phases.push_back({{"phase", ph.name}, {"estimated_seconds", ph.estimate}});
+        stage.update(done_ms, ph.name, std::uint64_t(ph.estimate * 1e3 + 0.5));
+        phase_start = t;
+    };
+    // Part `index` of `count` of the current phase (a table kind): its share of the estimate,
+    // so that what runs inside it (a refinement) moves the bar within that share only.
+    auto sub_step = [&](const std::string& name, size_t index, size_t count) {
+        if (next_phase == 0 || count == 0) return;
+        const BenchPhase& ph = plan[next_phase - 1];
+        const double share = ph.estimate * 1e3 / double(count);
+        stage.update(done_ms + std::uint64_t(share * double(index)), ph.name + ": " + name, std::uint64_t(share));
+    };
     j["peak"] = {{"gflops_float", peak.gflops_float},
                  {"gflops_double", peak.gflops_double},
                  {"threads", peak.threads},
                  {"vector_bits", peak.vector_bits}};
-
-    std::vector<Precision> precisions = {Precision::Float};
-    if (dev.fp64) precisions.push_back(Precision::Double);
 
     // Kernel build times: a fresh engine (new context) builds the albedo program and runs it on
     // one cell with 32 samples. PoCL compiles the work-group function at the first launch, so
     // the figure is clBuildProgram plus that first launch: what a command waits before work.
     json builds = json::array();
     if (o.build_times) {
+        phase("kernel builds");
         const TableCells one = table_cells(1);
         for (Precision p : precisions) {
             double t[2], b[2];
@@ -293,6 +489,7 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
     json thr = json::array();
     rep.agreed = true;
     for (Precision p : precisions) {
+        phase(std::string("throughput, ") + precision_name(p));
         const AlbedoRequest kreq = kernel_request(cells, o.samples, p);
         const AlbedoResult kres = compute_albedo(engine, kreq);  // warm-up and the checked result
         // Every flavour of the baseline must agree with the kernel within the two estimates.
@@ -302,8 +499,10 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
                                        "plain strict", "plain -ffast-math"};
         double worst = 0.0;
         bool agreed = true;
+        double checked_seconds[5];  // each flavour's checked run is its first timed one
         for (int f = 0; f < 5; ++f) {
             const baseline::Result bres = run_baseline(cells, o.samples, p, flavours[f]);
+            checked_seconds[f] = bres.seconds;
             double worst_f = 0.0;
             size_t worst_cell = 0;
             for (size_t c = 0; c < cells.mu.size(); ++c) {
@@ -345,7 +544,7 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
             },
             o);
         auto time_baseline = [&](Flavour f) {
-            return time_median([&] { return run_baseline(cells, o.samples, p, f).seconds; }, o);
+            return time_median_from(checked_seconds[int(f)], [&] { return run_baseline(cells, o.samples, p, f).seconds; }, o);
         };
         const double t_base = time_baseline(Flavour::Strict);
         const double t_fast = time_baseline(Flavour::FastMath);
@@ -390,6 +589,7 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
     // Scaling: time against cells x samples (float; the kernel and the strict tuned baseline).
     json scaling = json::array();
     if (rep.agreed) {
+        phase("scaling sweeps");
         auto point = [&](int n, std::uint64_t s, const char* sweep) {
             const TableCells t = table_cells(n);
             const AlbedoRequest kreq = kernel_request(t, s, Precision::Float);
@@ -417,6 +617,100 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
         for (std::uint64_t s : o.scaling_samples) point(o.scaling_samples_table, s, "samples");
     }
     j["scaling"] = scaling;
+
+    // Table kinds: every kind of the registry at a fixed tolerance, through compute_lut (the
+    // code path of `brdfbake lut KIND --tolerance T`). Fixed sizes (kind_texels), or, with
+    // kind_seconds, a size that makes a run last about that long: a tiny table first (which
+    // builds the kernels), timed again, then scaled, up to kind_texels. A first run gives the
+    // checked table; then the median of timed runs. A kind that misses the tolerance gets a row
+    // saying so, not a time.
+    json kinds = json::array();
+    if (o.kind_texels > 0)
+        for (const std::string& pname : o.kind_precisions) {
+            const Precision p = pname == "double" ? Precision::Double : Precision::Float;
+            if (std::find(precisions.begin(), precisions.end(), p) == precisions.end()) continue;
+            phase("table kinds, " + pname);
+            const BenchOptions timing = kind_timing(o);
+            for (size_t ki = 0; ki < table_kinds().size(); ++ki) {
+                const TableKind* k = table_kinds()[ki];
+                sub_step(k->name, ki, table_kinds().size());
+                json row = {{"kind", k->name}, {"precision", precision_name(p)}, {"tolerance", o.kind_tolerance}};
+                try {
+                    // A 1D kind (its texels hold an integral over mu each) as long as a side of the 2D tables.
+                    const double cap = k->one_dimensional ? std::sqrt(double(o.kind_texels)) : double(o.kind_texels);
+                    double texels = cap;
+                    const LutRequest small = kind_request(*k, 4, o.kind_tolerance, p);
+                    // The last sized run: a first run of the final size that need not be repeated.
+                    std::optional<Table> sized_table;
+                    double sized_seconds = 0.0;
+                    std::vector<int> sized_size;
+                    if (!small.kind.empty()) {
+                        compute_lut(engine, small);  // builds the kernels
+                        // Grow the table until a run lasts at least half of kind_seconds (a tiny
+                        // table's time is mostly the call's own cost, so one step is not enough).
+                        LutRequest sized = small;
+                        for (int step = 0; o.kind_seconds > 0 && step < 4; ++step) {
+                            const double t0 = now();
+                            sized_table = compute_lut(engine, sized);
+                            sized_seconds = now() - t0;
+                            sized_size = {sized.width, sized.height, sized.depth};
+                            const double have = texel_count(sized, *k);
+                            texels = std::clamp(have * o.kind_seconds / std::max(sized_seconds, 1e-4), have,
+                                                std::max(cap, have));
+                            if (sized_seconds >= 0.5 * o.kind_seconds || texels >= cap) {
+                                texels = have;
+                                break;
+                            }
+                            sized = kind_request(*k, texels, o.kind_tolerance, p);
+                        }
+                    }
+                    const LutRequest r = kind_request(*k, texels, o.kind_tolerance, p);
+                    if (r.kind.empty()) {
+                        row["note"] = "no model and Fresnel term of the registry fits this kind";
+                        kinds.push_back(row);
+                        continue;
+                    }
+                    const double n_texels = texel_count(r, *k);
+                    const double cells = n_texels * k->cells_per_texel * k->integrations(r);
+                    row["model"] = r.model;
+                    row["fresnel"] = r.fresnel;
+                    row["size"] = size_text(r, *k);
+                    row["texels"] = n_texels;
+                    row["cells"] = cells;
+                    const bool reuse = sized_table && sized_size == std::vector<int>{r.width, r.height, r.depth};
+                    const double t0 = now();
+                    const Table table = reuse ? *sized_table : compute_lut(engine, r);
+                    const double first = reuse ? sized_seconds : now() - t0;
+                    double max_err = 0.0;
+                    for (double e : table.error) max_err = std::max(max_err, e);
+                    const double t = time_median_from(
+                        first,
+                        [&] {
+                            const double t1 = now();
+                            compute_lut(engine, r);
+                            return now() - t1;
+                        },
+                        timing);
+                    row["first_run_seconds"] = first;
+                    row["seconds"] = t;
+                    row["texels_per_second"] = n_texels / t;
+                    row["cells_per_second"] = cells / t;
+                    row["max_error"] = max_err;
+                    row["method"] = table.attributes.count("method") ? table.attributes.at("method") : "";
+                    log << "kind " << k->name << " (" << precision_name(p) << ", " << row["size"].get<std::string>()
+                        << "): " << fixed(n_texels / t, 0) << " texels/s, " << fixed(cells / t, 0)
+                        << " cells/s, max error " << sci(max_err) << "\n";
+                } catch (const Error& e) {
+                    row["note"] = e.what();
+                    log << "kind " << k->name << " (" << precision_name(p) << "): " << e.what() << "\n";
+                }
+                kinds.push_back(row);
+            }
+        }
+    j["kinds"] = kinds;
+    phase("");  // the last phase ends
+    j["estimated_seconds"] = estimate;
+    j["phases"] = phases;
     j["machine"]["loadavg_end"] = read_loadavg();
     j["total_seconds"] = now() - t_start;
     j["agreed"] = rep.agreed;
@@ -473,6 +767,24 @@ BenchReport run_bench(const BenchOptions& o, std::ostream& log) {
            << s["samples_per_cell"].get<std::uint64_t>() << " | " << sci(s["work"].get<double>()) << " | "
            << fixed(s["kernel_seconds"].get<double>(), 4) << " | " << fixed(s["kernel_ns_per_sample"].get<double>(), 2)
            << " | " << fixed(s["tuned_baseline_seconds"].get<double>(), 4) << " |\n";
+    if (!kinds.empty()) {
+        md << "\nTable kinds at tolerance " << sci(o.kind_tolerance)
+           << " (`brdfbake lut KIND --tolerance T`, every kind of the registry with the first model and Fresnel "
+              "term it accepts; median of timed runs after a first run that builds the kernels). Cells: the "
+              "integrations of a table (texels x integrations per texel).\n\n| kind | model | size | precision | "
+              "time (s) | texels/s | cells/s | max error | method |\n| --- | --- | --- | --- | ---: | ---: | ---: | "
+              "---: | --- |\n";
+        for (const auto& k : kinds) {
+            md << "| " << k["kind"].get<std::string>() << " | " << k.value("model", std::string("-")) << " | "
+               << k.value("size", std::string("-")) << " | " << k["precision"].get<std::string>() << " | ";
+            if (k.contains("seconds"))
+                md << fixed(k["seconds"].get<double>(), 3) << " | " << fixed(k["texels_per_second"].get<double>(), 0)
+                   << " | " << fixed(k["cells_per_second"].get<double>(), 0) << " | "
+                   << sci(k["max_error"].get<double>()) << " | " << k["method"].get<std::string>() << " |\n";
+            else
+                md << "- | - | - | - | " << k["note"].get<std::string>() << " |\n";
+        }
+    }
     rep.markdown = md.str();
     return rep;
 }

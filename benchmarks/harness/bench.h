@@ -24,6 +24,14 @@ struct BenchOptions {
     double min_seconds = 0.5;           // repeat a measurement until it has taken this long
     int max_runs = 11;
     bool build_times = true;            // cold and warm kernel build (fresh POCL_CACHE_DIR)
+    /// Table kinds (every kind of the registry, brdfbake/table_kinds.h): each kind's table at
+    /// kind_tolerance with about kind_texels texels (a 2D kind N x N, a 3D kind W x W x W/2; a
+    /// 1D kind sqrt(kind_texels) texels), float and double; 0 texels: no kind rows. With
+    /// kind_seconds > 0, a smaller table where a run would last longer than that.
+    int kind_texels = 16384;
+    double kind_seconds = 0.0;
+    double kind_tolerance = 1e-4;
+    std::vector<std::string> kind_precisions = {"float", "double"};
     bool verbose = false;
     /// The best of the quick options (`--quick`): tiny tables, one run each.
     static BenchOptions quick_options();

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <memory>
+#include <optional>
 
 #include "brdfbake/albedo.h"
 #include "brdfbake/error.h"
@@ -69,8 +70,12 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
     fig.panel_height = int(std::lround(fig.panel_width * 0.94 / 0.86));  // square spheres (see write_figure)
     std::vector<double> mus;
     for (int k = 0; k < a.nodes; ++k) mus.push_back(std::pow((k + 0.5) / a.nodes, 2));
+    std::optional<ProgressStage> stage;  // ends before the figure is written
+    stage.emplace("white furnace of " + std::to_string(models.size()) + (models.size() == 1 ? " model" : " models"),
+                  models.size(), models.size() == 1 ? "" : "models");
     for (size_t mi = 0; mi < models.size(); ++mi) {
         const ModelConfig& m = models[mi];
+        stage->update(mi, labels[mi], 1);
         AlbedoRequest req;
         req.model = m.id;
         req.fresnel = fresnel;
@@ -108,6 +113,8 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
             }
         fig.panels.push_back(p);
     }
+    stage->update(models.size());
+    stage.reset();
     fig.colorbar_label = "E(\\mu); environment (blue) = 1";
     fig.colorbar_scheme = "kw";
     write_figure(a.output, fig);

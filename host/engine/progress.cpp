@@ -1,17 +1,230 @@
 #include "brdfbake/progress.h"
 
+#include <algorithm>
 #include <atomic>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <mutex>
+#include <vector>
 
 namespace brdfbake {
 
 namespace {
+
+using Clock = std::chrono::steady_clock;
+
+struct Frame {
+    std::uint64_t id = 0;
+    std::string what, unit, done_word;
+    std::uint64_t total = 0, done = 0, step_units = 0;
+    bool estimable = true;
+    std::string step;
+    std::string launch;            // the last launch reported inside the step
+    double launch_fraction = -1.0;
+    Clock::time_point start, step_start;
+};
+
 std::atomic<ProgressSink*> g_sink{nullptr};
+std::mutex g_mutex;
+// Per thread: the open stages, outermost first (stages nest within the thread that runs the
+// work; two threads computing at once, as the Python module allows, each have their own).
+thread_local std::vector<Frame> g_frames;
+thread_local Frame g_loose;  // a launch reporting outside any stage
+thread_local bool g_loose_open = false;
+std::uint64_t g_next_id = 1;
+int g_silenced = 0;  // open ProgressSilence objects
+
+double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
+
+std::string percent(double f) {
+    char s[16];
+    std::snprintf(s, sizeof s, " %.0f%%", 100.0 * f);
+    return s;
+}
+
+/// What frame i runs now, its fraction, and when it began: its own step and launch, or, for an
+/// enclosing frame, the frame inside it in words.
+struct Step {
+    std::string text;
+    double fraction = -1.0;
+    Clock::time_point start;
+};
+
+double frame_fraction(const Frame& f, const Step& s) {
+    if (f.total == 0) return s.fraction >= 0 ? s.fraction : 0.0;
+    double d = double(f.done);
+    if (s.fraction >= 0 && f.step_units > 0) d += s.fraction * double(f.step_units);
+    return std::min(1.0, d / double(f.total));
+}
+
+std::string counts(const Frame& f) {
+    if (f.unit.empty() || f.total == 0) return {};
+    return std::to_string(f.done) + " of " + std::to_string(f.total) + " " + f.unit +
+           (f.done_word.empty() ? "" : " " + f.done_word);
+}
+
+Step step_of(size_t i) {
+    const Frame& f = g_frames[i];
+    Step s;
+    s.start = f.step_start;
+    if (i + 1 == g_frames.size()) {
+        s.text = f.step.empty() ? f.launch : f.step;
+        s.fraction = f.launch_fraction;
+        return s;
+    }
+    const Frame& c = g_frames[i + 1];
+    const Step inner = step_of(i + 1);
+    std::string text = c.what;
+    const std::string n = counts(c);
+    if (!n.empty()) text += " (" + n + ")";
+    if (!inner.text.empty()) text += ": " + inner.text + (inner.fraction >= 0 ? percent(inner.fraction) : "");
+    s.text = f.step.empty() ? text : f.step + "; " + text;
+    s.fraction = frame_fraction(c, inner);
+    s.start = c.start;
+    return s;
+}
+
+ProgressState state_of(const Frame& f, const Step& s, bool finished) {
+    const Clock::time_point now = Clock::now();
+    ProgressState st;
+    st.stage_id = f.id;
+    st.what = f.what;
+    st.done = finished && f.unit.empty() ? f.total : f.done;
+    st.total = f.total;
+    st.unit = f.unit;
+    st.done_word = f.done_word;
+    st.step = finished ? std::string() : s.text;  // an ended stage is shown by its name alone
+    st.step_fraction = finished ? -1.0 : s.fraction;
+    st.fraction = finished ? 1.0 : frame_fraction(f, s);
+    st.elapsed = seconds_between(f.start, now);
+    st.finished = finished;
+    if (!finished) {
+        if (f.estimable && st.fraction > 0.0) {
+            st.seconds_left = st.elapsed * (1.0 / st.fraction - 1.0);
+        } else if (s.fraction > 0.0) {
+            st.seconds_left = seconds_between(s.start, now) * (1.0 / s.fraction - 1.0);
+            st.left_is_step = true;
+        }
+    }
+    return st;
+}
+
+void publish(bool finished) {
+    ProgressSink* sink = g_sink.load();
+    // A stage's end always reaches the sink (one shown before a silence began must not stay drawn).
+    if (!sink || g_frames.empty() || (g_silenced > 0 && !finished)) return;
+    sink->update(state_of(g_frames.front(), step_of(0), finished));
+}
+
 }  // namespace
 
 void set_progress_sink(ProgressSink* sink) { g_sink.store(sink); }
 
+ProgressStage::ProgressStage(std::string what, std::uint64_t total, std::string unit, std::string done_word,
+                             bool estimable) {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    Frame f;
+    f.id = g_next_id++;
+    f.what = std::move(what);
+    f.total = total;
+    f.unit = std::move(unit);
+    f.done_word = std::move(done_word);
+    f.estimable = estimable;
+    f.start = f.step_start = Clock::now();
+    g_frames.push_back(std::move(f));
+    depth_ = g_frames.size();
+    publish(false);
+}
+
+ProgressStage::~ProgressStage() {
+    try {
+        std::lock_guard<std::mutex> lock(g_mutex);
+        if (g_frames.size() != depth_) return;  // stages close in the order they opened
+        if (depth_ == 1) publish(true);
+        g_frames.pop_back();
+        if (!g_frames.empty()) {
+            g_frames.back().launch.clear();
+            g_frames.back().launch_fraction = -1.0;
+            publish(false);
+        }
+    } catch (...) {  // a sink that throws must not end the program from a destructor
+    }
+}
+
+void ProgressStage::update(std::uint64_t done, const std::string& step, std::uint64_t step_units) {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (g_frames.size() < depth_) return;
+    Frame& f = g_frames[depth_ - 1];
+    f.done = std::min(done, f.total ? f.total : done);
+    if (step != f.step || step_units != f.step_units) f.step_start = Clock::now();
+    f.step = step;
+    f.step_units = step_units;
+    f.launch.clear();
+    f.launch_fraction = -1.0;
+    publish(false);
+}
+
+ProgressSilence::ProgressSilence() {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    ++g_silenced;
+}
+
+ProgressSilence::~ProgressSilence() {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    --g_silenced;
+}
+
 void report_progress(const std::string& what, std::uint64_t done, std::uint64_t total) {
-    if (ProgressSink* s = g_sink.load()) s->update(what, done, total);
+    if (!g_sink.load()) return;
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (g_silenced > 0) return;
+    const double fraction = total ? std::min(1.0, double(done) / double(total)) : 1.0;
+    if (!g_frames.empty()) {
+        Frame& f = g_frames.back();
+        f.launch = what;
+        f.launch_fraction = fraction;
+        publish(false);
+        return;
+    }
+    // A launch outside any stage is a stage of its own, counted in the launch's units.
+    if (!g_loose_open || what != g_loose.what || done < g_loose.done) {
+        g_loose = Frame();
+        g_loose.id = g_next_id++;
+        g_loose.what = what;
+        g_loose.start = g_loose.step_start = Clock::now();
+        g_loose_open = true;
+    }
+    g_loose.total = total;
+    g_loose.done = done;
+    const bool finished = done >= total;
+    ProgressState st = state_of(g_loose, Step{}, finished);
+    st.closes = false;
+    if (ProgressSink* sink = g_sink.load()) sink->update(st);
+    if (finished) g_loose_open = false;
+}
+
+void progress_message(const std::string& line) {
+    if (ProgressSink* sink = g_sink.load()) {
+        sink->message(line);
+        return;
+    }
+    std::fprintf(stderr, "%s\n", line.c_str());
+    std::fflush(stderr);
+}
+
+std::string progress_duration(double seconds) {
+    char s[48];
+    const long t = std::lround(std::max(0.0, seconds));
+    if (seconds < 9.95)
+        std::snprintf(s, sizeof s, "%.1f s", std::max(0.0, seconds));
+    else if (t < 60)
+        std::snprintf(s, sizeof s, "%ld s", t);
+    else if (t < 3600)
+        std::snprintf(s, sizeof s, "%ld min %ld s", t / 60, t % 60);
+    else
+        std::snprintf(s, sizeof s, "%ld h %ld min", t / 3600, (t % 3600) / 60);
+    return s;
 }
 
 }  // namespace brdfbake

@@ -1,5 +1,6 @@
 #include "brdfbake/check.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <sstream>
@@ -9,6 +10,7 @@
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/cancel.h"
 #include "brdfbake/error.h"
+#include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
 
 namespace brdfbake {
@@ -50,15 +52,32 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     k.setArg(a++, b_min);
     k.setArg(a++, b_bad);
     const size_t local = 4, global = (size_t(n_theta) + local - 1) / local * local;
-    throw_if_cancelled();
-    engine.queue().enqueueNDRangeKernel(k, cl::NullRange, cl::NDRange(global, global), cl::NDRange(local, local));
+    m.evaluations = std::uint64_t(cells) * n_phi * m.n_phi_o * 2;
+    // A large scan runs in slices of theta_o rows (up to 64, each of about 2^22 evaluations or
+    // more), reporting progress and honouring a cancel request between them; the work-items keep
+    // their global ids, so the map is the same as one launch's.
+    const size_t row_groups = global / local;
+    const size_t slices = std::min<size_t>({row_groups, 64, size_t(std::max<double>(1.0, double(m.evaluations) / double(1 << 22)))});
+    const size_t groups_per_slice = (row_groups + slices - 1) / slices;
+    std::ostringstream what;
+    what << "reciprocity scan of " << n_theta << "x" << n_theta << " directions x " << n_phi * m.n_phi_o << " azimuths";
+    if (slices > 1) report_progress(what.str(), 0, row_groups);
+    for (size_t first = 0; first < row_groups; first += groups_per_slice) {
+        throw_if_cancelled();
+        const size_t count = std::min(groups_per_slice, row_groups - first);
+        engine.queue().enqueueNDRangeKernel(k, cl::NDRange(0, first * local), cl::NDRange(global, count * local),
+                                            cl::NDRange(local, local));
+        if (slices > 1) {
+            engine.queue().finish();
+            report_progress(what.str(), first + count, row_groups);
+        }
+    }
     m.max_rel = bufs.read(b_rel, cells);
     m.dphi_at_max = bufs.read(b_phi, cells);
     m.min_value = bufs.read(b_min, cells);
     std::vector<cl_uint> bad(cells);
     engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, cells * sizeof(cl_uint), bad.data());
     for (cl_uint b : bad) m.nonfinite += b;
-    m.evaluations = std::uint64_t(cells) * n_phi * m.n_phi_o * 2;
     return m;
 }
 
@@ -74,6 +93,9 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
     // Values and reciprocity, in double where the device has it (round-off then stays far
     // below any tolerance a user would set).
     const Precision scan_precision = engine.device().fp64 ? Precision::Double : Precision::Float;
+    // Two parts, shown as one stage: the scan, then the furnace.
+    ProgressStage stage("check of " + model.canonical, 2);
+    stage.update(0, "reciprocity and value scan", 1);
     r.reciprocity_tolerance = o.reciprocity_tolerance;
     if (scan_precision == Precision::Float) r.reciprocity_tolerance = std::max(o.reciprocity_tolerance, 1e-3);
     const ReciprocityMap map = scan_reciprocity(engine, model, fresnel, o.resolution, o.phi_resolution, scan_precision);
@@ -103,6 +125,7 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
         for (int k = 0; k < o.directions; ++k)
             req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
     r.furnace_directions = int(req.cells.size());
+    stage.update(1, "white furnace of " + std::to_string(req.cells.size()) + " directions", 1);
     try {
         const AlbedoResult res = has_analytic_albedo(model) ? analytic_albedo_result(model, fresnel, req.cells)
                                                             : compute_albedo(engine, req);

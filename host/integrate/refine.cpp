@@ -7,6 +7,7 @@
 #include <sstream>
 
 #include "brdfbake/error.h"
+#include "brdfbake/progress.h"
 
 namespace brdfbake {
 
@@ -63,11 +64,19 @@ RefineOutcome refine_to_tolerance(size_t n_cells, const std::vector<RefineStep>&
     out.spent.assign(n_cells, 0);
     std::vector<bool> done(n_cells, false);
     std::vector<double> best_error(n_cells, INFINITY);
+    // Progress: cells certified of all cells, over the rounds; the rounds are its steps (their
+    // launches report inside them). The later rounds' cost is unknown, so the time left shown is
+    // the current round's.
+    ProgressStage stage(options.progress_what, n_cells, "cells", "certified", false);
     for (const auto& step : steps) {
         std::vector<size_t> todo;
         for (size_t c = 0; c < n_cells; ++c)
             if (!done[c]) todo.push_back(c);
         if (todo.empty()) break;
+        std::ostringstream round;
+        round << "round " << out.rounds + 1 << ": " << method_name(step.method) << " (" << step.samples
+              << " points) on " << todo.size() << (todo.size() == 1 ? " cell" : " cells");
+        stage.update(n_cells - todo.size(), round.str());
         const RefineRound part = integrate(step, todo);
         if (part.values.size() != todo.size()) throw Error("internal error: a refinement round lost cells");
         if (options.verbose)
@@ -99,6 +108,7 @@ RefineOutcome refine_to_tolerance(size_t n_cells, const std::vector<RefineStep>&
     }
     for (size_t c = 0; c < n_cells; ++c)
         if (!done[c]) out.missed.push_back(c);
+    stage.update(n_cells - out.missed.size());
     return out;
 }
 
@@ -117,6 +127,13 @@ std::string tolerance_method_text(double tolerance, const RefineOutcome& o) {
     return m.str();
 }
 
+// "albedo of 4096 cells to tolerance 0.0001": a refinement's progress stage.
+std::string progress_name(const std::string& integral, size_t cells, double tolerance) {
+    std::ostringstream m;
+    m << integral << " of " << cells << (cells == 1 ? " cell" : " cells") << " to tolerance " << tolerance;
+    return m.str();
+}
+
 }  // namespace
 
 AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
@@ -129,6 +146,7 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
     options.tolerance = tol.tolerance;
     options.keep_best = true;
     options.verbose = engine.verbose();
+    options.progress_what = progress_name("albedo", req.cells.size(), tol.tolerance);
     const RefineOutcome o =
         refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
             AlbedoRequest r = req;
@@ -188,6 +206,7 @@ DielectricResult compute_dielectric_to_tolerance(Engine& engine, const Dielectri
     // with quadrature rounds in the plan a cell keeps its best estimate, as the albedo's does.
     options.keep_best = steps.front().method == Method::Quadrature;
     options.verbose = engine.verbose();
+    options.progress_what = progress_name("rough dielectric", req.cells.size(), tol.tolerance);
     const RefineOutcome o =
         refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
             DielectricRequest r = req;

@@ -37,6 +37,9 @@ struct RefineOptions {
     bool keep_best = true;
     /// Log each round to stderr ("brdfbake: round N: ...").
     bool verbose = false;
+    /// The progress stage's name ("rough dielectric of 4096 cells to tolerance 0.0001"); its
+    /// units are cells certified, its steps the rounds (brdfbake/progress.h).
+    std::string progress_what = "refinement";
 };
 
 struct RefineOutcome {
