@@ -484,6 +484,8 @@ int run_bake(const BakeOptions& o, const GlobalOptions& g) {
 
     std::unique_ptr<Engine> engine = std::make_unique<Engine>(g.device, g.verbose);
     Progress progress(work);
+    // bake draws its own progress over all its tables: the computations' stages stay silent.
+    const ProgressSilence silence;
     int n = 0, computed = 0;
     double max_error = 0.0;
     for (size_t i = 0; i < plan.tables.size(); ++i) {

@@ -629,6 +629,10 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
 
 namespace {
 
+// A dielectric node or sample (R and T, the refraction, the Beta function) costs about 3.5 of the
+// albedo's samples, which run_items slices launches by (progress within a long round).
+constexpr double kDielectricNodeCost = 3.5;
+
 std::string dielectric_nonfinite_where(const DielectricRequest& req, size_t c) {
     std::ostringstream m;
     m << "the rough dielectric produced NaN or Inf at mu = " << req.cells[c].mu << ", alpha = " << req.cells[c].alpha
@@ -722,7 +726,7 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
                                                  : std::uint64_t(rule.n) * rule.n + std::uint64_t(rule.m) * rule.m +
                                                        std::uint64_t(rule.l) * rule.l;
     const double kernel_seconds =
-        run_items(engine, kernel, n_items, double(per_piece) * BB_DIELECTRIC_QUAD_SEGMENTS / BB_QUAD_RULES,
+        run_items(engine, kernel, n_items, kDielectricNodeCost * double(per_piece) * BB_DIELECTRIC_QUAD_SEGMENTS / BB_QUAD_RULES,
                   "rough dielectric of " + std::to_string(n_cells) + " cells by quadrature, " + std::to_string(rule.n) +
                       " nodes");
     const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
@@ -813,7 +817,7 @@ DielectricResult compute_dielectric_sampled(Engine& engine, const DielectricRequ
              cl_int(dielectric_shadowing(req)),
              b_r, b_t, bad_counts.buffer);
     const double kernel_seconds =
-        run_items(engine, kernel, n_items, double(points),
+        run_items(engine, kernel, n_items, kDielectricNodeCost * double(points),
                   "rough dielectric of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +
                       " samples each");
     const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
