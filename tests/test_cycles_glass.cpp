@@ -1,0 +1,152 @@
+// Blender Cycles' glass tables (ggx_glass_E, ggx_glass_inv_E, ggx_glass_Eavg, ggx_glass_inv_Eavg)
+// from `lut dielectric|dielectric-eavg --preset cycles`: the layout against Cycles' convention
+// (intern/cycles/app/cycles_precompute.cpp, written out in benchmarks/reference/cycles_glass_reference.h)
+// and the values against an independent quadrature of Cycles' definition at Cycles' grid points —
+// never against a copy of Cycles' tables.
+#include <catch2/catch.hpp>
+
+#include <unistd.h>
+
+#include <cmath>
+#include <iostream>
+#include <limits>
+#include <string>
+
+#include "brdfbake/error.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/table.h"
+#include "reference/cycles_glass_reference.h"
+#include "support.h"
+
+using namespace brdfbake;
+namespace cg = ref::cycles_glass;
+
+namespace {
+
+LutRequest cycles_request(const std::string& kind) {
+    LutRequest r;
+    r.kind = kind;
+    lut_preset("cycles").apply(r);
+    return r;
+}
+
+size_t texel(int x, int y, int z) { return (size_t(z) * cg::kSize + size_t(y)) * cg::kSize + size_t(x); }
+
+}  // namespace
+
+TEST_CASE("preset cycles: the glass tables' layout is Cycles' (x = roughness, y = mu, z = cycles_z, edges, clamps)",
+          "[cycles-glass][presets][device]") {
+    LutRequest r = cycles_request("dielectric");
+    CHECK(r.model.find("transmission_shadowing=cycles") != std::string::npos);
+    // The layout only: a few samples per texel (the values are the next test's).
+    r.tolerance.tolerance = 0.0;
+    r.samples = 16;
+    const Table t = compute_lut(testing::engine(), r);
+    REQUIRE(t.x.name == "roughness");
+    REQUIRE(t.y.name == "mu");
+    REQUIRE(t.z.name == "cycles_z");
+    REQUIRE(t.width() == cg::kSize);
+    REQUIRE(t.height() == cg::kSize);
+    REQUIRE(t.depth() == cg::kSize);
+    REQUIRE(t.channels == std::vector<std::string>{"R", "T", "R_inside", "T_inside"});
+    for (int i = 0; i < cg::kSize; ++i) {
+        INFO("texel " << i);
+        // Cycles' r = 1e-4 column and z = 1e-4 slice are singular in its sampler (E = 1); brdfbake
+        // holds them as alpha = 0 (the smooth interface) and eta = 1 (no interface).
+        CHECK(t.x.parameter[size_t(i)] == Approx(i == 0 ? 0.0 : cg::roughness(i) * cg::roughness(i)).epsilon(1e-14));
+        CHECK(t.y.parameter[size_t(i)] == Approx(cg::mu(i)).epsilon(1e-14));
+        CHECK(t.z.parameter[size_t(i)] == Approx(i == 0 ? 1.0 : cg::eta(i)).epsilon(1e-12));
+        CHECK(t.z.coordinate[size_t(i)] == Approx(i / 15.0).margin(1e-15));
+    }
+    // The singular texels hold E = 1 on both sides, in closed form, at any sample count.
+    for (int a = 0; a < cg::kSize; ++a)
+        for (int b = 0; b < cg::kSize; ++b)
+            for (size_t k : {texel(0, a, b), texel(a, b, 0)}) {
+                CHECK(t.values[0][k] + t.values[1][k] == Approx(1.0).margin(1e-14));
+                CHECK(t.values[2][k] + t.values[3][k] == Approx(1.0).margin(1e-14));
+            }
+
+    LutRequest e = cycles_request("dielectric-eavg");
+    e.tolerance.tolerance = 0.0;
+    e.samples = 16;
+    validate_lut(e);
+    CHECK(e.width == cg::kSize);
+    CHECK(e.depth == cg::kSize);
+}
+
+TEST_CASE("preset cycles: ggx_glass_E, ggx_glass_inv_E and ggx_glass_Eavg within 1e-5 of Cycles' definition",
+          "[cycles-glass][presets][device]") {
+    // A sub-grid of Cycles' grid through the preset's own axes: roughness x in {10, 15}, mu y in
+    // {0, 5, 10, 15} (y = 0 floored at 1e-4), z in {5, 10, 15} (z = 15 computed at 0.99), at
+    // --precision double --tolerance 1e-6.
+    LutRequest r = cycles_request("dielectric");
+    r.tolerance.tolerance = 1e-6;
+    r.width = 4;   // mu
+    r.height = 2;  // roughness
+    r.depth = 3;   // z
+    r.alpha_lo = 10.0 / 15.0;
+    r.eta_lo = cg::eta(5);
+    REQUIRE(std::isinf(r.eta_hi));
+    const Table t = compute_lut(testing::engine(), r);
+    REQUIRE(t.x.name == "roughness");
+    REQUIRE(t.z.name == "cycles_z");
+    const int xs[] = {10, 15}, ys[] = {0, 5, 10, 15}, zs[] = {5, 10, 15};
+    for (int i = 0; i < 2; ++i) CHECK(t.x.parameter[size_t(i)] == Approx(std::pow(cg::roughness(xs[i]), 2)).epsilon(1e-13));
+    for (int j = 0; j < 4; ++j) CHECK(t.y.parameter[size_t(j)] == Approx(cg::mu(ys[j])).epsilon(1e-13));
+    for (int k = 0; k < 3; ++k) CHECK(t.z.parameter[size_t(k)] == Approx(cg::eta(zs[k])).epsilon(1e-12));
+    // Five texels on both sides (the reference takes 0.1 to 2 s a value).
+    struct Texel {
+        int i, j, k;
+    };
+    double worst = 0.0;
+    for (const Texel& c : {Texel{1, 0, 0}, Texel{1, 1, 1}, Texel{0, 2, 2}, Texel{0, 3, 0}, Texel{1, 3, 2}}) {
+        const size_t at = (size_t(c.k) * 4 + size_t(c.j)) * 2 + size_t(c.i);
+        for (bool inside : {false, true}) {
+            const double expect = cg::E(xs[c.i], ys[c.j], zs[c.k], inside, 1e-7);
+            const double got = inside ? t.values[2][at] + t.values[3][at] : t.values[0][at] + t.values[1][at];
+            INFO("x " << xs[c.i] << ", y " << ys[c.j] << ", z " << zs[c.k] << (inside ? " inside" : " outside")
+                      << ": brdfbake " << got << ", reference " << expect << ", error estimate " << t.error[at]);
+            CHECK(std::fabs(got - expect) < 1e-5);
+            worst = std::max(worst, std::fabs(got - expect));
+        }
+    }
+    std::cout << "preset cycles ggx_glass_E / inv_E: worst |E - reference| " << worst << " (10 values)\n";
+
+    // ggx_glass_Eavg at roughness x = 15, z = 10 (outside; the inside view's reference takes 30 s).
+    LutRequest e = cycles_request("dielectric-eavg");
+    e.tolerance.tolerance = 1e-6;
+    e.width = 2;
+    e.depth = 3;
+    e.alpha_lo = 10.0 / 15.0;
+    e.eta_lo = cg::eta(5);
+    const Table avg = compute_lut(testing::engine(), e);
+    REQUIRE(avg.channels == std::vector<std::string>{"Eavg", "Eavg_inside"});
+    const double expect = cg::Eavg(15, 10, false, 1, 1e-6);
+    const size_t at = 1 * 2 + 1;  // z texel 1 (z = 10), x texel 1 (x = 15): index z * 16 + x in the full table
+    INFO("Eavg brdfbake " << avg.values[0][at] << ", reference " << expect << ", error estimate " << avg.error[at]);
+    CHECK(std::fabs(avg.values[0][at] - expect) < 1e-5);
+}
+
+TEST_CASE("an eta range up to infinity is Cycles' z axis only", "[cycles-glass][cli]") {
+    LutRequest r = cycles_request("dielectric");
+    CHECK_NOTHROW(validate_lut(r));
+    for (const char* map : {"linear", "f0"}) {
+        LutRequest bad = r;
+        bad.eta_map = map;
+        CHECK_THROWS_AS(validate_lut(bad), Error);
+    }
+    LutRequest bad = r;
+    bad.eta_lo = std::numeric_limits<double>::infinity();
+    CHECK_THROWS_AS(validate_lut(bad), Error);
+    bad = r;
+    bad.eta_hi = std::numeric_limits<double>::quiet_NaN();
+    CHECK_THROWS_AS(validate_lut(bad), Error);
+    // The command line: the preset's range with another map is refused, nothing written.
+    const std::string never = "/tmp/brdfbake-cycles-glass-never-" + std::to_string(::getpid()) + ".h";
+    const testing::CliResult run = testing::run_cli("lut dielectric --preset cycles --eta-map f0 -o " + never);
+    INFO(run.err);
+    CHECK(run.status == 2);
+    CHECK(testing::count_lines(run.err) == 1);
+    CHECK(run.err.find("--eta-map cycles") != std::string::npos);
+    CHECK(::access(never.c_str(), F_OK) != 0);
+}
