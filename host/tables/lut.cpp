@@ -99,8 +99,8 @@ Axis eta_axis(const LutRequest& r, int size) {
                  : "eta = w";
     if (to_infinity) {
         std::ostringstream m;
-        m << mapping << "; w above " << kCyclesZHi << " (eta = infinity at w = 1) was computed at w = " << kCyclesZHi
-          << " (eta = " << eta_from_coordinate("cycles", kCyclesZHi) << "), as Cycles computes its z axis";
+        m << mapping << "; w above " << kCyclesZHi << " was computed at " << kCyclesZHi << ", as Cycles does; w = "
+          << kCyclesZHi << " is eta = " << eta_from_coordinate("cycles", kCyclesZHi) << ", w = 1 eta = infinity";
         mapping = m.str();
     }
     Axis a = make_axis(eta_axis_name(r), mapping, eta_coordinate(r.eta_map, r.eta_lo),
