@@ -61,6 +61,33 @@ std::string axis_label(const Axis& a) {
     return plot_text(a.name);
 }
 
+namespace {
+
+/// A heatmap panel of `values` (x fastest) over the axes x and y, coloured over [lo, hi], its
+/// colour bar naming the channel and the range of its data.
+PlotSpec heatmap_panel(const std::string& title, const Axis& x, const Axis& y, std::vector<double> values,
+                       const std::string& channel, double lo, double hi, double data_lo, double data_hi) {
+    PlotSpec p;
+    p.title = title;
+    p.x.label = axis_label(x);
+    p.y.label = axis_label(y);
+    p.legend = LegendPlace::None;
+    Heatmap& h = p.heatmap;
+    h.nx = int(x.coordinate.size());
+    h.ny = int(y.coordinate.size());
+    h.x_lo = x.lo;
+    h.x_hi = x.hi;
+    h.y_lo = y.lo;
+    h.y_hi = y.hi;
+    h.z = std::move(values);
+    h.z_lo = lo;
+    h.z_hi = hi;
+    h.colorbar_label = plot_text(channel) + ": " + number(data_lo) + " to " + number(data_hi);
+    return p;
+}
+
+}  // namespace
+
 void write_table_preview(const Table& table, const std::string& path, int slice) {
     // The picture runs every axis upwards: a flipped axis (lo > hi) is drawn unflipped.
     Table t = table;
@@ -89,23 +116,10 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
                                         number(t.z.parameter.front()) + " to " + number(t.z.parameter.back()) : "";
         for (size_t c = 0; c < t.channels.size(); ++c) {
             const auto [mn, mx] = std::minmax_element(t.values[c].begin(), t.values[c].end());
-            PlotSpec p;
-            p.title = plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")" + z_param;
-            p.x.label = axis_label(t.x);
-            p.y.label = axis_label(t.z);
-            p.legend = LegendPlace::None;
-            Heatmap& h = p.heatmap;
-            h.nx = t.width();
-            h.ny = t.depth();
-            h.x_lo = t.x.lo;
-            h.x_hi = t.x.hi;
-            h.y_lo = t.z.lo;
-            h.y_hi = t.z.hi;
-            h.z = t.values[c];
-            h.z_lo = std::min(0.0, *mn);  // [0, 1] widened to the data, as the slices below
-            h.z_hi = std::max(1.0, *mx);
-            h.colorbar_label = plot_text(t.channels[c]) + ": " + number(*mn) + " to " + number(*mx);
-            fig.panels.push_back(p);
+            // [0, 1] widened to the data, as the slices below
+            fig.panels.push_back(heatmap_panel(plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")" + z_param, t.x,
+                                               t.z, t.values[c], t.channels[c], std::min(0.0, *mn), std::max(1.0, *mx),
+                                               *mn, *mx));
         }
         fig.columns = std::min<int>(int(t.channels.size()), 2);
         fig.panel_width = 760;
@@ -142,27 +156,15 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
         lo = std::min(lo, data_lo);
         hi = std::max(hi, data_hi);
         for (int z : slices) {
-            PlotSpec p;
-            p.title = plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")";
-            if (t.depth() > 1) p.title += ", " + axis_label(t.z) + " = " + number(t.z.coordinate[size_t(z)]);
+            std::string title = plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")";
+            if (t.depth() > 1) title += ", " + axis_label(t.z) + " = " + number(t.z.coordinate[size_t(z)]);
             if (t.depth() > 1 && t.z.name != "eta" && !t.z.parameter_name.empty())
-                p.title += " (" + (t.z.parameter_name == "eta" ? std::string("\\eta{}") : plot_text(t.z.parameter_name)) +
-                           " = " + number(t.z.parameter[size_t(z)]) + ")";
-            p.x.label = axis_label(t.x);
-            p.y.label = axis_label(t.y);
-            p.legend = LegendPlace::None;
-            Heatmap& h = p.heatmap;
-            h.nx = t.width();
-            h.ny = t.height();
-            h.x_lo = t.x.lo;
-            h.x_hi = t.x.hi;
-            h.y_lo = t.y.lo;
-            h.y_hi = t.y.hi;
-            h.z.assign(t.values[c].begin() + long(n * size_t(z)), t.values[c].begin() + long(n * size_t(z + 1)));
-            h.z_lo = lo;
-            h.z_hi = hi;
-            h.colorbar_label = plot_text(t.channels[c]) + ": " + number(data_lo) + " to " + number(data_hi);
-            fig.panels.push_back(p);
+                title += " (" + (t.z.parameter_name == "eta" ? std::string("\\eta{}") : plot_text(t.z.parameter_name)) +
+                         " = " + number(t.z.parameter[size_t(z)]) + ")";
+            fig.panels.push_back(heatmap_panel(
+                title, t.x, t.y,
+                std::vector<double>(t.values[c].begin() + long(n * size_t(z)), t.values[c].begin() + long(n * size_t(z + 1))),
+                t.channels[c], lo, hi, data_lo, data_hi));
         }
     }
     fig.columns = slices.size() > 1 ? int(slices.size()) : std::min<int>(int(t.channels.size()), 2);
