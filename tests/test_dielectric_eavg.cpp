@@ -15,6 +15,8 @@
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/spec.h"
 #include "models/params.h"
+#include "plot/plot.h"
+#include "image_readers.h"
 #include "reference/reference.h"
 #include "scene/scene.h"
 #include "support.h"
@@ -218,4 +220,37 @@ TEST_CASE("dielectric-eavg to a tolerance: auto (quadrature) meets it and agrees
             CHECK(q.values[c][k] <= 1.0 + q.error[k]);  // energy conservation
         }
     }
+}
+
+TEST_CASE("the preview of a 1D table with an eta axis is one heatmap per channel over roughness and eta",
+          "[dielectric-eavg][pictures][quick]") {
+    // dielectric-eavg's layout: x = roughness, y of size 1, z = 6 slices of Cycles' z. Drawn as 6
+    // single-row heatmaps per channel (12 panels) it would be 6 small panels wide; the preview is
+    // the 2 channels side by side, each over (roughness, z).
+    Table t;
+    t.kind = "dielectric-eavg";
+    t.x = make_axis("roughness", "alpha = r^2 (r = sqrt(alpha))", 0.0, 1.0, 8, Texels::Edge);
+    t.x.parameter_name = "alpha";
+    for (double r : t.x.coordinate) t.x.parameter.push_back(r * r);
+    t.y = make_axis("-", "-", 0.0, 1.0, 1);
+    t.y.parameter = {0.5};
+    t.z = make_axis("cycles_z", "eta = (1 + w^2) / (1 - w^2)", 0.0, 0.9, 6, Texels::Edge);
+    t.z.parameter_name = "eta";
+    for (double w : t.z.coordinate) t.z.parameter.push_back((1 + w * w) / (1 - w * w));
+    t.channels = {"Eavg", "Eavg_inside"};
+    t.values.assign(2, {});
+    for (int z = 0; z < 6; ++z)
+        for (int x = 0; x < 8; ++x) {
+            t.values[0].push_back(1.0 - 0.05 * x);
+            t.values[1].push_back(1.0 - 0.05 * x - 0.02 * z);
+            t.error.push_back(1e-6);
+        }
+    const std::string path = "/tmp/brdfbake-deavg-preview-" + std::to_string(::getpid()) + ".png";
+    write_table_preview(t, path);
+    const testing::Png png = testing::read_png8(path);
+    std::remove(path.c_str());
+    // Two panels of the 2D layout (760 x 640 each) in one row, not 6 columns of small multiples.
+    CHECK(png.width < 2 * 760 + 400);
+    CHECK(png.height < 640 + 300);
+    CHECK(png.width > png.height);
 }

@@ -8,11 +8,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <fstream>
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/spec.h"
+#include "brdfbake/table_kinds.h"
 #include "reference/gen_schlick_reference.h"
 #include "models/key_reader.h"
 #include "models/params.h"
@@ -186,6 +188,46 @@ TEST_CASE("gen-schlick: the cycles preset's layout", "[genschlick][cli]") {
         CHECK(r.axes == std::vector<std::string>{"roughness", "mu", "cycles_z"});
         CHECK_NOTHROW(validate_lut(r));
     }
+}
+
+TEST_CASE("table kinds state their z axis: gen-schlick's is cycles_z whatever --eta-map says", "[genschlick][lut][quick]") {
+    // The registry entry names the kind's own z axis; the dielectric kinds' z is the eta axis,
+    // named by --eta-map.
+    CHECK(table_kind("gen-schlick").own_z_axis == "cycles_z");
+    CHECK(table_kind("gen-schlick-ior").own_z_axis == "cycles_z");
+    CHECK(table_kind("dielectric").own_z_axis.empty());
+    for (const char* map : {"linear", "f0", "cycles"}) {
+        LutRequest r;
+        r.kind = "gen-schlick";
+        r.model = "ggx";
+        r.alpha_map = "roughness";
+        r.eta_map = map;
+        INFO("--eta-map " << map);
+        CHECK(table_axis_names(table_kind(r.kind), r) == std::vector<std::string>{"mu", "roughness", "cycles_z"});
+        r.axes = {"roughness", "mu", "cycles_z"};
+        r.flip = {"cycles_z"};
+        CHECK_NOTHROW(validate_lut(r));
+        r.kind = "dielectric";
+        r.axes.clear();
+        r.flip.clear();
+        const std::string eta = std::string(map) == "linear" ? "eta" : std::string(map) == "f0" ? "f0" : "cycles_z";
+        CHECK(table_axis_names(table_kind(r.kind), r) == std::vector<std::string>{"mu", "roughness", eta});
+        r.kind = "dielectric-eavg";
+        CHECK(table_axis_names(table_kind(r.kind), r) == std::vector<std::string>{"roughness", eta});
+    }
+    // The error names the kind's real axes.
+    LutRequest r;
+    r.kind = "gen-schlick";
+    r.model = "ggx";
+    r.axes = {"alpha", "mu", "eta"};
+    CHECK_THROWS_WITH(validate_lut(r), Catch::Contains("its axes: mu, alpha, cycles_z"));
+    // On the command line, without --eta-map.
+    const std::string out = "/tmp/brdfbake-genschlick-axes-" + std::to_string(::getpid()) + ".csv";
+    const testing::CliResult run = testing::run_cli("lut gen-schlick --model ggx --alpha-map roughness --size 2x2x2 "
+                                                    "--samples 64 --axes roughness,mu,cycles_z --no-preview -o " + out);
+    INFO(run.err);
+    CHECK(run.status == 0);
+    std::remove(out.c_str());
 }
 
 TEST_CASE("gen-schlick: bad keys and requests give one line and exit status 2", "[genschlick][cli]") {

@@ -21,6 +21,19 @@ std::string number(double v) {
     return b;
 }
 
+/// ". <note>" where an axis's texels were computed elsewhere than their coordinate (a floor or a
+/// clamp): the clause of its mapping that says so (the mapping's clauses are split by "; ").
+std::string computed_at(const Axis& a) {
+    size_t start = 0;
+    while (start < a.mapping.size()) {
+        const size_t end = std::min(a.mapping.find("; ", start), a.mapping.size());
+        const std::string clause = a.mapping.substr(start, end - start);
+        if (clause.find("computed at") != std::string::npos) return ". " + clause;
+        start = end + 2;
+    }
+    return "";
+}
+
 }  // namespace
 
 std::string plot_text(const std::string& plain) {
@@ -35,18 +48,45 @@ std::string plot_text(const std::string& plain) {
 
 std::string axis_label(const Axis& a) {
     // What the ticks show, with the quantity the mapping gives where they differ.
-    if (a.name == "mu") return "\\mu = cos \\theta_o";
-    if (a.name == "sqrt_mu") return "u = \\sqrt{\\mu}  (\\mu = u^2 = cos \\theta_o)";
+    if (a.name == "mu") return "\\mu{} = cos \\theta_o";
+    if (a.name == "sqrt_mu") return "u = \\sqrt{\\mu}  (\\mu{} = u^2 = cos \\theta_o)";
     if (a.name == "alpha") return "\\alpha";
-    if (a.name == "roughness") return "roughness r  (\\alpha = r^2)";
+    if (a.name == "roughness") return "roughness r  (\\alpha{} = r^2)";
     if (a.name == "eta") return "\\eta";
-    if (a.name == "f0") return "F_0 = ((\\eta - 1)/(\\eta + 1))^2";
-    if (a.name == "cycles_z" && a.parameter_name == "eta") return "z = F_0^{1/4}  (Cycles' \\eta axis)";
+    if (a.name == "f0") return "F_0 = ((\\eta{} - 1)/(\\eta{} + 1))^2";
+    if (a.name == "cycles_z" && a.parameter_name == "eta") return "z = F_0^{1/4}  (Cycles' \\eta{} axis)";
     if (a.name == "cycles_z") return "z  (Cycles' " + plot_text(a.parameter_name) + " axis)";
     if (a.name == "theta_i") return "\\theta_i (degrees)";
     if (a.name == "theta_o") return "\\theta_o (degrees)";
     return plot_text(a.name);
 }
+
+namespace {
+
+/// A heatmap panel of `values` (x fastest) over the axes x and y, coloured over [lo, hi], its
+/// colour bar naming the channel and the range of its data.
+PlotSpec heatmap_panel(const std::string& title, const Axis& x, const Axis& y, std::vector<double> values,
+                       const std::string& channel, double lo, double hi, double data_lo, double data_hi) {
+    PlotSpec p;
+    p.title = title;
+    p.x.label = axis_label(x);
+    p.y.label = axis_label(y);
+    p.legend = LegendPlace::None;
+    Heatmap& h = p.heatmap;
+    h.nx = int(x.coordinate.size());
+    h.ny = int(y.coordinate.size());
+    h.x_lo = x.lo;
+    h.x_hi = x.hi;
+    h.y_lo = y.lo;
+    h.y_hi = y.hi;
+    h.z = std::move(values);
+    h.z_lo = lo;
+    h.z_hi = hi;
+    h.colorbar_label = plot_text(channel) + ": " + number(data_lo) + " to " + number(data_hi);
+    return p;
+}
+
+}  // namespace
 
 void write_table_preview(const Table& table, const std::string& path, int slice) {
     // The picture runs every axis upwards: a flipped axis (lo > hi) is drawn unflipped.
@@ -66,6 +106,29 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
         for (size_t c = 0; c < t.channels.size(); ++c)
             p.curves.push_back({plot_text(t.channels[c]), t.x.parameter, t.values[c], ""});
         fig.panels.push_back(p);
+        write_figure(path, fig);
+        return;
+    }
+    if (t.height() == 1 && t.depth() > 1) {
+        // A 1D table with slices (dielectric-eavg: roughness x eta): one heatmap per channel over
+        // x and the z axis, whose values are the file's rows in order (row z = slice z).
+        const std::string z_param = t.z.name != "eta" && t.z.parameter_name == "eta" ? "; \\eta{} = " +
+                                        number(t.z.parameter.front()) + " to " + number(t.z.parameter.back()) : "";
+        for (size_t c = 0; c < t.channels.size(); ++c) {
+            const auto [mn, mx] = std::minmax_element(t.values[c].begin(), t.values[c].end());
+            // [0, 1] widened to the data, as the slices below
+            fig.panels.push_back(heatmap_panel(plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")" + z_param, t.x,
+                                               t.z, t.values[c], t.channels[c], std::min(0.0, *mn), std::max(1.0, *mx),
+                                               *mn, *mx));
+        }
+        fig.columns = std::min<int>(int(t.channels.size()), 2);
+        fig.panel_width = 760;
+        fig.panel_height = 640;
+        fig.flat = true;
+        std::string caption = "file: row 0 holds " + t.z.name + " = " + number(table.z.coordinate.front()) +
+                              (flipped.empty() ? " (the bottom row here)" : " (an axis is flipped in the file; drawn upwards here)");
+        for (const Axis* a : {&t.x, &t.z}) caption += computed_at(*a);
+        fig.caption = plot_text(caption);
         write_figure(path, fig);
         return;
     }
@@ -93,27 +156,15 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
         lo = std::min(lo, data_lo);
         hi = std::max(hi, data_hi);
         for (int z : slices) {
-            PlotSpec p;
-            p.title = plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")";
-            if (t.depth() > 1) p.title += ", " + axis_label(t.z) + " = " + number(t.z.coordinate[size_t(z)]);
+            std::string title = plot_text(t.channels[c]) + " (" + plot_text(t.kind) + ")";
+            if (t.depth() > 1) title += ", " + axis_label(t.z) + " = " + number(t.z.coordinate[size_t(z)]);
             if (t.depth() > 1 && t.z.name != "eta" && !t.z.parameter_name.empty())
-                p.title += " (" + (t.z.parameter_name == "eta" ? std::string("\\eta") : plot_text(t.z.parameter_name)) +
-                           " = " + number(t.z.parameter[size_t(z)]) + ")";
-            p.x.label = axis_label(t.x);
-            p.y.label = axis_label(t.y);
-            p.legend = LegendPlace::None;
-            Heatmap& h = p.heatmap;
-            h.nx = t.width();
-            h.ny = t.height();
-            h.x_lo = t.x.lo;
-            h.x_hi = t.x.hi;
-            h.y_lo = t.y.lo;
-            h.y_hi = t.y.hi;
-            h.z.assign(t.values[c].begin() + long(n * size_t(z)), t.values[c].begin() + long(n * size_t(z + 1)));
-            h.z_lo = lo;
-            h.z_hi = hi;
-            h.colorbar_label = plot_text(t.channels[c]) + ": " + number(data_lo) + " to " + number(data_hi);
-            fig.panels.push_back(p);
+                title += " (" + (t.z.parameter_name == "eta" ? std::string("\\eta{}") : plot_text(t.z.parameter_name)) +
+                         " = " + number(t.z.parameter[size_t(z)]) + ")";
+            fig.panels.push_back(heatmap_panel(
+                title, t.x, t.y,
+                std::vector<double>(t.values[c].begin() + long(n * size_t(z)), t.values[c].begin() + long(n * size_t(z + 1))),
+                t.channels[c], lo, hi, data_lo, data_hi));
         }
     }
     fig.columns = slices.size() > 1 ? int(slices.size()) : std::min<int>(int(t.channels.size()), 2);
@@ -127,8 +178,8 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
                        (flipped.empty() ? " (the bottom row here)" : " (the axis is flipped in the file; drawn upwards here)");
     if (table.depth() > 1) row0 += "; slices stacked along y, " + t.z.name + " = " + number(table.z.coordinate.front()) + " first";
     std::string caption = row0;
-    for (const Axis* a : {&t.x, &t.y})
-        if (a->mapping.find("computed at") != std::string::npos) caption += ". " + a->mapping;
+    for (const Axis* a : {&t.x, &t.y, &t.z})
+        if (a != &t.z || t.depth() > 1) caption += computed_at(*a);
     fig.caption = plot_text(caption);
     write_figure(path, fig);
 }

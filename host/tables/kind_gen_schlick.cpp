@@ -26,19 +26,20 @@ namespace brdfbake {
 namespace tables {
 namespace {
 
-/// Cycles' z clamp (cycles_precompute.cpp clamps its z coordinate to [1e-4, 0.99]).
-constexpr double kZLo = 1e-4, kZHi = 0.99;
+/// The name of the kinds' own z axis (their registry entries state it).
+const char* const kZAxisName = "cycles_z";
 
-/// The z axis (the kind's own; --eta-range does not apply): z over [0, 1] with the request's
-/// texel placement, the parameter clamped as Cycles computes it.
+/// The z axis (the kind's own, named by its registry entry; --eta-map and --eta-range do not
+/// apply): z over [0, 1] with the request's texel placement, the parameter clamped as Cycles
+/// computes it.
 Axis cycles_z_axis(const LutRequest& r, bool ior) {
-    Axis a = make_axis("cycles_z",
+    Axis a = make_axis(kZAxisName,
                        ior ? "eta = (1 + z^2) / (1 - z^2), z clamped to [1e-4, 0.99] (Cycles' ggx_gen_schlick_ior_s)"
                            : "exponent = 5 (1 - z) / z, z clamped to [1e-4, 0.99] (Cycles' ggx_gen_schlick_s)",
                        0.0, 1.0, r.depth, r.texels);
     a.parameter_name = ior ? "eta" : "exponent";
     for (double z : a.coordinate) {
-        const double zc = std::clamp(z, kZLo, kZHi), z2 = zc * zc;
+        const double zc = std::clamp(z, kCyclesZLo, kCyclesZHi), z2 = zc * zc;
         a.parameter.push_back(ior ? (1.0 + z2) / (1.0 - z2) : 5.0 * (1.0 - zc) / zc);
     }
     return a;
@@ -70,7 +71,7 @@ Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.z = cycles_z_axis(r, ior);
     std::vector<double> eta_m1;  // eta - 1 = 2 z^2 / (1 - z^2), exact where eta is near 1
     for (double z : t.z.coordinate) {
-        const double zc = std::clamp(z, kZLo, kZHi);
+        const double zc = std::clamp(z, kCyclesZLo, kCyclesZHi);
         eta_m1.push_back(2 * zc * zc / (1 - zc * zc));
     }
     const FresnelConfig none = resolve_fresnel("none");
@@ -163,10 +164,6 @@ void validate_gen_schlick(const LutRequest& r, const ModelConfig& m, const Fresn
         throw Error("the " + r.kind + " table weights the lobe's Fresnel term; model '" + m.name + "' has none");
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
         throw Error(r.kind + " table depth must be 1 to 1024 and width x height x depth at most 4M texels");
-    for (const auto* names : {&r.axes, &r.flip})
-        for (const std::string& n : *names)
-            if (n == "eta" || n == "f0")
-                throw Error("the " + r.kind + " table's z axis is cycles_z (name it with --eta-map cycles), not " + n);
 }
 
 int two(const LutRequest&) { return 2; }
@@ -175,6 +172,7 @@ TableKind make_kind(TableKindId id, const std::string& name, const std::string& 
     TableKind k(id, name, description, ior ? gen_schlick_ior_programs : gen_schlick_programs,
                 ior ? compute_gen_schlick_ior : compute_gen_schlick);
     k.eta_axis = true;  // a z axis: sizes WxHxD, --texels edge needs 2 per axis
+    k.own_z_axis = kZAxisName;  // Cycles' z, whatever --eta-map says
     k.fresnel_factored_out = true;
     k.plan_fresnel = "factored out (generalized Schlick: E mix(f0, f90, s))";
     k.lobe_requirement = std::string("a ") + name +

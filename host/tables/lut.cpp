@@ -85,21 +85,33 @@ double eta_from_coordinate(const std::string& map, double w) {
     return w;
 }
 
+std::string eta_axis_name(const LutRequest& r) {
+    return r.eta_map == "f0" ? "f0" : r.eta_map == "cycles" ? "cycles_z" : "eta";
+}
+
 Axis eta_axis(const LutRequest& r, int size) {
     const bool f0 = r.eta_map == "f0", cycles = r.eta_map == "cycles";
-    const std::string name = f0 ? "f0" : cycles ? "cycles_z" : "eta";
-    const std::string mapping =
+    // Cycles' whole z range (validate_lut allows eta_hi = infinity with the cycles map only).
+    const bool to_infinity = cycles && std::isinf(r.eta_hi);
+    std::string mapping =
         f0       ? "eta = (1 + sqrt(w)) / (1 - sqrt(w)) (w = F0 = ((eta - 1)/(eta + 1))^2, reflectance at normal incidence)"
         : cycles ? "eta = (1 + w^2) / (1 - w^2) (w = sqrt((eta - 1)/(eta + 1)) = F0^(1/4), Cycles' glass tables)"
                  : "eta = w";
-    Axis a = make_axis(name, mapping, eta_coordinate(r.eta_map, r.eta_lo), eta_coordinate(r.eta_map, r.eta_hi), size,
-                       r.texels);
+    if (to_infinity) {
+        std::ostringstream m;
+        m << mapping << "; w above " << kCyclesZHi << " was computed at " << kCyclesZHi << ", as Cycles does; w = "
+          << kCyclesZHi << " is eta = " << eta_from_coordinate("cycles", kCyclesZHi) << ", w = 1 eta = infinity";
+        mapping = m.str();
+    }
+    Axis a = make_axis(eta_axis_name(r), mapping, eta_coordinate(r.eta_map, r.eta_lo),
+                       to_infinity ? 1.0 : eta_coordinate(r.eta_map, r.eta_hi), size, r.texels);
     a.parameter_name = "eta";
     for (size_t i = 0; i < a.coordinate.size(); ++i) {
         // The range's ends exactly as asked (the mapping's round trip may round).
         const bool first = i == 0 && (r.texels == Texels::Edge);
-        const bool last = i + 1 == a.coordinate.size() && r.texels == Texels::Edge;
-        a.parameter.push_back(first ? r.eta_lo : last ? r.eta_hi : eta_from_coordinate(r.eta_map, a.coordinate[i]));
+        const bool last = i + 1 == a.coordinate.size() && r.texels == Texels::Edge && !to_infinity;
+        const double w = to_infinity ? std::min(a.coordinate[i], kCyclesZHi) : a.coordinate[i];
+        a.parameter.push_back(first ? r.eta_lo : last ? r.eta_hi : eta_from_coordinate(r.eta_map, w));
     }
     return a;
 }
@@ -222,6 +234,14 @@ int one_per_request(const LutRequest&) { return 1; }
 
 FresnelConfig request_fresnel(const LutRequest& r) { return resolve_fresnel(r.fresnel, r.wavelength_nm); }
 
+std::vector<std::string> table_axis_names(const TableKind& kind, const LutRequest& r) {
+    std::vector<std::string> names;
+    if (!kind.one_dimensional) names.push_back(r.mu_map == "sqrt" ? "sqrt_mu" : "mu");
+    names.push_back(r.alpha_map == "roughness" ? "roughness" : "alpha");
+    if (kind.eta_axis) names.push_back(kind.own_z_axis.empty() ? tables::eta_axis_name(r) : kind.own_z_axis);
+    return names;
+}
+
 namespace {
 
 /// The request's model with a placeholder alpha that the table sweeps.
@@ -264,10 +284,14 @@ void validate_lut(const LutRequest& r) {
     if (!(r.mu_lo >= 0.0 && r.mu_hi > r.mu_lo && r.mu_hi <= 1.0))
         throw Error("--mu-range must satisfy 0 <= lo < hi <= 1");
     if (!(r.mu_floor > 0.0 && r.mu_floor < 1.0)) throw Error("--mu-floor must satisfy 0 < floor < 1");
-    if (kind.eta_axis) {
+    if (kind.eta_axis && kind.own_z_axis.empty()) {
         if (r.eta_map != "linear" && r.eta_map != "f0" && r.eta_map != "cycles")
             throw Error("--eta-map must be linear, f0 or cycles, not '" + r.eta_map + "'");
-        if (!(r.eta_lo > 0.0 && r.eta_hi > r.eta_lo && r.eta_hi <= 100.0))
+        const bool to_infinity = std::isinf(r.eta_hi) && r.eta_hi > 0.0;
+        if (to_infinity && r.eta_map != "cycles")
+            throw Error("an eta range up to infinity is Cycles' whole z axis (--preset cycles): it needs --eta-map cycles, "
+                        "not " + r.eta_map);
+        if (!(r.eta_lo > 0.0 && r.eta_lo <= 100.0 && r.eta_hi > r.eta_lo && (r.eta_hi <= 100.0 || to_infinity)))
             throw Error("--eta-range must satisfy 0 < lo < hi <= 100 (eta below 1: light from the denser side)");
         if (r.eta_map != "linear" && r.eta_lo < 1.0)
             throw Error("--eta-map " + r.eta_map + " covers eta >= 1 (the inside view is the 1/eta channels); "
@@ -278,10 +302,7 @@ void validate_lut(const LutRequest& r) {
         throw Error("--texels edge needs at least 2 texels per axis (one texel cannot sit on both ends of a range)");
     {
         // The axis names that --axes and --flip may use, as the kind's axes will be named.
-        std::vector<std::string> names;
-        if (!kind.one_dimensional) names.push_back(r.mu_map == "sqrt" ? "sqrt_mu" : "mu");
-        names.push_back(r.alpha_map == "roughness" ? "roughness" : "alpha");
-        if (kind.eta_axis) names.push_back(r.eta_map == "f0" ? "f0" : r.eta_map == "cycles" ? "cycles_z" : "eta");
+        const std::vector<std::string> names = table_axis_names(kind, r);
         std::string known;
         for (const auto& n : names) known += (known.empty() ? "" : ", ") + n;
         auto check = [&](const std::vector<std::string>& list, const char* option) {

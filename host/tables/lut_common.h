@@ -31,8 +31,18 @@ Axis mu_axis(const LutRequest& r, int size);
 /// The roughness axis; `clamped` tells whether a texel's alpha was raised to BB_ALPHA_MIN. A texel
 /// at alpha = 0 of a model with a mirror limit keeps alpha = 0: `integrate` computes it as the limit.
 Axis alpha_axis(const LutRequest& r, int size, bool& clamped);
-/// The eta axis (z) with the request's mapping (r.eta_map) over [r.eta_lo, r.eta_hi] in eta.
+/// The eta axis (z) with the request's mapping (r.eta_map) over [r.eta_lo, r.eta_hi] in eta. With
+/// the cycles map, r.eta_hi = infinity is Cycles' whole z range [z(eta_lo), 1]: a texel above z =
+/// kCyclesZHi is computed there (eta = infinity has no interface to integrate), as Cycles does.
 Axis eta_axis(const LutRequest& r, int size);
+/// The eta axis's name under the request's --eta-map: eta, f0 or cycles_z.
+std::string eta_axis_name(const LutRequest& r);
+
+/// Blender Cycles' z coordinate of its 3D tables (intern/cycles/app/cycles_precompute.cpp): texel
+/// i of N at z = i/(N - 1) on [0, 1], computed at z clamped to [kCyclesZLo, kCyclesZHi]; the glass
+/// and gen-schlick-ior tables read it as eta = (1 + z^2)/(1 - z^2), i.e. z = sqrt((eta - 1)/(eta + 1))
+/// (ior_from_F0(z^4)), the gen-schlick table as exponent = 5 (1 - z)/z.
+constexpr double kCyclesZLo = 1e-4, kCyclesZHi = 0.99;
 
 /// A (mu, alpha) table with its axes set and one albedo cell per texel, alpha-major.
 struct MuAlphaGrid {

@@ -2,6 +2,8 @@
 // one the engine ships. Each convention is read from the engine's public source (cited per entry
 // and in the README's "Drop-in tables" section); where an engine's own table sits away from where
 // its shader reads, the preset writes what the shader reads.
+#include <limits>
+
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
 
@@ -71,14 +73,40 @@ void cycles(LutRequest& r) {
         // as above, z = i/15 on the kind's own z axis (cycles_z: Cycles' exponent or eta
         // parameterisation, clamped to [1e-4, 0.99]), read by lookup_table_read_3D.
         r.width = r.height = r.depth = 16;
-        r.eta_map = "cycles";  // names the z axis cycles_z for --axes
         r.axes = {"roughness", "mu", "cycles_z"};
+    } else if (r.kind == "dielectric" || r.kind == "dielectric-eavg") {
+        // table_ggx_glass_E and table_ggx_glass_inv_E[(z * 16 + y) * 16 + x], table_ggx_glass_Eavg
+        // and table_ggx_glass_inv_Eavg[z * 16 + x]: the single-scattering albedo R + T of a rough
+        // GGX glass interface (Eavg: 2 integral of (R + T) mu dmu over mu) with the exact
+        // dielectric Fresnel and Cycles' G2 = 1/(1 + Lambda_i + Lambda_o) for both lobes; x =
+        // roughness i/15, y = mu j/15 (floored at 1e-4), z = k/15 with eta = (1 + z^2)/(1 - z^2)
+        // (ior_from_F0(z^4)), z clamped to [1e-4, 0.99] (eta 1 to 99.5); "inv" is light from the
+        // denser side, at 1/eta: brdfbake's *_inside channels. Read by microfacet_ggx_preserve_energy
+        // at z = sqrt(|eta - 1|/(eta + 1)) with eta < 1 inverted onto the inv tables
+        // (bsdf_microfacet.h). z = 0 (eta = 1, no interface) is E = 1: Cycles computes it at z =
+        // 1e-4, where eta rounds to 1 in float, and treats |eta - 1| < 1e-4 as a smooth pass.
+        r.model = "ggx:shadowing=correlated,transmission_shadowing=cycles";
+        r.eta_map = "cycles";
+        r.eta_lo = 1.0;
+        r.eta_hi = std::numeric_limits<double>::infinity();  // z up to 1, computed at 0.99 (eta_axis)
+        r.depth = 16;
+        r.width = 16;
+        if (r.kind == "dielectric-eavg") {
+            r.height = 1;  // x = roughness, z = cycles_z: already Cycles' order
+        } else {
+            r.height = 16;
+            r.axes = {"roughness", "mu", "cycles_z"};
+        }
     } else {
         r.width = r.height = 32;
         r.axes = {"roughness", "mu"};
     }
     r.precision = Precision::Double;
-    r.tolerance.tolerance = 5e-7;  // Cycles prints 6 decimals: half a unit of the last is 5e-7
+    // Cycles prints 6 decimals: half a unit of the last is 5e-7. The glass tables are Monte Carlo
+    // of 2^23 (E) and 2^26 (Eavg) samples a texel in Cycles, about 1e-4 of noise; 5e-7 is out of
+    // the dielectric kind's reach at a few texels (67M samples each), 1e-6 takes about 4 minutes.
+    // dielectric-eavg shares its tolerance out, a quarter to each of R and T: 4e-6 holds them to 1e-6.
+    r.tolerance.tolerance = r.kind == "dielectric" ? 1e-6 : r.kind == "dielectric-eavg" ? 4e-6 : 5e-7;
     r.tolerance.auto_method = true;
 }
 
@@ -104,11 +132,13 @@ const std::vector<LutPreset>& lut_presets() {
         {"three", "three.js", "src/renderers/shaders/DFGLUTData.js", {"dfg"}, "exr", true,
          "16 x 16, x = roughness, y = NoV, texel centres, R = A (scale), G = B (bias), half-float EXR (RG16F)", three},
         {"cycles", "Blender Cycles",
-         "table_ggx_E, table_ggx_Eavg, table_ggx_gen_schlick_s, table_ggx_gen_schlick_ior_s "
-         "(intern/cycles/scene/shader.tables)",
-         {"albedo", "eavg", "gen-schlick", "gen-schlick-ior"}, "h", false,
-         "32 x 32 (32 for eavg; 16 x 16 x 16 for gen-schlick, gen-schlick-ior with z = cycles_z), x = roughness, "
-         "y = mu, edge texels (i/(N - 1)), mu floored at 1e-4, double precision to 5e-7, C header",
+         "table_ggx_E, table_ggx_Eavg, table_ggx_gen_schlick_s, table_ggx_gen_schlick_ior_s, table_ggx_glass_E "
+         "and table_ggx_glass_inv_E (dielectric: R + T and R_inside + T_inside), table_ggx_glass_Eavg and "
+         "table_ggx_glass_inv_Eavg (dielectric-eavg: Eavg, Eavg_inside) (intern/cycles/scene/shader.tables)",
+         {"albedo", "eavg", "gen-schlick", "gen-schlick-ior", "dielectric", "dielectric-eavg"}, "h", false,
+         "32 x 32 (32 for eavg; 16 x 16 x 16 for gen-schlick, gen-schlick-ior and dielectric with z = cycles_z, "
+         "16 x 16 for dielectric-eavg with z = cycles_z, the dielectric kinds with Cycles' transmission shadowing), "
+         "x = roughness, y = mu, edge texels (i/(N - 1)), mu floored at 1e-4, double precision to 5e-7 (dielectric: 1e-6, dielectric-eavg: 4e-6), C header",
          cycles},
         {"unreal", "Unreal Engine", "PreIntegratedGF (EnvBRDF)", {"dfg"}, "png", false,
          "128 x 32, x = NoV, y = roughness, texel centres, R = A, G = B, 16-bit PNG", unreal},

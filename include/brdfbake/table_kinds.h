@@ -37,9 +37,13 @@ struct TableKind {
     std::string description;  // one line for help texts
 
     // Axes. A 2D kind has x = mu and y = the roughness axis; a 1D kind has x = the roughness
-    // axis only; eta_axis adds z = eta (3D, z-slices stacked along y).
+    // axis only; eta_axis adds a z axis (3D, z-slices stacked along y): the eta axis, named by
+    // --eta-map (eta, f0 or cycles_z), or the kind's own z axis where own_z_axis names it.
     bool one_dimensional = false;
     bool eta_axis = false;
+    /// The name of the kind's own z axis, which --eta-map and --eta-range do not reach (the
+    /// generalized-Schlick kinds: "cycles_z"); empty: the z axis is the eta axis.
+    std::string own_z_axis;
     /// Integration cells per texel: 48 mu nodes (32 + 16 Gauss-Legendre) for the average albedo,
     /// 2 sides of the interface for the dielectric.
     int cells_per_texel = 1;
@@ -83,5 +87,9 @@ const TableKind& table_kind(const std::string& name);
 const TableKind& table_kind(TableKindId id);
 /// "albedo, eavg, ...": the kinds' names for messages.
 std::string table_kind_names();
+/// The names of the axes a request of this kind gets, in the kind's order (mu or sqrt_mu unless
+/// 1D, alpha or roughness, then the z axis: the kind's own or eta, f0, cycles_z by --eta-map):
+/// what --axes and --flip take.
+std::vector<std::string> table_axis_names(const TableKind& kind, const LutRequest& r);
 
 }  // namespace brdfbake
