@@ -617,12 +617,13 @@ TEST_CASE("every kind takes the grid conventions: edge texels, a flipped and reo
         r.alpha_hi = 0.8;
         r.mu_lo = 0.5;
         r.flip = {"roughness"};
-        // The generalized-Schlick kinds' z axis is Cycles' z, named cycles_z (--eta-map cycles).
-        const bool cycles_z = k->id == TableKindId::GenSchlick || k->id == TableKindId::GenSchlickIor;
-        if (cycles_z) r.eta_map = "cycles";
-        if (!k->one_dimensional)
-            r.axes = k->eta_axis ? std::vector<std::string>{"roughness", "mu", cycles_z ? "cycles_z" : "eta"}
-                                 : std::vector<std::string>{"roughness", "mu"};
+        // Each kind names its own axes (mu, roughness, then its z axis: the generalized-Schlick
+        // kinds' is cycles_z); roughness first reorders them.
+        if (!k->one_dimensional) {
+            r.axes = table_axis_names(*k, r);
+            REQUIRE(r.axes.size() >= 2);
+            std::swap(r.axes[0], r.axes[1]);
+        }
         INFO(k->name);
         const Table t = compute_lut(testing::engine(), r);
         const Axis& rough = t.x;

@@ -247,7 +247,7 @@ TEST_CASE("presets three, gltf, unreal, filament: the texels an engine's shader 
 
 TEST_CASE("presets: unknown names and kinds without a layout exit 2 with one line", "[presets][cli]") {
     const std::string path = "/tmp/brdfbake-presets-bad-" + std::to_string(::getpid()) + ".exr";
-    for (const char* args : {"lut --preset frostbite -o ", "lut dielectric --preset cycles -o ",
+    for (const char* args : {"lut --preset frostbite -o ", "lut sheen-albedo --preset cycles -o ",
                              "lut albedo --preset gltf -o ", "lut -o "}) {
         INFO(args);
         const auto r = testing::run_cli(std::string(args) + path);

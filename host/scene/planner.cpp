@@ -280,6 +280,11 @@ Plan make_plan(const Scene& scene) {
                        (s.size_from_command_line ? "; size from the command line" : "");
             t.half = preset.half;
             t.file = file;
+            if (t.kind->eta_axis) {  // the preset's eta axis (apply_eta_axis copies it back)
+                t.eta_lo = r.eta_lo;
+                t.eta_hi = r.eta_hi;
+                t.depth = r.depth;
+            }
             for (const Group& g : groups)
                 if (take(g)) {
                     for (const auto& x : g.serves)
@@ -306,18 +311,23 @@ Plan make_plan(const Scene& scene) {
                                         [](const Group& g) { return !(g.kind->eta_axis && g.transmission); }),
                          groups.end());
         } else {
-            LutRequest probe;
-            preset.apply(probe);
-            const std::string preset_model = model_without_alpha(probe.model);
+            std::vector<std::string> preset_models;  // "kind: model", for the warning below
             for (const std::string& kind : preset.kinds) {
+                // The preset's model for this kind (Cycles' glass tables use its transmission
+                // shadowing, its other tables the default).
+                LutRequest probe;
+                probe.kind = kind;
+                preset.apply(probe);
+                const std::string preset_model = model_without_alpha(probe.model);
+                preset_models.push_back(kind + ": " + preset_model);
                 auto ours = [&](const Group& g) { return g.kind->name == kind && g.model == preset_model; };
                 if (std::none_of(groups.begin(), groups.end(), ours)) continue;
                 engine_table(kind, preset_model, preset.name + "-" + kind + "." + preset.extension, ours);
                 groups.erase(std::remove_if(groups.begin(), groups.end(), ours), groups.end());
             }
             if (engine_tables.empty())
-                plan.warnings.push_back("--preset " + preset.name + ": no table of the scene is of the preset's kinds (" +
-                                        join(preset.kinds) + ") and model (" + preset_model + "); the scene's tables are planned as usual");
+                plan.warnings.push_back("--preset " + preset.name + ": no table of the scene is of the preset's kinds and "
+                                        "models (" + join(preset_models) + "); the scene's tables are planned as usual");
         }
     }
     // File names: kind-model, with the model's non-default keys (and a conductor's Fresnel) where
