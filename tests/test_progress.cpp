@@ -17,7 +17,16 @@ using testing::run_cli;
 
 namespace {
 
-// 4096 texels x 2^20 samples: 2^32 samples, sliced into launches (more than 2^28), a few seconds.
+// BRDFBAKE_PROGRESS_DELAY=0 shows a command's progress from the start, so that the forms are
+// tested however fast the machine (a run shorter than the default second would show nothing, as
+// it should).
+const std::string kShow = "BRDFBAKE_PROGRESS_DELAY=0 ";
+
+testing::CliResult run_shown(const std::string& args) {
+    return testing::run_shell(kShow + std::string(BRDFBAKE_EXE) + " " + args);
+}
+
+// 4096 texels x 2^20 samples: 2^32 samples, sliced into launches (more than 2^28), a second or two.
 const std::string kLong = "lut albedo --model ggx --size 64x64 --samples 1048576 --no-preview -o ";
 
 std::string scratch(const std::string& name) {
@@ -28,7 +37,7 @@ std::string scratch(const std::string& name) {
 
 TEST_CASE("progress: lines when stderr is not a terminal, nothing with --quiet, same table", "[cli][progress]") {
     const std::string a = scratch("a.csv"), b = scratch("b.csv");
-    const auto shown = run_cli(kLong + a);
+    const auto shown = run_shown(kLong + a);
     REQUIRE(shown.status == 0);
     INFO(shown.err);
     const std::regex line(R"(brdfbake: +([0-9]+)% of albedo of 4096 cells, 1048576 samples each \([0-9.]+ s)");
@@ -75,18 +84,11 @@ TEST_CASE("progress: a bar redrawn in place on a terminal", "[cli][progress]") {
 
 namespace {
 
-// Commands of about 2 s each on the 2-core development machine. BRDFBAKE_PROGRESS_DELAY=0 shows
-// their progress from the start, so that the forms are tested however fast the machine (a run
-// shorter than the default second would show nothing, as it should).
-const std::string kShow = "BRDFBAKE_PROGRESS_DELAY=0 ";
 const std::string kDielectric =
     "lut dielectric --model ggx --size 16x16x8 --eta-range 1,3 --tolerance 1e-4 --no-preview -o ";
 const std::string kCheck = "check --model ggx:alpha=0.5 --resolution 256 --phi-resolution 256";
 const std::string kReciprocity = "reciprocity --model ggx:alpha=0.5 --resolution 256 --phi-resolution 256 -o ";
 
-testing::CliResult run_shown(const std::string& args) {
-    return testing::run_shell(kShow + std::string(BRDFBAKE_EXE) + " " + args);
-}
 
 /// The lines of `text` that match `re`, with their first group as a number.
 std::vector<double> matches(const std::string& text, const std::regex& re) {
