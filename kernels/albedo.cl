@@ -27,12 +27,15 @@
  *                         -D BB_VECTOR_UNIFORM the qmc method (uniform hemisphere weights,
  *                         bb_model_evals_vector) on the same points.
  * And two for quadrature (-D BB_QUADRATURE):
- *   albedo_quadrature       scalar real: every rule (GPUs, and the sampler's square everywhere);
- *   albedo_quadrature_rows  -D BB_VECTOR_WIDTH=W: the half-vector rule with W rows per step, one
- *                           per lane (same nodes, same functions, the same sums to rounding).
+ *   albedo_quadrature       scalar real: every rule (GPUs, and the sampler's square of models
+ *                           whose sampler has branches);
+ *   albedo_quadrature_rows  -D BB_VECTOR_WIDTH=W: the half-vector rule, or with
+ *                           -D BB_QUAD_SAMPLER_ROWS the sampler's square (lambert, oren-nayar,
+ *                           phong, sheen), with W rows per step, one per lane (same nodes, same
+ *                           functions, the same sums to rounding).
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE] [-D BB_VECTOR_WIDTH=W
- * [-D BB_ISOTROPIC=1 | -D BB_VECTOR_POINTS=1 [-D BB_VECTOR_UNIFORM=1]]]
+ * [-D BB_ISOTROPIC=1 | -D BB_VECTOR_POINTS=1 [-D BB_VECTOR_UNIFORM=1] | -D BB_QUAD_SAMPLER_ROWS=1]]
  * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
  * alone, a smaller program to build]. */
 #include "brdfbake/brdf/kernel_abi.h"
@@ -248,8 +251,8 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
 
 #ifdef BB_QUADRATURE
 
-/* The half-vector rule of albedo_quadrature (ggx, beckmann, torrance-sparrow, blinn-phong) with
- * one row of the rule per lane: work-item (cell, rule, piece) as there, its rows j taken W at a
+/* The rules of albedo_quadrature (the half-vector rule of ggx, beckmann, torrance-sparrow,
+ * blinn-phong; with -D BB_QUAD_SAMPLER_ROWS the sampler's square) with one row of the rule per lane: work-item (cell, rule, piece) as there, its rows j taken W at a
  * time (lane l is row j0 + l: its azimuth node, bb_quad_azimuth_node and bb_make_quad_row in
  * vector form), and the radial nodes k one at a time for all W rows (t = t_max(row) x[k]). The
  * same nodes, weights and functions as the scalar kernel, so the same sum to rounding. Each
@@ -260,6 +263,41 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
 
     real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
+#ifdef BB_QUAD_SAMPLER_ROWS
+    /* -D BB_QUAD_SAMPLER_ROWS: the sampler's unit square, for the models whose sampler and
+     * evaluation are branch-free (the host defines it for them only): lane l is
+     * the row u2 = s of abscissa j0 + l, as in albedo_quadrature; the nodes u1 (or c) one at a
+     * time for all W rows. */
+    for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
+        const real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
+        const bb_mask live = wj > BB_R(0.0);
+        const real s = ((real)q + xj) * BB_R(0.25); /* fraction of the full turn */
+        real row = BB_R(0.0), row_comp = BB_R(0.0);
+        if (bb_quad_sampler_is_cosine(BB_MODEL)) {
+            const real cos_s = bb_cos(BB_2PI * s), sin_s = bb_sin(BB_2PI * s);
+            for (int part = 0; part < 2; ++part) {
+                const real lo = part == 0 ? BB_R(0.0) : wo.z, len = part == 0 ? wo.z : BB_R(1.0) - wo.z;
+                for (unsigned int k = 0; k < n; ++k) {
+                    const real c = lo + len * (real)x[k];
+                    const real sn = bb_safe_sqrt(bb_sin2_from_cos(c));
+                    const bb_vec3 wi = bb_v3(sn * cos_s, sn * sin_s, c);
+                    const real w = BB_PI * bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, wi);
+                    const bb_mask ok = isfinite(w);
+                    bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
+                    BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), BB_R(2.0) * c * len * (real)wt[k] * w, ok));
+                }
+            }
+        } else {
+            for (unsigned int k = 0; k < n; ++k) {
+                const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, (real)x[k], s).weight;
+                const bb_mask ok = isfinite(w);
+                bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
+                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), (real)wt[k] * w, ok));
+            }
+        }
+        BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * BB_R(0.25) * row, live));
+    }
+#else
     for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
         const real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
         const bb_mask live = wj > BB_R(0.0);
@@ -277,6 +315,7 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
         const real scale = az.ddelta * r.t_max;
         BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * scale * row, live));
     }
+#endif
     const unsigned int n_bad = bb_lane_count(bad);
     piece_sum[gid] = copies * bb_lane_sum(sum, comp);
     bad_count[gid] = params_ok ? n_bad : n * n;

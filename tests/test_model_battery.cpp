@@ -160,15 +160,18 @@ TEST_CASE("battery: finite and non-negative at the extremes", "[battery][quick]"
 }
 
 TEST_CASE("battery: the vector paths the registry gives a model agree with its scalar kernel", "[battery][device]") {
-    // DISK or VSAMPLE: importance sampling on W lanes; VEVAL: qmc's uniform weights on W lanes.
-    // The same points and the same shared functions as the scalar kernel: the same sums up to
-    // rounding, in float.
+    // DISK or VSAMPLE: importance sampling on W lanes; VEVAL: qmc's uniform weights on W lanes;
+    // quadrature: the half-vector rule, or the sampler's square where the sampler (the cosine
+    // warp's rule: the evaluation) is branch-free, one row per lane. The same points and the same
+    // shared functions as the scalar kernel: the same sums up to rounding, in float.
     const bool cpu = testing::engine().device().type == "cpu";
     const std::vector<double> mus = {0.02, 0.3, 1.0};
     for (const ModelTraits& t : model_registry()) {
         std::vector<Method> methods;
         if (t.samples_disk || t.samples_vector) methods.push_back(Method::Importance);
         if (t.evals_vector) methods.push_back(Method::QuasiMonteCarlo);
+        if (!t.delta && (t.halfvector_quadrature || (t.cosine_sampler ? t.evals_vector : t.samples_vector)))
+            methods.push_back(Method::Quadrature);
         const ModelConfig m = resolve_model(t.example);
         for (Method method : methods) {
             AlbedoRequest req = testing::albedo_request(t.example, mus, method, Precision::Float, 1u << 14);

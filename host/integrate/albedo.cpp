@@ -523,11 +523,16 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     build.defines = {{"BB_MODEL", std::to_string(req.model)},
                      {"BB_FRESNEL", std::to_string(req.fresnel.kind)},
                      {"BB_QUADRATURE", "1"}};
-    // The vector path (albedo_quadrature_rows, one row of the rule per lane) for the half-vector
-    // rule; the sampler's square keeps the scalar kernel.
-    build.has_vector_path = model_traits(req.model).halfvector_quadrature;
+    // The vector path (albedo_quadrature_rows, one row of the rule per lane): the half-vector
+    // rule, and the sampler's square for models whose sampler (or, for the cosine warp's rule in
+    // cos(theta_i), evaluation) is branch-free (-D BB_QUAD_SAMPLER_ROWS).
+    const ModelTraits& traits = model_traits(req.model);
+    const bool sampler_rows = !traits.halfvector_quadrature && !traits.delta &&
+                              (traits.cosine_sampler ? traits.evals_vector : traits.samples_vector);
+    build.has_vector_path = traits.halfvector_quadrature || sampler_rows;
     build.vector_width = req.vector_width;
     const unsigned lanes = engine.vector_width(build);
+    if (lanes > 1 && sampler_rows) build.defines.push_back({"BB_QUAD_SAMPLER_ROWS", "1"});
     check_memory(sampling_bytes(n_cells, n_items, 2.0 * (n + m + l + 3 * lanes), 1, req.precision),
                  "integrating " + std::to_string(n_cells) + (n_cells == 1 ? " direction" : " directions") + " by quadrature");
     cl::Program& program = engine.program(build);
