@@ -411,8 +411,8 @@ void dielectric_study(Engine& engine, const Options& o, json& j) {
         const std::vector<Plan> plans = {
             // The budgets of the dielectric's rules (its tolerance plan): Gauss-Kronrod of 21, 31
             // and 61 points per axis, then Gauss-Legendre of 128 nodes.
-            {Method::Quadrature, o.quick ? std::vector<std::uint64_t>{31 * 31}
-                                         : std::vector<std::uint64_t>{21 * 21, 31 * 31, 61 * 61, 128 * 128}},
+            {Method::Quadrature, o.quick ? std::vector<std::uint64_t>{4 * 16 * 16}
+                                         : std::vector<std::uint64_t>{4 * 11 * 11, 4 * 16 * 16, 4 * 31 * 31, 4 * 128 * 128}},
             {Method::Importance, o.quick ? std::vector<std::uint64_t>{1u << 12}
                                          : std::vector<std::uint64_t>{1u << 12, 1u << 14, 1u << 16, 1u << 18, 1u << 20}}};
         for (const Plan& plan : plans)

@@ -33,7 +33,7 @@ const CLI::Validator kNonNegative(
 void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per) {
     CLI::Option* s = cmd->add_option("--samples", o.samples,
                                      "samples per " + per + " (quadrature: n = sqrt(samples/4) nodes per axis of the finer rule, n^2 per azimuth piece; "
-                                     "the rough dielectric's: a Gauss-Kronrod rule of about sqrt(samples) points per axis below 128)")
+                                     "the rough dielectric's up to n = 32: a Gauss-Kronrod rule of at most 2n - 1 points, 15 to 61)")
                          ->capture_default_str();
     cmd->add_option("--method", o.method,
                     "integration method: importance (the model's sampler, randomised Hammersley), qmc and mc "

@@ -651,28 +651,29 @@ int dielectric_shadowing(const DielectricRequest& req) {
                                      : BB_DIELECTRIC_SHADOWING_BETA;
 }
 
-// The rule of the dielectric's quadrature for a budget of `samples` nodes per azimuth piece and
-// row segment, side = sqrt(samples) nodes per axis: below 128, the largest Gauss-Kronrod rule of
-// Boost.Math's (15, 21, 31, 41, 51 or 61 points) within side + 1/2, whose embedded Gauss rule
-// estimates its error at no extra node; from 128 on, three Gauss-Legendre rules n, n/2 and n/4
-// with n the even number nearest side (quadrature_error). compute_dielectric_to_tolerance's plan
-// (refine.cpp) spends the budgets 21^2, 31^2, 61^2, 128^2, 256^2 and 512^2.
+// The rule of the dielectric's quadrature for a budget of `samples`, read as the albedo's is:
+// n = sqrt(samples / 4) nodes per axis of the finer rule (quadrature_order). Up to n = 32, the
+// Gauss-Kronrod rule of Boost.Math's (15, 21, 31, 41, 51 or 61 points) nearest 2n - 1 from
+// below, which is about as accurate as the n-node rule's finer neighbour and whose embedded
+// Gauss rule estimates its error at no extra node; beyond, three Gauss-Legendre rules n, n/2
+// and n/4 (quadrature_error). compute_dielectric_to_tolerance's plan (refine.cpp) spends
+// n = 11, 16 and 31 (the Kronrod rules of 21, 31 and 61 points), then 128 to 512.
 struct DielectricRule {
     unsigned kronrod = 0;  // points of the Gauss-Kronrod rule; 0: the Gauss-Legendre triple
     unsigned n = 0, m = 0, l = 0;
 };
 
 DielectricRule dielectric_rule(std::uint64_t samples) {
-    const double side = std::sqrt(double(samples));
+    const double n = std::sqrt(double(samples) / 4.0);
     DielectricRule rule;
-    if (side < 128.0) {
+    if (n <= 32.0) {
         rule.kronrod = 15;
         for (unsigned k : {21u, 31u, 41u, 51u, 61u})
-            if (k <= side + 0.5) rule.kronrod = k;
+            if (k <= 2.0 * n - 1.0 + 1e-9) rule.kronrod = k;
         rule.n = rule.kronrod;
         return rule;
     }
-    rule.n = 2 * unsigned(std::lround(side / 2.0)), rule.m = rule.n / 2, rule.l = rule.n / 4;
+    rule.n = quadrature_order(samples), rule.m = rule.n / 2, rule.l = rule.n / 4;
     return rule;
 }
 

@@ -198,8 +198,8 @@ DielectricResult compute_dielectric_to_tolerance(Engine& engine, const Dielectri
     if (req.cells.empty()) throw Error("no cells to integrate");
     // The dielectric's rules (dielectric_rule in albedo.cpp): Gauss-Kronrod of 21, 31 and 61
     // points, whose error estimates cost no extra node, then Gauss-Legendre of 128 to 512.
-    const std::vector<RefineStep> steps =
-        tolerance_steps(tol, req.method, {21 * 21, 31 * 31, 61 * 61, 128 * 128, 256 * 256, 512 * 512});
+    const std::vector<RefineStep> steps = tolerance_steps(
+        tol, req.method, {4 * 11 * 11, 4 * 16 * 16, 4 * 31 * 31, 4 * 128 * 128, 4 * 256 * 256, 4ull * 512 * 512});
     RefineOptions options;
     options.tolerance = tol.tolerance;
     // Importance rounds alone replace each estimate by the next (their errors fall steadily);

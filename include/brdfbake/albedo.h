@@ -137,10 +137,10 @@ struct DielectricRequest {
     /// Beta-function form of Heitz 2014 eq. 100 (brdf/rough_dielectric.h).
     bool cycles_transmission = false;
     /// Importance (visible-normal sampling, replicas) or Quadrature (the half-vector rule of
-    /// brdf/dielectric_quadrature.h with about sqrt(samples) nodes per axis, per azimuth piece and
-    /// row segment: below 128, a Gauss-Kronrod rule of 15 to 61 points, its error from the
-    /// embedded Gauss rule; from 128 on, the Gauss-Legendre rule of n nodes, its error from the
-    /// n/2- and n/4-node rules). Other methods are refused.
+    /// brdf/dielectric_quadrature.h, n = sqrt(samples / 4) as for the albedo, per azimuth piece
+    /// and row segment: up to n = 32, a Gauss-Kronrod rule of 15 to 61 (at most 2n - 1) points,
+    /// its error from the embedded Gauss rule; beyond, the Gauss-Legendre rule of n nodes, its
+    /// error from the n/2- and n/4-node rules). Other methods are refused.
     Method method = Method::Importance;
     std::uint64_t samples = 1u << 18;
     unsigned replicas = 16;
