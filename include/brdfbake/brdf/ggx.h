@@ -67,10 +67,9 @@ BB_FN bb_ggx_disk_cell bb_ggx_disk_cell_make(bb_params p, bb_vec3 wo, int isotro
     real g1o = bb_ggx_g1(c.wo, c.ax, c.ay);
     real c0 = bb_select(BB_R(1.0), BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0)),
                         p.v[BB_GGX_SHADOWING] > BB_R(0.5));
-    int masking = p.v[BB_GGX_SHADOWING] > BB_R(2.5);
-    c.k2 = bb_select(BB_R(2.0) * c0, BB_R(1.0), masking);
-    c.k1 = bb_select(c.k2 - BB_R(1.0), BB_R(1.0), masking);
-    c.kq = bb_select(BB_R(1.0), BB_R(0.0), masking);
+    c.kq = bb_select(BB_R(1.0), BB_R(0.0), p.v[BB_GGX_SHADOWING] > BB_R(2.5)); /* 0: masking only */
+    c.k2 = bb_select(BB_R(1.0), BB_R(2.0) * c0, c.kq > BB_R(0.5));
+    c.k1 = bb_select(BB_R(1.0), c.k2 - BB_R(1.0), c.kq > BB_R(0.5));
     c.live = bb_select(BB_R(0.0), BB_R(1.0), g1o > BB_R(0.0));
     return c;
 }
