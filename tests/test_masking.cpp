@@ -183,21 +183,23 @@ TEST_CASE("gen-schlick --estimator cycles: Cycles' estimator at its grid points"
         rf.tolerance.tolerance = 0.0;
         rf.samples = 1u << 16;
         const Table tf = compute_lut(testing::engine(), rf);
-        for (int k : {1, 3})
-            for (int j : {0, 2, 3})      // mu = 0 (at the floor 1e-4), 2/3, 1
-                for (int i : {1, 3}) {  // roughness 1/3, 1
-                    const size_t c = (size_t(k) * 4 + size_t(j)) * 4 + size_t(i);
-                    const double alpha = t.x.parameter[size_t(i)], mu = t.y.parameter[size_t(j)];
-                    const double p = t.z.parameter[size_t(k)];
-                    const double want = ior ? ref::ggx_cycles_vndf_s_ior(mu, alpha, p, 1e-8)
-                                            : ref::ggx_cycles_vndf_s(mu, alpha, p, 1e-8);
-                    INFO(r.kind << " mu " << mu << " alpha " << alpha << (ior ? " eta " : " exponent ") << p
-                                << ": double " << t.values[0][c] << " +- " << t.error[c] << ", float "
-                                << tf.values[0][c] << " +- " << tf.error[c] << ", reference " << want);
-                    CHECK(std::fabs(t.values[0][c] - want) <= 1e-5);
-                    CHECK(t.error[c] <= 1e-6);
-                    CHECK(std::fabs(tf.values[0][c] - want) <= tf.error[c]);
-                }
+        // z = 1/3 (exponent 10, eta 1.25) over mu and roughness; z = 0.99 (exponent 5/99, eta 99.5),
+        // whose w is steep at wo.wh -> 1 (slow for the reference), at two points
+        const int points[][3] = {{1, 0, 1}, {1, 0, 3}, {1, 2, 1}, {1, 2, 3}, {1, 3, 1}, {1, 3, 3}, {3, 2, 1}, {3, 3, 3}};
+        for (const auto& kji : points) {
+            const int k = kji[0], j = kji[1], i = kji[2];  // z, mu (0: the floor 1e-4, 2/3, 1), roughness
+            const size_t c = (size_t(k) * 4 + size_t(j)) * 4 + size_t(i);
+            const double alpha = t.x.parameter[size_t(i)], mu = t.y.parameter[size_t(j)];
+            const double p = t.z.parameter[size_t(k)];
+            const double tol = k == 3 ? 1e-7 : 1e-8;  // absolute error density: about 5 tol
+            const double want = ior ? ref::ggx_cycles_vndf_s_ior(mu, alpha, p, tol) : ref::ggx_cycles_vndf_s(mu, alpha, p, tol);
+            INFO(r.kind << " mu " << mu << " alpha " << alpha << (ior ? " eta " : " exponent ") << p << ": double "
+                        << t.values[0][c] << " +- " << t.error[c] << ", float " << tf.values[0][c] << " +- "
+                        << tf.error[c] << ", reference " << want);
+            CHECK(std::fabs(t.values[0][c] - want) <= 1e-5);
+            CHECK(t.error[c] <= 1e-6);
+            CHECK(std::fabs(tf.values[0][c] - want) <= tf.error[c] + 5 * tol);
+        }
         if (!ior) {
             // roughness 1, mu 1, z 0.99 (exponent 5/99): Cycles' estimator gives about 0.445, the
             // exact ratio E_w / E 0.874 (measured with Cycles' estimator and brdfbake's ratio).
