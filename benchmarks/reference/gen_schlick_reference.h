@@ -53,14 +53,28 @@ inline double ggx_gen_schlick_ior_s(ld mu_o, ld alpha, double eta, double tol = 
 /// w(wo.wh), a sample whose reflection goes below the horizon counting 0:
 ///   s_C = integral of w(wo.wh) G1(wo) max(0, wo.wh) D(wh) / mu_o dwh over wh with wi.z > 0.
 /// albedo_halfvector integrates f wi.z 4 (wo.wh) dwh, so f = w G1(wo) D / (4 mu_o wi.z).
-inline double ggx_cycles_vndf_s(ld mu_o, ld alpha, ld exponent, double tol = 1e-10) {
+inline double ggx_cycles_vndf_weighted(ld mu_o, ld alpha, const std::function<ld(ld)>& w, double tol = 1e-10) {
     return albedo_halfvector(
         [&](Dir wo, Dir wi) -> ld {
             const Dir wh = normalize(Dir{wo.x + wi.x, wo.y + wi.y, wo.z + wi.z});
-            const ld w = std::pow(std::max<ld>(0, 1 - dot(wo, wh)), exponent);
-            return w * ggx_g1(wo, alpha, alpha) * ggx_d(wh, alpha, alpha) / (4 * wo.z * wi.z);
+            return w(dot(wo, wh)) * ggx_g1(wo, alpha, alpha) * ggx_d(wh, alpha, alpha) / (4 * wo.z * wi.z);
         },
         mu_o, 0, tol, no_breaks);
+}
+
+/// Cycles' ggx_gen_schlick_s estimate: w = (1 - cos)^exponent.
+inline double ggx_cycles_vndf_s(ld mu_o, ld alpha, ld exponent, double tol = 1e-10) {
+    return ggx_cycles_vndf_weighted(
+        mu_o, alpha, [&](ld c) { return std::pow(std::max<ld>(0, 1 - c), exponent); }, tol);
+}
+
+/// Cycles' ggx_gen_schlick_ior_s estimate: w = clamp((F(cos, eta) - F0) / (1 - F0), 0, 1) as in
+/// ggx_gen_schlick_ior_s above.
+inline double ggx_cycles_vndf_s_ior(ld mu_o, ld alpha, double eta, double tol = 1e-10) {
+    const double f0 = std::pow((eta - 1) / (eta + 1), 2);
+    return ggx_cycles_vndf_weighted(
+        mu_o, alpha,
+        [&](ld c) { return ld(std::clamp((fresnel_dielectric(double(c), eta) - f0) / (1 - f0), 0.0, 1.0)); }, tol);
 }
 
 }  // namespace ref

@@ -109,8 +109,11 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     }
     auto given = [&](const char* option) { return o.command->count(option) > 0; };
     LutRequest p;  // the preset's request; an option given on the command line overrides its field
+    if (given("--estimator") && r.kind != "gen-schlick" && r.kind != "gen-schlick-ior")
+        throw Error("--estimator is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
     if (preset) {
         p.kind = r.kind;
+        p.estimator = r.estimator;  // the preset's model follows the quantity asked for
         preset->apply(p);
     }
     if (!preset && !given("--model")) throw Error("--model is required (or give --preset)");
@@ -225,6 +228,11 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
                     "an engine's table layout; options given beside it override its settings:" + presets);
     cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable "
                                                   "(required without --preset)");
+    cmd->add_option("--estimator", o->request.estimator,
+                    "gen-schlick kinds: ratio (s = E_w / E, exact) or cycles (Blender Cycles' estimator: E_w of the "
+                    "masking-only lobe, shadowing=masking, not divided by E)")
+        ->check(CLI::IsMember({"ratio", "cycles"}))
+        ->capture_default_str();
     cmd->add_option("--fresnel", o->request.fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();
     cmd->add_option("--wavelength", o->request.wavelength_nm, "wavelength in nm for measured metals");
     cmd->add_option("--size", o->size, "WIDTHxHEIGHT (mu x alpha), WIDTHxHEIGHTxDEPTH (x eta) for dielectric, N for eavg")->capture_default_str();

@@ -84,11 +84,13 @@ double read_normalized(KeyReader& keys, std::string& canonical) {
     return s == "1" ? 1.0 : 0.0;
 }
 
-/// Reads the Smith shadowing choice shared by the microfacet models.
+/// Reads the Smith shadowing choice shared by the microfacet models (brdf/smith.h): correlated
+/// (Heitz 2014 eq. 99), separable (eq. 98) or masking (G2 = G1(wo), the masking term of eq. 43
+/// alone: the lobe of Cycles' albedo estimator, which ignores shadowing and so reflects more).
 double read_shadowing(KeyReader& keys, std::string& canonical) {
-    const std::string s = keys.choice("shadowing", "correlated", {"correlated", "separable"});
+    const std::string s = keys.choice("shadowing", "correlated", {"correlated", "separable", "masking"});
     canonical += ",shadowing=" + s;
-    return s == "correlated" ? 1.0 : 0.0;
+    return s == "correlated" ? BB_SMITH_CORRELATED : s == "masking" ? BB_SMITH_MASKING : BB_SMITH_SEPARABLE;
 }
 
 /// Reads alpha (isotropic: alpha or roughness; anisotropic: alpha_x and alpha_y).
@@ -148,7 +150,8 @@ ModelConfig resolve_ggx(KeyReader& keys) {
     if (t == "cycles") {
         if (m.params[BB_GGX_SHADOWING] != BB_DIELECTRIC_SHADOWING_BETA)
             throw Error("model 'ggx': transmission_shadowing=cycles is a height-correlated form; it needs "
-                        "shadowing=correlated");
+                        "shadowing=correlated, not shadowing=" +
+                        std::string(m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING ? "masking" : "separable"));
         m.params[BB_GGX_SHADOWING] = BB_DIELECTRIC_SHADOWING_CYCLES;
         m.canonical += ",transmission_shadowing=cycles";
     }

@@ -6,8 +6,12 @@
 //   gen-schlick:      w = (1 - cos)^exponent, exponent = 5 (1 - z) / z  (z = 1/2: Schlick's 5),
 //   gen-schlick-ior:  w = clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, 1), F0 = ((eta - 1)/(eta + 1))^2,
 //                     eta = (1 + z^2) / (1 - z^2)  (z = sqrt((eta - 1)/(eta + 1))),
-// z clamped to [1e-4, 0.99] as Cycles computes its texels. The README's "Generalized-Schlick
-// tables" says how Cycles' Monte-Carlo estimator differs (it averages F over visible normals).
+// z clamped to [1e-4, 0.99] as Cycles computes its texels.
+// Cycles' own tables hold another quantity, which --estimator cycles writes: its Monte-Carlo
+// estimator (precompute_ggx_gen_schlick_s) averages w(wo.wh) over the visible normals wh of wo,
+// a reflection below the horizon counting 0, i.e. E_w of the lobe with G2 = G1(wo) (the
+// masking-only Smith form, brdf/smith.h), not divided by E: at roughness 1, mu 1, z 0.99 it is
+// 0.445 where E_w / E is 0.874.
 //
 // dfg-f82: the split sum of an F82-tint metal (Kutz et al. 2021; the OpenPBR Surface
 // specification; Hoffman 2019), whose F = F0 + (1 - F0)(1 - cos)^5 - b cos (1 - cos)^6 needs a
@@ -18,6 +22,7 @@
 #include <cmath>
 
 #include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
 #include "tables/lut_common.h"
@@ -65,6 +70,34 @@ FresnelConfig weight_fresnel(bool ior, double parameter, double eta_m1) {
 /// s = E_w / E per texel and its error (err_w + s err_E) / E. With a tolerance, E is first found
 /// at half of it to learn its smallest value E_min; then both integrals go to E_min / 2 of it,
 /// which keeps that error within (1 + s) / 2 of it.
+/// --estimator cycles: Cycles' estimator E_w of the masking-only lobe (validate_gen_schlick
+/// checks the model), each texel to the whole tolerance.
+Table cycles_estimator_table(Engine& engine, const LutRequest& r, const ModelConfig& m, bool ior,
+                             MuAlphaGrid& g, const std::vector<double>& eta_m1) {
+    Table& t = g.table;
+    const size_t plane = g.cells.size();
+    t.channels = {"s"};
+    t.values.assign(1, std::vector<double>(plane * t.z.parameter.size()));
+    t.error.assign(plane * t.z.parameter.size(), 0.0);
+    AlbedoResult w;
+    for (size_t k = 0; k < t.z.parameter.size(); ++k) {
+        w = integrate(engine, r, m, weight_fresnel(ior, t.z.parameter[k], eta_m1[k]), g.cells);
+        for (size_t c = 0; c < plane; ++c) {
+            // E_w lies in [0, 1] (0 <= w <= 1, the masking-only lobe reflects at most 1)
+            t.values[0][k * plane + c] = std::clamp(w.values[c].value, 0.0, 1.0);
+            t.error[k * plane + c] = w.values[c].error;
+        }
+    }
+    t.quantity = std::string("Blender Cycles' generalized-Schlick estimate s = E_w of the masking-only lobe (G2 = G1(wo)), "
+                             "the mean of w over the visible normals of wo with a reflection below the horizon "
+                             "counting 0, not divided by E; w = ") +
+                 (ior ? "clamp((F_dielectric(cos, eta) - F0) / (1 - F0), 0, 1)" : "(1 - cos)^exponent");
+    describe(t, r, m, ior ? "dielectric at each texel's eta, remapped to [0, 1] and clamped" : "(1 - cos)^exponent at each texel",
+             w.method, w.samples_per_cell, g.clamped);
+    t.attributes["estimator"] = "cycles (E_w of shadowing=masking, not divided by E)";
+    return std::move(g.table);
+}
+
 Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& m, bool ior) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
@@ -74,6 +107,7 @@ Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& 
         const double zc = std::clamp(z, kCyclesZLo, kCyclesZHi);
         eta_m1.push_back(2 * zc * zc / (1 - zc * zc));
     }
+    if (r.estimator == "cycles") return cycles_estimator_table(engine, r, m, ior, g, eta_m1);
     const FresnelConfig none = resolve_fresnel("none");
     AlbedoResult e = integrate(engine, r, m, none, g.cells, 0.5);
     double e_min = 1.0;
@@ -102,6 +136,7 @@ Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& 
                        "F = f0 + (f90 - f0)(1 - cos)^exponent is E mix(f0, f90, s)";
     describe(t, r, m, ior ? "dielectric at each texel's eta, remapped to [0, 1] and clamped" : "(1 - cos)^exponent at each texel",
              e.method, e.samples_per_cell, g.clamped);
+    t.attributes["estimator"] = "ratio (E_w / E of the model's own G2)";
     return std::move(g.table);
 }
 
@@ -151,22 +186,33 @@ std::vector<std::string> dfg_f82_programs(const LutRequest& r) {
 
 int three(const LutRequest&) { return 3; }
 
+/// --estimator cycles integrates E_w alone; the ratio also E.
+bool cycles_estimator(const LutRequest& r) { return r.estimator == "cycles"; }
+
 std::vector<std::string> gen_schlick_programs(const LutRequest& r) {
+    if (cycles_estimator(r)) return {"albedo|" + r.model + "|gen-schlick"};
     return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|gen-schlick"};
 }
 
 std::vector<std::string> gen_schlick_ior_programs(const LutRequest& r) {
+    if (cycles_estimator(r)) return {"albedo|" + r.model + "|gen-schlick-ior"};
     return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|gen-schlick-ior"};
 }
 
 void validate_gen_schlick(const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
     if (!m.uses_fresnel)
         throw Error("the " + r.kind + " table weights the lobe's Fresnel term; model '" + m.name + "' has none");
+    if (r.estimator != "ratio" && r.estimator != "cycles")
+        throw Error("--estimator '" + r.estimator + "': give ratio (E_w / E) or cycles (Cycles' estimator)");
+    const bool smith = m.id == BB_MODEL_GGX || m.id == BB_MODEL_BECKMANN;
+    if (cycles_estimator(r) && !(smith && m.params[BB_SMITH_SHADOWING] == BB_SMITH_MASKING))
+        throw Error("--estimator cycles is the albedo of the masking-only lobe (Cycles' estimator): the model must be "
+                    "ggx or beckmann with shadowing=masking, not '" + m.canonical + "' (--preset cycles sets it)");
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
         throw Error(r.kind + " table depth must be 1 to 1024 and width x height x depth at most 4M texels");
 }
 
-int two(const LutRequest&) { return 2; }
+int integrations(const LutRequest& r) { return cycles_estimator(r) ? 1 : 2; }
 
 TableKind make_kind(TableKindId id, const std::string& name, const std::string& description, bool ior) {
     TableKind k(id, name, description, ior ? gen_schlick_ior_programs : gen_schlick_programs,
@@ -178,7 +224,7 @@ TableKind make_kind(TableKindId id, const std::string& name, const std::string& 
     k.lobe_requirement = std::string("a ") + name +
                          " table spans its own z axis (Cycles' z: " + (ior ? "the index of refraction" : "the exponent") +
                          "); the lobe's Fresnel must be generalized Schlick (gen-schlick" + (ior ? "-ior" : "") + ":...)";
-    k.integrations = two;  // per texel: its slice's E_w, and E (shared by the slices, found twice with a tolerance)
+    k.integrations = integrations;  // per texel: its slice's E_w, and E (shared by the slices, found twice with a tolerance)
     k.validate = validate_gen_schlick;
     return k;
 }

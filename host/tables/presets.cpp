@@ -16,6 +16,7 @@ namespace {
 LutRequest base(const LutRequest& r) {
     LutRequest p;
     p.kind = r.kind;
+    p.estimator = r.estimator;
     p.model = "ggx:shadowing=correlated";
     p.alpha_map = "roughness";  // every engine indexes by perceptual roughness r, alpha = r^2
     p.alpha_lo = 0.0;
@@ -74,6 +75,9 @@ void cycles(LutRequest& r) {
         // parameterisation, clamped to [1e-4, 0.99]), read by lookup_table_read_3D.
         r.width = r.height = r.depth = 16;
         r.axes = {"roughness", "mu", "cycles_z"};
+        // --estimator cycles: what Cycles' own tables hold, the albedo of the lobe whose G2 is the
+        // masking term G1(wo) alone (its Monte-Carlo estimator averages w over the visible normals).
+        if (r.estimator == "cycles") r.model = "ggx:shadowing=masking";
     } else if (r.kind == "dielectric" || r.kind == "dielectric-eavg") {
         // table_ggx_glass_E and table_ggx_glass_inv_E[(z * 16 + y) * 16 + x], table_ggx_glass_Eavg
         // and table_ggx_glass_inv_Eavg[z * 16 + x]: the single-scattering albedo R + T of a rough
@@ -137,7 +141,8 @@ const std::vector<LutPreset>& lut_presets() {
          "table_ggx_glass_inv_Eavg (dielectric-eavg: Eavg, Eavg_inside) (intern/cycles/scene/shader.tables)",
          {"albedo", "eavg", "gen-schlick", "gen-schlick-ior", "dielectric", "dielectric-eavg"}, "h", false,
          "32 x 32 (32 for eavg; 16 x 16 x 16 for gen-schlick, gen-schlick-ior and dielectric with z = cycles_z, "
-         "16 x 16 for dielectric-eavg with z = cycles_z, the dielectric kinds with Cycles' transmission shadowing), "
+         "16 x 16 for dielectric-eavg with z = cycles_z, the dielectric kinds with Cycles' transmission shadowing; "
+         "gen-schlick kinds with --estimator cycles: Cycles' own estimator on ggx:shadowing=masking), "
          "x = roughness, y = mu, edge texels (i/(N - 1)), mu floored at 1e-4, double precision to 5e-7 (dielectric: 1e-6, dielectric-eavg: 4e-6), C header",
          cycles},
         {"unreal", "Unreal Engine", "PreIntegratedGF (EnvBRDF)", {"dfg"}, "png", false,

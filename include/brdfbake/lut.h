@@ -42,6 +42,10 @@ struct LutRequest {
     Method method = Method::Importance; // with a fixed sample count; the dielectric tables: importance or quadrature
     ToleranceRequest tolerance;         // tolerance.tolerance > 0: refine every texel to it instead
     Precision precision = Precision::Float;
+    /// gen-schlick and gen-schlick-ior: the quantity the table holds. ratio: s = E_w / E, exact
+    /// for the model's own G2; cycles: Blender Cycles' estimator, E_w of the masking-only lobe
+    /// (the model must have shadowing=masking; --preset cycles then sets it), not divided by E.
+    std::string estimator = "ratio";
 };
 
 /// Sets width, height and depth from 1 to 3 sizes as `--size` reads them: N is NxN (N for a

@@ -1,6 +1,6 @@
 /* The GGX (Trowbridge-Reitz) microfacet BRDF with Smith masking-shadowing:
  *   f = D(wh) G2(wo, wi) F(wo.wh) / (4 cos_theta_o cos_theta_i)      [WMLT07 eq. 20]
- * with D, G1, G2 from microfacet.h; G2 separable or height-correlated. */
+ * with D, G1, G2 from microfacet.h; G2 separable, height-correlated or masking only (smith.h). */
 #ifndef BRDFBAKE_BRDF_GGX_H
 #define BRDFBAKE_BRDF_GGX_H
 
@@ -9,7 +9,7 @@
 /* Parameter slots: those of every Smith lobe (smith.h). */
 #define BB_GGX_ALPHA_X BB_SMITH_ALPHA_X
 #define BB_GGX_ALPHA_Y BB_SMITH_ALPHA_Y
-#define BB_GGX_SHADOWING BB_SMITH_SHADOWING /* 0: separable, 1: height-correlated */
+#define BB_GGX_SHADOWING BB_SMITH_SHADOWING /* BB_SMITH_SEPARABLE, _CORRELATED or _MASKING */
 
 /* The Smith lobe (smith.h) with the GGX distribution. Its importance sample takes the visible
  * normal [H18] of the disk point bb_disk_polar(u1, u2), which the fast kernels tabulate
@@ -23,10 +23,11 @@ BB_SMITH_LOBE(ggx, BB_SMITH_GGX)
  * [H18 sec. 4.3], n = (ax Nh.x, ay Nh.y, max(0, Nh.z)), L = n.n and W = L wi = 2 (wo.n) n - L wo
  * (the reflection of wo about n/|n|, scaled by L): Lambda(wi) = (q / W.z - 1) / 2 with
  * q = sqrt(W.z^2 + (ax W.x)^2 + (ay W.y)^2) [H14 eq. 86, 80], and
- *   G2/G1(wo) = c0 / (c0 + Lambda(wi)) = 2 c0 W.z / ((2 c0 - 1) W.z + q),
+ *   G2/G1(wo) = c0 / (c0 + Lambda(wi)) = 2 c0 W.z / ((2 c0 - 1) W.z + kq q),
  * c0 = 1/G1(wo) = 1 + Lambda(wo) for height-correlated G2 [H14 eq. 99], c0 = 1 for separable
- * G2 (the weight is then G1(wi)). Every term of the denominator is >= 0 (c0 >= 1): no
- * cancellation, however small alpha. Per sample: two square roots and one division, where
+ * G2 (the weight is then G1(wi)), kq = 1; masking-only G2 = G1(wo) (smith.h) has the weight 1:
+ * there k2 = k1 = 1 and kq = 0 give W.z / W.z (W.z > 0 where the weight is kept). Every term of the denominator is >= 0 (c0 >= 1 or
+ * kq = 0): no cancellation, however small alpha. Per sample: two square roots and one division, where
  * bb_ggx_sample's normalise, reflect, G1(wi), G2 and / G1(wo) take four of each; a Fresnel
  * term adds F((wo.n) / sqrt(L)). Algebraically bb_ggx_sample's weight (tests/test_microfacet.cpp
  * compares them). */
@@ -36,7 +37,7 @@ typedef struct {
     bb_vec3 a_t1, a_t2, a_vh; /* ... and the same scaled by (ax, ay, 1) */
     real ax, ay, s;         /* s = (1 + vh.z) / 2 [H18 sec. 4.2] */
     real ax2, ay2, b2;      /* ax^2, ay^2 and 1 - ax^2 */
-    real k2, k1;            /* 2 c0 and 2 c0 - 1 */
+    real k2, k1, kq;        /* 2 c0, 2 c0 - 1 and q's factor */
     real live;              /* 1 where G1(wo) > 0, else 0: every weight 0 */
 } bb_ggx_disk_cell;
 
@@ -66,8 +67,9 @@ BB_FN bb_ggx_disk_cell bb_ggx_disk_cell_make(bb_params p, bb_vec3 wo, int isotro
     real g1o = bb_ggx_g1(c.wo, c.ax, c.ay);
     real c0 = bb_select(BB_R(1.0), BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0)),
                         p.v[BB_GGX_SHADOWING] > BB_R(0.5));
-    c.k2 = BB_R(2.0) * c0;
-    c.k1 = c.k2 - BB_R(1.0);
+    c.kq = bb_select(BB_R(1.0), BB_R(0.0), p.v[BB_GGX_SHADOWING] > BB_R(2.5)); /* 0: masking only */
+    c.k2 = bb_select(BB_R(1.0), BB_R(2.0) * c0, c.kq > BB_R(0.5));
+    c.k1 = bb_select(BB_R(1.0), c.k2 - BB_R(1.0), c.kq > BB_R(0.5));
     c.live = bb_select(BB_R(0.0), BB_R(1.0), g1o > BB_R(0.0));
     return c;
 }
@@ -101,7 +103,7 @@ BB_FN real bb_ggx_disk_weight(bb_ggx_disk_cell c, int fkind, bb_params fp, bb_ve
         wz = BB_R(2.0) * on * nz - len2 * c.wo.z;
         q = bb_sqrt(wz * wz + c.ax2 * wx * wx + c.ay2 * wy * wy);
     }
-    real w = c.k2 * wz / (c.k1 * wz + q);
+    real w = c.k2 * wz / (c.k1 * wz + c.kq * q);
     if (fkind != BB_FRESNEL_NONE)
         w = w * bb_fresnel_eval(fkind, fp, bb_clamp_cos(on / bb_sqrt(len2)));
     return bb_select(BB_R(0.0), w, wz > BB_R(0.0) && c.live > BB_R(0.0));

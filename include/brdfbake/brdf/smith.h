@@ -6,7 +6,13 @@
  *   f = D(wh) G2(wo, wi) F(wo.wh) / (4 cos_theta_o cos_theta_i)      [WMLT07 eq. 20]
  *   sample: wh from the visible normals of wo, wi = reflect(wo, wh), weight
  *   f cos_theta_i / pdf = F(wo.wh) G2(wo, wi) / G1(wo)                [HD14 eq. 9; H18 eq. 19]
- * with G2 separable G1(wo) G1(wi) [H14 eq. 98] or height-correlated [H14 eq. 99].
+ * with G2 separable G1(wo) G1(wi) [H14 eq. 98], height-correlated [H14 eq. 99], or the masking
+ * term alone, G2 = G1(wo) [H14 eq. 43 with the shadowing of wi left out]: the lobe Blender Cycles'
+ * albedo estimator integrates (intern/cycles/app/cycles_precompute.cpp averages a weight over
+ * the visible normals of wo, counting a reflection below the horizon as 0), whose sample weight
+ * is F(wo.wh) alone. It is no physical masking-shadowing: with no shadowing its albedo exceeds
+ * the separable and the height-correlated lobes' (up to 1 at F = 1, the visible normals'
+ * reflections that stay above the horizon).
  * The distribution is a constant of the model (ggx.h, beckmann.h), so each branch on it below
  * is resolved when the call is inlined.
  *
@@ -32,7 +38,14 @@
 /* Parameter slots of every Smith lobe. */
 #define BB_SMITH_ALPHA_X 0
 #define BB_SMITH_ALPHA_Y 1
-#define BB_SMITH_SHADOWING 2 /* 0: separable, 1: height-correlated */
+#define BB_SMITH_SHADOWING 2 /* BB_SMITH_SEPARABLE, _CORRELATED or _MASKING */
+
+/* The values of the shadowing slot. 2 is the rough dielectric's height-correlated form with
+ * Cycles' transmission shadowing (rough_dielectric.h), which every reflection reads as
+ * height-correlated (> 0.5). */
+#define BB_SMITH_SEPARABLE 0
+#define BB_SMITH_CORRELATED 1
+#define BB_SMITH_MASKING 3 /* G2 = G1(wo) */
 
 /* D(m) of the distribution. */
 BB_FN real bb_smith_d(int dist, bb_vec3 m, real ax, real ay) {
@@ -57,15 +70,18 @@ BB_FN bb_vec3 bb_smith_sample_vndf(int dist, bb_vec3 wo, real ax, real ay, real 
  * (one named pair, or a call through bb_smith_g1, changes the code the compiler lays out). */
 BB_FN real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
     real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
-    real separable, correlated;
+    real separable, correlated, masking;
     if (dist == BB_SMITH_BECKMANN) {
         separable = bb_g2_separable_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
         correlated = bb_g2_correlated_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
+        masking = bb_beckmann_g1(wo, ax, ay);
     } else {
         separable = bb_g2_separable_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
         correlated = bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
+        masking = bb_ggx_g1(wo, ax, ay);
     }
-    return bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] > BB_R(0.5));
+    real g2 = bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] > BB_R(0.5));
+    return bb_select(g2, masking, p.v[BB_SMITH_SHADOWING] > BB_R(2.5));
 }
 
 /* f(wo, wi) without the cosine; 0 unless wo, wi and wh are above the horizon. */
