@@ -209,6 +209,17 @@ TEST_CASE("gen-schlick --estimator cycles: Cycles' estimator at its grid points"
     }
 }
 
+TEST_CASE("the estimator of a request is checked by the library too, not only the command line", "[masking][quick]") {
+    LutRequest r;
+    r.kind = "albedo";
+    r.model = "ggx";
+    r.estimator = "cycles";
+    CHECK_THROWS_WITH(validate_lut(r), Catch::Contains("for the gen-schlick and gen-schlick-ior tables"));
+    r.kind = "gen-schlick";
+    r.estimator = "exact";
+    CHECK_THROWS_WITH(validate_lut(r), Catch::Contains("ratio or cycles"));
+}
+
 TEST_CASE("gen-schlick --estimator: the command line, its header and bad input", "[masking][genschlick][cli]") {
     const std::string out = "/tmp/brdfbake-masking-" + std::to_string(::getpid()) + ".h";
     const testing::CliResult run = testing::run_cli("lut gen-schlick --preset cycles --estimator cycles --size 2x2x2 "
@@ -227,7 +238,9 @@ TEST_CASE("gen-schlick --estimator: the command line, its header and bad input",
           "gen-schlick --model ggx --estimator exact --size 4x4x4",                   // no such estimator
           "albedo --model ggx:shadowing=masking --estimator cycles --size 4x4",       // not a gen-schlick table
           "gen-schlick-ior --model ggx:shadowing=mask --size 4x4x4",                  // no such form
-          "albedo --model ggx:shadowing=masking,transmission_shadowing=cycles --size 4x4"}) {
+          "albedo --model ggx:shadowing=masking,transmission_shadowing=cycles --size 4x4",
+          "dielectric --model ggx:shadowing=masking --size 4x4x2",                     // T needs shadowing
+          "dielectric-eavg --model ggx:shadowing=masking --size 4x1x2"}) {
         const std::string bad = "/tmp/brdfbake-masking-bad-" + std::to_string(::getpid()) + ".exr";
         const testing::CliResult r = testing::run_cli(std::string("lut ") + args + " -o " + bad);
         INFO(args << ": " << r.err);

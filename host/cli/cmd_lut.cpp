@@ -109,7 +109,7 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     }
     auto given = [&](const char* option) { return o.command->count(option) > 0; };
     LutRequest p;  // the preset's request; an option given on the command line overrides its field
-    if (given("--estimator") && r.kind != "gen-schlick" && r.kind != "gen-schlick-ior")
+    if (given("--estimator") && !table_kind(r.kind).cycles_estimator)
         throw Error("--estimator is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
     if (preset) {
         p.kind = r.kind;

@@ -97,6 +97,9 @@ void validate_dielectric(const LutRequest& r, const ModelConfig& m, const Fresne
         throw Error("the dielectric table is computed by importance sampling or quadrature; use --method auto, "
                     "importance or quadrature");
     if (m.id != BB_MODEL_GGX) throw Error("the dielectric table is computed for GGX microfacets; use --model ggx");
+    if (m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING)
+        throw Error("the dielectric table has no masking-only form: its transmitted lobe needs shadowing; use "
+                    "shadowing=correlated or separable");
     if (f.kind != BB_FRESNEL_NONE) throw Error("the dielectric table uses the exact dielectric Fresnel term; drop --fresnel");
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
         throw Error("dielectric table depth must be 1 to 1024 and the table at most 4M texels");

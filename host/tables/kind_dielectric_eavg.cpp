@@ -104,6 +104,9 @@ Table compute_dielectric_eavg(Engine& engine, const LutRequest& r, const ModelCo
 
 void validate_dielectric_eavg(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     if (m.id != BB_MODEL_GGX) throw Error("the dielectric-eavg table is computed for GGX microfacets; use --model ggx");
+    if (m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING)
+        throw Error("the dielectric-eavg table has no masking-only form: its transmitted lobe needs shadowing; use "
+                    "shadowing=correlated or separable");
     if (f.kind != BB_FRESNEL_NONE)
         throw Error("the dielectric-eavg table uses the exact dielectric Fresnel term; drop --fresnel");
     if (r.method != Method::Importance && r.method != Method::Quadrature)

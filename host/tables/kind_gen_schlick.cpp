@@ -219,6 +219,7 @@ TableKind make_kind(TableKindId id, const std::string& name, const std::string& 
                 ior ? compute_gen_schlick_ior : compute_gen_schlick);
     k.eta_axis = true;  // a z axis: sizes WxHxD, --texels edge needs 2 per axis
     k.own_z_axis = kZAxisName;  // Cycles' z, whatever --eta-map says
+    k.cycles_estimator = true;  // --estimator cycles: Cycles' own quantity
     k.fresnel_factored_out = true;
     k.plan_fresnel = "factored out (generalized Schlick: E mix(f0, f90, s))";
     k.lobe_requirement = std::string("a ") + name +

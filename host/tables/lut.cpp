@@ -267,6 +267,9 @@ void validate_lut(const LutRequest& r) {
         double(r.width) * r.height > tables::kMaxTexels)
         throw Error("table size " + std::to_string(r.width) + "x" + std::to_string(r.height) +
                     " is out of range (1 to 4096 per side, at most 4M texels)");
+    if (r.estimator != "ratio" && r.estimator != "cycles") throw Error("--estimator must be ratio or cycles");
+    if (r.estimator != "ratio" && !kind.cycles_estimator)
+        throw Error("--estimator " + r.estimator + " is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
     if (r.mu_map != "linear" && r.mu_map != "sqrt") throw Error("--mu-map must be linear or sqrt");
     if (r.alpha_map != "alpha" && r.alpha_map != "roughness") throw Error("--alpha-map must be alpha or roughness");
     if (!(r.alpha_lo >= 0.0 && r.alpha_hi > r.alpha_lo && r.alpha_hi <= 3.0))

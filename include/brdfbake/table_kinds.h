@@ -62,6 +62,9 @@ struct TableKind {
 
     // The planner.
     bool tileable = false;     // `bake` may compute it in tiles along the roughness axis
+    /// The kind writes Blender Cycles' estimator with LutRequest::estimator = "cycles" (the
+    /// generalized-Schlick kinds); every other kind takes only "ratio", the default.
+    bool cycles_estimator = false;
     double sample_cost = 1.0;  // the cost of one sample relative to an albedo sample
 
     /// Value channels (the error channel comes on top).
