@@ -3,11 +3,15 @@
 // estimate with its phases. Speed itself is measured by the benchmark, never asserted here.
 #include <catch2/catch.hpp>
 
+#include <cstdlib>
+#include <filesystem>
+#include <optional>
 #include <set>
 #include <sstream>
 
 #include "brdfbake/table_kinds.h"
 #include "harness/bench.h"
+#include "harness/bench_internal.h"
 
 using namespace brdfbake;
 
@@ -43,4 +47,69 @@ TEST_CASE("bench: a row per table kind of the registry, an estimate and its phas
         CHECK(p.at("estimated_seconds").get<double>() > 0.0);
         CHECK(p.contains("seconds"));
     }
+}
+
+TEST_CASE("bench: POCL_CACHE_DIR is set only for the build times, then restored", "[bench]") {
+    using bench_detail::ScopedEnvironment;
+    const char* name = "BRDFBAKE_TEST_SCOPED_ENV";
+    ::unsetenv(name);
+    {
+        ScopedEnvironment e(name, std::string("/tmp/a"));
+        CHECK(std::string(std::getenv(name)) == "/tmp/a");
+    }
+    CHECK(std::getenv(name) == nullptr);  // unset before: unset after
+    ::setenv(name, "before", 1);
+    {
+        ScopedEnvironment e(name, std::string("/tmp/b"));
+        CHECK(std::string(std::getenv(name)) == "/tmp/b");
+        e.restore();
+        CHECK(std::string(std::getenv(name)) == "before");
+        ::setenv(name, "changed later", 1);
+    }
+    CHECK(std::string(std::getenv(name)) == "changed later");  // restored once, not twice
+    { ScopedEnvironment e(name, std::nullopt); }                 // no value: left alone
+    CHECK(std::string(std::getenv(name)) == "changed later");
+    ::unsetenv(name);
+}
+
+TEST_CASE("bench: a run with build times gives POCL_CACHE_DIR back and removes its cache", "[bench][device]") {
+    BenchOptions o = BenchOptions::quick_options();
+    o.build_times = true;  // PoCL read its cache directory when the tests began: the builds here are warm
+    o.scaling_sizes = {};
+    o.scaling_samples = {};
+    o.kind_texels = 0;
+    const char* old = std::getenv("POCL_CACHE_DIR");
+    const std::optional<std::string> before = old ? std::optional<std::string>(old) : std::nullopt;
+    auto bench_caches = [] {
+        std::set<std::string> names;
+        for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
+            if (entry.path().filename().string().rfind("brdfbake-bench-cache-", 0) == 0)
+                names.insert(entry.path().string());
+        return names;
+    };
+    const std::set<std::string> caches_before = bench_caches();
+    for (const std::optional<std::string>& value : {std::optional<std::string>("/nonexistent/brdfbake-sentinel"),
+                                                    std::optional<std::string>()}) {
+        if (value)
+            ::setenv("POCL_CACHE_DIR", value->c_str(), 1);
+        else
+            ::unsetenv("POCL_CACHE_DIR");
+        std::ostringstream log;
+        const BenchReport r = run_bench(o, log);
+        REQUIRE(r.agreed);
+        CHECK(r.json.at("build").size() >= 1);
+        const char* after = std::getenv("POCL_CACHE_DIR");
+        if (value) {
+            REQUIRE(after != nullptr);
+            CHECK(std::string(after) == *value);
+        } else {
+            CHECK(after == nullptr);
+        }
+    }
+    // No temporary cache left behind by these runs.
+    for (const std::string& dir : bench_caches()) CHECK(caches_before.count(dir) == 1);
+    if (before)
+        ::setenv("POCL_CACHE_DIR", before->c_str(), 1);
+    else
+        ::unsetenv("POCL_CACHE_DIR");
 }

@@ -46,7 +46,8 @@ struct BenchReport {
 
 /// Runs the benchmarks; progress goes to `log`. Call it before anything in the process has
 /// touched OpenCL: the cold-build figure points PoCL's cache at a fresh directory (PoCL reads
-/// POCL_CACHE_DIR once per process). Throws Error for a device fault.
+/// POCL_CACHE_DIR once per process). The variable is set only until the build times are
+/// measured, then given back its previous value (or unset). Throws Error for a device fault.
 BenchReport run_bench(const BenchOptions& options, std::ostream& log);
 
 /// Writes the report as NAME.json and NAME.md into `dir` (created if needed), atomically.
