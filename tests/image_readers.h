@@ -12,6 +12,7 @@
 
 #include <cstdio>
 #include <map>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -59,6 +60,16 @@ inline Png read_png(const std::string& path) {
 
 /// An 8-bit RGB(A) picture (MathGL's): samples 0..255, row-major from the top, channels interleaved.
 inline Png read_png8(const std::string& path) { return read_png_with(path, PNG_TRANSFORM_STRIP_16 | PNG_TRANSFORM_EXPAND); }
+
+/// The number of distinct colours of a PNG read with libpng (8 bits a sample): a blank picture
+/// has one or two, a figure with curves or a heatmap many.
+inline size_t png_colours(const std::string& path) {
+    const Png p = read_png8(path);
+    std::set<std::vector<unsigned>> colours;
+    for (size_t k = 0; k + size_t(p.channels) <= p.samples.size(); k += size_t(p.channels))
+        colours.insert(std::vector<unsigned>(p.samples.begin() + long(k), p.samples.begin() + long(k + size_t(p.channels))));
+    return colours.size();
+}
 
 /// One channel of an EXR file as float, with OpenEXR's reader; sets the image's width and height.
 inline std::vector<float> exr_channel(const std::string& path, const std::string& name, int& w, int& h) {

@@ -9,6 +9,7 @@
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/lut.h"
 #include "reference/reference.h"
+#include "checks.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -55,12 +56,7 @@ TEST_CASE("rough dielectric R and T match independent quadrature", "[dielectric]
 }
 
 TEST_CASE("dielectric table: R + T <= 1, and the two sides are reciprocal", "[dielectric][device]") {
-    LutRequest lr;
-    lr.kind = "dielectric";
-    lr.model = "ggx";
-    lr.width = 6;
-    lr.height = 3;
-    lr.depth = 3;
+    LutRequest lr = testing::lut_request("dielectric", "ggx", 6, 3, 3);
     lr.samples = 1 << 14;
     const Table t = compute_lut(testing::engine(), lr);
     REQUIRE(t.channels == std::vector<std::string>{"R", "T", "R_inside", "T_inside"});

@@ -13,6 +13,7 @@
 #include "brdfbake/lut.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "reference/reference.h"
+#include "checks.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -132,12 +133,7 @@ TEST_CASE("dielectric to a tolerance: auto meets it in float and double against 
 
 TEST_CASE("dielectric table: auto (quadrature) agrees with importance sampling within the two estimates",
           "[dielectric][tolerance][device]") {
-    LutRequest lr;
-    lr.kind = "dielectric";
-    lr.model = "ggx";
-    lr.width = 5;
-    lr.height = 4;
-    lr.depth = 3;
+    LutRequest lr = testing::lut_request("dielectric", "ggx", 5, 4, 3);
     lr.eta_lo = 1.0;
     lr.eta_hi = 3.0;
     lr.tolerance.tolerance = 1e-3;

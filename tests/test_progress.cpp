@@ -26,6 +26,14 @@ testing::CliResult run_shown(const std::string& args) {
     return testing::run_shell(kShow + std::string(BRDFBAKE_EXE) + " " + args);
 }
 
+/// run_shown of a command that must succeed.
+testing::CliResult run_shown_ok(const std::string& args) {
+    testing::CliResult r = run_shown(args);
+    INFO(args << ": " << r.err);
+    REQUIRE(r.status == 0);
+    return r;
+}
+
 // 4096 texels x 2^20 samples: 2^32 samples, sliced into launches (more than 2^28), a second or two.
 const std::string kLong = "lut albedo --model ggx --size 64x64 --samples 1048576 --no-preview -o ";
 
@@ -37,8 +45,7 @@ std::string scratch(const std::string& name) {
 
 TEST_CASE("progress: lines when stderr is not a terminal, nothing with --quiet, same table", "[cli][progress]") {
     const std::string a = scratch("a.csv"), b = scratch("b.csv");
-    const auto shown = run_shown(kLong + a);
-    REQUIRE(shown.status == 0);
+    const auto shown = run_shown_ok(kLong + a);
     INFO(shown.err);
     const std::regex line(R"(brdfbake: +([0-9]+)% of albedo of 4096 cells, 1048576 samples each \([0-9.]+ s)");
     CHECK(std::regex_search(shown.err, line));
@@ -70,7 +77,9 @@ TEST_CASE("progress: lines when stderr is not a terminal, nothing with --quiet, 
 TEST_CASE("progress: a bar redrawn in place on a terminal", "[cli][progress]") {
     const std::string out = scratch("t.csv"), log = scratch("tty.log");
     // script(1) runs the command with a pseudo-terminal as its stdin, stdout and stderr.
-    const std::string cmd = "script -qec '" + std::string(BRDFBAKE_EXE) + " " + kLong + out + "' " + log +
+    // kShow: the bar from the start, however fast the run (without it the test needed a run
+    // longer than the default second of delay, and would fail on a fast device).
+    const std::string cmd = "script -qec '" + kShow + std::string(BRDFBAKE_EXE) + " " + kLong + out + "' " + log +
                             " >/dev/null 2>&1";
     REQUIRE(WEXITSTATUS(std::system(cmd.c_str())) == 0);
     const std::string text = testing::slurp(log);
@@ -102,8 +111,7 @@ std::vector<double> matches(const std::string& text, const std::regex& re) {
 
 TEST_CASE("progress: a tolerance table reports cells certified over its rounds", "[cli][progress]") {
     const std::string a = scratch("d1.csv"), b = scratch("d2.csv");
-    const auto shown = run_shown(kDielectric + a);
-    REQUIRE(shown.status == 0);
+    const auto shown = run_shown_ok(kDielectric + a);
     INFO(shown.err);
     // 16x16x8 texels, two sides of the interface: 4096 cells, counted as they are certified.
     const std::regex line(
@@ -124,8 +132,7 @@ TEST_CASE("progress: a tolerance table reports cells certified over its rounds",
 }
 
 TEST_CASE("progress: check and reciprocity report their scans", "[cli][progress]") {
-    const auto shown = run_shown(kCheck);
-    REQUIRE(shown.status == 0);
+    const auto shown = run_shown_ok(kCheck);
     INFO(shown.err);
     // The stage from its start to its end (the lines between, naming the scan or the furnace,
     // depend on the machine's speed).

@@ -79,12 +79,13 @@ int run_bench_command(const BenchCmdOptions& o, const GlobalOptions& g) {
     return kExitOk;
 }
 
+constexpr const char* kBenchSummary =
+    "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak, and every table kind";
+
 }  // namespace
 
 void add_bench_command(CLI::App& app, const GlobalOptions& global, Action& action) {
-    const auto [cmd, o] = add_command<BenchCmdOptions>(
-        app, "bench", "benchmark the GGX albedo kernel against a plain C++ OpenMP loop and the FMA peak, and every table kind", global,
-        action, run_bench_command);
+    const auto [cmd, o] = add_command<BenchCmdOptions>(app, "bench", kBenchSummary, global, action, run_bench_command);
     cmd->add_flag("--full", o->full, "the whole suite (as brdfbake-bench): larger tables, repeated runs, sweeps");
     // 0 is these options' "not given"; given, they must be positive.
     cmd->add_option("--table", o->table, "throughput table side N (N x N cells)")->check(kPositive);
