@@ -970,6 +970,15 @@ int main(int argc, char** argv) {
         if (!plot.empty()) write_tradeoff_plot(j, o, plot);
         std::cerr << "brdfbake-tradeoff: wrote " << out_dir << "/" << name << ".json and .md in "
                   << fixed(j["seconds"].get<double>(), 1) << " s\n";
-        return 0;
+        // A dishonest estimate (true error beyond 3x the estimate) fails the run (and CI's
+        // tradeoff_quick), after the report that shows it is written.
+        int dishonest = 0;
+        for (const auto& r : j["runs"])
+            for (const auto& c : r.value("cells", json::array())) dishonest += c.value("dishonest", false);
+        if (j["dielectric"].is_object())
+            for (const auto& r : j["dielectric"].value("runs", json::array())) dishonest += r.value("dishonest_channels", 0);
+        if (dishonest > 0)
+            std::cerr << "brdfbake-tradeoff: " << dishonest << " dishonest estimates (true error beyond 3x the estimate)\n";
+        return dishonest > 0 ? 1 : 0;
     });
 }

@@ -9,6 +9,10 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/ggx.h"
 #include "brdfbake/check.h"
+#include <cmath>
+#include <vector>
+
+#include "image_readers.h"
 #include "model_refs.h"
 #include "support.h"
 
@@ -25,10 +29,7 @@ CheckReport check(const std::string& spec, const std::string& fresnel = "none") 
     return run_check(testing::engine(), resolve_model(spec), resolve_fresnel(fresnel), o);
 }
 
-bool non_empty_file(const std::string& path) {
-    struct stat st {};
-    return ::stat(path.c_str(), &st) == 0 && st.st_size > 0;
-}
+using testing::png_colours;
 
 std::string tmp(const std::string& name) { return "/tmp/brdfbake-check-" + std::to_string(::getpid()) + "-" + name; }
 
@@ -106,17 +107,48 @@ TEST_CASE("reciprocity writes its map as EXR and heatmap, furnace and albedo dra
           "[check][cli]") {
     const std::string exr = tmp("recip.exr"), png = tmp("recip.png"), furnace = tmp("furnace.png"),
                       curves = tmp("albedo.png");
+    // The map read with OpenEXR: GGX is reciprocal exactly, 0 at every pair (README).
     auto r = testing::run_cli("reciprocity --model ggx:alpha=0.4 --resolution 16 --phi-resolution 8 -o " + exr +
                               " --plot " + png);
-    CHECK(r.status == 0);
-    CHECK(non_empty_file(exr));
-    CHECK(non_empty_file(png));
+    REQUIRE(r.status == 0);
+    int w = 0, h = 0;
+    for (float v : testing::exr_channel(exr, "rel_error", w, h)) CHECK(v == 0.0f);
+    CHECK(w == 16);
+    CHECK(h == 16);
+    CHECK(png_colours(png) > 2);  // axes, labels and the map on a background
+    // The original Phong model divides by cos theta_i: f(wo,wi)/f(wi,wo) = cos theta_o / cos
+    // theta_i wherever the lobe is lit (README), so the map's texel at the centres theta_i =
+    // (i + 0.5) 90/16 degrees and theta_o = (j + 0.5) 90/16 degrees holds 1 - min/max of the two
+    // cosines: 0 on the diagonal, growing away from it.
+    r = testing::run_cli("reciprocity --model phong-original:n=10,ks=0.5 --resolution 16 --phi-resolution 8 -o " + exr +
+                         " --plot " + png);
+    REQUIRE(r.status == 0);
+    const std::vector<float> phong = testing::exr_channel(exr, "rel_error", w, h);
+    REQUIRE(phong.size() == 256u);
+    for (int j = 0; j < 16; ++j)
+        for (int i = 0; i < 16; ++i) {
+            const double ci = std::cos((i + 0.5) / 16 * M_PI / 2), co = std::cos((j + 0.5) / 16 * M_PI / 2);
+            const double want = 1 - std::min(ci, co) / std::max(ci, co);
+            INFO("theta_i texel " << i << ", theta_o texel " << j << ": " << phong[size_t(j) * 16 + size_t(i)]
+                                  << ", closed form " << want);
+            CHECK(std::fabs(phong[size_t(j) * 16 + size_t(i)] - want) <= 1e-5);
+        }
+    CHECK(png_colours(png) > 16);  // a map that varies, not one colour
+    // The furnace picture: the environment light blue (README: "drawn in light blue"), not grey
+    // and not white, in a corner of the first panel.
     r = testing::run_cli("furnace --model ggx --roughness 0.2,0.8 --pixels 32 --nodes 8 --samples 1024 -o " + furnace);
-    CHECK(r.status == 0);
-    CHECK(non_empty_file(furnace));
+    REQUIRE(r.status == 0);
+    const testing::Png fp = testing::read_png8(furnace);
+    REQUIRE(fp.channels >= 3);
+    const size_t corner = (size_t(fp.height - 4) * size_t(fp.width) + 4) * size_t(fp.channels);
+    const unsigned red = fp.samples[corner], blue = fp.samples[corner + 2];
+    INFO("furnace corner: " << red << ", " << fp.samples[corner + 1] << ", " << blue);
+    CHECK(blue >= red + 40);
+    CHECK(blue >= 160);
+    // The albedo curves: a figure with its curves, not a blank picture.
     r = testing::run_cli("albedo --model ggx:alpha=0.2 --model ggx:alpha=0.8 --samples 1024 --plot " + curves);
-    CHECK(r.status == 0);
-    CHECK(non_empty_file(curves));
+    REQUIRE(r.status == 0);
+    CHECK(png_colours(curves) > 4);
     for (const auto& p : {exr, png, furnace, curves}) std::remove(p.c_str());
     CHECK(testing::run_cli("albedo --model ggx:alpha=0.2 --plot out.gif").status == 2);
     CHECK(testing::run_cli("reciprocity --model ggx:alpha=0.2").status == 2);

@@ -78,7 +78,8 @@ TEST_CASE("preset cycles: ggx_glass_E, ggx_glass_inv_E and ggx_glass_Eavg agains
           "[cycles-glass][presets][device]") {
     // A sub-grid of Cycles' grid through the preset's own axes (edges; z up to 1, computed at
     // 0.99): roughness x in {10, 15}, mu y in {5, 15}, z in {5, 15}, at the preset's --precision
-    // double --tolerance 1e-6; within 1e-5 of the reference on both sides.
+    // double --tolerance 1e-6; within 2.2e-7 of the reference (itself to 1e-7) on both sides, as
+    // the README states.
     LutRequest r = cycles_request("dielectric");
     REQUIRE(r.tolerance.tolerance == 1e-6);
     REQUIRE(std::isinf(r.eta_hi));
@@ -105,7 +106,7 @@ TEST_CASE("preset cycles: ggx_glass_E, ggx_glass_inv_E and ggx_glass_Eavg agains
                     const double got = inside ? t.values[2][at] + t.values[3][at] : t.values[0][at] + t.values[1][at];
                     INFO("x " << xs[i] << ", y " << ys[j] << ", z " << zs[k] << (inside ? " inside" : " outside")
                               << ": brdfbake " << got << ", reference " << expect << ", error estimate " << t.error[at]);
-                    CHECK(std::fabs(got - expect) < 1e-5);
+                    CHECK(std::fabs(got - expect) <= 2.2e-7);
                     worst = std::max(worst, std::fabs(got - expect));
                 }
             }
@@ -129,7 +130,7 @@ TEST_CASE("preset cycles: ggx_glass_E, ggx_glass_inv_E and ggx_glass_Eavg agains
     std::cout << "preset cycles ggx_glass_Eavg: |Eavg - reference| " << std::fabs(avg.values[0][0] - expect)
               << " (error estimate " << avg.error[0] << ")\n";
     CHECK(std::fabs(avg.values[0][0] - expect) < avg.error[0] + 1e-6);
-    CHECK(std::fabs(avg.values[0][0] - expect) < 1e-5);
+    CHECK(std::fabs(avg.values[0][0] - expect) <= 4e-8);  // the README's figure
 }
 
 TEST_CASE("an eta range up to infinity is Cycles' z axis only", "[cycles-glass][cli]") {

@@ -208,8 +208,8 @@ TEST_CASE("quadrature follows elongated anisotropic lobes off their axes", "[met
                 });
             INFO(std::setprecision(12) << spec << " phi " << c.phi_deg << " mu " << mus[i] << ": " << r.values[i].value << " +- "
                       << r.values[i].error << ", reference " << expect);
-            CHECK(std::fabs(r.values[i].value - expect) < 1e-6);
-            CHECK(std::fabs(r.values[i].value - expect) <= r.values[i].error + 1e-7);  // reference to ~1e-8
+            CHECK(std::fabs(r.values[i].value - expect) <= 8e-9);  // the README's figure
+            CHECK(std::fabs(r.values[i].value - expect) <= r.values[i].error + 1e-8);  // reference to ~1e-8
             CHECK(r.values[i].samples == 8u * (64u * 64u + 32u * 32u + 16u * 16u));  // 8 azimuth pieces off the axes
         }
     }

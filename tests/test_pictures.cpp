@@ -36,11 +36,15 @@ TEST_CASE("furnace picture: the environment has its own colour, a smooth sphere 
     REQUIRE(p.channels >= 3);
     const int panel = 128, height = p.height;
     CHECK(p.width > 2 * panel);  // the colour bar's strip
-    // A corner of the first panel: the environment, light blue (0x8D, 0xB3, 0xD9), not white.
+    // A corner of the first panel: the environment, which the README says is drawn in light blue:
+    // blue well above red (not a grey of the spheres' scale, nor white), and light.
     const int cx = 8, cy = height - 8;
-    CHECK(block_mean(p, cx, cy, 0) == Approx(0x8D).margin(6));
-    CHECK(block_mean(p, cx, cy, 1) == Approx(0xB3).margin(6));
-    CHECK(block_mean(p, cx, cy, 2) == Approx(0xD9).margin(6));
+    const double red = block_mean(p, cx, cy, 0), green = block_mean(p, cx, cy, 1), blue = block_mean(p, cx, cy, 2);
+    INFO("environment " << red << ", " << green << ", " << blue);
+    CHECK(blue >= red + 40);
+    CHECK(blue >= green);
+    CHECK(blue >= 160);
+    CHECK(red < 245);  // not white
     // The sphere's centre (mu = 1): sheenless GGX at roughness 0.05 (alpha 0.0025) reflects all the
     // energy it receives at normal incidence (E -> 1 as alpha -> 0), so it is white; at
     // roughness 1 single scattering loses a large part of it, so the sphere is clearly grey.

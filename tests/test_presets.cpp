@@ -27,6 +27,7 @@
 #include "ggx_albedo_reference.h"
 #include "reference/reference.h"
 #include "image_readers.h"
+#include "checks.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -91,23 +92,35 @@ struct Probe {
     int x, y;
 };
 
-}  // namespace
-
-TEST_CASE("preset cycles: every texel of ggx_E within 2e-6 of Cycles' convention (edges, x = roughness, mu floored "
-          "at 1e-4, alpha = r^2, E = 1 at r = 0)",
-          "[presets][device]") {
-    TempDir dir;
-    const std::string path = dir.path + "/ggx_E.exr";
-    const auto run = testing::run_cli("lut --preset cycles -o " + path + " --no-preview");
+/// Runs `brdfbake ARGS -o DIR/NAME --no-preview`, which must succeed, and reads `channel` of
+/// the EXR it wrote, which must be width x height texels.
+std::vector<float> written_channel(const TempDir& dir, const std::string& args, const std::string& name,
+                                   const char* channel, int width, int height) {
+    const std::string path = dir.path + "/" + name;
+    const auto run = testing::run_cli(args + " -o " + path + " --no-preview");
     INFO(run.err);
     REQUIRE(run.status == 0);
     int w = 0, h = 0;
-    const std::vector<float> e = exr_channel(path, "E", w, h);
-    REQUIRE(w == 32);
-    REQUIRE(h == 32);
+    std::vector<float> v = exr_channel(path, channel, w, h);
+    REQUIRE(w == width);
+    REQUIRE(h == height);
+    return v;
+}
+
+}  // namespace
+
+TEST_CASE("preset cycles: every texel of ggx_E within its certified 5e-7 of Cycles' convention (edges, x = "
+          "roughness, mu floored at 1e-4, alpha = r^2, E = 1 at r = 0), and within its error channel",
+          "[presets][device]") {
+    TempDir dir;
+    const int w = 32, h = 32;
+    const std::vector<float> e = written_channel(dir, "lut --preset cycles", "ggx_E.exr", "E", w, h);
+    int ew = 0, eh = 0;
+    const std::vector<float> err = exr_channel(dir.path + "/ggx_E.exr", "error", ew, eh);
+    REQUIRE(err.size() == e.size());
     // Cycles (intern/cycles/app/cycles_precompute.cpp): texel (x, y) at rough = x/31, mu = y/31,
     // each clamped to [1e-4, 1]; alpha = rough^2. Rough 1e-4 is alpha 1e-8: the mirror, E = 1.
-    std::vector<double> expect(size_t(w) * h), ref_err(size_t(w) * h, 0.0);
+    std::vector<double> expect(size_t(w) * h);
     testing::parallel_for(expect.size(), [&](size_t k) {
         const int x = int(k % 32), y = int(k / 32);
         const double rough = x / 31.0, mu = std::max(y / 31.0, 1e-4);
@@ -123,7 +136,21 @@ TEST_CASE("preset cycles: every texel of ggx_E within 2e-6 of Cycles' convention
     std::cout << "preset cycles ggx_E: worst |E - reference| " << worst << " at rough " << (at % 32) / 31.0 << ", mu "
               << (at / 32) / 31.0 << "\n";
     INFO("worst " << worst << " at texel (" << at % 32 << ", " << at / 32 << ")");
-    CHECK(worst <= 2e-6);
+    CHECK(worst <= 5e-7);  // README: certified to 5e-7 (measured: 2.9e-7)
+    // The error channel: every texel certified to 5e-7, and honest: each value within 3x its own
+    // estimate of the reference (issue 37's criterion), plus the float file's rounding (half an
+    // ulp below 1: 2^-25) and the reference's 1e-9. Measured: 1.5x beyond the rounding at worst
+    // (texel (7, 21): 2.9e-7 off, estimate 1.7e-7).
+    double worst_ratio = 0;
+    for (size_t k = 0; k < e.size(); ++k) {
+        INFO("texel (" << k % 32 << ", " << k / 32 << "): " << e[k] << " +- " << err[k] << " vs " << expect[k]);
+        CHECK(err[k] <= 5e-7);
+        const double off = std::fabs(e[k] - expect[k]);
+        CHECK(off <= 3 * err[k] + std::ldexp(1.0, -25) + 1e-9);
+        const double beyond_rounding = off - std::ldexp(1.0, -25) - 1e-9;
+        if (beyond_rounding > 0) worst_ratio = std::max(worst_ratio, beyond_rounding / err[k]);
+    }
+    std::cout << "preset cycles ggx_E: worst (|E - reference| - rounding) / error estimate " << worst_ratio << "\n";
     // Cycles' own first column is computed at alpha = 1e-8, not 0. There the albedo is within
     // 2 Lambda(mu) of the mirror's 1: as alpha -> 0 the reflected direction is the mirror one, where
     // G2 / G1 = (1 + Lambda_o) / (1 + 2 Lambda_o) >= 1 - Lambda_o, and the visible normals sum to 1
@@ -136,14 +163,7 @@ TEST_CASE("preset cycles: every texel of ggx_E within 2e-6 of Cycles' convention
 
 TEST_CASE("preset cycles: ggx_Eavg within 2e-6 of 2 integral of E(mu) mu dmu at roughness i/31", "[presets][device]") {
     TempDir dir;
-    const std::string path = dir.path + "/ggx_Eavg.exr";
-    const auto run = testing::run_cli("lut eavg --preset cycles -o " + path + " --no-preview");
-    INFO(run.err);
-    REQUIRE(run.status == 0);
-    int w = 0, h = 0;
-    const std::vector<float> eavg = exr_channel(path, "Eavg", w, h);
-    REQUIRE(w == 32);
-    REQUIRE(h == 1);
+    const std::vector<float> eavg = written_channel(dir, "lut eavg --preset cycles", "ggx_Eavg.exr", "Eavg", 32, 1);
     std::vector<double> expect(32);
     testing::parallel_for(32, [&](size_t x) {
         const double alpha = (x / 31.0) * (x / 31.0);
@@ -248,14 +268,8 @@ TEST_CASE("presets three, gltf, unreal, filament: the texels an engine's shader 
 TEST_CASE("presets: unknown names and kinds without a layout exit 2 with one line", "[presets][cli]") {
     const std::string path = "/tmp/brdfbake-presets-bad-" + std::to_string(::getpid()) + ".exr";
     for (const char* args : {"lut --preset frostbite -o ", "lut sheen-albedo --preset cycles -o ",
-                             "lut albedo --preset gltf -o ", "lut -o "}) {
-        INFO(args);
-        const auto r = testing::run_cli(std::string(args) + path);
-        CHECK(r.status == 2);
-        CHECK(r.err.rfind("brdfbake: error: ", 0) == 0);
-        CHECK(testing::count_lines(r.err) == 1);
-        CHECK(::access(path.c_str(), F_OK) != 0);
-    }
+                             "lut albedo --preset gltf -o ", "lut -o "})
+        testing::check_refused(args, path);
     CHECK(lut_presets().size() >= 5);
     CHECK_THROWS_WITH(lut_preset("nope"), Catch::Contains("known: gltf, filament, three, cycles, unreal"));
 }

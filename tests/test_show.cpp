@@ -97,13 +97,13 @@ TEST_CASE("show: a slice or file it cannot show is refused with nothing written"
     CHECK(r.err.find("0 to 1") != std::string::npos);
     CHECK(::access(png.c_str(), F_OK) != 0);
     r = run_cli("show " + exr + " --slice 1 --plot " + png);
-    CHECK(r.status == 0);
-    CHECK(::access(png.c_str(), F_OK) == 0);
+    REQUIRE(r.status == 0);
+    CHECK(testing::png_colours(png) > 16);  // a readable heatmap, not a blank picture
     std::remove(png.c_str());
     // Curves across the eta axis of the 3D table; refused on a bad axis, or without --curves.
     r = run_cli("show " + exr + " --curves 0.2,0.8 --along z --at 0.5 --plot " + png);
-    CHECK(r.status == 0);
-    CHECK(::access(png.c_str(), F_OK) == 0);
+    REQUIRE(r.status == 0);
+    CHECK(testing::png_colours(png) > 16);
     std::remove(png.c_str());
     for (const std::string args : {" --curves 0.5 --along y", " --along z"}) {
         r = run_cli("show " + exr + args + " --plot " + png);
