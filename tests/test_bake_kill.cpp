@@ -77,20 +77,37 @@ std::vector<std::string> table_files(const std::string& dir) {
     return out;
 }
 
-/// Whether the index and the folder agree; what disagrees goes to `why`.
-bool index_agrees(const std::string& dir, std::string& why) {
+/// How the index and the folder disagree: table files the index does not list (`unlisted`), and
+/// entries whose file is absent or not the one they describe (`stale`).
+struct Disagreement {
+    int unlisted = 0, stale = 0;
+    std::string what;
+};
+
+Disagreement compare_index(const std::string& dir) {
+    Disagreement d;
     std::map<std::string, std::string> listed;  // file -> content hash
     if (is_file(dir + "/index.json")) {
         const auto index = nlohmann::json::parse(testing::slurp(dir + "/index.json"));
         for (const auto& e : index.at("tables")) listed[e.at("file")] = e.at("content_hash");
     }
     for (const auto& f : table_files(dir))
-        if (!listed.count(f)) why += f + " is in the folder but not in the index; ";
-    for (const auto& [file, hash] : listed) {
-        if (!is_file(dir + "/" + file)) why += file + " is listed but absent; ";
-        else if (brdfbake::content_hash_of_file(dir + "/" + file) != hash) why += file + " has another content hash; ";
-    }
-    return why.empty();
+        if (!listed.count(f)) {
+            ++d.unlisted;
+            d.what += f + " is in the folder but not in the index; ";
+        }
+    for (const auto& [file, hash] : listed)
+        if (!is_file(dir + "/" + file) || brdfbake::content_hash_of_file(dir + "/" + file) != hash) {
+            ++d.stale;
+            d.what += file + " is listed but absent or another file; ";
+        }
+    return d;
+}
+
+bool index_agrees(const std::string& dir, std::string& why) {
+    const Disagreement d = compare_index(dir);
+    why = d.what;
+    return d.unlisted == 0 && d.stale == 0;
 }
 
 /// Files a killed bake may leave and the next bake must remove: temporaries, staging folders.
@@ -115,7 +132,8 @@ TEST_CASE("a bake killed at any moment leaves an index that agrees with its fold
     CHECK(index_agrees(whole, why));
     REQUIRE(table_files(whole).size() == 8);
 
-    int kills = 0, disagreements = 0;
+    int kills = 0, unlisted = 0, disagreements = 0;
+    pid_t last_killed = 0;  // a process that is gone
     std::string what;
     const std::string out = scratch("killed");
     // Kills when the k-th preview or table appears (a table is committed then), and at moments
@@ -139,20 +157,24 @@ TEST_CASE("a bake killed at any moment leaves an index that agrees with its fold
             std::this_thread::sleep_for(std::chrono::duration<double>(seconds * (0.2 + 0.15 * (round - 8))));
         }
         if (!ended) {
+            last_killed = pid;
             ::kill(pid, SIGKILL);
             ::waitpid(pid, &status, 0);
         }
         ++kills;
-        std::string w;
-        if (!index_agrees(out, w)) {
-            ++disagreements;
-            what += "after kill " + std::to_string(round) + ": " + w + "\n";
-        }
+        // Never a table the index does not list. The index is replaced just before the table is
+        // renamed in: a kill between those two renames leaves one entry ahead of its file, which
+        // the next bake recomputes (checked at the end).
+        const Disagreement d = compare_index(out);
+        unlisted += d.unlisted;
+        if (d.stale > 1) ++disagreements;
+        if (d.unlisted || d.stale) what += "after kill " + std::to_string(round) + ": " + d.what + "\n";
         // Start over now and then, so that kills land in early tables too.
         if (round == 3 || round == 7) std::system(("rm -rf " + out).c_str());
     }
     CHECK(kills == 12);
     INFO(what);
+    CHECK(unlisted == 0);
     CHECK(disagreements == 0);
 
     // The next bake finishes what the killed ones began and leaves nothing of theirs.
@@ -162,5 +184,16 @@ TEST_CASE("a bake killed at any moment leaves an index that agrees with its fold
     CHECK(table_files(out).size() == 8);
     CHECK(leftovers(out).empty());
     CHECK(!is_file(out + "/.brdfbake.lock"));
+
+    // A preview's temporary file of a killed bake goes with the next bake, also one that has
+    // nothing to compute (it survived such bakes before).
+    const std::string orphan = out + "/previews/.albedo-ggx.exr.png.tmp-" + std::to_string(last_killed);
+    std::FILE* f = std::fopen(orphan.c_str(), "w");
+    REQUIRE(f);
+    std::fclose(f);
+    const auto again = testing::run_cli("bake " + scene + " -o " + out + " --no-report");
+    REQUIRE(again.status == 0);
+    CHECK(again.err.find("nothing to compute") != std::string::npos);
+    CHECK(leftovers(out).empty());
     std::system(("rm -rf " + out + " " + whole + " " + scene).c_str());
 }
