@@ -1,6 +1,7 @@
-// A bake killed at any moment (issue 31, item 2): index.json never disagrees with the folder (every
-// table file there is listed with its content hash, every listed table is there with it), and the
-// next bake leaves no temporary file, preview or staging folder of the killed one behind.
+// A bake killed at any moment (issue 31, item 2): every table file in the folder is listed in
+// index.json with its content hash; an entry can be ahead of its file only between the two
+// renames that commit a table (one entry at most, which the next bake recomputes); the next bake
+// leaves no temporary file, preview temporary or staging folder of the killed one behind.
 #include <catch2/catch.hpp>
 
 #include <fcntl.h>
