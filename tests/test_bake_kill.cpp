@@ -198,3 +198,26 @@ TEST_CASE("a bake killed at any moment leaves an index that agrees with its fold
     CHECK(leftovers(out).empty());
     std::system(("rm -rf " + out + " " + whole + " " + scene).c_str());
 }
+
+TEST_CASE("a bake that stops after taking the folder leaves every table file listed, a replaced one too",
+          "[bake][device]") {
+    const std::string out = scratch("stopped");
+    const std::string scene = std::string(BRDFBAKE_SOURCE_DIR) + "/tests/data/small_bake.json";
+    REQUIRE(testing::run_cli("bake " + scene + " -o " + out + " --no-report -q").status == 0);
+    // A table replaced behind the index's back (as a bake killed between its two renames leaves
+    // it), then a bake of another request that stops before computing (no such device).
+    std::FILE* f = std::fopen((out + "/albedo-ggx.exr").c_str(), "a");
+    REQUIRE(f);
+    std::fputc('x', f);
+    std::fclose(f);
+    const auto r = testing::run_cli("bake " + scene + " -o " + out + " --no-report --samples 512 --device 9:9");
+    CHECK(r.status == 2);
+    const Disagreement d = compare_index(out);
+    INFO(d.what);
+    CHECK(d.unlisted == 0);
+    CHECK(d.stale == 1);  // the replaced file, recomputed by the next bake:
+    REQUIRE(testing::run_cli("bake " + scene + " -o " + out + " --no-report -q").status == 0);
+    std::string why;
+    CHECK(index_agrees(out, why));
+    std::system(("rm -rf " + out).c_str());
+}

@@ -101,14 +101,17 @@ json starting_index(const Plan& plan, const BakeOptions& o, const json& old_inde
     json index = new_bake_index(plan);
     const bool same_hash_algorithm =
         old_index.is_object() && old_index.value("content_hash_algorithm", "") == kContentHashAlgorithm;
-    // Which files are the ones their old entries describe: the writer rank looks, every rank
-    // takes its answer (the ranks take the same path through the bake).
-    std::string described(plan.tables.size(), '0');
-    if (dist::is_writer() && same_hash_algorithm)
+    // For each table with an old entry: its file is absent ('a'), the one the entry describes
+    // ('1'), or another ('2'). The writer rank looks, every rank takes its answer (the ranks take
+    // the same path through the bake).
+    std::string described(plan.tables.size(), 'a');
+    if (dist::is_writer())
         for (size_t i = 0; i < plan.tables.size(); ++i) {
             const json* e = bake_index_entry(old_index, plan.tables[i].file);
             const std::string path = join_path(o.output, plan.tables[i].file);
-            if (e && file_exists(path) && e->value("content_hash", "") == content_hash_of_file(path)) described[i] = '1';
+            if (e && file_exists(path))
+                described[i] =
+                    same_hash_algorithm && e->value("content_hash", "") == content_hash_of_file(path) ? '1' : '2';
         }
     described = dist::exchange(described)[0];
     fresh.assign(plan.tables.size(), false);
@@ -118,9 +121,14 @@ json starting_index(const Plan& plan, const BakeOptions& o, const json& old_inde
         const std::string path = join_path(o.output, t.file);
         if (!e) continue;
         const bool same_request = e->value("request_hash", "") == t.hash;
-        if (described[i] != '1') {
-            if (same_request && dist::is_writer() && file_exists(path))
+        if (described[i] == 'a') continue;  // the entry goes with its file
+        if (described[i] == '2') {
+            // Another file than the entry describes (replaced behind the index's back, or a bake
+            // killed between the two renames of a commit): recomputed; the entry stays until its
+            // replacement commits, so that no file in the folder is without one.
+            if (same_request && dist::is_writer())
                 log_line(path + " is not the table index.json describes (content hash differs); recomputing it");
+            bake_index_set_table(index, plan, *e);
             continue;
         }
         json entry = *e;
