@@ -12,7 +12,7 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table.h"
-#include "models/input_file.h"
+#include "scene/bake_index.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -20,7 +20,7 @@ namespace brdfbake {
 namespace {
 
 namespace fs = std::filesystem;
-using Json = nlohmann::json;
+using Json = BakeIndexJson;
 
 std::string html(const std::string& text) {
     std::string out;
@@ -75,12 +75,16 @@ Verdict check_lobe(Engine& engine, const std::string& model, const std::string& 
             m = resolve_model(model);
         }
         FresnelConfig f = resolve_fresnel("none");
-        if (m.uses_fresnel && fresnel != "none") {
+        if (m.uses_fresnel) {
             try {
-                f = resolve_fresnel(fresnel, 550.0);  // measured metals: at 550 nm
-                if (f.kind != 0 && fresnel.rfind("metal:", 0) == 0) v.fresnel += " at 550 nm";
+                f = resolve_fresnel(fresnel);
             } catch (const Error&) {
-                v.fresnel = "none (" + fresnel + " is not a Fresnel spec check takes)";
+                try {
+                    f = resolve_fresnel(fresnel, 550.0);  // a measured metal (n,k by wavelength): at 550 nm
+                    v.fresnel += " at 550 nm";
+                } catch (const Error&) {
+                    v.fresnel = "none (" + fresnel + " is not a Fresnel spec check takes)";
+                }
             }
         }
         const CheckReport r = run_check(engine, m, f, options);
@@ -112,15 +116,7 @@ BakeReportOptions::BakeReportOptions() {
 }
 
 BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, const BakeReportOptions& options) {
-    const std::string index_path = (fs::path(folder) / "index.json").string();
-    Json index;
-    try {
-        index = Json::parse(read_input_file(index_path, "bake index", std::uintmax_t(64) << 20));
-    } catch (const Json::exception& e) {
-        throw Error("'" + index_path + "' is not a bake index: " + e.what());
-    }
-    if (!index.is_object() || !index.contains("brdfbake_index") || !index.contains("tables"))
-        throw Error("'" + index_path + "' is not an index.json that brdfbake bake wrote");
+    const Json index = read_bake_index(folder);
     BakeReportSummary summary;
 
     // Every lobe of every material, checked once per (model, Fresnel, roughness end).
@@ -162,8 +158,10 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
       << "; " << index["tables"].size() << " tables. The numbers come from <code>index.json</code> beside this page.</p>\n";
     if (index.contains("settings")) {
         o << "<table><tr><th>setting</th><th>value</th></tr>\n";
-        for (const auto& kv : index["settings"].items())
-            o << "<tr><td>" << html(kv.key()) << "</td><td>" << html(text_of(kv.value())) << "</td></tr>\n";
+        std::map<std::string, const Json*> settings;  // in the order of their names
+        for (const auto& kv : index["settings"].items()) settings[kv.key()] = &kv.value();
+        for (const auto& kv : settings)
+            o << "<tr><td>" << html(kv.first) << "</td><td>" << html(text_of(*kv.second)) << "</td></tr>\n";
         o << "</table>\n";
     }
     if (index.contains("warnings") && !index["warnings"].empty()) {

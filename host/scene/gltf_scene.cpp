@@ -34,6 +34,7 @@
 #include "brdfbake/error.h"
 #include "models/input_file.h"
 #include "models/key_reader.h"
+#include "scene/gltf_extensions.h"
 #include "scene/json_read.h"
 #include "scene/scene.h"
 #include "scene/texture_image.h"
@@ -46,38 +47,6 @@ using json = nlohmann::json;
 /// The largest .gltf document, JSON chunk of a .glb, or image read (bytes).
 constexpr std::uintmax_t kMaxDocumentBytes = std::uintmax_t(256) << 20;
 constexpr std::uintmax_t kMaxImageBytes = std::uintmax_t(256) << 20;
-
-/// The material extensions whose effect on tables is modelled.
-const std::set<std::string> kModelled = {"KHR_materials_ior",          "KHR_materials_specular",
-                                         "KHR_materials_transmission", "KHR_materials_volume",
-                                         "KHR_materials_clearcoat",    "KHR_materials_anisotropy",
-                                         "KHR_materials_unlit",        "KHR_materials_sheen",
-                                         "KHR_materials_variants"};
-
-/// Extensions known not to change any table (geometry, textures, lights): reported once, nothing else.
-const std::map<std::string, std::string> kNoTableEffect = {
-    {"KHR_texture_transform", "texture coordinates"},
-    {"KHR_texture_basisu", "texture compression"},
-    {"EXT_texture_webp", "texture format"},
-    {"EXT_texture_avif", "texture format"},
-    {"KHR_mesh_quantization", "geometry encoding"},
-    {"KHR_draco_mesh_compression", "geometry compression; geometry is not read"},
-    {"EXT_meshopt_compression", "geometry compression; geometry is not read"},
-    {"EXT_mesh_gpu_instancing", "instancing"},
-    {"KHR_lights_punctual", "lights"},
-    {"KHR_animation_pointer", "animation"},
-    {"KHR_xmp_json_ld", "metadata"},
-    {"KHR_materials_emissive_strength", "emission"},
-};
-
-/// Material extensions that need tables brdfbake does not compute.
-const std::map<std::string, std::string> kNotModelled = {
-    {"KHR_materials_iridescence", "thin-film interference changes the Fresnel term; tables are computed without it"},
-    {"KHR_materials_dispersion", "the index of refraction varies with wavelength; only the base ior is tabulated"},
-    {"KHR_materials_diffuse_transmission", "diffuse transmission needs no microfacet table and is not modelled"},
-    {"KHR_materials_pbrSpecularGlossiness", "the specular-glossiness workflow is not modelled; the material is "
-                                            "planned from its metallic-roughness values"},
-};
 
 std::string fmt(double v) { return format_number(v); }
 
@@ -409,217 +378,218 @@ struct MaterialReader {
     }
 };
 
+/// A lobe of `model` (a registry spec) with `role`, `fresnel` and `alpha`, needing the default kinds.
+Lobe lobe_of(const std::string& role, const std::string& model, const std::string& fresnel, Interval alpha,
+             std::optional<Interval> eta = std::nullopt) {
+    Lobe l;
+    l.role = role;
+    l.model = model_without_alpha(model);
+    l.model_name = l.model.substr(0, l.model.find(':'));
+    l.fresnel = fresnel;
+    l.alpha = alpha;
+    l.eta = eta;
+    l.kinds = default_lobe_kinds(l);
+    return l;
+}
+
+/// The material's extensions that change no table, or that are not modelled: a warning each.
+void report_extensions(const MaterialReader& m, const json* exts) {
+    if (!exts) return;
+    for (const auto& e : exts->items()) {
+        if (!e.value().is_object()) throw Error(m.where + ": extension " + e.key() + " must be an object");
+        if (!gltf_extensions::modelled(e.key()))
+            m.warnings.push_back("material '" + m.name + "': " + e.key() + " is not modelled" +
+                                 gltf_extensions::unmodelled_text(e.key(), true));
+    }
+}
+
+/// What the base layer's lobes are made of: roughness (as alpha, anisotropy included),
+/// metalness, index of refraction, transmission and specular.
+struct BaseInputs {
+    Interval alpha, metallic, transmission{0.0, 0.0}, specular{1.0, 1.0};
+    double ior = 1.5;
+    bool tinted = false;  // KHR_materials_specular tints F0
+};
+
+/// pbrMetallicRoughness and KHR_materials_anisotropy: the base's alpha and metalness.
+void read_roughness(MaterialReader& m, const json& mat, const json* anisotropy, BaseInputs& in) {
+    const json* pbr = object_at(mat, "pbrMetallicRoughness", m.where);
+    const std::string pp = "pbrMetallicRoughness";
+    const double metallic_factor = m.number(pbr, "metallicFactor", 1.0, pp);
+    const double roughness_factor = m.number(pbr, "roughnessFactor", 1.0, pp);
+    check_factor(m.where, "metallicFactor", metallic_factor, 0, 1);
+    check_factor(m.where, "roughnessFactor", roughness_factor, 0, 1);
+    // metallicRoughnessTexture: roughness in G, metallic in B (glTF 2.0, 3.9.2).
+    const Interval roughness = m.textured(pbr, "metallicRoughnessTexture", roughness_factor, 1, "roughness", pp);
+    in.metallic = m.textured(pbr, "metallicRoughnessTexture", metallic_factor, 2, "metallic", pp);
+    in.alpha = square(roughness);
+    if (in.alpha.lo < double(BB_ALPHA_MIN)) m.out.notes.push_back(alpha_floor_note(in.alpha.lo));
+
+    // Anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha (KHR_materials_anisotropy);
+    // its texture's B channel scales anisotropyStrength.
+    if (!anisotropy) return;
+    const std::string ap = "KHR_materials_anisotropy";
+    const double strength = m.number(anisotropy, "anisotropyStrength", 0.0, ap);
+    check_factor(m.where, "anisotropyStrength", strength, 0, 1);
+    const Interval s = m.textured(anisotropy, "anisotropyTexture", strength, 2, "anisotropyStrength", ap);
+    if (s.hi > 0.0) {
+        const double at_hi = in.alpha.hi + (1.0 - in.alpha.hi) * s.hi * s.hi;
+        in.alpha.hi = std::max(in.alpha.hi, at_hi);
+        m.out.notes.push_back("KHR_materials_anisotropy: isotropic tables over [alpha_b, alpha_t] = " + range_text(in.alpha));
+        m.warnings.push_back("material '" + m.name + "': KHR_materials_anisotropy is approximated: the tables are "
+                             "isotropic and cover alpha up to alpha_t = " + fmt(at_hi));
+    }
+}
+
+/// KHR_materials_ior: the index of refraction, planned at kSceneEtaMax above it.
+void read_ior(MaterialReader& m, const json* e, BaseInputs& in) {
+    if (!e) return;
+    in.ior = m.number(e, "ior", 1.5, "KHR_materials_ior");
+    if (!std::isfinite(in.ior) || in.ior < 1.0 || in.ior > 1e3)
+        throw Error(m.where + ": KHR_materials_ior: ior " + fmt(in.ior) + " is out of range [1, 1000]");
+    if (in.ior > kSceneEtaMax) {
+        auto f0 = [](double n) { return ((n - 1) / (n + 1)) * ((n - 1) / (n + 1)); };
+        m.warnings.push_back("material '" + m.name + "': KHR_materials_ior: ior " + fmt(in.ior) +
+                             " is beyond the dielectric tables' index range (at most " + fmt(kSceneEtaMax) +
+                             "); planned at eta " + fmt(kSceneEtaMax) + " (F0 " + fmt(f0(kSceneEtaMax)) + " instead of " +
+                             fmt(f0(in.ior)) + ")");
+        m.out.notes.push_back("ior " + fmt(in.ior) + " planned at eta " + fmt(kSceneEtaMax) + ", the tables' limit");
+        in.ior = kSceneEtaMax;
+    }
+}
+
+/// KHR_materials_transmission and KHR_materials_specular (read, with their types checked, whether
+/// or not a dielectric lobe uses them), and the type of KHR_materials_volume's thickness.
+void read_transmission_specular(MaterialReader& m, const json* t, const json* s, const json* v, BaseInputs& in) {
+    if (t) {
+        const std::string tp = "KHR_materials_transmission";
+        const double factor = m.number(t, "transmissionFactor", 0.0, tp);
+        check_factor(m.where, "transmissionFactor", factor, 0, 1);
+        in.transmission = m.textured(t, "transmissionTexture", factor, 0, "transmission", tp);
+    }
+    if (s) {
+        const std::string sp = "KHR_materials_specular";
+        const double factor = m.number(s, "specularFactor", 1.0, sp);
+        check_factor(m.where, "specularFactor", factor, 0, 1);
+        in.specular = m.textured(s, "specularTexture", factor, 3, "specularFactor", sp);
+        const std::vector<double> color = numbers_at(s, "specularColorFactor", {1, 1, 1}, m.where + ": " + sp);
+        for (double c : color) check_factor(m.where, "specularColorFactor", c, 0, 1e3);
+        in.tinted = m.has_texture(s, "specularColorTexture", sp) ||
+                    std::any_of(color.begin(), color.end(), [](double c) { return c != 1.0; });
+    }
+    if (v) m.number(v, "thicknessFactor", 0.0, "KHR_materials_volume");  // its type
+}
+
+/// The dielectric lobe of the non-metal part, or the note saying why there is none.
+void add_dielectric_lobe(MaterialReader& m, const BaseInputs& in, const json* volume_ext) {
+    const bool transmissive = in.transmission.hi > 0.0;
+    const bool reflects = in.specular.hi > 0.0 && in.ior > 1.0;
+    if (!reflects && !transmissive) {
+        m.out.notes.push_back(in.ior == 1.0 ? "ior 1: the dielectric interface does not reflect, no table"
+                                            : "KHR_materials_specular: specularFactor 0, no specular reflection");
+        return;
+    }
+    if (in.ior == 1.0) {
+        m.out.notes.push_back("ior 1: index-matched interface, transmission albedo 1, no table");
+        return;
+    }
+    Lobe l = lobe_of(transmissive ? "transmission" : "dielectric", "ggx", "dielectric:eta=" + fmt(in.ior), in.alpha,
+                     Interval{in.ior, in.ior});
+    if (in.specular.lo != 1.0 || in.specular.hi != 1.0)
+        m.out.notes.push_back("KHR_materials_specular: specularFactor " + range_text(in.specular) +
+                              " scales the reflection albedo (linear in F), same table");
+    if (in.tinted) {
+        // A tinted F0 makes F Schlick with a per-channel f0: E = f0 A + B (split-sum terms).
+        l.kinds.push_back(&table_kind(TableKindId::Dfg));
+        m.out.notes.push_back("KHR_materials_specular: specularColor tints F0 (Schlick), E = f0 A + B from dfg");
+    }
+    if (transmissive) {
+        // Rough glass's multiple-scattering compensation (Kulla and Conty 2017) needs the average
+        // of R + T over mu from both sides, as Cycles' ggx_glass_Eavg.
+        l.kinds.push_back(&table_kind(TableKindId::DielectricEavg));
+        m.out.notes.push_back("KHR_materials_transmission: transmission " + range_text(in.transmission) +
+                              ", rough transmission from the dielectric table");
+        bool volume = false;
+        if (const json* v = volume_ext) {
+            const std::string vp = "KHR_materials_volume";
+            const double thickness = m.number(v, "thicknessFactor", 0.0, vp);
+            if (!std::isfinite(thickness) || thickness < 0)
+                throw Error(m.where + ": KHR_materials_volume: thicknessFactor " + fmt(thickness) + " is negative");
+            volume = thickness > 0.0 && m.textured(v, "thicknessTexture", thickness, 1, "thickness", vp).hi > 0.0;
+        }
+        m.out.notes.push_back(volume ? "KHR_materials_volume: refracting volume, both sides of the interface (eta and 1/eta)"
+                                     : "thin-walled (no volume): the outside of the interface only");
+    } else if (volume_ext) {
+        m.out.notes.push_back("KHR_materials_volume without transmission has no effect");
+    }
+    m.out.lobes.push_back(l);
+}
+
+/// Clear coat: a GGX dielectric layer with ior 1.5 (fixed by KHR_materials_clearcoat) and its own
+/// roughness; its reflection albedo weights the base by 1 - E_coat. Textures: clearcoat in R,
+/// clearcoat roughness in G.
+void add_clearcoat_lobe(MaterialReader& m, const json* c) {
+    if (!c) return;
+    const std::string cp = "KHR_materials_clearcoat";
+    const double factor = m.number(c, "clearcoatFactor", 0.0, cp);
+    check_factor(m.where, "clearcoatFactor", factor, 0, 1);
+    if (!(m.textured(c, "clearcoatTexture", factor, 0, "clearcoat", cp).hi > 0.0)) return;
+    const double cr = m.number(c, "clearcoatRoughnessFactor", 0.0, cp);
+    check_factor(m.where, "clearcoatRoughnessFactor", cr, 0, 1);
+    const Interval r = m.textured(c, "clearcoatRoughnessTexture", cr, 1, "clearcoat roughness", cp);
+    const Lobe l = lobe_of("clearcoat", "ggx", "dielectric:eta=1.5", square(r), Interval{1.5, 1.5});
+    m.out.notes.push_back("KHR_materials_clearcoat: GGX coat, eta 1.5, roughness " + range_text(r));
+    if (l.alpha.lo < double(BB_ALPHA_MIN)) m.out.notes.push_back("clearcoat: " + alpha_floor_note(l.alpha.lo));
+    m.out.lobes.push_back(l);
+}
+
+/// Sheen: the Charlie lobe of Estevez and Kulla 2017 with alpha = sheenRoughness^2 and the
+/// specification's visibility (charlie), layered over the rest; its directional albedo scales the
+/// layer beneath (KHR_materials_sheen, "Sheen layering"). A black sheen adds nothing. Textures:
+/// sheen colour in RGB, sheen roughness in A.
+void add_sheen_lobe(MaterialReader& m, const json* s) {
+    if (!s) return;
+    const std::string sp = "KHR_materials_sheen";
+    const std::vector<double> color = numbers_at(s, "sheenColorFactor", {0, 0, 0}, m.where + ": " + sp);
+    for (double c : color) check_factor(m.where, "KHR_materials_sheen: sheenColorFactor", c, 0, 1);
+    const double sr = m.number(s, "sheenRoughnessFactor", 0.0, sp);
+    check_factor(m.where, "KHR_materials_sheen: sheenRoughnessFactor", sr, 0, 1);
+    bool colored = false;
+    for (size_t ch = 0; ch < std::min<size_t>(3, color.size()); ++ch)
+        colored = colored || m.textured(s, "sheenColorTexture", color[ch], int(ch), "sheenColor", sp).hi > 0.0;
+    if (!colored) {
+        m.out.notes.push_back("KHR_materials_sheen: sheenColorFactor 0, no sheen, no table");
+        return;
+    }
+    const Interval r = m.textured(s, "sheenRoughnessTexture", sr, 3, "sheenRoughness", sp);
+    const Lobe l = lobe_of("sheen", "sheen", "none", square(r));
+    m.out.notes.push_back("KHR_materials_sheen: Charlie sheen, sheenRoughness " + range_text(r) +
+                          ", charlie visibility; its albedo scales the base (1 - max(sheenColor) E)");
+    if (l.alpha.lo < double(BB_ALPHA_MIN)) m.out.notes.push_back("sheen: " + alpha_floor_note(l.alpha.lo));
+    m.out.lobes.push_back(l);
+}
+
 SceneMaterial map_material(Document& d, const json& mat, const std::string& name, std::vector<std::string>& warnings) {
     SceneMaterial out;
     out.name = name;
     MaterialReader m{d, d.label + ": material '" + name + "'", name, out, warnings};
-    const std::string& where = m.where;
-    const std::string ggx = model_without_alpha("ggx");
-    if (!mat.is_object()) throw Error(where + " must be an object");
-
-    const json* exts = object_at(mat, "extensions", where);
-    if (exts)
-        for (const auto& e : exts->items()) {
-            if (!e.value().is_object()) throw Error(where + ": extension " + e.key() + " must be an object");
-            if (kModelled.count(e.key())) continue;
-            auto nt = kNoTableEffect.find(e.key());
-            if (nt != kNoTableEffect.end()) {
-                warnings.push_back("material '" + name + "': " + e.key() + " is not modelled (" + nt->second +
-                                   "; does not change the tables)");
-                continue;
-            }
-            auto nm = kNotModelled.find(e.key());
-            warnings.push_back("material '" + name + "': " + e.key() + " is not modelled" +
-                               (nm != kNotModelled.end() ? " (" + nm->second + ")" : "") + "; its other lobes are planned");
-        }
-    auto ext = [&](const char* key) -> const json* { return exts ? object_at(*exts, key, where) : nullptr; };
+    if (!mat.is_object()) throw Error(m.where + " must be an object");
+    const json* exts = object_at(mat, "extensions", m.where);
+    report_extensions(m, exts);
+    auto ext = [&](const char* key) -> const json* { return exts ? object_at(*exts, key, m.where) : nullptr; };
     if (ext("KHR_materials_unlit")) {
         out.notes.push_back("KHR_materials_unlit: no BRDF, no table");
         return out;
     }
-
-    const json* pbr = object_at(mat, "pbrMetallicRoughness", where);
-    const std::string pp = "pbrMetallicRoughness";
-    const double metallic_factor = m.number(pbr, "metallicFactor", 1.0, pp);
-    const double roughness_factor = m.number(pbr, "roughnessFactor", 1.0, pp);
-    check_factor(where, "metallicFactor", metallic_factor, 0, 1);
-    check_factor(where, "roughnessFactor", roughness_factor, 0, 1);
-    // metallicRoughnessTexture: roughness in G, metallic in B (glTF 2.0, 3.9.2).
-    const Interval roughness = m.textured(pbr, "metallicRoughnessTexture", roughness_factor, 1, "roughness", pp);
-    const Interval metallic = m.textured(pbr, "metallicRoughnessTexture", metallic_factor, 2, "metallic", pp);
-    Interval alpha = square(roughness);
-    if (alpha.lo < double(BB_ALPHA_MIN)) out.notes.push_back(alpha_floor_note(alpha.lo));
-
-    // Anisotropy: alpha_t = mix(alpha, 1, strength^2), alpha_b = alpha (KHR_materials_anisotropy);
-    // its texture's B channel scales anisotropyStrength.
-    if (const json* a = ext("KHR_materials_anisotropy")) {
-        const std::string ap = "KHR_materials_anisotropy";
-        const double strength = m.number(a, "anisotropyStrength", 0.0, ap);
-        check_factor(where, "anisotropyStrength", strength, 0, 1);
-        const Interval s = m.textured(a, "anisotropyTexture", strength, 2, "anisotropyStrength", ap);
-        if (s.hi > 0.0) {
-            const double at_hi = alpha.hi + (1.0 - alpha.hi) * s.hi * s.hi;
-            alpha.hi = std::max(alpha.hi, at_hi);
-            out.notes.push_back("KHR_materials_anisotropy: isotropic tables over [alpha_b, alpha_t] = " + range_text(alpha));
-            warnings.push_back("material '" + name + "': KHR_materials_anisotropy is approximated: the tables are "
-                               "isotropic and cover alpha up to alpha_t = " + fmt(at_hi));
-        }
-    }
-
-    // Index of refraction.
-    double ior = 1.5;
-    if (const json* e = ext("KHR_materials_ior")) {
-        ior = m.number(e, "ior", 1.5, "KHR_materials_ior");
-        if (!std::isfinite(ior) || ior < 1.0 || ior > 1e3)
-            throw Error(where + ": KHR_materials_ior: ior " + fmt(ior) + " is out of range [1, 1000]");
-        if (ior > kSceneEtaMax) {
-            auto f0 = [](double n) { return ((n - 1) / (n + 1)) * ((n - 1) / (n + 1)); };
-            warnings.push_back("material '" + name + "': KHR_materials_ior: ior " + fmt(ior) +
-                               " is beyond the dielectric tables' index range (at most " + fmt(kSceneEtaMax) +
-                               "); planned at eta " + fmt(kSceneEtaMax) + " (F0 " + fmt(f0(kSceneEtaMax)) + " instead of " +
-                               fmt(f0(ior)) + ")");
-            out.notes.push_back("ior " + fmt(ior) + " planned at eta " + fmt(kSceneEtaMax) + ", the tables' limit");
-            ior = kSceneEtaMax;
-        }
-    }
-
-    // Transmission and specular (read, with their types checked, whether or not a dielectric
-    // lobe uses them).
-    Interval transmission{0.0, 0.0};
-    if (const json* t = ext("KHR_materials_transmission")) {
-        const std::string tp = "KHR_materials_transmission";
-        const double factor = m.number(t, "transmissionFactor", 0.0, tp);
-        check_factor(where, "transmissionFactor", factor, 0, 1);
-        transmission = m.textured(t, "transmissionTexture", factor, 0, "transmission", tp);
-    }
-    const bool transmissive = transmission.hi > 0.0;
-    Interval specular{1.0, 1.0};
-    bool tinted = false;
-    if (const json* s = ext("KHR_materials_specular")) {
-        const std::string sp = "KHR_materials_specular";
-        const double factor = m.number(s, "specularFactor", 1.0, sp);
-        check_factor(where, "specularFactor", factor, 0, 1);
-        specular = m.textured(s, "specularTexture", factor, 3, "specularFactor", sp);
-        const std::vector<double> color = numbers_at(s, "specularColorFactor", {1, 1, 1}, where + ": " + sp);
-        for (double c : color) check_factor(where, "specularColorFactor", c, 0, 1e3);
-        tinted = m.has_texture(s, "specularColorTexture", sp) ||
-                 std::any_of(color.begin(), color.end(), [](double c) { return c != 1.0; });
-    }
-    if (const json* v = ext("KHR_materials_volume")) m.number(v, "thicknessFactor", 0.0, "KHR_materials_volume");  // its type
-
-    // Metal lobe.
-    if (metallic.hi > 0.0) {
-        Lobe l;
-        l.role = "metal";
-        l.model = ggx;
-        l.model_name = "ggx";
-        l.fresnel = "schlick:f0=baseColor";
-        l.alpha = alpha;
-        l.kinds = default_lobe_kinds(l);
-        out.lobes.push_back(l);
-    }
-
-    // Dielectric lobe (the non-metal part).
-    if (metallic.lo < 1.0) {
-        const bool reflects = specular.hi > 0.0 && ior > 1.0;
-        if (!reflects && !transmissive) {
-            out.notes.push_back(ior == 1.0 ? "ior 1: the dielectric interface does not reflect, no table"
-                                           : "KHR_materials_specular: specularFactor 0, no specular reflection");
-        } else if (ior == 1.0) {
-            out.notes.push_back("ior 1: index-matched interface, transmission albedo 1, no table");
-        } else {
-            Lobe l;
-            l.role = transmissive ? "transmission" : "dielectric";
-            l.model = ggx;
-            l.model_name = "ggx";
-            l.fresnel = "dielectric:eta=" + fmt(ior);
-            l.alpha = alpha;
-            l.eta = Interval{ior, ior};
-            l.kinds = default_lobe_kinds(l);
-            if (specular.lo != 1.0 || specular.hi != 1.0)
-                out.notes.push_back("KHR_materials_specular: specularFactor " + range_text(specular) +
-                                    " scales the reflection albedo (linear in F), same table");
-            if (tinted) {
-                // A tinted F0 makes F Schlick with a per-channel f0: E = f0 A + B (split-sum terms).
-                l.kinds.push_back(&table_kind(TableKindId::Dfg));
-                out.notes.push_back("KHR_materials_specular: specularColor tints F0 (Schlick), E = f0 A + B from dfg");
-            }
-            if (transmissive) {
-                // Rough glass's multiple-scattering compensation (Kulla and Conty 2017) needs the
-                // average of R + T over mu from both sides, as Cycles' ggx_glass_Eavg.
-                l.kinds.push_back(&table_kind(TableKindId::DielectricEavg));
-                out.notes.push_back("KHR_materials_transmission: transmission " + range_text(transmission) +
-                                    ", rough transmission from the dielectric table");
-                bool volume = false;
-                if (const json* v = ext("KHR_materials_volume")) {
-                    const std::string vp = "KHR_materials_volume";
-                    const double thickness = m.number(v, "thicknessFactor", 0.0, vp);
-                    if (!std::isfinite(thickness) || thickness < 0)
-                        throw Error(where + ": KHR_materials_volume: thicknessFactor " + fmt(thickness) + " is negative");
-                    volume = thickness > 0.0 && m.textured(v, "thicknessTexture", thickness, 1, "thickness", vp).hi > 0.0;
-                }
-                out.notes.push_back(volume ? "KHR_materials_volume: refracting volume, both sides of the interface (eta and 1/eta)"
-                                           : "thin-walled (no volume): the outside of the interface only");
-            } else if (ext("KHR_materials_volume")) {
-                out.notes.push_back("KHR_materials_volume without transmission has no effect");
-            }
-            out.lobes.push_back(l);
-        }
-    }
-
-    // Clear coat: a GGX dielectric layer with ior 1.5 (fixed by KHR_materials_clearcoat) and its own
-    // roughness; its reflection albedo weights the base by 1 - E_coat. Textures: clearcoat in R,
-    // clearcoat roughness in G.
-    if (const json* c = ext("KHR_materials_clearcoat")) {
-        const std::string cp = "KHR_materials_clearcoat";
-        const double factor = m.number(c, "clearcoatFactor", 0.0, cp);
-        check_factor(where, "clearcoatFactor", factor, 0, 1);
-        if (m.textured(c, "clearcoatTexture", factor, 0, "clearcoat", cp).hi > 0.0) {
-            const double cr = m.number(c, "clearcoatRoughnessFactor", 0.0, cp);
-            check_factor(where, "clearcoatRoughnessFactor", cr, 0, 1);
-            Lobe l;
-            l.role = "clearcoat";
-            l.model = ggx;
-            l.model_name = "ggx";
-            l.fresnel = "dielectric:eta=1.5";
-            const Interval r = m.textured(c, "clearcoatRoughnessTexture", cr, 1, "clearcoat roughness", cp);
-            l.alpha = square(r);
-            l.eta = Interval{1.5, 1.5};
-            l.kinds = default_lobe_kinds(l);
-            out.notes.push_back("KHR_materials_clearcoat: GGX coat, eta 1.5, roughness " + range_text(r));
-            if (l.alpha.lo < double(BB_ALPHA_MIN)) out.notes.push_back("clearcoat: " + alpha_floor_note(l.alpha.lo));
-            out.lobes.push_back(l);
-        }
-    }
-    // Sheen: the Charlie lobe of Estevez and Kulla 2017 with alpha = sheenRoughness^2 and the
-    // specification's visibility (charlie), layered over the rest; its directional albedo scales
-    // the layer beneath (KHR_materials_sheen, "Sheen layering"). A black sheen adds nothing.
-    // Textures: sheen colour in RGB, sheen roughness in A.
-    if (const json* s = ext("KHR_materials_sheen")) {
-        const std::string sp = "KHR_materials_sheen";
-        const std::vector<double> color = numbers_at(s, "sheenColorFactor", {0, 0, 0}, where + ": " + sp);
-        for (double c : color) check_factor(where, "KHR_materials_sheen: sheenColorFactor", c, 0, 1);
-        const double sr = m.number(s, "sheenRoughnessFactor", 0.0, sp);
-        check_factor(where, "KHR_materials_sheen: sheenRoughnessFactor", sr, 0, 1);
-        bool colored = false;
-        for (size_t ch = 0; ch < std::min<size_t>(3, color.size()); ++ch)
-            colored = colored || m.textured(s, "sheenColorTexture", color[ch], int(ch), "sheenColor", sp).hi > 0.0;
-        if (!colored) {
-            out.notes.push_back("KHR_materials_sheen: sheenColorFactor 0, no sheen, no table");
-        } else {
-            const Interval r = m.textured(s, "sheenRoughnessTexture", sr, 3, "sheenRoughness", sp);
-            Lobe l;
-            l.role = "sheen";
-            l.model = model_without_alpha("sheen");
-            l.model_name = "sheen";
-            l.alpha = square(r);
-            l.kinds = default_lobe_kinds(l);
-            out.notes.push_back("KHR_materials_sheen: Charlie sheen, sheenRoughness " + range_text(r) +
-                                ", charlie visibility; its albedo scales the base (1 - max(sheenColor) E)");
-            if (l.alpha.lo < double(BB_ALPHA_MIN)) out.notes.push_back("sheen: " + alpha_floor_note(l.alpha.lo));
-            out.lobes.push_back(l);
-        }
-    }
+    BaseInputs in;
+    read_roughness(m, mat, ext("KHR_materials_anisotropy"), in);
+    read_ior(m, ext("KHR_materials_ior"), in);
+    read_transmission_specular(m, ext("KHR_materials_transmission"), ext("KHR_materials_specular"),
+                               ext("KHR_materials_volume"), in);
+    if (in.metallic.hi > 0.0) out.lobes.push_back(lobe_of("metal", "ggx", "schlick:f0=baseColor", in.alpha));
+    if (in.metallic.lo < 1.0) add_dielectric_lobe(m, in, ext("KHR_materials_volume"));
+    add_clearcoat_lobe(m, ext("KHR_materials_clearcoat"));
+    add_sheen_lobe(m, ext("KHR_materials_sheen"));
     if (out.lobes.empty() && out.notes.empty()) out.notes.push_back("no lobe needs a table");
     return out;
 }
@@ -716,13 +686,8 @@ Scene load_gltf_scene(const std::string& path) {
         for (const auto& x : d.j["extensionsUsed"]) {
             if (!x.is_string()) throw Error(d.label + ": 'extensionsUsed' must hold strings");
             const std::string e = x.get<std::string>();
-            if (material_exts.count(e) || kModelled.count(e)) continue;  // reported per material, or modelled
-            auto nt = kNoTableEffect.find(e);
-            if (nt != kNoTableEffect.end())
-                scene.warnings.push_back("extension " + e + " is not modelled (" + nt->second + "; does not change the tables)");
-            else
-                scene.warnings.push_back("extension " + e + " is not modelled" +
-                                         (kNotModelled.count(e) ? " (" + kNotModelled.at(e) + ")" : ""));
+            if (material_exts.count(e) || gltf_extensions::modelled(e)) continue;  // reported per material, or modelled
+            scene.warnings.push_back("extension " + e + " is not modelled" + gltf_extensions::unmodelled_text(e, false));
         }
     }
     return scene;

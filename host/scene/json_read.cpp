@@ -19,75 +19,103 @@ std::string one_line(std::string s) {
     return s;
 }
 
-/// One open object or array while parsing: its keys so far (objects), the key being read, the
-/// index of the next element (arrays), and how it is reached from its parent.
+/// One open object or array while parsing: its keys so far (objects), the key being read, and
+/// the index of the next element (arrays). The path to it is the stack's keys and indices, put
+/// together only for a message (a copy per frame would cost the square of the depth).
 struct Frame {
     bool array = false;
     std::set<std::string> keys;
     std::string key;
     std::size_t index = 0;
-    std::string step;        // ".name" or "[i]" (empty at the root)
-    json::json_pointer ptr;  // the same as a JSON pointer
+};
+
+/// The first pass over a document: nlohmann-json's SAX events, checked for the bounds (before
+/// anything is built) and for duplicate keys. Building the document is the second pass, without a
+/// callback (nlohmann-json 3.11's callback parser rescans an array at the end of each object in
+/// it: the square of the number of materials).
+class Checker : public nlohmann::json_sax<json> {
+public:
+    std::string bound, error;  // past a bound; the parse error
+    bool duplicate = false;
+    std::string dup_key, dup_path;
+    json::json_pointer dup_ptr;
+
+    bool null() override { return value(); }
+    bool boolean(bool) override { return value(); }
+    bool number_integer(number_integer_t) override { return value(); }
+    bool number_unsigned(number_unsigned_t) override { return value(); }
+    bool number_float(number_float_t, const string_t&) override { return value(); }
+    bool string(string_t&) override { return value(); }
+    bool binary(binary_t&) override { return value(); }
+    bool start_object(std::size_t) override { return open(false); }
+    bool start_array(std::size_t) override { return open(true); }
+    bool end_object() override { return close(); }
+    bool end_array() override { return close(); }
+    bool key(string_t& k) override {
+        Frame& f = stack_.back();
+        f.key = k;
+        if (!f.keys.insert(f.key).second && !duplicate) {
+            duplicate = true;
+            dup_key = f.key;
+            // The path of the object: each enclosing frame's step into its child.
+            for (size_t i = 0; i + 1 < stack_.size(); ++i) {
+                const Frame& p = stack_[i];
+                dup_path += p.array ? "[" + std::to_string(p.index) + "]" : (i == 0 ? "" : ".") + p.key;
+                dup_ptr = p.array ? dup_ptr / p.index : dup_ptr / p.key;
+            }
+        }
+        return true;
+    }
+    bool parse_error(std::size_t, const std::string&, const nlohmann::detail::exception& e) override {
+        error = e.what();
+        return false;
+    }
+
+private:
+    bool open(bool array) {
+        if (stack_.size() >= kMaxJsonDepth) {
+            bound = "arrays and objects nest deeper than " + std::to_string(kMaxJsonDepth) + " levels";
+            return false;
+        }
+        stack_.emplace_back();
+        stack_.back().array = array;
+        return true;
+    }
+    bool close() {
+        stack_.pop_back();
+        return value();
+    }
+    bool value() {
+        if (++values_ > kMaxJsonValues) {
+            bound = "more than " + std::to_string(kMaxJsonValues) + " values (numbers, strings, arrays, objects)";
+            return false;
+        }
+        if (!stack_.empty() && stack_.back().array) ++stack_.back().index;
+        return true;
+    }
+
+    std::vector<Frame> stack_;
+    std::size_t values_ = 0;
 };
 
 }  // namespace
 
 json parse_strict(const std::string& text, const std::string& label) {
-    std::vector<Frame> stack;
-    std::string dup_key, dup_path;
-    json::json_pointer dup_ptr;
-    bool duplicate = false;
-    auto child_started = [&](bool array) {
-        Frame f;
-        f.array = array;
-        if (!stack.empty()) {
-            const Frame& p = stack.back();
-            f.step = p.array ? "[" + std::to_string(p.index) + "]" : (p.step.empty() && stack.size() == 1 ? "" : ".") + p.key;
-            f.ptr = p.array ? p.ptr / p.index : p.ptr / p.key;
-        }
-        stack.push_back(std::move(f));
-    };
-    auto element_done = [&] {
-        if (!stack.empty() && stack.back().array) ++stack.back().index;
-    };
-    const json::parser_callback_t cb = [&](int, json::parse_event_t event, json& parsed) {
-        switch (event) {
-            case json::parse_event_t::object_start: child_started(false); break;
-            case json::parse_event_t::array_start: child_started(true); break;
-            case json::parse_event_t::object_end:
-            case json::parse_event_t::array_end:
-                stack.pop_back();
-                element_done();
-                break;
-            case json::parse_event_t::key:
-                if (!stack.empty()) {
-                    Frame& f = stack.back();
-                    f.key = parsed.get<std::string>();
-                    if (!f.keys.insert(f.key).second && !duplicate) {
-                        duplicate = true;
-                        dup_key = f.key;
-                        for (const Frame& x : stack) dup_path += x.step;
-                        dup_ptr = f.ptr;
-                    }
-                }
-                break;
-            case json::parse_event_t::value: element_done(); break;
-        }
-        return true;
-    };
-    json j;
-    try {
-        j = json::parse(text, cb);
-    } catch (const json::parse_error& e) {
-        std::string what = e.what();
+    Checker check;
+    json::sax_parse(text, &check);
+    if (!check.bound.empty())
+        throw Error(label + ": " + check.bound + "; brdfbake reads no deeper or larger documents (README, Limits)");
+    if (!check.error.empty()) {
+        std::string what = check.error;
         const size_t p = what.find("] ");
         if (what.rfind("[json.exception", 0) == 0 && p != std::string::npos) what = what.substr(p + 2);
         throw Error(label + " is not valid JSON: " + one_line(what));
     }
-    if (duplicate) {
+    const json j = json::parse(text);
+    if (check.duplicate) {
         // The nearest enclosing object with a "name" names the material (or node, or texture).
         std::string named;
-        json::json_pointer ptr = dup_ptr;
+        json::json_pointer ptr = check.dup_ptr;
         while (true) {
             if (j.contains(ptr)) {
                 const json& o = j.at(ptr);
@@ -99,8 +127,8 @@ json parse_strict(const std::string& text, const std::string& label) {
             if (ptr.empty()) break;
             ptr = ptr.parent_pointer();
         }
-        throw Error(label + ": key '" + dup_key + "' is given twice in " +
-                    (dup_path.empty() ? std::string("the top-level object") : dup_path) +
+        throw Error(label + ": key '" + check.dup_key + "' is given twice in " +
+                    (check.dup_path.empty() ? std::string("the top-level object") : check.dup_path) +
                     (named.empty() ? "" : " ('" + named + "')") + "; give each key once");
     }
     return j;

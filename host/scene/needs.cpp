@@ -14,8 +14,10 @@ std::vector<const TableKind*> default_lobe_kinds(const Lobe& lobe) {
     // A dielectric interface: its reflection and transmission over (mu, alpha, eta). Any other
     // lobe: the albedo with F = 1 and its average, which serve every Fresnel at render time.
     if (lobe.eta) return {&table_kind(TableKindId::Dielectric)};
-    // A sheen lobe (KHR_materials_sheen): its directional albedo, which scales the layer beneath.
-    if (lobe.model_name == "sheen") return {&table_kind(TableKindId::SheenAlbedo)};
+    // A lobe of a model that has its own kind (sheen: its directional albedo, which scales the
+    // layer beneath): that kind.
+    for (const TableKind* kind : table_kinds())
+        if (!kind->required_model.empty() && kind->required_model == lobe.model_name) return {kind};
     return {&table_kind(TableKindId::Albedo), &table_kind(TableKindId::Eavg)};
 }
 
@@ -25,7 +27,8 @@ const TableKind& lobe_table_kind(const std::string& name, const Lobe& lobe, cons
     if (kind->eta_axis && !lobe.eta) throw Error(ctx + ": " + kind->lobe_requirement);
     if (kind->needs_conductor_fresnel && !scene_text::is_conductor_fresnel(lobe.fresnel))
         throw Error(ctx + ": " + kind->lobe_requirement);
-    if (kind->id == TableKindId::SheenAlbedo && lobe.model_name != "sheen") throw Error(ctx + ": " + kind->lobe_requirement);
+    if (!kind->required_model.empty() && lobe.model_name != kind->required_model)
+        throw Error(ctx + ": " + kind->lobe_requirement);
     return *kind;
 }
 

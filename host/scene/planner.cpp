@@ -8,6 +8,8 @@
 #include <set>
 #include <sstream>
 #include <thread>
+#include <tuple>
+#include <unordered_set>
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
@@ -167,6 +169,313 @@ constexpr double kStartupSeconds = 0.3;
 /// 16^3 reciprocity pairs; measured: 4 checks add 1.3 s of CPU to examples/scene.json's bake).
 constexpr double kSecondsPerReportCheck = 0.35;
 
+
+/// What a group of lobes needs: one table per (kind, model, Fresnel in the table).
+struct Group {
+    const TableKind* kind = nullptr;
+    std::string model, model_name, fresnel;
+    double wavelength = 0.0;
+    Interval alpha;
+    std::optional<Interval> eta;
+    std::vector<std::string> serves, materials;
+    std::unordered_set<std::string> serves_seen, materials_seen;  // for adding each once, fast
+    bool transmission = false;  // serves a lobe that transmits
+};
+
+/// Appends `x` unless `seen` has it (a list of a scene's many materials stays linear to build).
+void add_once(std::vector<std::string>& list, std::unordered_set<std::string>& seen, const std::string& x) {
+    if (seen.insert(x).second) list.push_back(x);
+}
+
+/// The scene's table needs grouped: one group per (kind, model, Fresnel in the table), with the
+/// roughness (and eta) ranges of its lobes merged; materials without lobes go to plan.no_table.
+std::vector<Group> group_needs(const std::vector<SceneMaterial>& materials, Plan& plan) {
+    std::vector<Group> groups;
+    std::map<std::tuple<const TableKind*, std::string, std::string, double>, size_t> index;
+    for (const auto& m : materials) {
+        if (m.lobes.empty()) {
+            plan.no_table.push_back(m.name + (m.notes.empty() ? "" : " (" + m.notes.front() + ")"));
+            continue;
+        }
+        for (const auto& lobe : m.lobes) {
+            for (const TableKind* kind : lobe.kinds) {
+                // Which Fresnel the table itself holds: albedo and eavg are computed with F = 1 (the
+                // lobe's Fresnel enters at render time through its hemispherical average), the
+                // split-sum kinds factor it out, a dielectric table has eta as an axis; only a
+                // conductor table bakes the lobe's own Fresnel in.
+                const std::string fresnel = kind->bakes_lobe_fresnel ? lobe.fresnel : "none";
+                const double wl = kind->bakes_lobe_fresnel ? lobe.wavelength_nm : 0.0;
+                const auto [at, added] = index.emplace(std::make_tuple(kind, lobe.model, fresnel, wl), groups.size());
+                if (added) {
+                    Group g;
+                    g.kind = kind;
+                    g.model = lobe.model;
+                    g.model_name = lobe.model_name;
+                    g.fresnel = fresnel;
+                    g.wavelength = wl;
+                    g.alpha = lobe.alpha;
+                    if (kind->eta_axis) g.eta = lobe.eta;
+                    groups.push_back(std::move(g));
+                }
+                Group& g = groups[at->second];
+                if (!added) {
+                    g.alpha.lo = std::min(g.alpha.lo, lobe.alpha.lo);
+                    g.alpha.hi = std::max(g.alpha.hi, lobe.alpha.hi);
+                    if (kind->eta_axis && lobe.eta) {
+                        g.eta->lo = std::min(g.eta->lo, lobe.eta->lo);
+                        g.eta->hi = std::max(g.eta->hi, lobe.eta->hi);
+                    }
+                }
+                g.transmission = g.transmission || lobe.role == "transmission";
+                add_once(g.serves, g.serves_seen, m.name + " (" + lobe.role + ")");
+                add_once(g.materials, g.materials_seen, m.name);
+            }
+        }
+    }
+    return groups;
+}
+
+/// One table in `preset`'s layout for `kind` and `model`, serving the groups `take` selects.
+PlannedTable engine_table(const LutPreset& preset, const SceneSettings& s, const std::string& kind,
+                          const std::string& model, const std::string& file, const std::vector<Group>& groups,
+                          const std::function<bool(const Group&)>& take) {
+    PlannedTable t;
+    t.kind = &table_kind_by_name(kind);
+    LutRequest& r = t.request;
+    r.kind = kind;
+    preset.apply(r);
+    r.model = model_without_alpha(model);
+    if (!(r.tolerance.tolerance > 0)) r.samples = s.samples;
+    if (s.size_from_command_line) {
+        if (t.kind->one_dimensional) r.width = s.alpha_texels;
+        else {
+            r.width = s.mu_texels;
+            r.height = s.alpha_texels;
+        }
+    }
+    const int n = t.kind->one_dimensional ? r.width : r.height;
+    const bool edge = r.texels == Texels::Edge;
+    const double first = edge ? r.alpha_lo : centre_of(r.alpha_lo, r.alpha_hi, n, 0);
+    const double last = edge ? r.alpha_hi : centre_of(r.alpha_lo, r.alpha_hi, n, n - 1);
+    t.alpha_centres = {alpha_of_coordinate(first, r.alpha_map), alpha_of_coordinate(last, r.alpha_map)};
+    t.alpha = {alpha_of_coordinate(r.alpha_lo, r.alpha_map), alpha_of_coordinate(r.alpha_hi, r.alpha_map)};
+    t.layout = preset.engine + " (preset " + preset.name + "): " + preset.summary +
+               (s.size_from_command_line ? "; size from the command line" : "");
+    t.half = preset.half;
+    t.file = file;
+    if (t.kind->eta_axis) {  // the preset's eta axis (apply_eta_axis copies it back)
+        t.eta_lo = r.eta_lo;
+        t.eta_hi = r.eta_hi;
+        t.depth = r.depth;
+    }
+    std::unordered_set<std::string> serves_seen, materials_seen;
+    for (const Group& g : groups)
+        if (take(g)) {
+            for (const auto& x : g.serves) add_once(t.serves, serves_seen, x);
+            for (const auto& x : g.materials) add_once(t.materials, materials_seen, x);
+        }
+    return t;
+}
+
+/// The engine layouts: --target gltf bakes the glTF renderers' set; --preset NAME gives the tables
+/// of the preset's kinds (of its model) in the engine's layout instead of the scene's. The groups
+/// they serve leave `groups`.
+std::vector<PlannedTable> plan_engine_tables(const SceneSettings& s, std::vector<Group>& groups, Plan& plan) {
+    std::vector<PlannedTable> out;
+    if (s.target.empty() && s.preset.empty()) return out;
+    const LutPreset& preset = lut_preset(s.target.empty() ? s.preset : s.target);
+    if (s.target == "gltf") {
+        // The glTF Sample Viewer's LUTs: the split-sum GGX table for every GGX lobe, the sheen
+        // tables (lut_charlie: the ashikhmin visibility of its IBL; lut_sheen_E: the charlie
+        // visibility of KHR_materials_sheen's albedo scaling; docs/models.md) when a sheen is
+        // present, and the scene's dielectric tables where a lobe transmits.
+        LutRequest dfg;  // the preset's split-sum table, of its model
+        dfg.kind = "dfg";
+        preset.apply(dfg);
+        const std::string dfg_model = model_without_alpha(dfg.model);
+        out.push_back(engine_table(preset, s, dfg.kind, dfg_model, "lut_ggx." + preset.extension, groups,
+                                   [&](const Group& g) { return g.model == dfg_model; }));
+        const TableKind& sheen = table_kind(TableKindId::SheenAlbedo);
+        auto is_sheen = [&](const Group& g) { return g.model_name == sheen.required_model; };
+        if (std::any_of(groups.begin(), groups.end(), is_sheen)) {
+            out.push_back(engine_table(preset, s, sheen.name, sheen.required_model + ":visibility=ashikhmin",
+                                       "lut_charlie." + preset.extension, groups, is_sheen));
+            out.push_back(engine_table(preset, s, sheen.name, sheen.required_model + ":visibility=charlie",
+                                       "lut_sheen_E." + preset.extension, groups, is_sheen));
+        }
+        groups.erase(std::remove_if(groups.begin(), groups.end(),
+                                    [](const Group& g) { return !(g.kind->eta_axis && g.transmission); }),
+                     groups.end());
+        return out;
+    }
+    std::vector<std::string> preset_models;  // "kind: model", for the warning below
+    for (const std::string& kind : preset.kinds) {
+        // The preset's model for this kind (Cycles' glass tables use its transmission shadowing,
+        // its other tables the default).
+        LutRequest probe;
+        probe.kind = kind;
+        preset.apply(probe);
+        const std::string preset_model = model_without_alpha(probe.model);
+        preset_models.push_back(kind + ": " + preset_model);
+        auto ours = [&](const Group& g) { return g.kind->name == kind && g.model == preset_model; };
+        if (std::none_of(groups.begin(), groups.end(), ours)) continue;
+        out.push_back(engine_table(preset, s, kind, preset_model, preset.name + "-" + kind + "." + preset.extension,
+                                   groups, ours));
+        groups.erase(std::remove_if(groups.begin(), groups.end(), ours), groups.end());
+    }
+    if (out.empty())
+        plan.warnings.push_back("--preset " + preset.name + ": no table of the scene is of the preset's kinds and "
+                                "models (" + join(preset_models) + "); the scene's tables are planned as usual");
+    return out;
+}
+
+/// File names (without extension): kind-model, with the model's non-default keys (and a
+/// conductor's Fresnel) where they tell two tables apart, and a short hash where even that does not.
+std::vector<std::string> table_names(const std::vector<Group>& groups) {
+    auto sanitize = [](std::string x) {
+        for (char& c : x)
+            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '-';
+        return x;
+    };
+    std::vector<std::string> names;
+    for (const auto& g : groups) {
+        std::string n = g.kind->name + "-" + g.model_name;
+        if (g.model != model_without_alpha(g.model_name) && g.model.find(':') != std::string::npos)
+            n += "-" + sanitize(g.model.substr(g.model.find(':') + 1));
+        if (g.kind->bakes_lobe_fresnel) n += "-" + sanitize(g.fresnel) + (g.wavelength > 0 ? "-" + format_number(g.wavelength) + "nm" : "");
+        names.push_back(n);
+    }
+    std::map<std::string, int> name_count;
+    for (const auto& n : names) ++name_count[n];
+    for (size_t i = 0; i < names.size(); ++i)
+        if (name_count[names[i]] > 1) names[i] += "-" + hex64(fnv1a(groups[i].model + "|" + groups[i].fresnel)).substr(0, 6);
+    return names;
+}
+
+/// Sizes, estimates, file name, request key and hash of a table whose request is set, and whether
+/// this build can compute it; then adds it to the plan.
+void finish_table(Plan& plan, PlannedTable t, const std::string& file, bool half, const std::string& model_name) {
+    const LutRequest& r = t.request;
+    const TableKind& kind = *t.kind;
+    t.half = half;
+    const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
+    t.cells = texels * std::uint64_t(kind.cells_per_texel);
+    t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
+    t.est_seconds =
+        double(t.samples_total) * kind.sample_cost / plan.samples_per_second + kSecondsPerTable + kSecondsPerPreview;
+    const int channels = kind.value_channels(r) + 1;  // values + error
+    // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while the
+    // kernel runs; the finished table holds doubles.
+    t.est_memory = t.cells * 640 + texels * channels * 8;
+    const std::string ext = file.substr(file.find_last_of('.') + 1);
+    if (ext == "exr") t.file_bytes = texels * channels * (half ? 2 : 4) + 2048;
+    else if (ext == "png") t.file_bytes = texels * 4 * 2 + 1024;
+    else t.file_bytes = texels * channels * 26 + 1024;
+    t.file = file;
+
+    std::ostringstream k;
+    k << "brdfbake " << BRDFBAKE_VERSION << "; kind=" << r.kind << "; model=" << r.model << "; fresnel=" << r.fresnel
+      << "; wavelength_nm=" << g17(r.wavelength_nm) << "; size=" << r.width << "x" << r.height;
+    if (kind.eta_axis) k << "x" << t.depth << "; eta_range=" << g17(t.eta_lo) << "," << g17(t.eta_hi);
+    k << "; mu_map=" << r.mu_map << "; alpha_map=" << r.alpha_map << "; alpha_range=" << g17(r.alpha_lo) << ","
+      << g17(r.alpha_hi) << "; samples=" << r.samples << "; precision=" << precision_name(r.precision)
+      << "; format=" << ext << (half ? "-half" : "");
+    if (!t.layout.empty()) k << "; layout=" << t.layout;
+    t.key = k.str();
+    t.hash = hex64(fnv1a(t.key));
+
+    try {
+        LutRequest check = r;
+        apply_eta_axis(t, check);
+        validate_lut(check);
+    } catch (const Error& e) {
+        t.unavailable = e.what();
+    }
+    if (!t.unavailable.empty())
+        plan.warnings.push_back("table '" + t.file + "' (for " + join(t.materials) + "): cannot be computed by "
+                                "this build: " + t.unavailable);
+    if (std::find(plan.models.begin(), plan.models.end(), model_name) == plan.models.end())
+        plan.models.push_back(model_name);
+    plan.tables.push_back(std::move(t));
+}
+
+/// The table of a group in the scene's layout: its request, and its roughness (and eta) axis
+/// placed so that the first and last texel centres fall on the group's range.
+PlannedTable group_table(const Group& g, const SceneSettings& s) {
+    PlannedTable t;
+    t.kind = g.kind;
+    LutRequest& r = t.request;
+    r.kind = g.kind->name;
+    r.model = g.model;
+    r.fresnel = g.fresnel;
+    r.wavelength_nm = g.wavelength;
+    r.mu_map = s.mu_map;
+    r.alpha_map = s.alpha_map;
+    r.samples = s.samples;
+    r.precision = s.precision;
+    t.alpha = g.alpha;
+    t.eta = g.eta;
+    t.serves = g.serves;
+    t.materials = g.materials;
+
+    // Texel centres never hold alpha below the floor (the kernels' BB_ALPHA_MIN): the scene's
+    // alpha 0 is planned there, the nearest a texel centre computes to the smooth limit.
+    const double alpha_floor = double(BB_ALPHA_MIN);
+    const double c_lo = alpha_coordinate(std::max(g.alpha.lo, alpha_floor), s.alpha_map);
+    const double c_hi = std::max(c_lo, alpha_coordinate(g.alpha.hi, s.alpha_map));
+    // The axis stops where the tables' roughness axis does (coordinate 3) or the model's alpha
+    // range ends (sheen: 1), whichever is first.
+    const double top = largest_alpha(g.model);
+    const double ceil = top > 0 ? std::min(3.0, alpha_coordinate(top, s.alpha_map)) : 3.0;
+    if (c_hi > ceil)
+        throw Error("alpha up to " + format_number(g.alpha.hi) + " (" + join(g.materials) +
+                    ") is beyond the tables' roughness axis, which stops at coordinate " + format_number(ceil));
+    const AxisPlan a = plan_axis(c_lo, c_hi, s.alpha_texels, 1.0, 0.0, ceil, s.alpha_texels);
+    r.alpha_lo = a.lo;
+    r.alpha_hi = a.hi;
+    t.alpha_centres = {alpha_of_coordinate(a.first, s.alpha_map), alpha_of_coordinate(a.last, s.alpha_map)};
+    t.alpha_lo_exact = a.lo_exact && g.alpha.lo >= alpha_floor;
+    t.alpha_hi_exact = a.hi_exact && g.alpha.hi >= alpha_floor;
+    if (g.kind->one_dimensional) {
+        r.width = a.n;
+        r.height = 1;
+    } else {
+        r.width = s.mu_texels;
+        r.height = a.n;
+    }
+    if (g.kind->eta_axis) {
+        const AxisPlan e = plan_axis(g.eta->lo, g.eta->hi, 1, s.eta_step, 1.0, kEtaAxisMax, 64);
+        t.eta_lo = e.lo;
+        t.eta_hi = e.hi;
+        t.depth = e.n;
+        t.eta_centres = {e.first, e.last};
+        t.eta_lo_exact = e.lo_exact;
+        t.eta_hi_exact = e.hi_exact;
+        apply_eta_axis(t, r);
+    }
+    return t;
+}
+
+/// The kernel programs the bake builds and the lobe checks of its report, with their estimates.
+void estimate_builds_and_report(Plan& plan) {
+    // Programs: one albedo kernel per (model, Fresnel kind) and one dielectric kernel per model.
+    std::set<std::string> programs;
+    for (const auto& t : plan.tables)
+        for (const std::string& p : t.kind->kernel_programs(t.request)) programs.insert(p);
+    plan.programs = int(programs.size());
+    plan.build_seconds = kSecondsPerProgram * plan.programs;
+    plan.startup_seconds = kStartupSeconds;
+    // The bake report checks each lobe with a table at both ends of its roughness range.
+    std::set<std::string> checks;
+    for (const auto& m : plan.materials)
+        for (const auto& lobe : m.lobes)
+            if (!lobe.kinds.empty())
+                for (double a : {lobe.alpha.lo, lobe.alpha.hi})
+                    checks.insert(lobe.model + "|" + lobe.fresnel + "|" + std::to_string(a));
+    plan.report_checks = int(checks.size());
+    plan.report_seconds = kSecondsPerReportCheck * plan.report_checks;
+}
+
 }  // namespace
 
 void apply_eta_axis(const PlannedTable& t, LutRequest& request) {
@@ -189,290 +498,20 @@ Plan make_plan(const Scene& scene) {
     plan.samples_per_second = kSamplesPerSecondPerCore * cores;
     plan.throughput_basis = std::to_string(cores) + " hardware threads x 5.0e7 (PoCL, float, measured; docs/scenes.md)";
 
-    // Group the needs: one table per (kind, model, Fresnel in the table).
-    struct Group {
-        const TableKind* kind = nullptr;
-        std::string model, model_name, fresnel;
-        double wavelength = 0.0;
-        Interval alpha;
-        std::optional<Interval> eta;
-        std::vector<std::string> serves, materials;
-        bool transmission = false;  // serves a lobe that transmits
-    };
-    std::vector<Group> groups;
-    std::vector<SceneMaterial> materials = scene.materials;
-    if (!s.tables.empty()) override_lobe_kinds(materials, s.tables, plan.warnings);
-    plan.materials = materials;
-    for (const auto& m : materials) {
-        if (m.lobes.empty()) {
-            plan.no_table.push_back(m.name + (m.notes.empty() ? "" : " (" + m.notes.front() + ")"));
-            continue;
-        }
-        for (const auto& lobe : m.lobes) {
-            for (const TableKind* kind : lobe.kinds) {
-                // Which Fresnel the table itself holds: albedo and eavg are computed with F = 1 (the
-                // lobe's Fresnel enters at render time through its hemispherical average), the
-                // split-sum kinds factor it out, a dielectric table has eta as an axis; only a
-                // conductor table bakes the lobe's own Fresnel in.
-                const std::string fresnel = kind->bakes_lobe_fresnel ? lobe.fresnel : "none";
-                const double wl = kind->bakes_lobe_fresnel ? lobe.wavelength_nm : 0.0;
-                auto it = std::find_if(groups.begin(), groups.end(), [&](const Group& g) {
-                    return g.kind == kind && g.model == lobe.model && g.fresnel == fresnel && g.wavelength == wl;
-                });
-                if (it == groups.end()) {
-                    Group g;
-                    g.kind = kind;
-                    g.model = lobe.model;
-                    g.model_name = lobe.model_name;
-                    g.fresnel = fresnel;
-                    g.wavelength = wl;
-                    g.alpha = lobe.alpha;
-                    if (kind->eta_axis) g.eta = lobe.eta;
-                    groups.push_back(g);
-                    it = groups.end() - 1;
-                } else {
-                    it->alpha.lo = std::min(it->alpha.lo, lobe.alpha.lo);
-                    it->alpha.hi = std::max(it->alpha.hi, lobe.alpha.hi);
-                    if (kind->eta_axis && lobe.eta) {
-                        it->eta->lo = std::min(it->eta->lo, lobe.eta->lo);
-                        it->eta->hi = std::max(it->eta->hi, lobe.eta->hi);
-                    }
-                }
-                it->transmission = it->transmission || lobe.role == "transmission";
-                const std::string serve = m.name + " (" + lobe.role + ")";
-                if (std::find(it->serves.begin(), it->serves.end(), serve) == it->serves.end())
-                    it->serves.push_back(serve);
-                if (std::find(it->materials.begin(), it->materials.end(), m.name) == it->materials.end())
-                    it->materials.push_back(m.name);
-            }
-        }
-    }
-
-    // The engine layouts: --target gltf bakes the glTF renderers' set; --preset NAME gives the
-    // tables of the preset's kinds (of its model) in the engine's layout instead of the scene's.
-    std::vector<PlannedTable> engine_tables;
-    if (!s.target.empty() || !s.preset.empty()) {
-        const LutPreset& preset = lut_preset(s.target.empty() ? s.preset : s.target);
-        // One table in the preset's layout for `kind` and `model`, serving what `take` selects.
-        auto engine_table = [&](const std::string& kind, const std::string& model, const std::string& file,
-                                const std::function<bool(const Group&)>& take) {
-            PlannedTable t;
-            t.kind = &table_kind_by_name(kind);
-            LutRequest& r = t.request;
-            r.kind = kind;
-            preset.apply(r);
-            r.model = model_without_alpha(model);
-            if (!(r.tolerance.tolerance > 0)) r.samples = s.samples;
-            if (s.size_from_command_line) {
-                if (t.kind->one_dimensional) r.width = s.alpha_texels;
-                else {
-                    r.width = s.mu_texels;
-                    r.height = s.alpha_texels;
-                }
-            }
-            const int n = t.kind->one_dimensional ? r.width : r.height;
-            const bool edge = r.texels == Texels::Edge;
-            const double first = edge ? r.alpha_lo : centre_of(r.alpha_lo, r.alpha_hi, n, 0);
-            const double last = edge ? r.alpha_hi : centre_of(r.alpha_lo, r.alpha_hi, n, n - 1);
-            t.alpha_centres = {alpha_of_coordinate(first, r.alpha_map), alpha_of_coordinate(last, r.alpha_map)};
-            t.alpha = {alpha_of_coordinate(r.alpha_lo, r.alpha_map), alpha_of_coordinate(r.alpha_hi, r.alpha_map)};
-            t.layout = preset.engine + " (preset " + preset.name + "): " + preset.summary +
-                       (s.size_from_command_line ? "; size from the command line" : "");
-            t.half = preset.half;
-            t.file = file;
-            if (t.kind->eta_axis) {  // the preset's eta axis (apply_eta_axis copies it back)
-                t.eta_lo = r.eta_lo;
-                t.eta_hi = r.eta_hi;
-                t.depth = r.depth;
-            }
-            for (const Group& g : groups)
-                if (take(g)) {
-                    for (const auto& x : g.serves)
-                        if (std::find(t.serves.begin(), t.serves.end(), x) == t.serves.end()) t.serves.push_back(x);
-                    for (const auto& x : g.materials)
-                        if (std::find(t.materials.begin(), t.materials.end(), x) == t.materials.end()) t.materials.push_back(x);
-                }
-            engine_tables.push_back(std::move(t));
-        };
-        if (s.target == "gltf") {
-            // The glTF Sample Viewer's LUTs: the split-sum GGX table for every GGX lobe, the sheen
-            // tables (lut_charlie: the ashikhmin visibility of its IBL; lut_sheen_E: the charlie
-            // visibility of KHR_materials_sheen's albedo scaling; docs/models.md) when a sheen is
-            // present, and the scene's dielectric tables where a lobe transmits.
-            const std::string ggx = model_without_alpha("ggx");
-            engine_table("dfg", "ggx", "lut_ggx." + preset.extension, [&](const Group& g) { return g.model == ggx; });
-            const bool sheen = std::any_of(groups.begin(), groups.end(), [](const Group& g) { return g.model_name == "sheen"; });
-            if (sheen) {
-                auto is_sheen = [](const Group& g) { return g.model_name == "sheen"; };
-                engine_table("sheen-albedo", "sheen:visibility=ashikhmin", "lut_charlie." + preset.extension, is_sheen);
-                engine_table("sheen-albedo", "sheen:visibility=charlie", "lut_sheen_E." + preset.extension, is_sheen);
-            }
-            groups.erase(std::remove_if(groups.begin(), groups.end(),
-                                        [](const Group& g) { return !(g.kind->eta_axis && g.transmission); }),
-                         groups.end());
-        } else {
-            std::vector<std::string> preset_models;  // "kind: model", for the warning below
-            for (const std::string& kind : preset.kinds) {
-                // The preset's model for this kind (Cycles' glass tables use its transmission
-                // shadowing, its other tables the default).
-                LutRequest probe;
-                probe.kind = kind;
-                preset.apply(probe);
-                const std::string preset_model = model_without_alpha(probe.model);
-                preset_models.push_back(kind + ": " + preset_model);
-                auto ours = [&](const Group& g) { return g.kind->name == kind && g.model == preset_model; };
-                if (std::none_of(groups.begin(), groups.end(), ours)) continue;
-                engine_table(kind, preset_model, preset.name + "-" + kind + "." + preset.extension, ours);
-                groups.erase(std::remove_if(groups.begin(), groups.end(), ours), groups.end());
-            }
-            if (engine_tables.empty())
-                plan.warnings.push_back("--preset " + preset.name + ": no table of the scene is of the preset's kinds and "
-                                        "models (" + join(preset_models) + "); the scene's tables are planned as usual");
-        }
-    }
-    // File names: kind-model, with the model's non-default keys (and a conductor's Fresnel) where
-    // they tell two tables apart, and a short hash where even that does not.
-    auto sanitize = [](std::string x) {
-        for (char& c : x)
-            if (!std::isalnum(static_cast<unsigned char>(c)) && c != '.' && c != '-') c = '-';
-        return x;
-    };
-    std::vector<std::string> names;
-    for (const auto& g : groups) {
-        std::string n = g.kind->name + "-" + g.model_name;
-        if (g.model != model_without_alpha(g.model_name) && g.model.find(':') != std::string::npos)
-            n += "-" + sanitize(g.model.substr(g.model.find(':') + 1));
-        if (g.kind->bakes_lobe_fresnel) n += "-" + sanitize(g.fresnel) + (g.wavelength > 0 ? "-" + format_number(g.wavelength) + "nm" : "");
-        names.push_back(n);
-    }
-    std::map<std::string, int> name_count;
-    for (const auto& n : names) ++name_count[n];
-    // Sizes, estimates, file name, request key and hash of a table whose request is set, and
-    // whether this build can compute it.
-    auto finish = [&](PlannedTable t, const std::string& file, bool half, const std::string& model_name) {
-        const LutRequest& r = t.request;
-        const TableKind& kind = *t.kind;
-        t.half = half;
-        const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
-        t.cells = texels * std::uint64_t(kind.cells_per_texel);
-        t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
-        t.est_seconds = double(t.samples_total) * kind.sample_cost / plan.samples_per_second + kSecondsPerTable +
-                        kSecondsPerPreview;
-        const int channels = kind.value_channels(r) + 1;  // values + error
-        // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while
-        // the kernel runs; the finished table holds doubles.
-        t.est_memory = t.cells * 640 + texels * channels * 8;
-        const std::string ext = file.substr(file.find_last_of('.') + 1);
-        if (ext == "exr") t.file_bytes = texels * channels * (half ? 2 : 4) + 2048;
-        else if (ext == "png") t.file_bytes = texels * 4 * 2 + 1024;
-        else t.file_bytes = texels * channels * 26 + 1024;
-        t.file = file;
-
-        std::ostringstream k;
-        k << "brdfbake " << BRDFBAKE_VERSION << "; kind=" << r.kind << "; model=" << r.model << "; fresnel=" << r.fresnel
-          << "; wavelength_nm=" << g17(r.wavelength_nm) << "; size=" << r.width << "x" << r.height;
-        if (kind.eta_axis) k << "x" << t.depth << "; eta_range=" << g17(t.eta_lo) << "," << g17(t.eta_hi);
-        k << "; mu_map=" << r.mu_map << "; alpha_map=" << r.alpha_map << "; alpha_range=" << g17(r.alpha_lo) << ","
-          << g17(r.alpha_hi) << "; samples=" << r.samples << "; precision=" << precision_name(r.precision)
-          << "; format=" << ext << (half ? "-half" : "");
-        if (!t.layout.empty()) k << "; layout=" << t.layout;
-        t.key = k.str();
-        t.hash = hex64(fnv1a(t.key));
-
-        try {
-            LutRequest check = r;
-            apply_eta_axis(t, check);
-            validate_lut(check);
-        } catch (const Error& e) {
-            t.unavailable = e.what();
-        }
-        if (!t.unavailable.empty())
-            plan.warnings.push_back("table '" + t.file + "' (for " + join(t.materials) + "): cannot be computed by "
-                                    "this build: " + t.unavailable);
-        if (std::find(plan.models.begin(), plan.models.end(), model_name) == plan.models.end())
-            plan.models.push_back(model_name);
-        plan.tables.push_back(std::move(t));
-    };
-
-    for (const auto& g : groups) {
-        PlannedTable t;
-        t.kind = g.kind;
-        LutRequest& r = t.request;
-        r.kind = g.kind->name;
-        r.model = g.model;
-        r.fresnel = g.fresnel;
-        r.wavelength_nm = g.wavelength;
-        r.mu_map = s.mu_map;
-        r.alpha_map = s.alpha_map;
-        r.samples = s.samples;
-        r.precision = s.precision;
-        t.alpha = g.alpha;
-        t.eta = g.eta;
-        t.serves = g.serves;
-        t.materials = g.materials;
-
-        // Texel centres never hold alpha below the floor (the kernels' BB_ALPHA_MIN): the scene's
-        // alpha 0 is planned there, the nearest a texel centre computes to the smooth limit.
-        const double alpha_floor = double(BB_ALPHA_MIN);
-        const double c_lo = alpha_coordinate(std::max(g.alpha.lo, alpha_floor), s.alpha_map);
-        const double c_hi = std::max(c_lo, alpha_coordinate(g.alpha.hi, s.alpha_map));
-        // The axis stops where the tables' roughness axis does (coordinate 3) or the model's alpha
-        // range ends (sheen: 1), whichever is first.
-        const double top = largest_alpha(g.model);
-        const double ceil = top > 0 ? std::min(3.0, alpha_coordinate(top, s.alpha_map)) : 3.0;
-        if (c_hi > ceil)
-            throw Error("alpha up to " + format_number(g.alpha.hi) + " (" + join(g.materials) +
-                        ") is beyond the tables' roughness axis, which stops at coordinate " + format_number(ceil));
-        const AxisPlan a = plan_axis(c_lo, c_hi, s.alpha_texels, 1.0, 0.0, ceil, s.alpha_texels);
-        r.alpha_lo = a.lo;
-        r.alpha_hi = a.hi;
-        t.alpha_centres = {alpha_of_coordinate(a.first, s.alpha_map), alpha_of_coordinate(a.last, s.alpha_map)};
-        t.alpha_lo_exact = a.lo_exact && g.alpha.lo >= alpha_floor;
-        t.alpha_hi_exact = a.hi_exact && g.alpha.hi >= alpha_floor;
-        const int n_alpha = a.n;
-        if (g.kind->one_dimensional) {
-            r.width = n_alpha;
-            r.height = 1;
-        } else {
-            r.width = s.mu_texels;
-            r.height = n_alpha;
-        }
-        if (g.kind->eta_axis) {
-            const AxisPlan e = plan_axis(g.eta->lo, g.eta->hi, 1, s.eta_step, 1.0, kEtaAxisMax, 64);
-            t.eta_lo = e.lo;
-            t.eta_hi = e.hi;
-            t.depth = e.n;
-            t.eta_centres = {e.first, e.last};
-            t.eta_lo_exact = e.lo_exact;
-            t.eta_hi_exact = e.hi_exact;
-            apply_eta_axis(t, r);
-        }
-        std::string name = names[size_t(&g - groups.data())];
-        if (name_count[name] > 1) name += "-" + hex64(fnv1a(g.model + "|" + g.fresnel)).substr(0, 6);
-        finish(std::move(t), name + "." + s.table_format, s.half, g.model_name);
-    }
+    plan.materials = scene.materials;
+    if (!s.tables.empty()) override_lobe_kinds(plan.materials, s.tables, plan.warnings);
+    std::vector<Group> groups = group_needs(plan.materials, plan);
+    std::vector<PlannedTable> engine_tables = plan_engine_tables(s, groups, plan);
+    const std::vector<std::string> names = table_names(groups);
+    for (size_t i = 0; i < groups.size(); ++i)
+        finish_table(plan, group_table(groups[i], s), names[i] + "." + s.table_format, s.half, groups[i].model_name);
     for (auto& t : engine_tables) {
         const std::string file = t.file;
         const std::string model_name = t.request.model.substr(0, t.request.model.find(':'));
         const bool half = t.half;
-        finish(std::move(t), file, half, model_name);
+        finish_table(plan, std::move(t), file, half, model_name);
     }
-    // Programs: one albedo kernel per (model, Fresnel kind) and one dielectric kernel per model.
-    std::set<std::string> programs;
-    for (const auto& t : plan.tables)
-        for (const std::string& p : t.kind->kernel_programs(t.request)) programs.insert(p);
-    plan.programs = int(programs.size());
-    plan.build_seconds = kSecondsPerProgram * plan.programs;
-    plan.startup_seconds = kStartupSeconds;
-    // The bake report checks each lobe with a table at both ends of its roughness range.
-    std::set<std::string> checks;
-    for (const auto& m : plan.materials)
-        for (const auto& lobe : m.lobes)
-            if (!lobe.kinds.empty())
-                for (double a : {lobe.alpha.lo, lobe.alpha.hi})
-                    checks.insert(lobe.model + "|" + lobe.fresnel + "|" + std::to_string(a));
-    plan.report_checks = int(checks.size());
-    plan.report_seconds = kSecondsPerReportCheck * plan.report_checks;
+    estimate_builds_and_report(plan);
     return plan;
 }
 

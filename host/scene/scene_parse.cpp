@@ -231,9 +231,9 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
         const std::string name = split.base.name;
         if (m.contains("tables"))
             throw Error(ctx + ": model '" + name + "' has no roughness to sweep; tables need a microfacet model");
-        if (name == "lambert")
-            out.notes.push_back("lambert: albedo is rho (closed form), no table");
-        else if (name == "mirror" || name == "dielectric-specular")
+        if (split.base.id == BB_MODEL_LAMBERT)
+            out.notes.push_back(name + ": albedo is rho (closed form), no table");
+        else if (split.base.traits().delta)
             out.notes.push_back(name + ": delta lobe, albedo is the Fresnel term (analytic), no table");
         else {
             out.notes.push_back(split.base.canonical + ": no roughness axis, no table");

@@ -41,6 +41,7 @@ TableKind sheen_albedo_kind() {
                 "sheen directional albedo E(mu_o, sheenRoughness) of the Charlie lobe, either visibility (2D)",
                 sheen_program, compute_sheen);
     k.plan_fresnel = "none (the sheen lobe has no Fresnel term)";
+    k.required_model = "sheen";
     k.lobe_requirement = "the sheen-albedo table needs a sheen lobe (model sheen, KHR_materials_sheen)";
     k.tileable = true;
     k.validate = validate_sheen;

@@ -66,8 +66,8 @@ private:
 };
 
 /// While one lives, no stage or launch is shown (the stages still nest): for a front end that
-/// draws its own progress over many computations, as `bake` does, so that two displays do not
-/// draw over each other. progress_message still writes.
+/// draws its own progress over many computations, so that two displays do not draw over each
+/// other (`bake` needs none: it is one stage). progress_message still writes.
 class ProgressSilence {
 public:
     ProgressSilence();

@@ -58,6 +58,9 @@ struct TableKind {
     // What a lobe must have for this kind: an index of refraction (every kind with an eta axis),
     // a conductor Fresnel term; lobe_requirement says it (a scene's "tables" error).
     bool needs_conductor_fresnel = false;
+    /// The one model whose lobes this kind serves (a scene lobe of that model takes this kind by
+    /// default, and only such lobes can take it); empty: any model.
+    std::string required_model;
     std::string lobe_requirement;
 
     // The planner.
