@@ -1,0 +1,301 @@
+// Faults the user meets outside the computation (issue 31): a full disk, headers a compiler must
+// take, text that must read back as the numbers, corrupted part files, FIFOs, and files whose
+// numbers or description do not agree. Each case asserts what the README promises: exit status 2
+// with one "brdfbake: error:" line naming the fault, and nothing left behind.
+#include <catch2/catch.hpp>
+
+#include <dirent.h>
+#include <png.h>
+#include <sys/wait.h>
+#include <sys/mount.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <cerrno>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "brdfbake/memory_limit.h"
+#include "brdfbake/table.h"
+#include "scene/texture_image.h"
+#include "support.h"
+
+namespace {
+
+std::string scratch(const std::string& name) {
+    std::string dir = "/tmp/brdfbake-faults-" + name + "-" + std::to_string(::getpid());
+    std::system(("rm -rf '" + dir + "'").c_str());
+    REQUIRE(::mkdir(dir.c_str(), 0700) == 0);
+    return dir;
+}
+
+std::set<std::string> listing(const std::string& dir) {
+    std::set<std::string> names;
+    if (DIR* d = ::opendir(dir.c_str())) {
+        while (const dirent* e = ::readdir(d))
+            if (std::strcmp(e->d_name, ".") != 0 && std::strcmp(e->d_name, "..") != 0) names.insert(e->d_name);
+        ::closedir(d);
+    }
+    return names;
+}
+
+std::string names_of(const std::set<std::string>& names) {
+    std::string s;
+    for (const auto& n : names) s += " " + n;
+    return s;
+}
+
+/// A 200 kB tmpfs at `dir`, filled up to `room` free bytes by a file "fill"; unmounted at the end.
+/// Mounting needs root (CAP_SYS_ADMIN): where the test cannot mount, `mounted` is false.
+struct SmallDisk {
+    std::string dir;
+    bool mounted = false;
+    explicit SmallDisk(const std::string& name) : dir(scratch(name)) {
+        mounted = ::mount("tmpfs", dir.c_str(), "tmpfs", 0, "size=200k") == 0;
+    }
+    ~SmallDisk() {
+        if (mounted) ::umount2(dir.c_str(), MNT_DETACH);
+        ::rmdir(dir.c_str());
+    }
+    /// Fills the disk, then frees `room` bytes (in whole 4 kB pages).
+    void fill(size_t room) {
+        const std::string path = dir + "/fill";
+        std::FILE* f = std::fopen(path.c_str(), "wb");
+        REQUIRE(f);
+        std::setvbuf(f, nullptr, _IONBF, 0);
+        const std::vector<char> block(4096, 'x');
+        size_t written = 0;
+        while (std::fwrite(block.data(), 1, block.size(), f) == block.size()) written += block.size();
+        std::fclose(f);
+        REQUIRE(::truncate(path.c_str(), off_t(written > room ? written - room : 0)) == 0);
+    }
+};
+
+/// The run failed as a fault must: exit 2, one error line, no libpng or abort text, and the folder
+/// holds only its filler.
+void require_clean_failure(const testing::CliResult& r, const std::string& dir) {
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(r.err.find("brdfbake: error:") != std::string::npos);
+    CHECK(r.err.find("libpng") == std::string::npos);
+    CHECK(listing(dir) == std::set<std::string>{"fill"});
+    INFO("left:" << names_of(listing(dir)));
+}
+
+const std::string kSmallLut = "lut albedo --model ggx --size 8x8 --samples 256 ";
+
+}  // namespace
+
+TEST_CASE("a full disk ends every writer in exit 2 with nothing left", "[faults][output]") {
+    SmallDisk disk("full");
+    if (!disk.mounted) {
+        WARN("SKIPPED: cannot mount a 200 kB tmpfs here (" << std::strerror(errno)
+                                                             << "; the test needs root): the full-disk cases did not run");
+        return;
+    }
+    const std::string& d = disk.dir;
+    // Room for the CSV (about 5 kB) but not for its preview: the table must not stay alone.
+    disk.fill(12 << 10);
+    require_clean_failure(testing::run_cli(kSmallLut + "-o " + d + "/t.csv"), d);
+    // Room for the .npy's sidecar (about 6 kB) but not for its array (16 kB): neither stays.
+    disk.fill(8 << 10);
+    require_clean_failure(testing::run_cli("lut albedo --model ggx --size 32x32 --samples 256 --no-preview -o " + d +
+                                           "/t.npy"),
+                          d);
+    // No room at all: every format.
+    disk.fill(0);
+    for (const char* name : {"t.png", "t.exr", "t.csv", "t.h"})
+        require_clean_failure(testing::run_cli(kSmallLut + "--no-preview -o " + d + "/" + name), d);
+    require_clean_failure(testing::run_cli("albedo --model ggx:alpha=0.5 --mu 0.2,0.5,1 --samples 256 --plot " + d +
+                                           "/p.png"),
+                          d);
+    require_clean_failure(testing::run_cli("albedo --model ggx:alpha=0.5 --mu 0.2,0.5,1 --samples 256 --plot " + d +
+                                           "/p.svg"),
+                          d);
+}
+
+namespace {
+
+/// Compiles `header` as C and as C++ (syntax only); returns the compilers' complaints, or "".
+std::string compile_errors(const std::string& header) {
+    std::string errors;
+    for (const char* compiler : {"gcc -x c -std=c99", "g++ -x c++ -std=c++17"}) {
+        const auto r = testing::run_shell("echo '#include \"" + header + "\"' | " + compiler + " -fsyntax-only -");
+        if (r.status != 0) errors += std::string(compiler) + ": " + r.err;
+    }
+    return errors;
+}
+
+/// The values of a .npy brdfbake wrote, parsed from the file's own header (numpy format 1.0).
+std::vector<double> npy_values(const std::string& path, std::vector<size_t>* shape) {
+    const std::string bytes = testing::slurp(path);
+    REQUIRE(bytes.size() > 10);
+    REQUIRE(bytes.compare(0, 6, "\x93NUMPY") == 0);
+    const size_t len = size_t(static_cast<unsigned char>(bytes[8])) | size_t(static_cast<unsigned char>(bytes[9])) << 8;
+    const std::string header = bytes.substr(10, len);
+    REQUIRE(header.find("'<f8'") != std::string::npos);
+    const size_t open = header.find("'shape': ("), close = header.find(')', open);
+    std::istringstream dims(header.substr(open + 10, close - open - 10));
+    shape->clear();
+    for (std::string d; std::getline(dims, d, ',');)
+        if (d.find_first_not_of(' ') != std::string::npos) shape->push_back(std::stoul(d));
+    std::vector<double> v((bytes.size() - 10 - len) / 8);
+    std::memcpy(v.data(), bytes.data() + 10 + len, v.size() * 8);  // little-endian hosts only
+    return v;
+}
+
+/// The data rows of a CSV table: every field of each row that is not a comment or the heading.
+std::vector<std::vector<double>> csv_rows(const std::string& path, std::vector<std::string>* heading) {
+    std::istringstream in(testing::slurp(path));
+    std::vector<std::vector<double>> rows;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#') continue;
+        std::istringstream fields(line);
+        std::vector<std::string> words;
+        for (std::string f; std::getline(fields, f, ',');) words.push_back(f);
+        if (heading->empty()) {
+            *heading = words;
+            continue;
+        }
+        std::vector<double> row;
+        for (const auto& w : words) row.push_back(std::strtod(w.c_str(), nullptr));
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+}  // namespace
+
+TEST_CASE("every header brdfbake writes compiles as C and C++", "[faults][formats]") {
+    const std::string d = scratch("headers");
+    // Whole numbers (0 and 1), the extremes of float and a double table, written by the writer
+    // the commands use: each must be a floating literal of the array's type.
+    brdfbake::Table t;
+    t.kind = "albedo";
+    t.quantity = "test values";
+    t.x = brdfbake::make_axis("mu", "mu = u", 0.0, 1.0, 4);
+    t.y = brdfbake::make_axis("roughness", "alpha = r^2", 0.0, 1.0, 1);
+    t.z = brdfbake::make_axis("z", "z", 0.0, 1.0, 1);
+    t.channels = {"E", "odd-name"};
+    t.values = {{0.0, 1.0, 0.5, 1e-30}, {3e38, 1.0 / 3.0, 2.0, 1e-45}};
+    t.error = {0.0, 1e-7, 1.0, 0.0};
+    for (const char* precision : {"float", "double"}) {
+        t.attributes["precision"] = precision;
+        const std::string path = d + "/synthetic_" + precision + ".h";
+        brdfbake::write_table(t, path);
+        INFO(testing::slurp(path));
+        CHECK(compile_errors(path).empty());
+        // The values read back: a program prints each array element as the compiler read it.
+        std::ofstream(d + "/print.cpp") << "#include <cstdio>\n#include \"" << path
+                                        << "\"\nint main() { for (int i = 0; i < 4; ++i) std::printf(\"%.17g %.17g "
+                                           "%.17g\\n\", double(brdfbake_synthetic_"
+                                        << precision << "_E[i]), double(brdfbake_synthetic_" << precision
+                                        << "_odd_name[i]), double(brdfbake_synthetic_" << precision << "_error[i])); }\n";
+        const auto run = testing::run_shell("g++ -o " + d + "/print " + d + "/print.cpp && " + d + "/print");
+        REQUIRE(run.status == 0);
+        std::istringstream printed(run.out);
+        for (size_t i = 0; i < 4; ++i) {
+            double e = 0, odd = 0, err = 0;
+            printed >> e >> odd >> err;
+            const bool f = std::string(precision) == "float";
+            CHECK(e == (f ? double(float(t.values[0][i])) : t.values[0][i]));
+            CHECK(odd == (f ? double(float(t.values[1][i])) : t.values[1][i]));
+            CHECK(err == (f ? double(float(t.error[i])) : t.error[i]));
+        }
+    }
+    // Headers of the commands: a table in float, in double, an eavg (1D) and a 3D dielectric.
+    for (const std::string& args :
+         {std::string("lut albedo --model ggx --size 4x4 --samples 256 --no-preview -o ") + d + "/albedo.h",
+          std::string("lut albedo --model ggx --size 4x4 --samples 256 --precision double --no-preview -o ") + d +
+              "/albedo_double.h",
+          std::string("lut eavg --model ggx --size 4 --samples 256 --no-preview -o ") + d + "/eavg.hpp",
+          std::string("lut dielectric --model ggx --size 2x2x2 --samples 256 --no-preview -o ") + d + "/glass.h"}) {
+        const auto r = testing::run_cli(args);
+        INFO(args << "\n" << r.err);
+        REQUIRE(r.status == 0);
+        const std::string path = args.substr(args.rfind(' ') + 1);
+        INFO(testing::slurp(path));
+        CHECK(compile_errors(path).empty());
+    }
+    std::system(("rm -rf '" + d + "'").c_str());
+}
+
+TEST_CASE("a double table's CSV reads back as its .npy exactly", "[faults][formats]") {
+    const std::string d = scratch("digits");
+    const std::string lut = "lut albedo --model ggx --size 5x3 --samples 4096 --precision double --no-preview -o ";
+    // The same deterministic computation written twice, and the .npy converted by show.
+    REQUIRE(testing::run_cli(lut + d + "/t.npy").status == 0);
+    REQUIRE(testing::run_cli(lut + d + "/t.csv").status == 0);
+    REQUIRE(testing::run_cli("show " + d + "/t.npy -o " + d + "/converted.csv").status == 0);
+    std::vector<size_t> shape;
+    const std::vector<double> npy = npy_values(d + "/t.npy", &shape);
+    REQUIRE(shape == std::vector<size_t>{3, 5, 2});  // (roughness, mu, channel: E and error)
+    for (const char* name : {"/t.csv", "/converted.csv"}) {
+        std::vector<std::string> heading;
+        const auto rows = csv_rows(d + name, &heading);
+        INFO(name);
+        REQUIRE(rows.size() == 15);
+        REQUIRE(heading.size() >= 3);
+        const size_t value = heading.size() - 2, error = heading.size() - 1;
+        for (size_t k = 0; k < rows.size(); ++k) {
+            CHECK(rows[k][value] == npy[k * 2]);
+            CHECK(rows[k][error] == npy[k * 2 + 1]);
+        }
+        // Coordinates print exactly too: the centre of texel 1 of 3 on [0, 1] is 0.5, of texel 0 of 5 is 0.1.
+        CHECK(rows[0][0] == 0.1);
+    }
+    std::system(("rm -rf '" + d + "'").c_str());
+}
+
+namespace {
+
+/// Writes `text` to `path`.
+void write_text(const std::string& path, const std::string& text) { std::ofstream(path, std::ios::binary) << text; }
+
+/// Runs `command` with a shell timeout: a run that blocks (a FIFO) ends with status 124.
+testing::CliResult run_limited(const std::string& args, int seconds = 20) {
+    return testing::run_shell("timeout " + std::to_string(seconds) + " " + std::string(BRDFBAKE_EXE) + " " + args);
+}
+
+void require_error(const testing::CliResult& r, const std::string& needle) {
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(testing::count_lines(r.err) == 1);
+    CHECK(r.err.rfind("brdfbake: error:", 0) == 0);
+    CHECK(r.err.find(needle) != std::string::npos);
+}
+
+}  // namespace
+
+TEST_CASE("a name whose temporary file cannot exist is refused before any work", "[faults][output]") {
+    const std::string d = scratch("names");
+    // 251 characters: the name fits (255), its temporary ".NAME.tmp-PID" does not.
+    const std::string long_name = std::string(247, 'n') + ".csv", long_preview = std::string(247, 'p') + ".png";
+    const std::string heavy = "lut albedo --model ggx --size 64x64 --samples 4194304 ";  // minutes, if it ran
+    auto timed = [](const std::string& args) {
+        const auto t0 = std::chrono::steady_clock::now();
+        const auto r = testing::run_cli(args);
+        return std::make_pair(r, std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+    };
+    const auto [table, table_s] = timed(heavy + "-o " + d + "/" + long_name);
+    require_error(table, "give a shorter name");
+    CHECK(table_s < 10);
+    const auto [preview, preview_s] = timed(heavy + "-o " + d + "/t.csv --preview " + d + "/" + long_preview);
+    require_error(preview, "give a shorter name");
+    CHECK(preview_s < 10);
+    // The sidecar of a .npy is longer than the array's name: 246 + ".npy" fits, its ".json" temporary not.
+    require_error(testing::run_cli(heavy + "-o " + d + "/" + std::string(240, 'a') + ".npy"), "give a shorter name");
+    CHECK(listing(d).empty());
+    std::system(("rm -rf '" + d + "'").c_str());
+}
+
