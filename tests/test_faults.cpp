@@ -277,6 +277,93 @@ void require_error(const testing::CliResult& r, const std::string& needle) {
 
 }  // namespace
 
+TEST_CASE("merge refuses a part file changed by one digit, and shards split an 8x8 table", "[faults][shard]") {
+    const std::string d = scratch("parts");
+    const std::string lut = "lut albedo --model ggx --size 8x8 --samples 256 --no-preview ";
+    for (int k = 0; k < 2; ++k) {
+        const auto r = testing::run_cli(lut + "--shard " + std::to_string(k) + "/2 -o " + d + "/part" +
+                                        std::to_string(k) + ".json");
+        INFO(r.err);
+        REQUIRE(r.status == 0);
+        // Each shard holds part of the 64 cells, never none or all (it held 0 and 64).
+        const size_t cells = r.err.find(" cells");
+        REQUIRE(cells != std::string::npos);
+        const int count = std::stoi(r.err.substr(r.err.rfind(' ', cells - 1) + 1));
+        CHECK(count > 8);
+        CHECK(count < 56);
+    }
+    REQUIRE(testing::run_cli("merge " + d + "/part0.json " + d + "/part1.json -o " + d + "/merged.csv").status == 0);
+    REQUIRE(testing::run_cli(lut + "-o " + d + "/whole.csv").status == 0);
+    CHECK(testing::slurp(d + "/merged.csv") == testing::slurp(d + "/whole.csv"));
+
+    // One hex digit of a record changed: the checksum no longer matches, exit 2, nothing written.
+    std::string part = testing::slurp(d + "/part1.json");
+    const size_t cells = part.find("\"cells\"");
+    REQUIRE(cells != std::string::npos);
+    const size_t digit = part.find_first_of("0123456789abcdef", part.find(": \"", cells + 10) + 3);
+    part[digit] = part[digit] == '0' ? '1' : '0';
+    write_text(d + "/bad.json", part);
+    require_error(testing::run_cli("merge " + d + "/part0.json " + d + "/bad.json -o " + d + "/t.csv"),
+                  "bad.json' is corrupted");
+    CHECK(::access((d + "/t.csv").c_str(), F_OK) != 0);
+    std::system(("rm -rf '" + d + "'").c_str());
+}
+
+TEST_CASE("show and merge refuse a FIFO instead of waiting on it", "[faults][input]") {
+    const std::string d = scratch("fifo");
+    for (const char* name : {"t.exr", "t.csv", "t.npy", "part.json"}) REQUIRE(::mkfifo((d + "/" + name).c_str(), 0600) == 0);
+    write_text(d + "/u.npy", "not read");
+    REQUIRE(::mkfifo((d + "/u.npy.json").c_str(), 0600) == 0);
+    for (const char* name : {"t.exr", "t.csv", "u.npy"}) require_error(run_limited("show " + d + "/" + name), "not a regular file");
+    require_error(run_limited("merge " + d + "/part.json -o " + d + "/m.csv"), "not a regular file");
+    std::system(("rm -rf '" + d + "'").c_str());
+}
+
+TEST_CASE("readers refuse NaN, Inf and descriptions that disagree with the data, naming the field", "[faults][input]") {
+    const std::string d = scratch("readers");
+    REQUIRE(testing::run_cli("lut albedo --model ggx --size 4x2 --samples 256 --no-preview -o " + d + "/t.npy").status == 0);
+    REQUIRE(testing::run_cli("show " + d + "/t.npy -o " + d + "/t.csv").status == 0);
+    REQUIRE(testing::run_cli("show " + d + "/t.csv").status == 0);
+    const std::string npy = testing::slurp(d + "/t.npy"), side = testing::slurp(d + "/t.npy.json"),
+                      csv = testing::slurp(d + "/t.csv");
+    auto replaced = [](std::string text, const std::string& from, const std::string& to) {
+        const size_t at = text.find(from);
+        REQUIRE(at != std::string::npos);
+        return text.replace(at, from.size(), to);
+    };
+    auto case_npy = [&](const std::string& array, const std::string& sidecar, const std::string& needle) {
+        write_text(d + "/c.npy", array);
+        write_text(d + "/c.npy.json", sidecar);
+        require_error(testing::run_cli("show " + d + "/c.npy"), needle);
+    };
+    // A NaN value and an infinite error in the array.
+    std::string nan_array = npy, inf_array = npy;
+    const double nan = std::nan(""), inf = HUGE_VAL;
+    std::memcpy(&nan_array[npy.size() - 8 * 2], &nan, 8);  // texel (3, 1)'s value
+    std::memcpy(&inf_array[npy.size() - 8], &inf, 8);       // texel (3, 1)'s error
+    case_npy(nan_array, side, "channel E holds nan at texel (3, 1)");
+    case_npy(inf_array, side, "the error channel holds inf at texel (3, 1)");
+    // The sidecar: a range that is not finite, an unknown kind, its shape, dtype, axes, channels.
+    case_npy(npy, replaced(side, "\"x_range\": \"0 1\"", "\"x_range\": \"nan 1\""), "x_range 'nan'");
+    case_npy(npy, replaced(side, "\"kind\": \"albedo\"", "\"kind\": \"albedo2\""), "kind 'albedo2'");
+    case_npy(npy, replaced(side, "\"dtype\": \"<f8\"", "\"dtype\": \"<f4\""), "dtype '<f4'");
+    case_npy(npy, replaced(side, "\"channels\": [\n    \"E\"", "\"channels\": [\n    \"F\""), "channels");
+    case_npy(npy, replaced(side, "\"name\": \"mu\"", "\"name\": \"sqrt_mu\""), "axes[1]");
+    case_npy(npy, replaced(side, "\"x_size\": \"4\"", "\"x_size\": \"2\""), "shape");
+    case_npy(replaced(npy, "'shape': (2, 4, 2)", "'shape': (4, 2, 2)"), side, "the array's shape (4, 2, 2)");
+    // A CSV with a NaN value, an Inf error, a size that is not a whole number.
+    const size_t last = csv.rfind('\n', csv.size() - 2) + 1;
+    std::string row = csv.substr(last);
+    const size_t value_at = row.find(',', row.find(',') + 1) + 1;  // mu, roughness, then E
+    write_text(d + "/c.csv", csv.substr(0, last) + row.substr(0, value_at) + "nan" + row.substr(row.find(',', value_at)));
+    require_error(testing::run_cli("show " + d + "/c.csv"), "channel E holds nan");
+    write_text(d + "/c.csv", csv.substr(0, csv.rfind(',')) + ",inf\n");
+    require_error(testing::run_cli("show " + d + "/c.csv"), "the error channel holds inf");
+    write_text(d + "/c.csv", replaced(csv, "# x_size: 4", "# x_size: 4.5"));
+    require_error(testing::run_cli("show " + d + "/c.csv"), "x_size '4.5'");
+    std::system(("rm -rf '" + d + "'").c_str());
+}
+
 TEST_CASE("a name whose temporary file cannot exist is refused before any work", "[faults][output]") {
     const std::string d = scratch("names");
     // 251 characters: the name fits (255), its temporary ".NAME.tmp-PID" does not.
