@@ -364,6 +364,39 @@ TEST_CASE("readers refuse NaN, Inf and descriptions that disagree with the data,
     std::system(("rm -rf '" + d + "'").c_str());
 }
 
+TEST_CASE("--help and --version to a full stdout, and a closed pipe, exit 2 with the message", "[faults][cli]") {
+    for (const char* args : {"--help", "--version", "lut --help"}) {
+        const auto r = testing::run_shell("(" + std::string(BRDFBAKE_EXE) + " " + args + " >/dev/full)");
+        INFO(args << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(r.err.find("brdfbake: error: cannot write standard output") != std::string::npos);
+    }
+    // A reader that is gone before the first byte: the write fails (EPIPE) and the README's
+    // promise holds (exit 2, one line), where SIGPIPE used to end the process silently.
+    int fds[2];
+    REQUIRE(::pipe(fds) == 0);
+    ::close(fds[0]);
+    const std::string err_path = "/tmp/brdfbake-faults-pipe-" + std::to_string(::getpid()) + ".err";
+    const pid_t child = ::fork();
+    REQUIRE(child >= 0);
+    if (child == 0) {
+        ::dup2(fds[1], 1);
+        std::FILE* err = std::freopen(err_path.c_str(), "w", stderr);
+        (void)err;
+        ::execl(BRDFBAKE_EXE, BRDFBAKE_EXE, "--help", static_cast<char*>(nullptr));
+        ::_exit(127);
+    }
+    ::close(fds[1]);
+    int status = 0;
+    REQUIRE(::waitpid(child, &status, 0) == child);
+    const std::string err = testing::slurp(err_path);
+    std::remove(err_path.c_str());
+    INFO(err);
+    REQUIRE(WIFEXITED(status));  // not killed by SIGPIPE
+    CHECK(WEXITSTATUS(status) == 2);
+    CHECK(err.find("cannot write standard output: Broken pipe") != std::string::npos);
+}
+
 TEST_CASE("a name whose temporary file cannot exist is refused before any work", "[faults][output]") {
     const std::string d = scratch("names");
     // 251 characters: the name fits (255), its temporary ".NAME.tmp-PID" does not.
@@ -386,3 +419,57 @@ TEST_CASE("a name whose temporary file cannot exist is refused before any work",
     std::system(("rm -rf '" + d + "'").c_str());
 }
 
+namespace {
+
+void append_bytes(png_structp png, png_bytep data, png_size_t n) {
+    static_cast<std::string*>(png_get_io_ptr(png))->append(reinterpret_cast<const char*>(data), n);
+}
+
+/// An 8-bit RGB PNG, w x h, every sample `fill` but pixel (x0, y0) = lo and (x1, y1) = hi in
+/// channel 1; interlaced (Adam7) or not.
+std::string png_bytes(unsigned w, unsigned h, bool interlaced, unsigned x0, unsigned y0, unsigned x1, unsigned y1) {
+    std::string out;
+    png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, nullptr, nullptr, nullptr);
+    png_infop info = png_create_info_struct(png);
+    png_set_write_fn(png, &out, append_bytes, nullptr);
+    png_set_IHDR(png, info, w, h, 8, PNG_COLOR_TYPE_RGB, interlaced ? PNG_INTERLACE_ADAM7 : PNG_INTERLACE_NONE,
+                 PNG_COMPRESSION_TYPE_DEFAULT, PNG_FILTER_TYPE_DEFAULT);
+    png_write_info(png, info);
+    const int passes = png_set_interlace_handling(png);
+    std::vector<png_byte> row(size_t(w) * 3);
+    for (int pass = 0; pass < passes; ++pass)
+        for (unsigned y = 0; y < h; ++y) {
+            std::fill(row.begin(), row.end(), png_byte(100));
+            if (y == y0) row[size_t(x0) * 3 + 1] = 7;
+            if (y == y1) row[size_t(x1) * 3 + 1] = 201;
+            png_write_row(png, row.data());
+        }
+    png_write_end(png, info);
+    png_destroy_write_struct(&png, &info);
+    return out;
+}
+
+}  // namespace
+
+TEST_CASE("a PNG texture's ranges are read a row at a time, whatever its size", "[faults][texture]") {
+    // 4000 x 4000 RGB decodes to 48 MB: under a 4 MB limit it was refused; read a row at a time
+    // it needs 12 kB, and its ranges are the samples it holds.
+    const std::string big = png_bytes(4000, 4000, false, 3999, 3998, 17, 2500);
+    brdfbake::set_memory_limit(std::uint64_t(4) << 20);
+    const brdfbake::ChannelRanges r = brdfbake::png_channel_ranges(big, "texture big.png");
+    CHECK(r.width == 4000);
+    CHECK(r.height == 4000);
+    CHECK(r.lo[0] == 100 / 255.0);
+    CHECK(r.hi[0] == 100 / 255.0);
+    CHECK(r.lo[1] == 7 / 255.0);
+    CHECK(r.hi[1] == 201 / 255.0);
+    CHECK(r.lo[3] == 1.0);
+    // Interlaced: each pixel comes in one of seven passes; the extremes sit in the last pass
+    // (odd rows) and in a middle one.
+    const brdfbake::ChannelRanges a = brdfbake::png_channel_ranges(png_bytes(37, 23, true, 5, 7, 2, 4), "texture a.png");
+    CHECK(a.lo[1] == 7 / 255.0);
+    CHECK(a.hi[1] == 201 / 255.0);
+    CHECK(a.lo[2] == 100 / 255.0);
+    CHECK(a.hi[2] == 100 / 255.0);
+    brdfbake::set_memory_limit(0);
+}
