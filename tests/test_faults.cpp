@@ -213,9 +213,11 @@ TEST_CASE("every header brdfbake writes compiles as C and C++", "[faults][format
             CHECK(err == (f ? double(float(t.error[i])) : t.error[i]));
         }
     }
-    // Headers of the commands: a table in float, in double, an eavg (1D) and a 3D dielectric.
+    // Headers of the commands: a table in float, in double, an eavg (1D), a 3D dielectric, and
+    // the Cycles preset (double, with E = 1 in its r = 0 column: the "1f" of issue 30).
     for (const std::string& args :
-         {std::string("lut albedo --model ggx --size 4x4 --samples 256 --no-preview -o ") + d + "/albedo.h",
+         {std::string("lut --preset cycles --no-preview -o ") + d + "/ggx_E.h",
+          std::string("lut albedo --model ggx --size 4x4 --samples 256 --no-preview -o ") + d + "/albedo.h",
           std::string("lut albedo --model ggx --size 4x4 --samples 256 --precision double --no-preview -o ") + d +
               "/albedo_double.h",
           std::string("lut eavg --model ggx --size 4 --samples 256 --no-preview -o ") + d + "/eavg.hpp",
