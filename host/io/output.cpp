@@ -240,8 +240,11 @@ void emit(const std::string& path, const std::string& content) {
 
 std::string round_trip_text(double v, bool as_float) {
     char b[64];
-    const std::to_chars_result r =
-        as_float ? std::to_chars(b, b + sizeof b, float(v)) : std::to_chars(b, b + sizeof b, v);
+    if (as_float) {  // never rounded to a float first: a float table's value may carry more
+        std::snprintf(b, sizeof b, "%.9g", v);
+        return b;
+    }
+    const std::to_chars_result r = std::to_chars(b, b + sizeof b, v);
     return std::string(b, r.ptr);
 }
 

@@ -72,9 +72,10 @@ void write_png_file(const std::string& path, int width, int height, int bit_dept
 /// Writes to `path`, or to standard output when `path` is empty or "-".
 void emit(const std::string& path, const std::string& content);
 
-/// The shortest text that reads back (strtod) as exactly `v` (std::to_chars): as a double, or,
-/// with `as_float`, as the float nearest v (at most 9 significant digits). "nan", "inf", "-inf"
-/// for those.
+/// The shortest text that reads back (strtod) as exactly `v` (std::to_chars); with `as_float`,
+/// 9 significant digits (%.9g: what reads back as the same float where v is one; a value a float
+/// computation accumulated in double keeps its 9 digits, it is not rounded to a float first).
+/// "nan", "inf", "-inf" for those.
 std::string round_trip_text(double v, bool as_float = false);
 
 /// Parses a comma-separated list of finite numbers ("0.1,0.5,1"); `what` names it in errors.
