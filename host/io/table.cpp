@@ -213,7 +213,7 @@ std::vector<std::pair<std::string, std::string>> table_description(const Table& 
     a.emplace_back("error_meaning", "estimated absolute error of the texel (max over channels): "
                                     "3 standard errors of the replicas plus 3 |E| / N (sampling) or the difference "
                                     "from the half-order rule (quadrature), plus a floating-point bound");
-    a.emplace_back("max_error", number(t.max_error()));
+    a.emplace_back("max_error", table_value_text(t, t.max_error()));
     a.emplace_back("tool", std::string("brdfbake ") + BRDFBAKE_VERSION);
     return a;
 }
