@@ -9,6 +9,7 @@
 
 #include <chrono>
 #include <cmath>
+#include <cstdio>
 #include <algorithm>
 #include <future>
 #include <map>
@@ -22,6 +23,7 @@
 #include "brdfbake/engine.h"
 #include "brdfbake/error.h"
 #include "brdfbake/evaluate.h"
+#include "brdfbake/memory_limit.h"
 #include "brdfbake/fresnel_curve.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/spec.h"
@@ -323,12 +325,34 @@ py::dict check(const std::string& model_spec, const std::string& fresnel_spec, d
     return d;
 }
 
-std::vector<Vec3> directions_of(const Array& a, const char* name) {
+// How far from length 1 a direction may be: float32 unit vectors are within about 1e-7.
+constexpr double kUnitTolerance = 1e-5;
+// Pairs evaluated per device call: the device's buffers stay small whatever the arrays' size.
+constexpr size_t kEvalChunk = size_t(1) << 20;
+
+void check_directions_shape(const Array& a, const char* name) {
     if (a.ndim() < 1 || a.shape(a.ndim() - 1) != 3)
         throw Error(std::string(name) + " must be an array of unit vectors with a last axis of 3");
-    std::vector<Vec3> out(size_t(a.size() / 3));
-    for (size_t i = 0; i < out.size(); ++i)
-        for (int k = 0; k < 3; ++k) out[i][k] = a.data()[3 * i + k];
+}
+
+/// Directions [from, to) of `a`: each finite and of length 1 within kUnitTolerance (then
+/// normalised exactly); anything else is refused (ValueError) naming the index and the vector.
+std::vector<Vec3> directions_of(const Array& a, const char* name, size_t from, size_t to) {
+    std::vector<Vec3> out(to - from);
+    for (size_t i = from; i < to; ++i) {
+        const double* v = a.data() + 3 * i;
+        const double length = std::sqrt(v[0] * v[0] + v[1] * v[1] + v[2] * v[2]);
+        if (!std::isfinite(v[0]) || !std::isfinite(v[1]) || !std::isfinite(v[2]) ||
+            !(std::fabs(length - 1.0) <= kUnitTolerance)) {
+            char b[256];
+            std::snprintf(b, sizeof b, "%s[%zu] = (%g, %g, %g) is not a unit vector (%s); eval takes finite directions "
+                          "of length 1 (within %g), and does not normalise them", name, i, v[0], v[1], v[2],
+                          std::isfinite(length) ? ("length " + std::to_string(length)).c_str() : "not finite",
+                          kUnitTolerance);
+            throw Error(b);
+        }
+        for (int k = 0; k < 3; ++k) out[i - from][k] = v[k] / length;
+    }
     return out;
 }
 
@@ -341,10 +365,27 @@ py::array_t<double> eval(const std::string& model_spec, const Array& wo, const A
         throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
     if (wo.ndim() != wi.ndim() || !std::equal(wo.shape(), wo.shape() + wo.ndim(), wi.shape()))
         throw Error("wo and wi must have the same shape");
-    const std::vector<Vec3> o = directions_of(wo, "wo"), i = directions_of(wi, "wi");
+    check_directions_shape(wo, "wo");
+    check_directions_shape(wi, "wi");
+    const size_t n = size_t(wo.size() / 3);
+    for (size_t from = 0; from < n; from += kEvalChunk) {  // every input checked before any work
+        directions_of(wo, "wo", from, std::min(n, from + kEvalChunk));
+        directions_of(wi, "wi", from, std::min(n, from + kEvalChunk));
+    }
+    // The result (a vector, then the array it becomes) and one chunk's directions and device
+    // buffers (about 200 bytes a pair).
+    check_memory(16.0 * double(n) + 200.0 * double(std::min(n, kEvalChunk)),
+                 "eval of " + std::to_string(n) + " direction pairs");
     Engine& engine = engine_for(device);
-    const std::vector<double> f =
-        interruptible([&] { return evaluate_on_device(engine, model, fresnel, precision_of(precision), o, i); });
+    std::vector<double> f;
+    f.reserve(n);
+    for (size_t from = 0; from < n; from += kEvalChunk) {
+        const size_t to = std::min(n, from + kEvalChunk);
+        const std::vector<Vec3> o = directions_of(wo, "wo", from, to), i = directions_of(wi, "wi", from, to);
+        const std::vector<double> part =
+            interruptible([&] { return evaluate_on_device(engine, model, fresnel, precision_of(precision), o, i); });
+        f.insert(f.end(), part.begin(), part.end());
+    }
     std::vector<py::ssize_t> shape = shape_of(wo);
     shape.pop_back();
     return to_array(f, shape);

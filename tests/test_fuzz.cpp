@@ -1,6 +1,8 @@
 // The fuzz test (issue 16): random and mutated model and Fresnel specs (every registered model),
 // n,k files, scene JSON and glTF, run through albedo, fresnel, check, reciprocity, lut, plan and
-// bake. For every run it asserts what holds for any input:
+// bake, and (issue 31, directed cases) hostile tables, a corrupted part file and FIFOs through
+// show and merge; tests/test_faults.cpp has the full disks, and the cases that need files made
+// by brdfbake itself. For every run it asserts what holds for any input:
 //   - the exit status is 0, 1 or 2, the run ends by itself (no signal) within its time limit;
 //   - no NaN or infinity in standard output or in any written file (EXR files read back with
 //     OpenEXR, text files scanned for nan/inf, JSON for null);
@@ -298,8 +300,8 @@ struct Case {
     std::string dir;   // the case's folder: in/ holds inputs, out/ receives outputs
 };
 
-/// The failures issue 16 reported, as cases run before the random ones in every run (so that CI
-/// meets them whatever its seed finds). `in` receives their input files.
+/// The failures issues 16 and 31 reported, as cases run before the random ones in every run (so
+/// that CI meets them whatever its seed finds). `in` receives their input files.
 std::vector<std::string> directed_cases(const std::string& in, const std::string& out) {
     write_text(in + "/huge.yml", "DATA:\n  - type: tabulated nk\n    data: |\n        0.3 1e308 1e308\n"
                                  "        0.4 1e308 1e308\n        0.6 1e308 1e308\n");
@@ -308,7 +310,34 @@ std::vector<std::string> directed_cases(const std::string& in, const std::string
     write_text(in + "/huge_scene.json", "{\"materials\": [{\"name\": \"m\", \"model\": \"ggx\", \"fresnel\": \"nk:" + in +
                                             "/huge.yml\", \"wavelength\": 500, \"roughness\": 0.5, \"tables\": [\"conductor\"]}]}\n");
     const std::string aniso = "albedo --model ggx:alpha_x=0.1,alpha_y=0.5 --mu 0.5";
-    return {
+    // Issue 31's readers: tables whose numbers or description no table holds (each field in turn
+    // made hostile), a corrupted part file, and FIFOs, through show and merge.
+    std::vector<std::string> readers;
+    const std::vector<std::pair<std::string, std::string>> fields = {
+        {"# x_range: 0 1", "# x_range: nan 1"}, {"# x_size: 2", "# x_size: 2.5"}, {"# x_size: 2", "# x_size: 1e300"},
+        {"# kind: albedo", "# kind: nosuchkind"}, {"0.25,0.5,", "0.25,nan,"}, {"0.25,0.5,", "0.25,-inf,"},
+        {",0.001\n0.75", ",inf\n0.75"}, {"0.25,0.5,", "0.25,1e999,"}};
+    const std::string table = "# kind: albedo\n# quantity: test\n# x_axis: mu\n# x_mapping: mu = u\n# x_range: 0 1\n"
+                              "# x_size: 2\n# channels: E error\nmu,E,error\n0.25,0.5,0.001\n0.75,0.5,0.001\n";
+    for (size_t k = 0; k < fields.size(); ++k) {
+        std::string text = table;
+        text.replace(text.find(fields[k].first), fields[k].first.size(), fields[k].second);
+        const std::string path = in + "/hostile" + std::to_string(k) + ".csv";
+        write_text(path, text);
+        readers.push_back("show " + path + (k % 2 ? " --format json" : ""));
+        readers.push_back("show " + path + " -o " + out + "/converted.npy");
+    }
+    write_text(in + "/part.json", "{\"format\": \"brdfbake part file 2\", \"version\": \"0\", \"source\": \"0\", "
+                                  "\"command\": [\"lut\"], \"shard\": 0, \"shards\": 1, \"texts\": [], "
+                                  "\"cells\": {\"00\": \"00\"}, \"checksum\": \"0000000000000000\"}\n");
+    readers.push_back("merge " + in + "/part.json -o " + out + "/merged.csv");
+    ::mkfifo((in + "/fifo.csv").c_str(), 0600);
+    ::mkfifo((in + "/fifo.exr").c_str(), 0600);
+    ::mkfifo((in + "/fifo.json").c_str(), 0600);
+    readers.push_back("show " + in + "/fifo.csv");
+    readers.push_back("show " + in + "/fifo.exr");
+    readers.push_back("merge " + in + "/fifo.json -o " + out + "/merged.csv");
+    std::vector<std::string> cases = {
         aniso + " --phi 1e100 --method quadrature --format csv",
         aniso + " --phi 1e100 --method quadrature --format json",
         aniso + " --phi 1e100 --format table",
@@ -324,6 +353,8 @@ std::vector<std::string> directed_cases(const std::string& in, const std::string
         "albedo --model ggx:alpha=0.5 --fresnel nk:" + in + "/huge.yml --wavelength 500 --mu 0.5 --samples 1024 --format json",
         "bake " + in + "/huge_scene.json -o " + out + "/bake --samples 64 --mu-texels 4 --alpha-texels 4 --no-previews --no-report",
     };
+    cases.insert(cases.end(), readers.begin(), readers.end());
+    return cases;
 }
 
 /// The case of index i of a seed: one command with its generated inputs.

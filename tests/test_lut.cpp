@@ -592,11 +592,12 @@ TEST_CASE("CSV: the column named after an axis holds its coordinate, the derived
     t.error = {1e-4, 1e-4, 1e-4, 1e-4};
     const std::string csv = table_csv(t);
     const std::string body = csv.substr(csv.find("mu,roughness,alpha,E,error\n"));
+    // Coordinates in the shortest text that reads back as them; a float table's values and errors to 9 digits.
     CHECK(body == "mu,roughness,alpha,E,error\n"
-                  "0.25,0.25,0.0625,0.9,1.000e-04\n"
-                  "0.75,0.25,0.0625,0.8,1.000e-04\n"
-                  "0.25,0.75,0.5625,0.7,1.000e-04\n"
-                  "0.75,0.75,0.5625,0.6,1.000e-04\n");
+                  "0.25,0.25,0.0625,0.9,0.0001\n"
+                  "0.75,0.25,0.0625,0.8,0.0001\n"
+                  "0.25,0.75,0.5625,0.7,0.0001\n"
+                  "0.75,0.75,0.5625,0.6,0.0001\n");
 }
 
 TEST_CASE("issue 17: `lut albedo --model ggx --size 2x2 --alpha-map roughness -o t.csv` writes roughness 0.25, "

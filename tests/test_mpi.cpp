@@ -86,14 +86,20 @@ TEST_CASE("mpirun -np 2 bakes a scene into the files one process writes", "[mpi]
 }
 
 TEST_CASE("a rank that fails ends the whole job: one error line, non-zero exit, no file", "[mpi][device]") {
-    // Rank 1 is given an n,k file it cannot read (a per-rank environment variable, as a site's
-    // per-node paths could differ); rank 0 reads a good one.
+    // Rank 1 cannot read the n,k file that rank 0 reads under the same relative path (each rank
+    // starts in its own folder, as a file on a node's local disk may be missing on another): the
+    // ranks run one command (they compare their command lines first), and fail by their files.
     const std::string good = std::string(BRDFBAKE_SOURCE_DIR) + "/data/nk/Au-Johnson.yml", script = mpi_path("rank.sh"),
                       out = mpi_path("fail.exr");
+    ::mkdir(mpi_path("rank0").c_str(), 0700);
+    ::mkdir(mpi_path("rank1").c_str(), 0700);
+    ::mkdir(mpi_path("rank2").c_str(), 0700);
+    std::ofstream(mpi_path("rank0") + "/metal.yml") << slurp(good);
+    std::ofstream(mpi_path("rank2") + "/metal.yml") << slurp(good);
     {
         std::ofstream f(script);
-        f << "#!/bin/sh\nif [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then nk=" << mpi_path("missing.yml") << "; else nk=" << good
-          << "; fi\nexec " << BRDFBAKE_EXE << " lut albedo --model ggx --fresnel nk:$nk --wavelength 600 --size 6x3 "
+        f << "#!/bin/sh\ncd " << mpi_path("rank") << "$OMPI_COMM_WORLD_RANK || exit 3\nexec " << BRDFBAKE_EXE
+          << " lut albedo --model ggx --fresnel nk:metal.yml --wavelength 600 --size 6x3 "
           << "--samples 1024 --no-preview -q -o " << out << "\n";
     }
     ::chmod(script.c_str(), 0755);
@@ -107,9 +113,29 @@ TEST_CASE("a rank that fails ends the whole job: one error line, non-zero exit, 
         CHECK(r.status != 0);
         CHECK(testing::count_lines(r.err) == 1);
         CHECK(r.err.rfind("brdfbake: error: rank 1 of " + std::to_string(ranks) + ": ", 0) == 0);
-        CHECK(r.err.find("missing.yml") != std::string::npos);
+        CHECK(r.err.find("metal.yml") != std::string::npos);
         CHECK(!exists(out));
     }
+    std::remove(script.c_str());
+    std::system(("rm -rf " + mpi_path("rank0") + " " + mpi_path("rank1") + " " + mpi_path("rank2")).c_str());
+}
+
+TEST_CASE("ranks given different arguments end the job before any work", "[mpi][device]") {
+    // Rank 1 is started with another --samples (a per-rank wrapper gone wrong): its cells would
+    // be mixed into rank 0's table. The ranks compare their commands first.
+    const std::string script = mpi_path("samples.sh"), out = mpi_path("mixed.exr");
+    {
+        std::ofstream f(script);
+        f << "#!/bin/sh\nif [ \"$OMPI_COMM_WORLD_RANK\" = 1 ]; then n=2048; else n=1024; fi\nexec " << BRDFBAKE_EXE
+          << " lut albedo --model ggx --size 6x3 --samples $n --no-preview -q -o " << out << "\n";
+    }
+    ::chmod(script.c_str(), 0755);
+    const auto r = run_mpi(2, script);
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(testing::count_lines(r.err) == 1);
+    CHECK(r.err.find("must run one command: rank 1 of 2 has '2048' where rank 0 has '1024'") != std::string::npos);
+    CHECK(!exists(out));
     std::remove(script.c_str());
 }
 

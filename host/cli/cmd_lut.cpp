@@ -198,8 +198,10 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
         return kExitOk;
     }
     const Table table = compute_lut(engine, r);
+    OutputGroup together;  // the table and its preview land together or not at all
     write_table(table, o.output, o.half);
     if (!o.no_preview) write_table_preview(table, preview);
+    together.commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "brdfbake: wrote %s: %s table %dx%dx%d (%s), max error %.2e, %.2f s\n", o.output.c_str(),
                  table.kind.c_str(), table.width(), table.height(), table.depth(), table.attributes.at("model").c_str(),

@@ -96,14 +96,14 @@ std::string render(const Table& t, Format format) {
                       a->mapping.c_str());
         o << line;
     }
+    // Values in the shortest text that reads back as them at the table's precision.
     for (size_t c = 0; c < t.channels.size(); ++c) {
-        std::snprintf(line, sizeof line, "  channel %-8s min %.6g (%s), max %.6g (%s), mean %.6g\n",
-                      t.channels[c].c_str(), stats[c].min, where(t, stats[c].at_min).c_str(), stats[c].max,
-                      where(t, stats[c].at_max).c_str(), stats[c].mean);
-        o << line;
+        std::snprintf(line, sizeof line, "  channel %-8s ", t.channels[c].c_str());
+        o << line << "min " << table_value_text(t, stats[c].min) << " (" << where(t, stats[c].at_min) << "), max "
+          << table_value_text(t, stats[c].max) << " (" << where(t, stats[c].at_max) << "), mean "
+          << table_value_text(t, stats[c].mean) << "\n";
     }
-    std::snprintf(line, sizeof line, "  max error %.3g at %s\n", err.max, where(t, err.at_max).c_str());
-    o << line;
+    o << "  max error " << table_value_text(t, err.max) << " at " << where(t, err.at_max) << "\n";
     for (const auto& kv : t.attributes) o << "  " << kv.first << ": " << kv.second << "\n";
     return o.str();
 }
@@ -200,17 +200,19 @@ int run_show(const ShowOptions& o, const GlobalOptions&) {
     const Table t = read_table(o.table);
     const Table slice = slice_of(t, o.slice);  // checks --slice before anything is written
     std::cout << render(t, format);
+    OutputGroup together;  // the picture and the converted table land together or not at all
     if (!o.plot.empty()) {
         if (curves.empty())
             write_table_preview(o.slice < 0 ? t : slice, o.plot);  // every slice, or the one asked for
         else
             o.along == "z" ? write_curves_along_z(t, curves, o.at_x, o.plot) : write_curves(slice, curves, o.plot);
-        std::fprintf(stderr, "brdfbake: wrote %s\n", o.plot.c_str());
     }
     if (!o.output.empty()) {
         write_table(t, o.output, o.half);
-        std::fprintf(stderr, "brdfbake: wrote %s\n", o.output.c_str());
     }
+    together.commit();
+    if (!o.plot.empty()) std::fprintf(stderr, "brdfbake: wrote %s\n", o.plot.c_str());
+    if (!o.output.empty()) std::fprintf(stderr, "brdfbake: wrote %s\n", o.output.c_str());
     return kExitOk;
 }
 

@@ -1,6 +1,7 @@
 // brdfbake: integrate BRDFs in OpenCL kernels and emit lookup tables and plots.
 // Library code throws brdfbake::Error; this is the one place that turns errors into exit codes.
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
 #include <cstring>
 #include <iostream>
@@ -18,6 +19,49 @@
 namespace brdfbake {
 namespace {
 std::vector<std::string> g_command_line;
+
+/// In an MPI job every rank must run one command: each rank's command line, less the options
+/// that do not change results (shard_command: -o, --device, --max-memory, -v, -q), is compared
+/// with rank 0's before any work; a rank given, say, another --samples would mix its results
+/// into the table. Throws Error on every rank, naming the first word that differs.
+void check_ranks_run_one_command(const std::vector<std::string>& arguments) {
+    if (!dist::active()) return;
+    const std::vector<std::string> mine = shard_command(arguments);
+    std::string packed;
+    for (const std::string& w : mine) packed += w + '\0';
+    const std::vector<std::string> all = dist::exchange(packed);
+    auto unpack = [](const std::string& text) {
+        std::vector<std::string> words;
+        for (size_t at = 0, end; (end = text.find('\0', at)) != std::string::npos; at = end + 1)
+            words.push_back(text.substr(at, end - at));
+        return words;
+    };
+    const std::vector<std::string> first = unpack(all[0]);
+    for (size_t r = 1; r < all.size(); ++r) {
+        if (all[r] == all[0]) continue;
+        const std::vector<std::string> other = unpack(all[r]);
+        size_t k = 0;
+        while (k < first.size() && k < other.size() && first[k] == other[k]) ++k;
+        auto word = [](const std::vector<std::string>& w, size_t k) {
+            return k < w.size() ? "'" + w[k] + "'" : std::string("the end of the command");
+        };
+        throw Error("the ranks of an MPI job must run one command: rank " + std::to_string(r) + " of " +
+                    std::to_string(all.size()) + " has " + word(other, k) + " where rank 0 has " + word(first, k) +
+                    " (word " + std::to_string(k + 1) + ")");
+    }
+}
+/// What a command printed is its result: a full disk or a closed pipe must not pass as success
+/// (stdout is buffered, so a failed write shows at the flush, or at an earlier write whose errno
+/// the caller kept: `errno_kept`). Throws Error.
+void flush_standard_output(bool errno_kept = false) {
+    std::cout.flush();
+    if (!errno_kept) errno = 0;
+    if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
+        const int err = errno;
+        throw Error(std::string("cannot write standard output") +
+                    (err ? std::string(": ") + std::strerror(err) : std::string()));
+    }
+}
 }  // namespace
 
 const std::vector<std::string>& command_line() { return g_command_line; }
@@ -85,17 +129,25 @@ int run_command_line(const std::vector<std::string>& arguments) {
         if (!known) return fail(Error(std::string("unknown command '") + argv[1] + "'; commands: " + names));
     }
 
+    // --help and --version print their answer, which must reach standard output like any result.
+    auto answer = [&](const std::string& text) {
+        errno = 0;
+        std::cout << text;
+        try {
+            flush_standard_output(true);
+        } catch (const Error& e) {
+            return fail(e);
+        }
+        return int(kExitOk);
+    };
     try {
         app.parse(argc, argv);
     } catch (const CLI::CallForHelp&) {
-        std::cout << app.help();
-        return kExitOk;
+        return answer(app.help());
     } catch (const CLI::CallForAllHelp&) {
-        std::cout << app.help("", CLI::AppFormatMode::All);
-        return kExitOk;
+        return answer(app.help("", CLI::AppFormatMode::All));
     } catch (const CLI::CallForVersion&) {
-        std::cout << "brdfbake " << BRDFBAKE_VERSION << "\n";
-        return kExitOk;
+        return answer(std::string("brdfbake ") + BRDFBAKE_VERSION + "\n");
     } catch (const CLI::ParseError& e) {
         // One line: CLI11's message (some span lines) and where the usage is.
         std::string message = e.what();
@@ -116,17 +168,10 @@ int run_command_line(const std::vector<std::string>& arguments) {
                 throw Error(std::string("--max-memory (or BRDFBAKE_MAX_MEMORY): ") + e.what());
             }
         }
+        check_ranks_run_one_command(arguments);
         if (!quiet && dist::is_writer()) set_progress_sink(&stderr_progress());
         const int status = action ? action() : kExitError;
-        // What a command printed is its result: a full disk or a closed pipe must not pass as
-        // success (stdout is buffered, so a failed write shows at the flush).
-        std::cout.flush();
-        errno = 0;
-        if (std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout) {
-            const int err = errno;
-            throw Error(std::string("cannot write standard output") +
-                        (err ? std::string(": ") + std::strerror(err) : std::string()));
-        }
+        flush_standard_output();
         dist::agree();
         return status;
     } catch (...) {
@@ -140,6 +185,10 @@ int main(int argc, char** argv) {
     using namespace brdfbake;
     // An MPI rank (mpirun, srun) joins its job here; a plain run is the one process it always was.
     // Ranks other than 0 print nothing: their results and errors reach rank 0, which prints.
+    // A reader that closes the pipe early (`brdfbake show T | head -1`) makes the next write fail
+    // with EPIPE, reported as "cannot write standard output" with exit status 2 (the README's
+    // promise), instead of a silent death by SIGPIPE.
+    std::signal(SIGPIPE, SIG_IGN);
     MpiSession mpi;
     if (!dist::is_writer()) {
         if (!std::freopen("/dev/null", "w", stdout) || !std::freopen("/dev/null", "w", stderr)) return kExitError;

@@ -273,9 +273,15 @@ template <typename Request, typename Result, typename Compute>
 Result record_shard(const Request& request, Compute compute) {
     const size_t n = request.cells.size();
     std::vector<size_t> mine;
+    // The identity mixed first (MurmurHash3's 64-bit finaliser, Appleby 2011): FNV-1a's low bits
+    // are the XOR of its bytes' low bits, which put all 64 cells of an 8x8 table in one of 2 shards.
+    auto owner = [](std::uint64_t h) {
+        h = (h ^ (h >> 33)) * 0xff51afd7ed558ccdull;
+        h = (h ^ (h >> 33)) * 0xc4ceb9fe1a85ec53ull;
+        return (h ^ (h >> 33)) % std::uint64_t(g_shard_count);
+    };
     for (size_t c = 0; c < n; ++c)
-        if (cell_identity(request.cells[c]) % std::uint64_t(g_shard_count) == std::uint64_t(g_shard_index))
-            mine.push_back(c);
+        if (owner(cell_identity(request.cells[c])) == std::uint64_t(g_shard_index)) mine.push_back(c);
     Result result;
     size_result(result, n);
     if (mine.empty()) return result;

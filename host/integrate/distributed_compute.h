@@ -40,7 +40,7 @@ struct ShardRecords {
     std::vector<std::string> texts;            // method texts, referred to by index
 };
 
-/// Shard K of N: from now on this process computes only the cells it owns (cell_identity mod N)
+/// Shard K of N: from now on this process computes only the cells it owns (a mix of cell_identity, mod N)
 /// and records them; the others are placeholders (0 +- 0) that make no result of their own.
 void begin_shard(int index, int count);
 /// The shard's records so far.

@@ -2,18 +2,41 @@
 
 #include <nlohmann/json.hpp>
 
-#include <fstream>
+#include <cstdint>
+#include <cstdio>
 #include <sstream>
 
 #include "brdfbake/error.h"
 #include "brdfbake/output.h"
 #include "brdfbake/version.h"
 #include "engine/embedded_sources.h"
+#include "models/input_file.h"
 
 namespace brdfbake {
 namespace {
 
-constexpr const char* kFormat = "brdfbake part file 1";
+// A part file holds one shard's records in hex: 1 GiB is far beyond any table brdfbake computes.
+constexpr std::uintmax_t kMaxPartFileBytes = std::uintmax_t(1) << 30;
+
+constexpr const char* kFormat = "brdfbake part file 2";
+constexpr const char* kOldFormat = "brdfbake part file 1";  // without a checksum
+
+// FNV-1a, 64 bits, of `text`, as 16 hex digits: a checksum that catches any change to a part
+// file by accident (a bit flip, an edit, a copy cut short), not a signature against forgery.
+std::string fnv1a_hex(const std::string& text) {
+    std::uint64_t h = 1469598103934665603ull;
+    for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+    char b[17];
+    std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
+    return b;
+}
+
+// The checksum of a part file's JSON: of its canonical text (nlohmann's dump, keys sorted)
+// without the checksum itself. It covers the command, the version, the shard and every record.
+std::string checksum_of(nlohmann::json j) {
+    j.erase("checksum");
+    return fnv1a_hex(j.dump());
+}
 
 std::string to_hex(const std::string& bytes) {
     static const char* digits = "0123456789abcdef";
@@ -71,20 +94,27 @@ void write_part_file(const PartFile& part, const std::string& path) {
     nlohmann::json cells = nlohmann::json::object();
     for (const auto& [key, bytes] : part.cells) cells[key] = to_hex(bytes);
     j["cells"] = cells;
+    j["checksum"] = checksum_of(j);
     write_file_atomically(path, j.dump(1) + "\n");
 }
 
 PartFile read_part_file(const std::string& path) {
-    std::ifstream in(path, std::ios::binary);
-    if (!in) throw Error("cannot read part file '" + path + "'");
+    // Only a regular file, and not beyond the limit: a FIFO or a device must not block or fill memory.
+    const std::string text = read_input_file(path, "part file", kMaxPartFileBytes);
     nlohmann::json j;
     try {
-        in >> j;
+        j = nlohmann::json::parse(text);
     } catch (const nlohmann::json::exception&) {
         throw Error("'" + path + "' is not a brdfbake part file (not JSON)");
     }
+    if (j.is_object() && j.value("format", "") == kOldFormat)
+        throw Error("'" + path + "' is a part file of an older brdfbake, without a checksum: compute the shard again");
     if (!j.is_object() || j.value("format", "") != kFormat)
         throw Error("'" + path + "' is not a brdfbake part file (written by `brdfbake lut ... --shard K/N`)");
+    if (!j.contains("checksum") || !j["checksum"].is_string() || j["checksum"].get<std::string>() != checksum_of(j))
+        throw Error("part file '" + path +
+                    "' is corrupted: its checksum does not match its content (changed or cut short after "
+                    "`brdfbake lut --shard` wrote it); compute that shard again");
     PartFile p;
     try {
         p.version = j.at("version").get<std::string>();

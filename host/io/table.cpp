@@ -4,6 +4,7 @@
 #include <OpenEXR/ImfFloatAttribute.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfIntAttribute.h>
 #include <OpenEXR/ImfOutputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
@@ -13,6 +14,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <cstring>
 #include <sstream>
 #include <unistd.h>
 
@@ -21,6 +23,13 @@
 #include "brdfbake/version.h"
 
 namespace brdfbake {
+
+bool is_double_table(const Table& t) {
+    const auto p = t.attributes.find("precision");
+    return p != t.attributes.end() && p->second == "double";
+}
+
+std::string table_value_text(const Table& t, double v) { return round_trip_text(v, !is_double_table(t)); }
 
 double Table::max_error() const {
     double m = 0.0;
@@ -161,11 +170,7 @@ void check_finite(const Table& t) {
 
 namespace {
 
-std::string number(double v) {
-    char b[32];
-    std::snprintf(b, sizeof b, "%.9g", v);
-    return b;
-}
+std::string number(double v) { return round_trip_text(v); }
 
 /// The texel convention of an axis, in words.
 std::string texel_text(const Axis& ax) {
@@ -208,12 +213,19 @@ std::vector<std::pair<std::string, std::string>> table_description(const Table& 
     a.emplace_back("error_meaning", "estimated absolute error of the texel (max over channels): "
                                     "3 standard errors of the replicas plus 3 |E| / N (sampling) or the difference "
                                     "from the half-order rule (quadrature), plus a floating-point bound");
-    a.emplace_back("max_error", number(t.max_error()));
+    a.emplace_back("max_error", table_value_text(t, t.max_error()));
     a.emplace_back("tool", std::string("brdfbake ") + BRDFBAKE_VERSION);
     return a;
 }
 
 namespace {
+
+/// `name` with every character a C identifier cannot hold replaced by '_'.
+std::string c_identifier(const std::string& name) {
+    std::string out;
+    for (char c : name) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
+    return out;
+}
 
 std::string extension(const std::string& path) {
     const size_t dot = path.find_last_of('.');
@@ -223,6 +235,23 @@ std::string extension(const std::string& path) {
     for (char& c : e) c = char(std::tolower(static_cast<unsigned char>(c)));
     return e;
 }
+
+/// An OpenEXR output stream into memory.
+class MemoryStream : public Imf::OStream {
+public:
+    explicit MemoryStream(const std::string& name) : Imf::OStream(name.c_str()) {}
+    void write(const char c[], int n) override {
+        if (pos_ + size_t(n) > data.size()) data.resize(pos_ + size_t(n));
+        std::memcpy(&data[pos_], c, size_t(n));
+        pos_ += size_t(n);
+    }
+    uint64_t tellp() override { return pos_; }
+    void seekp(uint64_t pos) override { pos_ = size_t(pos); }
+    std::string data;
+
+private:
+    size_t pos_ = 0;
+};
 
 }  // namespace
 
@@ -299,16 +328,17 @@ void write_exr(const Table& t, const std::string& path, bool half) {
         }
         fb.insert(names[c], Imf::Slice(type, base, size, size * size_t(w)));
     }
-    const OutputFile out = prepare_output(path);
+    // Encoded in memory, then written with every write checked: OpenEXR's file stream finishes
+    // the file (its offset table) in a destructor that cannot report a full disk.
+    MemoryStream bytes(path);
     try {
-        Imf::OutputFile file(out.temporary.c_str(), header);
+        Imf::OutputFile file(bytes, header);
         file.setFrameBuffer(fb);
         file.writePixels(h);
     } catch (const std::exception& e) {
-        std::remove(out.temporary.c_str());
         throw Error("cannot write '" + path + "': " + e.what());
     }
-    commit_output(out, path);
+    write_file_atomically(path, bytes.data);
 }
 
 std::string table_csv(const Table& t) {
@@ -333,14 +363,10 @@ std::string table_csv(const Table& t) {
     o << head;
     for (const auto& c : t.channels) o << "," << c;
     o << ",error\n";
-    char b[64];
+    const bool as_float = !is_double_table(t);
     auto put = [&](const Axis& a, int i, bool first) {
-        std::snprintf(b, sizeof b, first ? "%.9g" : ",%.9g", a.coordinate[size_t(i)]);
-        o << b;
-        if (derived(a)) {
-            std::snprintf(b, sizeof b, ",%.9g", a.parameter[size_t(i)]);
-            o << b;
-        }
+        o << (first ? "" : ",") << round_trip_text(a.coordinate[size_t(i)]);
+        if (derived(a)) o << "," << round_trip_text(a.parameter[size_t(i)]);
     };
     for (int l = 0; l < t.depth(); ++l)
         for (int j = 0; j < t.height(); ++j)
@@ -349,35 +375,43 @@ std::string table_csv(const Table& t) {
                 put(t.x, i, true);
                 if (t.height() > 1) put(t.y, j, false);
                 if (t.depth() > 1) put(t.z, l, false);
-                for (const auto& v : t.values) {
-                    std::snprintf(b, sizeof b, ",%.9g", v[k]);
-                    o << b;
-                }
-                std::snprintf(b, sizeof b, ",%.3e\n", t.error[k]);
-                o << b;
+                for (const auto& v : t.values) o << "," << round_trip_text(v[k], as_float);
+                o << "," << round_trip_text(t.error[k], as_float) << "\n";
             }
     return o.str();
 }
 
 std::string table_header(const Table& t, const std::string& symbol) {
+    // A double table's arrays are double, a float table's float: each value in the shortest
+    // text that reads back as it, always a floating literal (1.0f, never 1f, which C rejects).
+    const bool as_float = !is_double_table(t);
+    const char* type = as_float ? "float" : "double";
     std::ostringstream o;
-    o << "// Generated by brdfbake; one float per texel, row-major: index = (z * " << t.height() << " + y) * "
-      << t.width() << " + x.\n";
-    for (const auto& kv : table_description(t)) o << "// " << kv.first << ": " << kv.second << "\n";
+    o << "// Generated by brdfbake; one " << type << " per texel, row-major: index = (z * " << t.height()
+      << " + y) * " << t.width() << " + x.\n";
+    for (const auto& kv : table_description(t)) {
+        // A comment line: no line break inside, and no final backslash (which would splice the next line in).
+        std::string text = kv.second;
+        for (char& c : text)
+            if (c == '\n' || c == '\r') c = ' ';
+        if (!text.empty() && text.back() == '\\') text += '.';
+        o << "// " << kv.first << ": " << text << "\n";
+    }
     o << "#pragma once\n\n";
     o << "static const int " << symbol << "_width = " << t.width() << ";\n";
     o << "static const int " << symbol << "_height = " << t.height() << ";\n";
     o << "static const int " << symbol << "_depth = " << t.depth() << ";\n";
-    char b[32];
     auto array = [&](const std::string& name, const std::vector<double>& v) {
-        o << "static const float " << symbol << "_" << name << "[" << v.size() << "] = {";
+        o << "static const " << type << " " << symbol << "_" << name << "[" << v.size() << "] = {";
         for (size_t i = 0; i < v.size(); ++i) {
-            std::snprintf(b, sizeof b, "%.9gf", v[i]);
-            o << (i % 8 == 0 ? "\n    " : " ") << b << (i + 1 < v.size() ? "," : "");
+            std::string literal = round_trip_text(v[i], as_float);
+            if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
+            if (as_float) literal += "f";
+            o << (i % 8 == 0 ? "\n    " : " ") << literal << (i + 1 < v.size() ? "," : "");
         }
         o << "\n};\n";
     };
-    for (size_t c = 0; c < t.channels.size(); ++c) array(t.channels[c], t.values[c]);
+    for (size_t c = 0; c < t.channels.size(); ++c) array(c_identifier(t.channels[c]), t.values[c]);
     array("error", t.error);
     return o.str();
 }
@@ -402,9 +436,7 @@ void write_table(const Table& t, const std::string& path, bool half) {
         // A C identifier from the file name: brdfbake_<stem>.
         std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
         stem = stem.substr(0, stem.find('.'));
-        std::string symbol = "brdfbake_";
-        for (char c : stem) symbol += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
-        return write_file_atomically(path, table_header(t, symbol));
+        return write_file_atomically(path, table_header(t, "brdfbake_" + c_identifier(stem)));
     }
     write_file_atomically(path, table_csv(t));
 }

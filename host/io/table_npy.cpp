@@ -16,17 +16,6 @@
 namespace brdfbake {
 namespace {
 
-/// The array's shape: (x), (y, x) or (z, y, x) by the table's dimensions, then the channels
-/// (value channels, then the error).
-std::vector<size_t> npy_shape(const Table& t) {
-    std::vector<size_t> shape;
-    if (t.depth() > 1) shape.push_back(size_t(t.depth()));
-    if (t.height() > 1 || t.depth() > 1) shape.push_back(size_t(t.height()));
-    shape.push_back(size_t(t.width()));
-    shape.push_back(t.channels.size() + 1);
-    return shape;
-}
-
 std::string npy_bytes(const Table& t, const std::vector<size_t>& shape) {
     std::string dims;
     for (size_t d : shape) dims += std::to_string(d) + ", ";
@@ -66,6 +55,15 @@ nlohmann::json axis_json(const Axis& a) {
 
 }  // namespace
 
+std::vector<size_t> npy_shape(const Table& t) {
+    std::vector<size_t> shape;
+    if (t.depth() > 1) shape.push_back(size_t(t.depth()));
+    if (t.height() > 1 || t.depth() > 1) shape.push_back(size_t(t.height()));
+    shape.push_back(size_t(t.width()));
+    shape.push_back(t.channels.size() + 1);
+    return shape;
+}
+
 void write_npy(const Table& t, const std::string& path) {
     const std::vector<size_t> shape = npy_shape(t);
     nlohmann::json j;
@@ -93,9 +91,12 @@ void write_npy(const Table& t, const std::string& path) {
     nlohmann::json description = nlohmann::json::object();
     for (const auto& kv : table_description(t)) description[kv.first] = kv.second;
     j["description"] = description;
-    // The sidecar first: the array never stands without its description.
+    // Both or neither: the array never stands without its description, nor the description
+    // without its array (the sidecar is renamed first).
+    OutputGroup together;
     write_file_atomically(path + ".json", j.dump(2) + "\n");
     write_file_atomically(path, npy_bytes(t, shape));
+    together.commit();
 }
 
 }  // namespace brdfbake

@@ -3,9 +3,11 @@
 // LUTs (the glTF sample viewer's lut_ggx.png) are. The description goes into tEXt chunks.
 #include <png.h>
 
+#include <cerrno>
 #include <cmath>
 #include <csetjmp>
 #include <cstdio>
+#include <cstring>
 #include <string>
 #include <vector>
 
@@ -35,17 +37,20 @@ png_uint_16 quantise(double v, double error, const Table& t, size_t channel, siz
 }
 
 void on_png_error(png_structp png, png_const_charp message) {
+    const int err = errno;  // libpng's "Write Error" of a failed fwrite: the reason is in errno
     auto* text = static_cast<std::string*>(png_get_error_ptr(png));
     *text = message;
+    if (err) *text += std::string(" (") + std::strerror(err) + ")";
     png_longjmp(png, 1);
 }
 
 void on_png_warning(png_structp, png_const_charp) {}
 
-/// Encodes the rows into `file`; false with libpng's message on failure. Kept apart so that no
+/// Encodes the rows into `file`; false with libpng's message on failure (libpng's own write
+/// function reports a failed fwrite through png_error, which lands here). Kept apart so that no
 /// local of the caller lives across libpng's longjmp.
-bool encode(std::FILE* file, png_uint_32 w, png_uint_32 h, int color_type, png_bytep* rows, png_text* text,
-            int n_text, std::string* message) {
+bool encode(std::FILE* file, png_uint_32 w, png_uint_32 h, int depth, int color_type, png_bytep* rows, png_text* text,
+            int n_text, double gamma, std::string* message) {
     png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, message, on_png_error, on_png_warning);
     if (!png) {
         *message = "libpng could not start";
@@ -58,10 +63,10 @@ bool encode(std::FILE* file, png_uint_32 w, png_uint_32 h, int color_type, png_b
         return false;
     }
     png_init_io(png, file);
-    png_set_IHDR(png, info, w, h, 16, color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
+    png_set_IHDR(png, info, w, h, depth, color_type, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                  PNG_FILTER_TYPE_DEFAULT);
-    png_set_gAMA(png, info, 1.0);
-    png_set_text(png, info, text, n_text);
+    if (gamma > 0.0) png_set_gAMA(png, info, gamma);
+    if (n_text > 0) png_set_text(png, info, text, n_text);
     png_set_rows(png, info, rows);
     png_write_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
     png_destroy_write_struct(&png, &info);
@@ -89,6 +94,19 @@ void write_png16(const Table& t, const std::string& path) {
     text.emplace_back("png_encoding", "16-bit unsigned samples, linear (gAMA 1.0, no sRGB transfer): value = sample / 65535, "
                                       "sample = round(value * 65535); values outside [0, 1] by at most their error "
                                       "estimate were clamped; the error channel is not stored (see max_error)");
+    write_png_file(path, w, h, 16, samples, image, text, 1.0);
+}
+
+void write_png_file(const std::string& path, int w, int h, int depth, int channels, const std::vector<unsigned char>& bytes,
+                    const std::vector<std::pair<std::string, std::string>>& text, double gamma) {
+    const int color_type = channels == 4   ? PNG_COLOR_TYPE_RGB_ALPHA
+                           : channels == 3 ? PNG_COLOR_TYPE_RGB
+                           : channels == 1 ? PNG_COLOR_TYPE_GRAY
+                                           : -1;
+    const size_t row_bytes = size_t(w) * size_t(channels) * size_t(depth / 8);
+    if (color_type < 0 || (depth != 8 && depth != 16) || bytes.size() != row_bytes * size_t(h))
+        throw Error("internal error: a PNG of " + std::to_string(channels) + " channels at " + std::to_string(depth) +
+                    " bits does not match its " + std::to_string(bytes.size()) + " bytes");
     std::vector<std::string> keys;
     for (const auto& kv : text) keys.push_back("brdfbake:" + kv.first);
     std::vector<png_text> chunks(text.size());
@@ -98,19 +116,21 @@ void write_png16(const Table& t, const std::string& path) {
         chunks[i].text = const_cast<char*>(text[i].second.c_str());
         chunks[i].text_length = text[i].second.size();
     }
-
     std::vector<png_bytep> rows(static_cast<size_t>(h));
-    for (int y = 0; y < h; ++y) rows[size_t(y)] = image.data() + size_t(y) * w * samples * 2;
+    for (int y = 0; y < h; ++y) rows[size_t(y)] = const_cast<png_bytep>(bytes.data()) + size_t(y) * row_bytes;
     const OutputFile out = prepare_output(path);
     std::FILE* file = std::fopen(out.temporary.c_str(), "wb");
-    if (!file) throw Error("cannot write '" + path + "'");
+    if (!file) throw Error("cannot write '" + path + "': " + std::strerror(errno));
     std::string message;
-    const bool encoded = encode(file, png_uint_32(w), png_uint_32(h), samples == 4 ? PNG_COLOR_TYPE_RGB_ALPHA : PNG_COLOR_TYPE_RGB,
-                                rows.data(), chunks.data(), int(chunks.size()), &message);
-    const bool closed = std::fclose(file) == 0;
+    errno = 0;
+    const bool encoded = encode(file, png_uint_32(w), png_uint_32(h), depth, color_type, rows.data(), chunks.data(),
+                                int(chunks.size()), gamma, &message);
+    errno = 0;
+    const bool closed = std::fclose(file) == 0;  // the buffer's last write: a full disk may show only here
     if (!encoded || !closed) {
+        const std::string why = encoded ? (errno ? std::strerror(errno) : "write failed") : message;
         std::remove(out.temporary.c_str());
-        throw Error("cannot write '" + path + "': " + (encoded ? std::string("write failed") : message));
+        throw Error("cannot write '" + path + "': " + why);
     }
     commit_output(out, path);
 }

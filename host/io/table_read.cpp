@@ -4,19 +4,23 @@
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
+#include <OpenEXR/ImfIO.h>
 #include <OpenEXR/ImfInputFile.h>
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <nlohmann/json.hpp>
 
 #include <cctype>
+#include <cmath>
 #include <cstring>
 #include <map>
 #include <set>
 #include <sstream>
+#include <stdexcept>
 
 #include "brdfbake/error.h"
 #include "brdfbake/table.h"
+#include "brdfbake/table_kinds.h"
 #include "models/input_file.h"
 
 namespace brdfbake {
@@ -42,11 +46,42 @@ std::vector<std::string> words(const std::string& text) {
     return out;
 }
 
-double number_of(const std::string& text, const std::string& path, const std::string& what) {
+/// A number of the file's text; one that is not finite is refused here unless `finite_only` is
+/// false (a texel's value: check_read_values then names its channel and texel).
+double number_of(const std::string& text, const std::string& path, const std::string& what, bool finite_only = true) {
     char* end = nullptr;
     const double v = std::strtod(text.c_str(), &end);
     if (text.empty() || *end != '\0') throw Error("'" + path + "': " + what + " '" + text + "' is not a number");
+    if (finite_only && !std::isfinite(v)) throw Error("'" + path + "': " + what + " '" + text + "' is not a finite number");
     return v;
+}
+
+// The largest axis a reader takes: beyond every table brdfbake writes (a 4 GiB file holds fewer texels).
+constexpr int kMaxAxisSize = 1 << 20;
+
+/// The table kinds a file may name: the registry's (brdfbake/table_kinds.h) and the map that
+/// `brdfbake reciprocity` writes.
+bool known_kind(const std::string& kind) { return find_table_kind(kind) != nullptr || kind == "reciprocity"; }
+
+/// Every value and error read is a finite number, every error non-negative: a file that holds
+/// NaN or Inf was not written by brdfbake (check_finite refuses them) and is refused by name.
+void check_read_values(const Table& t, const std::string& path) {
+    const size_t n = size_t(t.width()) * size_t(t.image_height());
+    auto where = [&](size_t k) {
+        std::string s = "texel (" + std::to_string(k % size_t(t.width())) + ", " +
+                        std::to_string((k / size_t(t.width())) % size_t(t.height()));
+        if (t.depth() > 1) s += ", " + std::to_string(k / (size_t(t.width()) * size_t(t.height())));
+        return s + ")";
+    };
+    for (size_t k = 0; k < n; ++k) {
+        for (size_t c = 0; c < t.values.size(); ++c)
+            if (!std::isfinite(t.values[c][k]))
+                throw Error("'" + path + "': channel " + t.channels[c] + " holds " + std::to_string(t.values[c][k]) +
+                            " at " + where(k) + "; a table holds finite values");
+        if (!std::isfinite(t.error[k]) || t.error[k] < 0.0)
+            throw Error("'" + path + "': the error channel holds " + std::to_string(t.error[k]) + " at " + where(k) +
+                        "; an error estimate is a finite number, 0 or more");
+    }
 }
 
 /// The table's kind, quantity, axes (coordinates recomputed from range, size and texels; the
@@ -60,6 +95,9 @@ Table table_from_description(const Description& d, const std::string& path) {
     };
     Table t;
     t.kind = get("kind");
+    if (!known_kind(t.kind))
+        throw Error("'" + path + "': its kind '" + t.kind + "' is not a table brdfbake writes (known: " +
+                    table_kind_names() + ", reciprocity)");
     t.quantity = get("quantity");
     std::set<std::string> structural = {"kind",          "quantity", "layout",    "texel_convention", "channels",
                                         "rgba_view",     "error_meaning", "max_error", "tool", "exr_channels",
@@ -71,8 +109,11 @@ Table table_from_description(const Description& d, const std::string& path) {
             structural.insert(which + k);
         const std::vector<std::string> range = words(get(which + "_range"));
         if (range.size() != 2) throw Error("'" + path + "': " + which + "_range must hold two numbers");
-        const int size = int(number_of(get(which + "_size"), path, which + "_size"));
-        if (size < 1) throw Error("'" + path + "': " + which + "_size must be positive");
+        const double size_value = number_of(get(which + "_size"), path, which + "_size");
+        if (size_value < 1 || size_value > kMaxAxisSize || size_value != std::floor(size_value))
+            throw Error("'" + path + "': " + which + "_size '" + get(which + "_size") + "' is not a whole number from 1 to " +
+                        std::to_string(kMaxAxisSize));
+        const int size = int(size_value);
         const Texels texels = d.count(which + "_texels") ? Texels::Edge : Texels::Centre;
         a = make_axis(get(which + "_axis"), get(which + "_mapping"), number_of(range[0], path, which + "_range"),
                       number_of(range[1], path, which + "_range"), size, texels);
@@ -104,9 +145,30 @@ size_t texels_of(const Table& t) { return size_t(t.width()) * size_t(t.image_hei
 
 // ------------------------------------------------------------------ EXR
 
+/// An OpenEXR input stream over bytes in memory (read through read_input_file, which opens only
+/// regular files).
+class MemoryInput : public Imf::IStream {
+public:
+    MemoryInput(const std::string& bytes, const std::string& name) : Imf::IStream(name.c_str()), bytes_(bytes) {}
+    bool read(char c[], int n) override {
+        if (n < 0 || pos_ + size_t(n) > bytes_.size()) throw std::runtime_error("the file is cut short");
+        std::memcpy(c, bytes_.data() + pos_, size_t(n));
+        pos_ += size_t(n);
+        return pos_ < bytes_.size();
+    }
+    uint64_t tellg() override { return pos_; }
+    void seekg(uint64_t pos) override { pos_ = size_t(pos); }
+
+private:
+    const std::string& bytes_;
+    size_t pos_ = 0;
+};
+
 Table read_exr(const std::string& path) {
+    const std::string bytes = read_input_file(path, "table", kMaxTableFileBytes);
     try {
-        Imf::InputFile file(path.c_str());
+        MemoryInput stream(bytes, path);
+        Imf::InputFile file(stream);
         const Imf::Header& header = file.header();
         Description d;
         for (auto it = header.begin(); it != header.end(); ++it) {
@@ -157,7 +219,8 @@ Table read_exr(const std::string& path) {
 // ------------------------------------------------------------------ CSV
 
 Table read_csv(const std::string& path) {
-    std::istringstream in(read_input_file(path, "table", kMaxTableFileBytes));
+    const std::string text = read_input_file(path, "table", kMaxTableFileBytes);
+    std::istringstream in(text);
     Description d;
     std::string line;
     std::vector<std::string> columns;
@@ -197,6 +260,8 @@ Table read_csv(const std::string& path) {
         }
     }
     const size_t n = texels_of(t);
+    if (n > text.size() / 2)  // a row takes at least two bytes: the description promises rows the file cannot hold
+        throw Error("'" + path + "': its description's sizes make " + std::to_string(n) + " texels, more rows than the file holds");
     t.values.assign(t.channels.size(), std::vector<double>(n));
     t.error.assign(n, 0.0);
     std::vector<std::vector<double>> parameter(3);
@@ -212,8 +277,8 @@ Table read_csv(const std::string& path) {
                                                         std::to_string(cells.size()) + " fields, not " +
                                                         std::to_string(columns.size()));
         for (size_t c = 0; c < value_columns.size(); ++c)
-            t.values[c][k] = number_of(cells[size_t(value_columns[c])], path, "value");
-        t.error[k] = number_of(cells[size_t(error_column)], path, "error");
+            t.values[c][k] = number_of(cells[size_t(value_columns[c])], path, "value", false);
+        t.error[k] = number_of(cells[size_t(error_column)], path, "error", false);
         const size_t index[3] = {k % size_t(t.width()), (k / size_t(t.width())) % size_t(t.height()),
                                  k / (size_t(t.width()) * size_t(t.height()))};
         for (int a = 0; a < 3; ++a)
@@ -247,36 +312,79 @@ Table read_npy(const std::string& path) {
         if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) throw Error("'" + path + "' is not a .npy file");
         const size_t header_len = size_t(static_cast<unsigned char>(bytes[8])) |
                                   size_t(static_cast<unsigned char>(bytes[9])) << 8;
+        if (bytes[6] != '\x01' || 10 + header_len > bytes.size())
+            throw Error("'" + path + "' is not a .npy file of format 1.0 (its header is cut short)");
         const std::string header = bytes.substr(10, header_len);
         if (header.find("'descr': '<f8'") == std::string::npos || header.find("'fortran_order': False") == std::string::npos)
             throw Error("'" + path + "': brdfbake reads little-endian float64 arrays in C order");
-        const size_t n = texels_of(t), channels = t.channels.size() + 1;
-        if (bytes.size() != 10 + header_len + n * channels * 8)
-            throw Error("'" + path + "' does not hold " + std::to_string(n) + " texels of " + std::to_string(channels) +
+        // The array's own shape, the sidecar's record of it, and the description must agree.
+        const std::vector<size_t> shape = npy_shape(t);
+        const size_t open = header.find("'shape': ("), close = header.find(')', open);
+        if (open == std::string::npos || close == std::string::npos)
+            throw Error("'" + path + "': its header gives no shape");
+        std::vector<size_t> header_shape;
+        std::istringstream dims(header.substr(open + 10, close - open - 10));
+        for (std::string w; std::getline(dims, w, ',');)
+            if (w.find_first_not_of(' ') != std::string::npos)
+                header_shape.push_back(size_t(number_of(w.substr(w.find_first_not_of(' ')), path, "shape")));
+        auto shape_text = [](const std::vector<size_t>& v) {
+            std::string s;
+            for (size_t d : v) s += (s.empty() ? "" : ", ") + std::to_string(d);
+            return "(" + s + ")";
+        };
+        if (header_shape != shape)
+            throw Error("'" + path + "': the array's shape " + shape_text(header_shape) + " is not the " +
+                        shape_text(shape) + " its description gives (axes' sizes, channels and error)");
+        if (side.at("dtype").get<std::string>() != "<f8")
+            throw Error("'" + path + ".json': dtype '" + side.at("dtype").get<std::string>() + "' is not the array's '<f8'");
+        if (side.at("shape").get<std::vector<size_t>>() != shape)
+            throw Error("'" + path + ".json': shape " + shape_text(side.at("shape").get<std::vector<size_t>>()) +
+                        " is not the array's " + shape_text(shape));
+        std::vector<std::string> channels = t.channels;
+        channels.push_back("error");
+        if (side.at("channels").get<std::vector<std::string>>() != channels)
+            throw Error("'" + path + ".json': channels do not match the description's (" + d.at("channels") + ")");
+        std::vector<const Axis*> order;  // the array's axes, outermost first: z, y, x
+        if (t.depth() > 1) order.push_back(&t.z);
+        if (t.height() > 1 || t.depth() > 1) order.push_back(&t.y);
+        order.push_back(&t.x);
+        const auto& axes = side.at("axes");
+        if (!axes.is_array() || axes.size() != order.size())
+            throw Error("'" + path + ".json': axes lists " + std::to_string(axes.size()) + " axes; the array has " +
+                        std::to_string(order.size()));
+        for (size_t a = 0; a < order.size(); ++a)
+            if (axes[a].at("name").get<std::string>() != order[a]->name || axes[a].at("size").get<int>() != order[a]->size)
+                throw Error("'" + path + ".json': axes[" + std::to_string(a) + "] is " +
+                            axes[a].at("name").get<std::string>() + " of size " + std::to_string(axes[a].at("size").get<int>()) +
+                            "; the description gives " + order[a]->name + " of size " + std::to_string(order[a]->size));
+        const size_t n = texels_of(t), channel_count = t.channels.size() + 1;
+        if (bytes.size() != 10 + header_len + n * channel_count * 8)
+            throw Error("'" + path + "' does not hold " + std::to_string(n) + " texels of " + std::to_string(channel_count) +
                         " channels");
         t.values.assign(t.channels.size(), std::vector<double>(n));
         t.error.assign(n, 0.0);
         const char* data = bytes.data() + 10 + header_len;
         for (size_t k = 0; k < n; ++k)
-            for (size_t c = 0; c < channels; ++c) {
+            for (size_t c = 0; c < channel_count; ++c) {
                 std::uint64_t bits = 0;
                 for (int b = 0; b < 8; ++b)
-                    bits |= std::uint64_t(static_cast<unsigned char>(data[(k * channels + c) * 8 + size_t(b)])) << (8 * b);
+                    bits |= std::uint64_t(static_cast<unsigned char>(data[(k * channel_count + c) * 8 + size_t(b)]))
+                            << (8 * b);
                 double v;
                 std::memcpy(&v, &bits, sizeof v);
-                (c + 1 < channels ? t.values[c][k] : t.error[k]) = v;
+                (c + 1 < channel_count ? t.values[c][k] : t.error[k]) = v;
             }
-        // The sidecar lists the axes in the array's order: z, y, x.
-        for (const auto& a : side.at("axes")) {
-            const std::string name = a.at("name").get<std::string>();
-            for (Axis* axis : {&t.x, &t.y, &t.z})
-                if (axis->name == name && axis->size == a.at("size").get<int>()) {
-                    const auto p = a.at("parameter_values").get<std::vector<double>>();
-                    if (p.size() == size_t(axis->size)) {
-                        axis->parameter = p;
-                        axis->parameter_name = a.at("parameter").get<std::string>();
-                    }
-                }
+        // The sidecar lists the axes in the array's order: z, y, x (checked above).
+        for (size_t a = 0; a < order.size(); ++a) {
+            Axis* axis = const_cast<Axis*>(order[a]);
+            const auto p = axes[a].at("parameter_values").get<std::vector<double>>();
+            if (p.size() != size_t(axis->size))
+                throw Error("'" + path + ".json': axes[" + std::to_string(a) + "].parameter_values holds " +
+                            std::to_string(p.size()) + " values for " + std::to_string(axis->size) + " texels");
+            for (double v : p)
+                if (!std::isfinite(v)) throw Error("'" + path + ".json': axes[" + std::to_string(a) + "].parameter_values holds a non-finite value");
+            axis->parameter = p;
+            axis->parameter_name = axes[a].at("parameter").get<std::string>();
         }
         return t;
     } catch (const nlohmann::json::exception& e) {
@@ -288,10 +396,17 @@ Table read_npy(const std::string& path) {
 
 Table read_table(const std::string& path) {
     const std::string e = lower_extension(path);
-    if (e == "exr") return read_exr(path);
-    if (e == "csv") return read_csv(path);
-    if (e == "npy") return read_npy(path);
-    throw Error("cannot read '" + path + "' as a table: brdfbake reads back .exr, .csv and .npy (with its .json)");
+    Table t;
+    if (e == "exr")
+        t = read_exr(path);
+    else if (e == "csv")
+        t = read_csv(path);
+    else if (e == "npy")
+        t = read_npy(path);
+    else
+        throw Error("cannot read '" + path + "' as a table: brdfbake reads back .exr, .csv and .npy (with its .json)");
+    check_read_values(t, path);
+    return t;
 }
 
 }  // namespace brdfbake

@@ -342,7 +342,17 @@ void write_figure(const std::string& path, const Figure& figure) {
         std::fprintf(stderr, "brdfbake: MathGL: %s\n", gr.Message());
     }
 
-    // Atomic write: render into a temporary file beside the target, then rename.
+    if (kind == Kind::Png) {
+        // The canvas's RGB bytes through the project's PNG writer: libpng's errors (a full disk)
+        // end in Error, where MathGL's own writer would abort the process.
+        const unsigned char* rgb = gr.GetRGB();
+        const int w = gr.GetWidth(), h = gr.GetHeight();
+        if (!rgb || w <= 0 || h <= 0) throw Error("cannot write plot '" + path + "': MathGL drew nothing");
+        write_png_file(path, w, h, 8, 3, std::vector<unsigned char>(rgb, rgb + size_t(w) * size_t(h) * 3), {});
+        return;
+    }
+    // SVG: MathGL writes the file itself and reports no failure; a file that does not end with
+    // its closing tag was cut short (a full disk) and is removed.
     const OutputFile out = prepare_output(path);
     const std::string& tmp = out.temporary;
     // MathGL reports an unwritable file on stderr only; find out first, with the reason.
@@ -352,15 +362,18 @@ void write_figure(const std::string& path, const Figure& figure) {
         throw Error("cannot write plot '" + path + "': " + std::strerror(errno));
     }
     errno = 0;
-    if (kind == Kind::Png)
-        gr.WritePNG(tmp.c_str(), "brdfbake", false);
-    else
-        gr.WriteSVG(tmp.c_str(), "brdfbake");
-    struct stat st {};
-    if (::stat(tmp.c_str(), &st) != 0 || st.st_size == 0) {
-        const std::string why = errno ? std::strerror(errno) : "MathGL wrote nothing";
+    gr.WriteSVG(tmp.c_str(), "brdfbake");
+    const int err = errno;
+    std::string tail;
+    if (std::FILE* in = std::fopen(tmp.c_str(), "rb")) {
+        char b[64] = {};
+        if (std::fseek(in, -long(sizeof b - 1), SEEK_END) != 0) std::rewind(in);
+        tail.assign(b, std::fread(b, 1, sizeof b - 1, in));
+        std::fclose(in);
+    }
+    if (tail.find("</svg>") == std::string::npos) {
         std::remove(tmp.c_str());
-        throw Error("cannot write plot '" + path + "': " + why);
+        throw Error("cannot write plot '" + path + "': " + (err ? std::strerror(err) : "the SVG file was cut short"));
     }
     commit_output(out, path);
 }

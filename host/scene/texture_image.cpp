@@ -54,14 +54,16 @@ void on_png_warning(png_structp, png_const_charp) {}
 }  // namespace
 
 ChannelRanges png_channel_ranges(const std::string& bytes, const std::string& what) {
+    // Decoded a row at a time: the memory is one row whatever the image's size, which the IHDR
+    // gives before a pixel is decoded (a 1 MB file may hold a 20000 x 20000 image).
     std::string message;
     png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &message, on_png_error, on_png_warning);
     if (!png) throw Error(what + ": cannot start the PNG reader");
     png_infop info = png_create_info_struct(png);
     MemoryReader reader{&bytes};
-    std::vector<png_byte> pixels;
-    std::vector<png_bytep> rows;
+    std::vector<png_byte> row;
     ChannelRanges out;
+    std::array<unsigned, 4> lo{~0u, ~0u, ~0u, ~0u}, hi{0, 0, 0, 0};
     if (setjmp(png_jmpbuf(png))) {
         png_destroy_read_struct(&png, &info, nullptr);
         throw Error(what + " is not a readable PNG: " + message);
@@ -69,39 +71,44 @@ ChannelRanges png_channel_ranges(const std::string& bytes, const std::string& wh
     png_set_read_fn(png, &reader, read_from_memory);
     png_read_info(png, info);
     const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
+    const bool interlaced = png_get_interlace_type(png, info) != PNG_INTERLACE_NONE;
     // Raw sample values: no gamma or colour-space handling, palette and low bit depths expanded.
     png_set_palette_to_rgb(png);
     png_set_expand_gray_1_2_4_to_8(png);
     png_set_tRNS_to_alpha(png);
     png_set_gray_to_rgb(png);
-    png_set_interlace_handling(png);
+    const int passes = png_set_interlace_handling(png);
     png_read_update_info(png, info);
     const int depth = png_get_bit_depth(png, info), channels = png_get_channels(png, info);
     const std::size_t row_bytes = png_get_rowbytes(png, info);
     try {
-        check_memory(double(row_bytes) * h, what + " (decoded " + std::to_string(w) + "x" + std::to_string(h) + ")");
+        check_memory(double(row_bytes), what + " (one decoded row of " + std::to_string(w) + "x" + std::to_string(h) + ")");
     } catch (const Error&) {
         png_destroy_read_struct(&png, &info, nullptr);
         throw;
     }
-    pixels.resize(row_bytes * h);
-    rows.resize(h);
-    for (png_uint_32 y = 0; y < h; ++y) rows[y] = pixels.data() + row_bytes * y;
-    png_read_image(png, rows.data());
+    row.resize(row_bytes);
+    // An interlaced image comes in passes, each row once per pass holding only that pass's
+    // pixels (libpng's "sparkle" rows): the others are left as they were and skipped here.
+    for (int pass = 0; pass < passes; ++pass)
+        for (png_uint_32 y = 0; y < h; ++y) {
+            png_read_row(png, row.data(), nullptr);
+            if (interlaced && !PNG_ROW_IN_INTERLACE_PASS(y, pass)) continue;
+            for (png_uint_32 x = 0; x < w; ++x) {
+                if (interlaced && !PNG_COL_IN_INTERLACE_PASS(x, pass)) continue;
+                for (int c = 0; c < channels; ++c) {
+                    const std::size_t i = std::size_t(x) * std::size_t(channels) + std::size_t(c);
+                    const unsigned v = depth == 16 ? (unsigned(row[2 * i]) << 8) | row[2 * i + 1] : row[i];
+                    lo[size_t(c)] = std::min(lo[size_t(c)], v);
+                    hi[size_t(c)] = std::max(hi[size_t(c)], v);
+                }
+            }
+        }
     png_destroy_read_struct(&png, &info, nullptr);
 
     const double max_value = depth == 16 ? 65535.0 : 255.0;
     out.width = int(w);
     out.height = int(h);
-    std::array<unsigned, 4> lo{~0u, ~0u, ~0u, ~0u}, hi{0, 0, 0, 0};
-    const std::size_t n = std::size_t(w) * h;
-    for (std::size_t p = 0; p < n; ++p)
-        for (int c = 0; c < channels; ++c) {
-            const std::size_t i = p * std::size_t(channels) + std::size_t(c);
-            const unsigned v = depth == 16 ? (unsigned(pixels[2 * i]) << 8) | pixels[2 * i + 1] : pixels[i];
-            lo[size_t(c)] = std::min(lo[size_t(c)], v);
-            hi[size_t(c)] = std::max(hi[size_t(c)], v);
-        }
     for (int c = 0; c < 4; ++c) {
         if (c < channels) {
             out.lo[size_t(c)] = lo[size_t(c)] / max_value;
@@ -150,6 +157,18 @@ ChannelRanges jpeg_channel_ranges(const std::string& bytes, const std::string& w
     jpeg_mem_src(&info, reinterpret_cast<const unsigned char*>(bytes.data()), static_cast<unsigned long>(bytes.size()));
     jpeg_read_header(&info, TRUE);
     info.out_color_space = JCS_RGB;  // YCbCr and grey both come out as RGB samples
+    // A progressive JPEG keeps every coefficient of the image until its last scan (2 bytes per
+    // sample): judged from the header's dimensions before decoding. A baseline one needs a row.
+    if (jpeg_has_multiple_scans(&info)) {
+        try {
+            check_memory(2.0 * info.image_width * info.image_height * info.num_components,
+                         what + " (a progressive " + std::to_string(info.image_width) + "x" +
+                             std::to_string(info.image_height) + " JPEG)");
+        } catch (const Error&) {
+            jpeg_destroy_decompress(&info);
+            throw;
+        }
+    }
     jpeg_start_decompress(&info);
     const unsigned w = info.output_width, h = info.output_height, channels = unsigned(info.output_components);
     // One row at a time: the memory is a row, whatever the image's size (only its pixel count is read).

@@ -74,6 +74,13 @@ std::vector<int> rgba_view(const Table& table);
 /// "R = A, G = B, B = 0": the view in words, for the files' descriptions.
 std::string rgba_view_text(const Table& table);
 
+/// Whether the table was computed in double precision (its "precision" attribute): its text
+/// outputs then print 17 significant digits where a float table's print at most 9.
+bool is_double_table(const Table& table);
+/// A value of the table in the shortest text that reads back as it at the table's precision
+/// (round_trip_text in brdfbake/output.h).
+std::string table_value_text(const Table& table, double value);
+
 /// Checks that every value and error is finite; throws Error naming the first bad texel.
 void check_finite(const Table& table);
 
@@ -100,13 +107,20 @@ void write_png16(const Table& table, const std::string& path);
 /// NumPy .npy (format 1.0, '<f8', C order) of shape (x), (y, x) or (z, y, x) plus a last axis of
 /// the value channels and the error, and the sidecar PATH.json (axes, channels, description).
 void write_npy(const Table& table, const std::string& path);
+/// The .npy array's shape: (x), (y, x) or (z, y, x) by the table's dimensions, then the channels
+/// (value channels, then the error).
+std::vector<size_t> npy_shape(const Table& table);
 
 /// Reads back a table write_table wrote: .exr, .csv or .npy (with its PATH.json sidecar). Kind,
 /// quantity, axes, channels, values, error and attributes come back; values of an EXR are its
-/// float32 (or half) samples, of a CSV its 9 significant digits. An axis's per-texel parameter
+/// float32 (or half) samples, of a CSV its printed digits (round_trip_text). An axis's per-texel parameter
 /// comes back from the EXR header (brdfbake:x_parameter_values), the .npy sidecar or the CSV's
 /// parameter column, and equals the coordinate where the file has none. Throws Error for any
-/// other file, or one that is not a brdfbake table.
+/// other file (only regular files are opened: a FIFO or device is refused before it is read),
+/// one that is not a brdfbake table, and one whose parts disagree or hold what no table holds,
+/// naming the field: an unknown kind, a non-finite range, a size that is not a whole number, a
+/// value or error that is NaN or infinite (or a negative error), a .npy whose header shape,
+/// sidecar shape, dtype, axes or channels disagree with its description.
 Table read_table(const std::string& path);
 
 }  // namespace brdfbake
