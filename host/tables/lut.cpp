@@ -20,11 +20,6 @@
 namespace brdfbake {
 namespace tables {
 
-bool is_measured_metal(const std::string& fresnel) {
-    const std::string name = fresnel.substr(0, fresnel.find(':'));  // metal:Al is not key=value
-    return name == "metal" || name == "nk";
-}
-
 bool has_mirror_limit(const ModelConfig& m) {
     // The Smith microfacet lobes: as alpha -> 0, D tends to a delta about the normal and G to 1,
     // so E(mu) -> F(mu), the mirror's albedo (Walter et al. 2007, "Microfacet Models for
