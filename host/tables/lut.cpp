@@ -24,7 +24,7 @@ bool has_mirror_limit(const ModelConfig& m) {
     // The Smith microfacet lobes: as alpha -> 0, D tends to a delta about the normal and G to 1,
     // so E(mu) -> F(mu), the mirror's albedo (Walter et al. 2007, "Microfacet Models for
     // Refraction through Rough Surfaces", eq. 20 with D -> delta).
-    return m.id == BB_MODEL_GGX || m.id == BB_MODEL_BECKMANN;
+    return m.smith_shadowing_slot >= 0;
 }
 
 Axis mu_axis(const LutRequest& r, int size) {

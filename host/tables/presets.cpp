@@ -161,8 +161,9 @@ const LutPreset& lut_preset(const std::string& name) {
 }
 
 const PresetLayout* LutPreset::layout(const std::string& kind) const {
+    const TableKind* asked = find_table_kind(kind);
     for (const PresetLayout& l : layouts)
-        if (table_kind(l.kind).name == kind) return &l;
+        if (asked && l.kind == asked->id) return &l;
     return nullptr;
 }
 
