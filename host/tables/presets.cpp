@@ -168,8 +168,10 @@ const PresetLayout* LutPreset::layout(const std::string& kind) const {
 }
 
 void LutPreset::apply(LutRequest& request) const {
-    const PresetLayout* l = layout(request.kind);
-    if (!l) throw Error("preset '" + name + "' has a layout for " + join_names(kinds) + " tables, not " + request.kind);
+    // A kind without a layout of its own gets the default one: the scene planner's --target gltf
+    // writes the sample viewer's sheen tables in its split-sum layout.
+    const PresetLayout* own = layout(request.kind);
+    const PresetLayout* l = own ? own : &layouts.front();
     LutRequest r = l->settings;
     r.kind = request.kind;
     r.estimator = request.estimator;  // the preset's model follows the quantity asked for
@@ -214,6 +216,9 @@ const LutPreset* preset_for_kind(const LutSettings& given, LutRequest& r) {
         r.estimator = *given.estimator;
     }
     if (preset) {
+        if (!preset->layout(r.kind))
+            throw Error("preset '" + preset->name + "' has a layout for " + join_names(preset->kinds) + " tables, not " +
+                        r.kind);
         preset->apply(r);  // its layout for the kind (the kind and estimator stay)
     } else if (!given.model) {
         throw Error("--model is required (or give --preset)");
