@@ -15,6 +15,7 @@
 #include <map>
 #include <memory>
 #include <optional>
+#include <type_traits>
 
 #include "brdfbake/albedo.h"
 #include "brdfbake/analytic.h"
@@ -25,6 +26,7 @@
 #include "brdfbake/evaluate.h"
 #include "brdfbake/memory_limit.h"
 #include "brdfbake/fresnel_curve.h"
+#include "brdfbake/fresnel_terms.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table.h"
@@ -204,60 +206,45 @@ std::vector<int> size_list(const py::object& size) {
     }
 }
 
-std::pair<double, double> range_of(const std::vector<double>& r, const char* option) {
-    if (r.size() != 2) throw Error(std::string(option) + " needs two numbers: LO,HI");
-    return {r[0], r[1]};
-}
-
 template <typename T>
 using Opt = std::optional<T>;
 
-/// As `brdfbake lut`: a preset (if given) sets the request for its kind, then every argument
-/// given (not None) overrides its field; the rest are LutRequest's defaults.
+/// The names of a registry's entries (entries or pointers to them), in its order.
+template <typename Entries, typename Entry, typename Name>
+std::vector<std::string> names_of(const Entries& entries, Name Entry::*name) {
+    std::vector<std::string> names;
+    for (const auto& e : entries) {
+        if constexpr (std::is_pointer_v<std::decay_t<decltype(e)>>)
+            names.push_back(e->*name);
+        else
+            names.push_back(e.*name);
+    }
+    return names;
+}
+
+/// As `brdfbake lut`: every argument given (not None) is the option of the same name, merged
+/// with the preset by the core's apply_preset; `output` writes the table as -o does (with the
+/// preset's --half unless half is given).
 Table lut(Opt<std::string> kind, Opt<std::string> model, const py::object& size, Opt<std::string> preset,
-          Opt<std::string> fresnel, Opt<double> wavelength, Opt<std::string> mu_map, Opt<std::string> alpha_map,
-          Opt<std::vector<double>> alpha_range, Opt<std::vector<double>> mu_range, Opt<double> mu_floor,
-          Opt<std::vector<double>> eta_range, Opt<std::string> eta_map, Opt<std::string> texels,
-          Opt<std::vector<std::string>> axes, Opt<std::vector<std::string>> flip, Opt<double> samples,
-          Opt<double> tolerance, Opt<std::string> method, Opt<double> max_samples, Opt<std::string> precision,
-          const Opt<std::string>& device) {
-    LutRequest r;
-    const LutPreset* p = preset ? &lut_preset(*preset) : nullptr;
-    if (!kind && !p) throw Error("lut needs a table kind (" + table_kind_names() + ")");
-    r.kind = kind ? *kind : p->kinds.front();
-    if (p) {
-        if (std::find(p->kinds.begin(), p->kinds.end(), r.kind) == p->kinds.end())
-            throw Error("preset '" + p->name + "' has no layout for " + r.kind + " tables");
-        p->apply(r);
-    } else if (!model) {
-        throw Error("--model is required (or give --preset)");
-    }
-    if (model) r.model = *model;
-    if (!size.is_none()) set_lut_size(r, size_list(size));
-    if (fresnel) r.fresnel = *fresnel;
-    if (wavelength) r.wavelength_nm = *wavelength;
-    if (mu_map) r.mu_map = *mu_map;
-    if (alpha_map) r.alpha_map = *alpha_map;
-    if (alpha_range) std::tie(r.alpha_lo, r.alpha_hi) = range_of(*alpha_range, "--alpha-range");
-    if (mu_range) std::tie(r.mu_lo, r.mu_hi) = range_of(*mu_range, "--mu-range");
-    if (mu_floor) r.mu_floor = *mu_floor;
-    if (eta_range) std::tie(r.eta_lo, r.eta_hi) = range_of(*eta_range, "--eta-range");
-    if (eta_map) r.eta_map = *eta_map;
-    if (texels) r.texels = parse_texels(*texels);
-    if (axes) r.axes = *axes;
-    if (flip) r.flip = *flip;
-    if (samples || tolerance || method || max_samples) {
-        const MethodChoice choice =
-            choose_method(method.value_or("auto"), samples.value_or(double(r.samples)), tolerance.value_or(0.0),
-                          max_samples.value_or(double(r.tolerance.max_samples ? r.tolerance.max_samples : 1u << 26)));
-        r.samples = choice.samples;
-        r.method = choice.method;
-        r.tolerance = choice.tolerance;
-    }
-    if (precision) r.precision = precision_of(*precision);
-    validate_lut(r);  // every input checked before the device is touched
+          Opt<std::string> estimator, Opt<std::string> fresnel, Opt<double> wavelength, Opt<std::string> mu_map,
+          Opt<std::string> alpha_map, Opt<std::vector<double>> alpha_range, Opt<std::vector<double>> mu_range,
+          Opt<double> mu_floor, Opt<std::vector<double>> eta_range, Opt<std::string> eta_map,
+          Opt<std::string> texels, Opt<std::vector<std::string>> axes, Opt<std::vector<std::string>> flip,
+          Opt<double> samples, Opt<double> tolerance, Opt<std::string> method, Opt<double> max_samples,
+          Opt<std::string> precision, Opt<bool> half, Opt<std::string> output, const Opt<std::string>& device) {
+    const Opt<std::vector<int>> dims = size.is_none() ? std::nullopt : Opt<std::vector<int>>(size_list(size));
+    // In LutSettings' order: each field the argument of its name.
+    const LutSettings given{kind,     preset,    model,       estimator, fresnel,  wavelength,  dims,
+                            mu_map,   alpha_map, eta_map,     texels,    alpha_range, eta_range, mu_range,
+                            mu_floor, axes,      flip,        samples,   tolerance, max_samples, method,
+                            precision, half};
+    const LutSetup setup = apply_preset(given);
+    validate_lut(setup.request);  // every input checked before the device is touched
+    if (output) check_table_path(*output);
     Engine& engine = engine_for(device);
-    return interruptible([&] { return compute_lut(engine, r); });
+    Table table = interruptible([&] { return compute_lut(engine, setup.request); });
+    if (output) write_table(table, *output, setup.half);
+    return table;
 }
 
 // ------------------------------------------------------------------ fresnel, check, eval
@@ -458,24 +445,21 @@ PYBIND11_MODULE(brdfbake, m) {
           "directional albedo E(mu) = integral of f cos(theta_i) over the hemisphere, as `brdfbake albedo`; phi in "
           "degrees (one value or one per mu); tolerance refines every direction to that absolute error");
     m.def("lut", &lut, py::arg("kind") = py::none(), py::arg("model") = py::none(), py::arg("size") = py::none(),
-          py::arg("preset") = py::none(), py::arg("fresnel") = py::none(), py::arg("wavelength") = py::none(),
+          py::arg("preset") = py::none(), py::arg("estimator") = py::none(), py::arg("fresnel") = py::none(),
+          py::arg("wavelength") = py::none(),
           py::arg("mu_map") = py::none(), py::arg("alpha_map") = py::none(), py::arg("alpha_range") = py::none(),
           py::arg("mu_range") = py::none(), py::arg("mu_floor") = py::none(), py::arg("eta_range") = py::none(),
           py::arg("eta_map") = py::none(), py::arg("texels") = py::none(), py::arg("axes") = py::none(),
           py::arg("flip") = py::none(), py::arg("samples") = py::none(), py::arg("tolerance") = py::none(),
           py::arg("method") = py::none(), py::arg("max_samples") = py::none(), py::arg("precision") = py::none(),
-          py::arg("device") = py::none(),
+          py::arg("half") = py::none(), py::arg("output") = py::none(), py::arg("device") = py::none(),
           "a lookup table as `brdfbake lut KIND`: size is N, (W, H) or (W, H, D); preset names an engine's layout "
-          "(the arguments given override it); every other argument is the option of the same name");
+          "(the arguments given override it); output writes the table as -o does; every other argument is the "
+          "option of the same name");
     m.def("read_table", &read_table, py::arg("path"),
           "a table brdfbake wrote (.exr, .csv, .npy with its .json), as a Table");
-    m.def(
-        "presets", [] {
-            std::vector<std::string> names;
-            for (const LutPreset& p : lut_presets()) names.push_back(p.name);
-            return names;
-        },
-        "the engines' table layouts (lut(preset=...))");
+    m.def("presets", [] { return names_of(lut_presets(), &LutPreset::name); },
+          "the engines' table layouts (lut(preset=...))");
     m.def("fresnel", &fresnel, py::arg("spec"), py::arg("theta_deg"), py::arg("wavelength") = 0.0,
           py::arg("precision") = "float", py::arg("device") = py::none(),
           "F, Rs and Rp of a Fresnel spec at angles of incidence in degrees (dict of arrays)");
@@ -488,18 +472,8 @@ PYBIND11_MODULE(brdfbake, m) {
           py::arg("wavelength") = 0.0, py::arg("precision") = "double", py::arg("device") = py::none(),
           "f(wo, wi) without the cosine, on the device, for arrays of unit vectors (..., 3) in the shading frame "
           "(normal +z)");
-    m.def(
-        "models", [] {
-            std::vector<std::string> names;
-            for (const ModelTraits& t : model_registry()) names.push_back(t.name);
-            return names;
-        },
-        "the model names of the registry");
-    m.def(
-        "table_kinds", [] {
-            std::vector<std::string> names;
-            for (const TableKind* k : table_kinds()) names.push_back(k->name);
-            return names;
-        },
-        "the table kinds of the registry");
+    m.def("models", [] { return names_of(model_registry(), &ModelTraits::name); }, "the model names of the registry");
+    m.def("fresnel_terms", [] { return names_of(fresnel_terms(), &FresnelTerm::name); },
+          "the Fresnel term names of the registry (fresnel=NAME:...)");
+    m.def("table_kinds", [] { return names_of(table_kinds(), &TableKind::name); }, "the table kinds of the registry");
 }

@@ -10,7 +10,7 @@ set(prefixes
   "include/brdfbake/error.h=engine" "include/brdfbake/engine.h=engine" "include/brdfbake/version.h=engine" "include/brdfbake/memory_limit.h=engine" "include/brdfbake/cancel.h=engine" "include/brdfbake/progress.h=engine"
   "host/engine/=engine"
   "include/brdfbake/output.h=io" "include/brdfbake/table.h=io" "host/io/=io"
-  "include/brdfbake/spec.h=models" "host/models/=models"
+  "include/brdfbake/spec.h=models" "include/brdfbake/fresnel_terms.h=models" "host/models/=models"
   "include/brdfbake/albedo.h=integrate" "include/brdfbake/analytic.h=integrate" "include/brdfbake/evaluate.h=integrate" "include/brdfbake/check.h=integrate" "include/brdfbake/fresnel_curve.h=integrate"
   "host/integrate/=integrate"
   "include/brdfbake/lut.h=tables" "include/brdfbake/table_kinds.h=tables" "host/tables/=tables"

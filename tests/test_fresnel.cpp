@@ -6,6 +6,7 @@
 
 #include <complex>
 #include <cstdio>
+#include <filesystem>
 #include <fstream>
 #include <iomanip>
 #include <sstream>
@@ -14,6 +15,7 @@
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/error.h"
+#include "brdfbake/fresnel_terms.h"
 #include "brdfbake/spec.h"
 #include "engine/device_buffer.h"
 #include "models/nk_data.h"
@@ -501,4 +503,46 @@ TEST_CASE("fresnel and albedo reject bad Fresnel input with one clear message", 
         CHECK(testing::count_lines(r.err) == 1);
         CHECK(r.err.find(b.says) != std::string::npos);
     }
+}
+
+TEST_CASE("every Fresnel term of the registry is in the --fresnel help and in docs/fresnel.md", "[fresnel][cli]") {
+    // __FILE__ is relative to the build folder, where the test binary is, when the build gave it so.
+    std::filesystem::path here = __FILE__;
+    if (here.is_relative()) here = std::filesystem::canonical("/proc/self/exe").parent_path() / here;
+    const std::filesystem::path docs = here.parent_path().parent_path() / "docs" / "fresnel.md";
+    std::ifstream in(docs);
+    REQUIRE(in);
+    const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+    // The docs' table of Fresnel specs: its rows, one per term.
+    const size_t table = text.find("### Fresnel specs");
+    REQUIRE(table != std::string::npos);
+    const std::string rows = text.substr(table, text.find("\n\n", text.find("| spec |", table)) - table);
+    REQUIRE(fresnel_terms().size() >= 10);
+    for (const char* command : {"fresnel", "albedo", "lobe"}) {
+        const auto help = testing::run_cli(std::string(command) + " --help");
+        REQUIRE(help.status == 0);
+        for (const FresnelTerm& t : fresnel_terms()) {
+            INFO(command << " --help, " << t.form);
+            CHECK(help.out.find(t.form) != std::string::npos);
+        }
+    }
+    for (const FresnelTerm& t : fresnel_terms()) {
+        INFO("docs/fresnel.md, " << t.form);
+        // A term with keys is written as its form; a measured one as name:ARGUMENT rows.
+        CHECK(rows.find("| `" + (t.measured ? t.name + ":" : t.form)) != std::string::npos);
+    }
+    // And the other way: every row of the docs' table names a term of the registry.
+    size_t at = rows.find("\n| `");
+    int documented = 0;
+    while (at != std::string::npos) {
+        const size_t start = at + 4, end = rows.find_first_of(":`", start);
+        const std::string name = rows.substr(start, end - start);
+        bool known = false;
+        for (const FresnelTerm& t : fresnel_terms()) known = known || t.name == name;
+        INFO("docs/fresnel.md row " << name);
+        CHECK(known);
+        ++documented;
+        at = rows.find("\n| `", end);
+    }
+    CHECK(documented == int(fresnel_terms().size()));
 }

@@ -273,3 +273,59 @@ TEST_CASE("presets: unknown names and kinds without a layout exit 2 with one lin
     CHECK(lut_presets().size() >= 5);
     CHECK_THROWS_WITH(lut_preset("nope"), Catch::Contains("known: gltf, filament, three, cycles, unreal"));
 }
+
+TEST_CASE("apply_preset: the preset's layout for the kind, each option given replacing its field", "[presets]") {
+    // README "Drop-in tables": Cycles' ggx_Eavg is 32 texels at the edges of roughness [0, 1], double
+    // precision to 5e-7; options given beside the preset override only their own fields.
+    LutSettings given;
+    given.preset = "cycles";
+    given.kind = "eavg";
+    given.size = std::vector<int>{8};
+    const LutSetup eavg = apply_preset(given);
+    CHECK(eavg.request.kind == "eavg");
+    CHECK(eavg.request.width == 8);
+    CHECK(eavg.request.height == 1);
+    CHECK(eavg.request.texels == Texels::Edge);
+    CHECK(eavg.request.alpha_map == "roughness");
+    CHECK(eavg.request.precision == Precision::Double);
+    CHECK(eavg.request.tolerance.tolerance == 5e-7);
+    CHECK_FALSE(eavg.half);
+    // The method options count as one: a sample count given drops the preset's tolerance.
+    given.samples = 4096;
+    const LutSetup fixed = apply_preset(given);
+    CHECK(fixed.request.tolerance.tolerance == 0.0);
+    CHECK(fixed.request.samples == 4096);
+    CHECK(fixed.request.precision == Precision::Double);
+    // Cycles' own estimator takes the masking-only lobe, as its precompute does.
+    LutSettings estimator;
+    estimator.preset = "cycles";
+    estimator.kind = "gen-schlick";
+    estimator.estimator = "cycles";
+    CHECK(apply_preset(estimator).request.model == "ggx:shadowing=masking");
+    estimator.estimator = "ratio";
+    CHECK(apply_preset(estimator).request.model == "ggx:shadowing=correlated");
+    // A half-float engine texture, unless --half says otherwise; the preset's first kind by default.
+    LutSettings filament;
+    filament.preset = "filament";
+    CHECK(apply_preset(filament).half);
+    CHECK(apply_preset(filament).request.kind == "dfg-ms");
+    filament.half = false;
+    CHECK_FALSE(apply_preset(filament).half);
+    // Without a preset: LutRequest's defaults, kDefaultLutTexels on every axis of the kind.
+    LutSettings plain;
+    plain.kind = "dielectric";
+    plain.model = "ggx";
+    const LutRequest glass = apply_preset(plain).request;
+    CHECK((glass.width == kDefaultLutTexels && glass.height == kDefaultLutTexels && glass.depth == kDefaultLutTexels));
+    plain.kind = "eavg";
+    CHECK(apply_preset(plain).request.height == 1);
+    // The command line's messages.
+    plain.preset = "gltf";
+    CHECK_THROWS_WITH(apply_preset(plain), "preset 'gltf' has a layout for dfg tables, not eavg");
+    LutSettings bare;
+    bare.kind = "albedo";
+    CHECK_THROWS_WITH(apply_preset(bare), "--model is required (or give --preset)");
+    bare.model = "ggx";
+    bare.estimator = "cycles";
+    CHECK_THROWS_WITH(apply_preset(bare), "--estimator is for the gen-schlick and gen-schlick-ior tables, not albedo");
+}

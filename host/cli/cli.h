@@ -48,8 +48,8 @@ void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per)
 /// The options as a MethodChoice (choose_method, brdfbake/albedo.h).
 MethodChoice resolve_method_choice(const MethodOptions& o);
 
-/// The help text of --fresnel: the Fresnel spec forms.
-extern const char* const kFresnelSpecHelp;
+/// The help text of --fresnel: the Fresnel spec forms of the Fresnel registry.
+std::string fresnel_spec_help();
 
 /// --precision float|double (the kernels' arithmetic), described by `description`.
 void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description = "kernel arithmetic");

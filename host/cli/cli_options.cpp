@@ -4,6 +4,7 @@
 #include <cstdlib>
 
 #include "brdfbake/error.h"
+#include "brdfbake/fresnel_terms.h"
 #include "brdfbake/output.h"
 #include "cli/cli.h"
 #include "plot/plot.h"
@@ -65,10 +66,7 @@ void check_text_output(const std::string& path) {
     if (!path.empty() && path != "-") check_output_path(path);
 }
 
-const char* const kFresnelSpecHelp =
-    "Fresnel spec: none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, conductor-approx:eta=E,k=K, "
-    "metal:Al|Au|Ag|Cu, nk:FILE.yml, gen-schlick:f0=F0,f90=F90,exponent=P, gen-schlick-ior:f0=F0,f90=F90,eta=E, "
-    "f82-tint:f0=F0,tint=T";
+std::string fresnel_spec_help() { return "Fresnel spec: " + fresnel_spec_forms(); }
 
 void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description) {
     cmd->add_option("--precision", precision, description)

@@ -216,7 +216,7 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
     cmd->add_option("--model", o->models,
                     "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8; repeat it to compare models")
         ->required();
-    cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp)->capture_default_str();
+    cmd->add_option("--fresnel", o->fresnel, fresnel_spec_help())->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
     cmd->add_option("--mu", o->mu,
                     "comma-separated cos(theta_o) values in (0, 1] (default: 0.05,0.1,0.2,...,0.9,1; with --plot, 64 "

@@ -18,6 +18,7 @@
 #include "brdfbake/engine.h"
 #include "brdfbake/error.h"
 #include "brdfbake/fresnel_curve.h"
+#include "brdfbake/fresnel_terms.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
@@ -293,19 +294,6 @@ Figure comparison_figure(const FresnelConfig& metal) {
 
 // ------------------------------------------------------------ output
 
-const char* kind_name(int kind) {
-    switch (kind) {
-    case BB_FRESNEL_NONE: return "none";
-    case BB_FRESNEL_SCHLICK: return "schlick";
-    case BB_FRESNEL_DIELECTRIC: return "dielectric";
-    case BB_FRESNEL_CONDUCTOR: return "conductor";
-    case BB_FRESNEL_CONDUCTOR_APPROX: return "conductor-approx";
-    case BB_FRESNEL_GEN_SCHLICK: return "gen-schlick";  // also f82-tint, its special case
-    case BB_FRESNEL_GEN_SCHLICK_IOR: return "gen-schlick-ior";
-    default: return "unknown";
-    }
-}
-
 const char kAverageMethod[] =
     "adaptive Gauss-Kronrod 7-15 in double on the host (error: sum of |K15 - G7| plus rounding); "
     "F = 1 below the critical angle integrated exactly and mu = mu_c + (1 - mu_c) t^2 above it";
@@ -329,7 +317,7 @@ std::string render(const FresnelOptions& o, const FresnelConfig& f, Precision pr
         nlohmann::json j;
         j["command"] = "fresnel";
         j["fresnel"] = f.canonical;
-        j["kind"] = kind_name(f.kind);
+        j["kind"] = fresnel_kind_name(f.kind);
         if (f.kind == BB_FRESNEL_DIELECTRIC || f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX)
             j["eta"] = f.params[BB_FRESNEL_ETA];
         if (f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX) j["k"] = f.params[BB_FRESNEL_K];
@@ -396,7 +384,7 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
     if (o.compare) {
         if (o.plot.empty()) throw Error("--compare draws a figure; give --plot FILE.png or --plot FILE.svg");
         if (o.fresnel.empty()) o.fresnel = "metal:Al";
-        if (o.wavelength_nm == 0.0 && (o.fresnel.rfind("metal:", 0) == 0 || o.fresnel.rfind("nk:", 0) == 0))
+        if (o.wavelength_nm == 0.0 && fresnel_needs_wavelength(o.fresnel))
             o.wavelength_nm = 550.0;
     }
     if (o.fresnel.empty()) throw Error("--fresnel SPEC is required (or --compare for the comparison figure)");
@@ -446,7 +434,7 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     const auto [cmd, o] = add_command<FresnelOptions>(
         app, "fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence", global, action, run_fresnel);
-    cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp);
+    cmd->add_option("--fresnel", o->fresnel, fresnel_spec_help());
     cmd->add_option("--theta", o->theta, "comma-separated angles of incidence in degrees, in [0, 90]")
         ->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured data (metal:, nk:)");

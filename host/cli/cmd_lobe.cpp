@@ -292,7 +292,7 @@ void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("--theta-i", o->theta_i, "incident angles in degrees, comma-separated")->capture_default_str();
     cmd->add_option("--phi-i", o->phi_i, "azimuth of the plane of incidence in degrees (anisotropic models)")
         ->capture_default_str();
-    cmd->add_option("--fresnel", o->fresnel, kFresnelSpecHelp)->capture_default_str();
+    cmd->add_option("--fresnel", o->fresnel, fresnel_spec_help())->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals");
     cmd->add_option("--resolution", o->resolution, "outgoing angles over [-90, 90] degrees")->capture_default_str();
     cmd->add_flag("--log", o->log_scale, "radius on a log scale (six decades below the peak)");

@@ -15,6 +15,7 @@
 #include "engine/distributed.h"
 #include "integrate/distributed_compute.h"
 #include "io/part_file.h"
+#include "models/key_reader.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -22,17 +23,15 @@ namespace {
 
 struct LutOptions {
     CLI::App* command = nullptr;  // to tell the options given from the defaults (a preset fills the rest)
-    LutRequest request;
-    std::string preset;
-    std::string size = "32x32";
-    std::string alpha_range = "0,1";
-    std::string eta_range = "1,3";
-    std::string mu_range = "0,1";
-    std::string texels = "centre";
-    std::string axes;
-    std::string flip;
+    std::string kind, preset, model, estimator, fresnel;
+    double wavelength_nm = 0.0;
+    std::string size;
+    std::string mu_map, alpha_map, eta_map, texels;
+    std::string alpha_range, eta_range, mu_range;
+    double mu_floor = 0.0;
+    std::string axes, flip;
     MethodOptions integration;
-    std::string precision = "float";
+    std::string precision;
     bool half = false;
     std::string preview;  // default: the output's name with .png
     bool no_preview = false;
@@ -54,7 +53,7 @@ std::pair<int, int> parse_shard(const std::string& text) {
     return {k, n};
 }
 
-void parse_size(const std::string& text, LutRequest& r) {
+std::vector<int> parse_size(const std::string& text) {
     std::vector<int> dims;
     size_t start = 0;
     while (start <= text.size()) {
@@ -66,17 +65,7 @@ void parse_size(const std::string& text, LutRequest& r) {
         dims.push_back(std::stoi(s));
         start = x + 1;
     }
-    try {
-        set_lut_size(r, dims);
-    } catch (const Error& e) {
-        throw Error(std::string(e.what()) + " (--size " + text + ")");
-    }
-}
-
-std::pair<double, double> parse_range(const std::string& text, const std::string& option) {
-    const std::vector<double> v = parse_number_list(text, option);
-    if (v.size() != 2) throw Error(option + " needs two numbers: LO,HI");
-    return {v[0], v[1]};
+    return dims;
 }
 
 std::vector<std::string> parse_names(const std::string& text, const std::string& option) {
@@ -94,72 +83,46 @@ std::vector<std::string> parse_names(const std::string& text, const std::string&
     return names;
 }
 
+/// The options given on the command line, parsed, for apply_preset.
+LutSettings given_settings(const LutOptions& o) {
+    auto given = [&](const char* option) { return o.command->count(option) > 0; };
+    auto text = [&](const char* option, const std::string& value) {
+        return given(option) ? std::optional<std::string>(value) : std::nullopt;
+    };
+    auto number = [&](const char* option, double value) {
+        return given(option) ? std::optional<double>(value) : std::nullopt;
+    };
+    LutSettings s;
+    if (!o.kind.empty()) s.kind = o.kind;
+    s.preset = text("--preset", o.preset);
+    s.model = text("--model", o.model);
+    s.estimator = text("--estimator", o.estimator);
+    s.fresnel = text("--fresnel", o.fresnel);
+    s.wavelength_nm = number("--wavelength", o.wavelength_nm);
+    if (given("--size")) s.size = parse_size(o.size);
+    s.mu_map = text("--mu-map", o.mu_map);
+    s.alpha_map = text("--alpha-map", o.alpha_map);
+    s.eta_map = text("--eta-map", o.eta_map);
+    s.texels = text("--texels", o.texels);
+    if (given("--alpha-range")) s.alpha_range = parse_number_list(o.alpha_range, "--alpha-range");
+    if (given("--eta-range")) s.eta_range = parse_number_list(o.eta_range, "--eta-range");
+    if (given("--mu-range")) s.mu_range = parse_number_list(o.mu_range, "--mu-range");
+    s.mu_floor = number("--mu-floor", o.mu_floor);
+    if (given("--axes")) s.axes = parse_names(o.axes, "--axes");
+    if (given("--flip")) s.flip = parse_names(o.flip, "--flip");
+    s.samples = number("--samples", double(o.integration.samples));
+    s.tolerance = number("--tolerance", o.integration.tolerance);
+    s.method = text("--method", o.integration.method);
+    s.max_samples = number("--max-samples", double(o.integration.max_samples));
+    s.precision = text("--precision", o.precision);
+    if (given("--half")) s.half = o.half;
+    return s;
+}
+
 int run_lut(LutOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
-    LutRequest& r = o.request;
-    const LutPreset* preset = o.preset.empty() ? nullptr : &lut_preset(o.preset);
-    if (r.kind.empty()) {
-        if (!preset) throw Error("lut needs a table kind (" + table_kind_names() + ")");
-        r.kind = preset->kinds.front();
-    }
-    if (preset && std::find(preset->kinds.begin(), preset->kinds.end(), r.kind) == preset->kinds.end()) {
-        std::string kinds;
-        for (const auto& k : preset->kinds) kinds += (kinds.empty() ? "" : ", ") + k;
-        throw Error("preset '" + preset->name + "' has a layout for " + kinds + " tables, not " + r.kind);
-    }
-    auto given = [&](const char* option) { return o.command->count(option) > 0; };
-    LutRequest p;  // the preset's request; an option given on the command line overrides its field
-    if (given("--estimator") && !table_kind(r.kind).cycles_estimator)
-        throw Error("--estimator is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
-    if (preset) {
-        p.kind = r.kind;
-        p.estimator = r.estimator;  // the preset's model follows the quantity asked for
-        preset->apply(p);
-    }
-    if (!preset && !given("--model")) throw Error("--model is required (or give --preset)");
-    if (preset) {
-        if (!given("--model")) r.model = p.model;
-        if (!given("--mu-map")) r.mu_map = p.mu_map;
-        if (!given("--alpha-map")) r.alpha_map = p.alpha_map;
-        if (!given("--eta-map")) r.eta_map = p.eta_map;
-        if (!given("--mu-floor")) r.mu_floor = p.mu_floor;
-        if (!given("--half")) o.half = preset->half;
-    }
-    if (preset && !given("--size")) {
-        r.width = p.width;
-        r.height = p.height;
-        r.depth = p.depth;
-    } else {
-        parse_size(o.size, r);
-    }
-    if (preset && !given("--alpha-range")) {
-        r.alpha_lo = p.alpha_lo;
-        r.alpha_hi = p.alpha_hi;
-    } else {
-        std::tie(r.alpha_lo, r.alpha_hi) = parse_range(o.alpha_range, "--alpha-range");
-    }
-    if (preset && !given("--eta-range")) {
-        r.eta_lo = p.eta_lo;
-        r.eta_hi = p.eta_hi;
-    } else {
-        std::tie(r.eta_lo, r.eta_hi) = parse_range(o.eta_range, "--eta-range");
-    }
-    if (preset && !given("--mu-range")) {
-        r.mu_lo = p.mu_lo;
-        r.mu_hi = p.mu_hi;
-    } else {
-        std::tie(r.mu_lo, r.mu_hi) = parse_range(o.mu_range, "--mu-range");
-    }
-    r.texels = preset && !given("--texels") ? p.texels : parse_texels(o.texels);
-    r.axes = preset && !given("--axes") ? p.axes : parse_names(o.axes, "--axes");
-    r.flip = preset && !given("--flip") ? p.flip : parse_names(o.flip, "--flip");
-    const MethodChoice choice = resolve_method_choice(o.integration);
-    const bool method_given = given("--samples") || given("--tolerance") || given("--method") || given("--max-samples");
-    r.samples = preset && !method_given ? p.samples : choice.samples;
-    r.method = preset && !method_given ? p.method : choice.method;
-    r.tolerance = preset && !method_given ? p.tolerance : choice.tolerance;
-    r.precision = preset && !given("--precision") ? p.precision
-                                                  : (o.precision == "double" ? Precision::Double : Precision::Float);
+    const LutSetup setup = apply_preset(given_settings(o));
+    const LutRequest& r = setup.request;
     const bool sharded = !o.shard.empty();
     std::pair<int, int> shard{0, 1};
     if (sharded) {
@@ -199,7 +162,7 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     }
     const Table table = compute_lut(engine, r);
     OutputGroup together;  // the table and its preview land together or not at all
-    write_table(table, o.output, o.half);
+    write_table(table, o.output, setup.half);
     if (!o.no_preview) write_table_preview(table, preview);
     together.commit();
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
@@ -209,6 +172,27 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     return kExitOk;
 }
 
+/// The options at LutRequest's defaults, for the help text (an option not given leaves the
+/// request's field to the preset or to LutRequest).
+LutOptions default_options() {
+    const LutRequest d;
+    auto range = [](double lo, double hi) { return format_number(lo) + "," + format_number(hi); };
+    LutOptions o;
+    o.estimator = d.estimator;
+    o.fresnel = d.fresnel;
+    o.size = std::to_string(kDefaultLutTexels);
+    o.mu_map = d.mu_map;
+    o.alpha_map = d.alpha_map;
+    o.eta_map = d.eta_map;
+    o.texels = texels_name(d.texels);
+    o.alpha_range = range(d.alpha_lo, d.alpha_hi);
+    o.eta_range = range(d.eta_lo, d.eta_hi);
+    o.mu_range = range(d.mu_lo, d.mu_hi);
+    o.mu_floor = d.mu_floor;
+    o.precision = precision_name(d.precision);
+    return o;
+}
+
 }  // namespace
 
 void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action) {
@@ -216,7 +200,7 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
     for (const TableKind* k : table_kinds()) kinds += "\n  " + k->name + ": " + k->description;
     const auto [cmd, o] = add_command<LutOptions>(
         app, "lut", "write a lookup table (OpenEXR, CSV, C header, 16-bit PNG or .npy by the -o extension)", global,
-        action, run_lut);
+        action, run_lut, default_options());
     std::string presets;
     for (const LutPreset& p : lut_presets())
         presets += "\n  " + p.name + ": " + p.engine + " " + p.ships + " (" + [&] {
@@ -225,29 +209,32 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
             return k;
         }() + "; ." + p.extension + "): " + p.summary;
     o->command = cmd;
-    cmd->add_option("kind", o->request.kind, "table kind (default with --preset: the preset's first):" + kinds);
+    cmd->add_option("kind", o->kind, "table kind (default with --preset: the preset's first):" + kinds);
     cmd->add_option("--preset", o->preset,
                     "an engine's table layout; options given beside it override its settings:" + presets);
-    cmd->add_option("--model", o->request.model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable "
+    cmd->add_option("--model", o->model, "model spec without alpha, e.g. ggx or ggx:shadowing=separable "
                                                   "(required without --preset)");
-    cmd->add_option("--estimator", o->request.estimator,
+    cmd->add_option("--estimator", o->estimator,
                     "gen-schlick kinds: ratio (s = E_w / E, exact) or cycles (Blender Cycles' estimator: E_w of the "
                     "masking-only lobe, shadowing=masking, not divided by E)")
         ->check(CLI::IsMember({"ratio", "cycles"}))
         ->capture_default_str();
-    cmd->add_option("--fresnel", o->request.fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();
-    cmd->add_option("--wavelength", o->request.wavelength_nm, "wavelength in nm for measured metals");
-    cmd->add_option("--size", o->size, "WIDTHxHEIGHT (mu x alpha), WIDTHxHEIGHTxDEPTH (x eta) for dielectric, N for eavg")->capture_default_str();
-    cmd->add_option("--mu-map", o->request.mu_map, "mu axis: linear (mu = u) or sqrt (u = sqrt(mu))")
+    cmd->add_option("--fresnel", o->fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();
+    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals");
+    cmd->add_option("--size", o->size, "N (N on every axis), WIDTHxHEIGHT (mu x alpha), WIDTHxHEIGHTxDEPTH (x eta) for the kinds with a "
+                    "z axis; without --preset, " +
+                        std::to_string(kDefaultLutTexels) + " on every axis")
+        ->capture_default_str();
+    cmd->add_option("--mu-map", o->mu_map, "mu axis: linear (mu = u) or sqrt (u = sqrt(mu))")
         ->check(CLI::IsMember({"linear", "sqrt"}))
         ->capture_default_str();
-    cmd->add_option("--alpha-map", o->request.alpha_map, "roughness axis: alpha (v = alpha) or roughness (v = sqrt(alpha))")
+    cmd->add_option("--alpha-map", o->alpha_map, "roughness axis: alpha (v = alpha) or roughness (v = sqrt(alpha))")
         ->check(CLI::IsMember({"alpha", "roughness"}))
         ->capture_default_str();
     cmd->add_option("--alpha-range", o->alpha_range, "LO,HI of the roughness axis coordinate")->capture_default_str();
     cmd->add_option("--eta-range", o->eta_range, "LO,HI of eta (0 < LO < HI <= 100; below 1: from the denser side)")
         ->capture_default_str();
-    cmd->add_option("--eta-map", o->request.eta_map,
+    cmd->add_option("--eta-map", o->eta_map,
                     "eta axis coordinate: linear (w = eta), f0 (w = ((eta-1)/(eta+1))^2) or cycles "
                     "(w = sqrt((eta-1)/(eta+1)), Cycles' glass tables)")
         ->capture_default_str();
@@ -256,7 +243,7 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->capture_default_str();
     cmd->add_option("--mu-range", o->mu_range, "LO,HI of the mu axis coordinate (0 <= LO < HI <= 1)")
         ->capture_default_str();
-    cmd->add_option("--mu-floor", o->request.mu_floor, "mu below this is computed at it (0 < F < 1)")
+    cmd->add_option("--mu-floor", o->mu_floor, "mu below this is computed at it (0 < F < 1)")
         ->capture_default_str();
     cmd->add_option("--axes", o->axes,
                     "axis order, x first, by name: e.g. roughness,mu (names: mu or sqrt_mu, alpha or roughness, eta, "

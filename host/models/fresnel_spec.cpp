@@ -1,12 +1,13 @@
-// The Fresnel registry: which Fresnel terms exist, their keys and ranges:
-//   none, schlick:f0=F0, dielectric:eta=E, conductor:eta=E,k=K, conductor-approx:eta=E,k=K,
-//   gen-schlick:f0=F0,f90=F90,exponent=P, f82-tint:f0=F0,tint=T, gen-schlick-ior:f0=F0,f90=F90,eta=E,
-//   metal:Al|Au|Ag|Cu and nk:FILE.yml (tabulated n,k at --wavelength NM).
+// The Fresnel registry: which Fresnel terms exist, their keys, ranges and defaults, and what each
+// means; the help texts, the "known:" message and the canonical specs are generated from it
+// (docs/fresnel.md lists the same terms; tests/test_fresnel.cpp holds the two together).
 #include <cmath>
 #include <cstdio>
+#include <limits>
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/error.h"
+#include "brdfbake/fresnel_terms.h"
 #include "brdfbake/spec.h"
 #include "models/key_reader.h"
 #include "models/nk_data.h"
@@ -19,14 +20,47 @@ namespace {
 // from float overflow (see the edge-case policy in brdf/fresnel.h).
 constexpr Range kEta{0.0, kMaxOpticalConstant, true};
 constexpr Range kExtinction{0.0, kMaxOpticalConstant};
-
-const char kKnown[] =
-    "known: none, schlick:f0=F0, gen-schlick:f0=F0,f90=F90,exponent=P, f82-tint:f0=F0,tint=T, gen-schlick-ior:f0=F0,f90=F90,eta=E, dielectric:eta=E, "
-    "conductor:eta=E,k=K, conductor-approx:eta=E,k=K, metal:Al|Au|Ag|Cu, nk:FILE.yml";
+constexpr Range kReflectance{0.0, 1.0};
+// The index whose dielectric curve drives gen-schlick-ior: >= 1.
+constexpr Range kEtaAboveOne{1.0, kMaxOpticalConstant};
 
 // The generalized Schlick exponent: 0 (F = f90 everywhere) to far beyond Cycles' largest table
 // texel (exponent 5 (1 - z)/z at z = 1e-4: about 5e4).
 constexpr Range kSchlickExponent{0.0, 1e6};
+
+constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
+
+/// A key of a Fresnel term: its value goes to params[slot] (-1: only the term's derive hook reads
+/// it); a required key has fallback kRequired, its hint in the message when it is missing.
+struct FresnelKey {
+    const char* key;
+    const char* placeholder;  // in the spec form: schlick:f0=F0
+    double fallback;
+    Range range;
+    const char* hint;
+    int slot;
+};
+
+/// A registry entry. A term with keys is read as name:key=value,...; a measured term (load set)
+/// as name:ARGUMENT, the exact conductor at the tabulated n, k of --wavelength.
+struct FresnelEntry {
+    FresnelTerm term;  // name, form, description, measured, kind (form filled in from the keys)
+    std::vector<FresnelKey> keys;
+    /// Sets the slots that follow from the keys (their values in key order) and checks the
+    /// combination; nullptr: none.
+    void (*derive)(FresnelConfig& f, const std::vector<double>& keys) = nullptr;
+    /// Measured terms: loads the table the argument names, and says what the argument is.
+    NkTable (*load)(const std::string& argument) = nullptr;
+    const char* argument_needed = nullptr;  // "a metal, e.g. metal:Al"
+};
+
+/// eta - 1 beside eta: exact here, which a float kernel could not recover from eta.
+void dielectric_eta_m1(FresnelConfig& f, const std::vector<double>& keys) {
+    f.params[BB_FRESNEL_ETA_M1] = keys[0] - 1.0;
+}
+void gen_schlick_ior_eta_m1(FresnelConfig& f, const std::vector<double>& keys) {
+    f.params[BB_GEN_SCHLICK_IOR_ETA_M1] = keys[2] - 1.0;
+}
 
 /// F82-tint [Kutz et al. 2021, "Novel aspects of the Adobe Standard Material"; the OpenPBR Surface
 /// specification, metal]: Schlick's F(mu) with f0 less b mu (1 - mu)^6, b chosen so that F at
@@ -34,11 +68,10 @@ constexpr Range kSchlickExponent{0.0, 1e6};
 ///   b = (1 - tint) F_schlick(mu_bar) / (mu_bar (1 - mu_bar)^6).
 /// As the term is not clamped (so that tables stay linear in f0 and b), a pair whose F dips below 0
 /// is rejected (small f0 with a dark tint: F82-tint is a metal's Fresnel).
-FresnelConfig f82_tint(double f0, double tint) {
+void f82_tint(FresnelConfig& f, const std::vector<double>& keys) {
+    const double f0 = keys[0], tint = keys[1];
     const double mu_bar = 1.0 / 7.0;
     const double b = (1.0 - tint) * bb_fresnel_schlick(mu_bar, f0) / (mu_bar * std::pow(1.0 - mu_bar, 6));
-    FresnelConfig f;
-    f.kind = BB_FRESNEL_GEN_SCHLICK;
     f.params[BB_GEN_SCHLICK_F0] = f0;
     f.params[BB_GEN_SCHLICK_F90] = 1.0;
     f.params[BB_GEN_SCHLICK_EXPONENT] = 5.0;
@@ -52,8 +85,6 @@ FresnelConfig f82_tint(double f0, double tint) {
         throw Error("Fresnel f82-tint:f0=" + format_number(f0) + ",tint=" + format_number(tint) + " goes below 0 (F = " +
                     format_number(lowest) + " at cos " + format_number(at) +
                     "); F82-tint describes metals: raise f0 or tint");
-    f.canonical = "f82-tint:f0=" + format_number(f0) + ",tint=" + format_number(tint);
-    return f;
 }
 
 /// A measured material at one wavelength: the exact conductor with the interpolated n, k.
@@ -75,77 +106,136 @@ FresnelConfig measured(const NkTable& table, const std::string& what, double wav
     return f;
 }
 
-}  // namespace
 
-FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
-    // Measured data: the part after the colon is a symbol or a path, not key=value pairs.
-    if (text.rfind("metal:", 0) == 0) {
-        const std::string symbol = text.substr(6);
-        if (symbol.empty()) throw Error("Fresnel 'metal' needs a metal, e.g. metal:Al (known: Al, Au, Ag, Cu)");
-        return measured(load_nk_preset(symbol), "metal:" + symbol, wavelength_nm);
-    }
-    if (text.rfind("nk:", 0) == 0) {
-        const std::string path = text.substr(3);
-        if (path.empty()) throw Error("Fresnel 'nk' needs a file, e.g. nk:Al.yml (refractiveindex.info YAML)");
-        return measured(load_nk_file(path), "nk:" + path, wavelength_nm);
-    }
-    if (text == "metal" || text == "nk")
-        throw Error("Fresnel '" + text + "' needs " + (text == "metal" ? "a metal, e.g. metal:Al" : "a file, e.g. nk:FILE.yml"));
+std::string metal_argument() {
+    std::string names;
+    for (const auto& n : nk_preset_names()) names += (names.empty() ? "" : "|") + n;
+    return names;
+}
 
-    const Spec spec = parse_spec(text);
+const std::vector<FresnelEntry>& registry() {
+    static const std::vector<FresnelEntry> entries = [] {
+        const char* f0_hint = "reflectance at normal incidence";
+        std::vector<FresnelEntry> e = {
+            {{"none", "", "F = 1", false, BB_FRESNEL_NONE}, {}},
+            {{"schlick", "", "Schlick 1994: F0 + (1 - F0)(1 - cos theta)^5", false, BB_FRESNEL_SCHLICK},
+             {{"f0", "F0", kRequired, kReflectance, f0_hint, BB_SCHLICK_F0}}},
+            {{"gen-schlick", "",
+              "generalized Schlick (Hoffman 2019): F0 + (F90 - F0)(1 - cos theta)^P; f90 1 and exponent 5 by default",
+              false, BB_FRESNEL_GEN_SCHLICK},
+             {{"f0", "F0", kRequired, kReflectance, f0_hint, BB_GEN_SCHLICK_F0},
+              {"f90", "F90", 1.0, kReflectance, "", BB_GEN_SCHLICK_F90},
+              {"exponent", "P", 5.0, kSchlickExponent, "", BB_GEN_SCHLICK_EXPONENT}}},
+            {{"gen-schlick-ior", "",
+              "Cycles' generalized Schlick driven by the dielectric curve of eta >= 1; f90 1 by default", false, BB_FRESNEL_GEN_SCHLICK_IOR},
+             {{"f0", "F0", kRequired, kReflectance, f0_hint, BB_GEN_SCHLICK_F0},
+              {"f90", "F90", 1.0, kReflectance, "", BB_GEN_SCHLICK_F90},
+              {"eta", "E", kRequired, kEtaAboveOne, "index whose dielectric curve drives F, >= 1",
+               BB_GEN_SCHLICK_IOR_ETA}},
+             gen_schlick_ior_eta_m1},
+            {{"f82-tint", "", "F82-tint (Kutz et al. 2021): Schlick less b cos theta (1 - cos theta)^6, F(82 deg) = "
+                              "tint times Schlick's",
+              false, BB_FRESNEL_GEN_SCHLICK},
+             {{"f0", "F0", kRequired, kReflectance, f0_hint, -1},
+              {"tint", "T", kRequired, kReflectance, "F at 82 deg relative to Schlick's", -1}},
+             f82_tint},
+            {{"dielectric", "", "exact dielectric, relative index eta (1.5: glass seen from air)", false, BB_FRESNEL_DIELECTRIC},
+             {{"eta", "E", kRequired, kEta, "relative index of refraction, e.g. 1.5", BB_FRESNEL_ETA}},
+             dielectric_eta_m1},
+            {{"conductor", "", "exact conductor with complex index eta + ik", false, BB_FRESNEL_CONDUCTOR},
+             {{"eta", "E", kRequired, kEta, "real part of the complex index eta + ik", BB_FRESNEL_ETA},
+              {"k", "K", kRequired, kExtinction, "extinction coefficient, imaginary part of the index", BB_FRESNEL_K}}},
+            {{"conductor-approx", "", "the course notes' closed-form conductor approximation", false, BB_FRESNEL_CONDUCTOR_APPROX},
+             {{"eta", "E", kRequired, kEta, "real part of the complex index eta + ik", BB_FRESNEL_ETA},
+              {"k", "K", kRequired, kExtinction, "extinction coefficient, imaginary part of the index", BB_FRESNEL_K}}},
+            {{"metal", "metal:" + metal_argument(), "measured n, k of an embedded metal at --wavelength NM", true, BB_FRESNEL_CONDUCTOR},
+             {}, nullptr, load_nk_preset,
+             "a metal, e.g. metal:Al (known: Al, Au, Ag, Cu)"},
+            {{"nk", "nk:FILE.yml", "tabulated n, k of a refractiveindex.info YAML file at --wavelength NM", true, BB_FRESNEL_CONDUCTOR},
+             {}, nullptr, load_nk_file,
+             "a file, e.g. nk:Al.yml (refractiveindex.info YAML)"},
+        };
+        for (FresnelEntry& entry : e) {
+            if (!entry.term.form.empty()) continue;
+            entry.term.form = entry.term.name;
+            for (const FresnelKey& k : entry.keys)
+                entry.term.form += std::string(&k == &entry.keys.front() ? ":" : ",") + k.key + "=" + k.placeholder;
+        }
+        return e;
+    }();
+    return entries;
+}
+
+/// The entry a spec names: its name before the colon.
+const FresnelEntry* find_entry(const std::string& name) {
+    for (const FresnelEntry& e : registry())
+        if (e.term.name == name) return &e;
+    return nullptr;
+}
+
+/// A term with keys: each key in the registry's order into its slot, the canonical spec
+/// spelling every key.
+FresnelConfig resolve_keys(const FresnelEntry& e, const Spec& spec) {
     KeyReader keys(spec, "Fresnel");
     FresnelConfig f;
-    if (spec.name == "none") {
-        f.kind = BB_FRESNEL_NONE;
-        f.canonical = "none";
-    } else if (spec.name == "schlick") {
-        f.kind = BB_FRESNEL_SCHLICK;
-        const double f0 = keys.required_number("f0", {0.0, 1.0}, "reflectance at normal incidence");
-        f.params[BB_SCHLICK_F0] = f0;
-        f.canonical = "schlick:f0=" + format_number(f0);
-    } else if (spec.name == "gen-schlick") {
-        f.kind = BB_FRESNEL_GEN_SCHLICK;
-        const double f0 = keys.required_number("f0", {0.0, 1.0}, "reflectance at normal incidence");
-        const double f90 = keys.number("f90", 1.0, {0.0, 1.0});
-        const double exponent = keys.number("exponent", 5.0, kSchlickExponent);
-        f.params[BB_GEN_SCHLICK_F0] = f0;
-        f.params[BB_GEN_SCHLICK_F90] = f90;
-        f.params[BB_GEN_SCHLICK_EXPONENT] = exponent;
-        f.canonical = "gen-schlick:f0=" + format_number(f0) + ",f90=" + format_number(f90) +
-                      ",exponent=" + format_number(exponent);
-    } else if (spec.name == "gen-schlick-ior") {
-        f.kind = BB_FRESNEL_GEN_SCHLICK_IOR;
-        const double f0 = keys.required_number("f0", {0.0, 1.0}, "reflectance at normal incidence");
-        const double f90 = keys.number("f90", 1.0, {0.0, 1.0});
-        const double eta = keys.required_number("eta", {1.0, kMaxOpticalConstant}, "index whose dielectric curve drives F, >= 1");
-        f.params[BB_GEN_SCHLICK_F0] = f0;
-        f.params[BB_GEN_SCHLICK_F90] = f90;
-        f.params[BB_GEN_SCHLICK_IOR_ETA] = eta;
-        f.params[BB_GEN_SCHLICK_IOR_ETA_M1] = eta - 1.0;
-        f.canonical = "gen-schlick-ior:f0=" + format_number(f0) + ",f90=" + format_number(f90) + ",eta=" + format_number(eta);
-    } else if (spec.name == "f82-tint") {
-        const double f0 = keys.required_number("f0", {0.0, 1.0}, "reflectance at normal incidence");
-        const double tint = keys.required_number("tint", {0.0, 1.0}, "F at 82 deg relative to Schlick's");
-        keys.finish();
-        return f82_tint(f0, tint);
-    } else if (spec.name == "dielectric") {
-        f.kind = BB_FRESNEL_DIELECTRIC;
-        const double eta = keys.required_number("eta", kEta, "relative index of refraction, e.g. 1.5");
-        f.params[BB_FRESNEL_ETA] = eta;
-        f.params[BB_FRESNEL_ETA_M1] = eta - 1.0;  // exact here; a float kernel could not recover it
-        f.canonical = "dielectric:eta=" + format_number(eta);
-    } else if (spec.name == "conductor" || spec.name == "conductor-approx") {
-        f.kind = spec.name == "conductor" ? BB_FRESNEL_CONDUCTOR : BB_FRESNEL_CONDUCTOR_APPROX;
-        const double eta = keys.required_number("eta", kEta, "real part of the complex index eta + ik");
-        const double k = keys.required_number("k", kExtinction, "extinction coefficient, imaginary part of the index");
-        f.params[BB_FRESNEL_ETA] = eta;
-        f.params[BB_FRESNEL_K] = k;
-        f.canonical = spec.name + ":eta=" + format_number(eta) + ",k=" + format_number(k);
-    } else {
-        throw Error("unknown Fresnel term '" + spec.name + "'; " + kKnown);
+    f.kind = e.term.kind;
+    f.canonical = e.term.name;
+    std::vector<double> values;
+    for (const FresnelKey& k : e.keys) {
+        const double v = std::isnan(k.fallback) ? keys.required_number(k.key, k.range, k.hint)
+                                                : keys.number(k.key, k.fallback, k.range);
+        if (k.slot >= 0) f.params[k.slot] = v;
+        f.canonical += std::string(values.empty() ? ":" : ",") + k.key + "=" + format_number(v);
+        values.push_back(v);
     }
     keys.finish();
+    if (e.derive) e.derive(f, values);
     return f;
+}
+
+std::vector<FresnelTerm> terms_of(const std::vector<FresnelEntry>& entries) {
+    std::vector<FresnelTerm> terms;
+    for (const FresnelEntry& e : entries) terms.push_back(e.term);
+    return terms;
+}
+
+}  // namespace
+
+const std::vector<FresnelTerm>& fresnel_terms() {
+    static const std::vector<FresnelTerm> terms(terms_of(registry()));
+    return terms;
+}
+
+std::string fresnel_spec_forms() {
+    std::string forms;
+    for (const FresnelTerm& t : fresnel_terms()) forms += (forms.empty() ? "" : ", ") + t.form;
+    return forms;
+}
+
+std::string fresnel_kind_name(int kind) {
+    for (const FresnelTerm& t : fresnel_terms())
+        if (t.kind == kind) return t.name;
+    return "unknown";
+}
+
+bool fresnel_needs_wavelength(const std::string& text) {
+    const FresnelEntry* e = find_entry(text.substr(0, text.find(':')));
+    return e && e->term.measured;
+}
+
+FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
+    const std::string name = text.substr(0, text.find(':'));
+    const FresnelEntry* e = find_entry(name);
+    if (e && e->load) {
+        // Measured data: the part after the colon is a symbol or a path, not key=value pairs.
+        const std::string argument = name.size() < text.size() ? text.substr(name.size() + 1) : "";
+        if (argument.empty()) throw Error("Fresnel '" + name + "' needs " + e->argument_needed);
+        return measured(e->load(argument), text, wavelength_nm);
+    }
+    const Spec spec = parse_spec(text);
+    e = find_entry(spec.name);
+    if (!e) throw Error("unknown Fresnel term '" + spec.name + "'; known: " + fresnel_spec_forms());
+    return resolve_keys(*e, spec);
 }
 
 }  // namespace brdfbake

@@ -136,6 +136,7 @@ ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, i
     m.canonical = name;
     read_alpha(keys, m, slot_x, slot_y);
     m.params[shadowing_slot] = read_shadowing(keys, m.canonical);
+    m.smith_shadowing_slot = shadowing_slot;
     return m;
 }
 

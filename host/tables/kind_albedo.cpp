@@ -23,13 +23,8 @@ Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfi
 // tolerance the rule gets half of it and the sampling the other half; a texel that still misses
 // it is an error (exit status 1) naming it, as for the directional albedo.
 Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
-    Table t;
-    t.kind = r.kind;
     bool clamped = false;
-    t.quantity = "average albedo Eavg(alpha) = 2 integral_0^1 E(mu) mu dmu";
-    t.x = alpha_axis(r, r.width, clamped);
-    t.y = make_axis("-", "-", 0.0, 1.0, 1);
-    t.y.parameter = {0.5};
+    Table t = roughness_table(r, "average albedo Eavg(alpha) = 2 integral_0^1 E(mu) mu dmu", clamped);
     const std::vector<int> slots = roughness_slots(m);
     const size_t n_alpha = t.x.parameter.size();
     const double tolerance = r.tolerance.tolerance;
@@ -43,16 +38,7 @@ Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig&
     t.channels = {"Eavg"};
     t.values = {avg.value};
     t.error = avg.error;
-    if (tolerance > 0.0) {
-        size_t worst = 0;
-        for (size_t a = 1; a < n_alpha; ++a)
-            if (t.error[a] > t.error[worst]) worst = a;
-        if (t.error[worst] > tolerance)
-            throw Error("--tolerance " + format_number(tolerance) + " not met: the eavg texel at alpha = " +
-                            format_number(t.x.parameter[worst]) + " has an error of " + format_number(t.error[worst]) +
-                            " after " + std::to_string(avg.panels) + " mu panels",
-                        kExitViolation);
-    }
+    if (tolerance > 0.0) require_tolerance_met(t, tolerance, avg.panels);
     describe(t, r, m, f.canonical, avg.method, avg.samples, clamped);
     t.attributes["mu_quadrature"] = avg.rule;
     return t;

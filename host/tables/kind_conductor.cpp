@@ -4,6 +4,7 @@
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "brdfbake/fresnel_terms.h"
 #include "tables/lut_common.h"
 
 namespace brdfbake {
@@ -14,7 +15,7 @@ constexpr double kRgbNm[3] = {650.0, 550.0, 450.0};
 const char* const kRgbNames[3] = {"R", "G", "B"};
 
 /// A measured metal without --wavelength: one channel per RGB wavelength.
-bool rgb(const LutRequest& r) { return r.wavelength_nm == 0.0 && is_measured_metal(r.fresnel); }
+bool rgb(const LutRequest& r) { return r.wavelength_nm == 0.0 && fresnel_needs_wavelength(r.fresnel); }
 
 int channels(const LutRequest& r) { return rgb(r) ? 3 : 1; }
 
@@ -53,7 +54,7 @@ Table compute_conductor(Engine& engine, const LutRequest& r, const ModelConfig& 
 }
 
 void validate_conductor(const LutRequest& r, const ModelConfig&, const FresnelConfig& f) {
-    if (!(f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX || is_measured_metal(r.fresnel)))
+    if (!(f.kind == BB_FRESNEL_CONDUCTOR || f.kind == BB_FRESNEL_CONDUCTOR_APPROX || fresnel_needs_wavelength(r.fresnel)))
         throw Error("the conductor table needs a conductor Fresnel term: --fresnel conductor:eta=E,k=K, metal:Al or nk:FILE");
 }
 

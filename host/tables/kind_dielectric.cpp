@@ -10,6 +10,29 @@
 
 namespace brdfbake {
 namespace tables {
+
+DielectricRequest dielectric_request(const LutRequest& r, const ModelConfig& m) {
+    DielectricRequest dr;
+    dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
+    dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
+    dr.method = r.method;
+    dr.samples = r.samples;
+    dr.precision = r.precision;
+    return dr;
+}
+
+void validate_rough_dielectric(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    const std::string table = "the " + r.kind + " table";
+    if (r.method != Method::Importance && r.method != Method::Quadrature)
+        throw Error(table + " is computed by importance sampling or quadrature; use --method auto, importance or "
+                    "quadrature");
+    if (m.id != BB_MODEL_GGX) throw Error(table + " is computed for GGX microfacets; use --model ggx");
+    if (m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING)
+        throw Error(table + " has no masking-only form: its transmitted lobe needs shadowing; use "
+                    "shadowing=correlated or separable");
+    if (f.kind != BB_FRESNEL_NONE) throw Error(table + " uses the exact dielectric Fresnel term; drop --fresnel");
+}
+
 namespace {
 
 Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
@@ -22,12 +45,7 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
                  "from outside (relative index eta), and R_inside, T_inside from inside (relative index 1/eta); "
                  "transmitted radiance is T times (eta_t/eta_i)^2";
     t.z = eta_axis(r, r.depth);
-    DielectricRequest dr;
-    dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
-    dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
-    dr.method = r.method;
-    dr.samples = r.samples;
-    dr.precision = r.precision;
+    DielectricRequest dr = dielectric_request(r, m);
     for (int side = 0; side < 2; ++side)
         for (double eta : t.z.parameter)
             for (double alpha : t.y.parameter)
@@ -93,14 +111,7 @@ Table compute_dielectric_table(Engine& engine, const LutRequest& r, const ModelC
 }
 
 void validate_dielectric(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
-    if (r.method != Method::Importance && r.method != Method::Quadrature)
-        throw Error("the dielectric table is computed by importance sampling or quadrature; use --method auto, "
-                    "importance or quadrature");
-    if (m.id != BB_MODEL_GGX) throw Error("the dielectric table is computed for GGX microfacets; use --model ggx");
-    if (m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING)
-        throw Error("the dielectric table has no masking-only form: its transmitted lobe needs shadowing; use "
-                    "shadowing=correlated or separable");
-    if (f.kind != BB_FRESNEL_NONE) throw Error("the dielectric table uses the exact dielectric Fresnel term; drop --fresnel");
+    validate_rough_dielectric(r, m, f);
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.height * r.depth > kMaxTexels)
         throw Error("dielectric table depth must be 1 to 1024 and the table at most 4M texels");
 }

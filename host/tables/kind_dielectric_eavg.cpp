@@ -22,21 +22,14 @@ namespace {
 // T gets a quarter of it (their sum, weighted by the rule, half), the mu rule the other half; a
 // texel that still misses it is an error (exit status 1) naming it.
 Table compute_dielectric_eavg(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
-    Table t;
-    t.kind = r.kind;
     bool clamped = false;
-    t.quantity = "average albedo of a rough dielectric interface, Eavg = 2 integral_0^1 (R + T)(mu) mu dmu, for light "
-                 "from outside (relative index eta) and from inside (Eavg_inside, relative index 1/eta)";
-    t.x = alpha_axis(r, r.width, clamped);
-    t.y = make_axis("-", "-", 0.0, 1.0, 1);
-    t.y.parameter = {0.5};
+    Table t = roughness_table(r,
+                              "average albedo of a rough dielectric interface, Eavg = 2 integral_0^1 (R + T)(mu) mu "
+                              "dmu, for light from outside (relative index eta) and from inside (Eavg_inside, "
+                              "relative index 1/eta)",
+                              clamped);
     t.z = eta_axis(r, r.depth);  // the request's eta mapping and texel placement, as the dielectric table's
-    DielectricRequest dr;
-    dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
-    dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
-    dr.method = r.method;
-    dr.samples = r.samples;
-    dr.precision = r.precision;
+    DielectricRequest dr = dielectric_request(r, m);
     const double tolerance = r.tolerance.tolerance;
     // As in the dielectric table, a texel at alpha = 0 is the smooth interface, whose R + T is 1
     // at every mu (Fresnel's equations conserve energy; total internal reflection gives R = 1),
@@ -86,32 +79,14 @@ Table compute_dielectric_eavg(Engine& engine, const LutRequest& r, const ModelCo
         t.values[integrals[i].side][integrals[i].texel] = avg.value[i];
         t.error[integrals[i].texel] = std::max(t.error[integrals[i].texel], avg.error[i]);
     }
-    if (tolerance > 0.0) {
-        size_t worst = 0;
-        for (size_t k = 1; k < texels; ++k)
-            if (t.error[k] > t.error[worst]) worst = k;
-        if (t.error[worst] > tolerance)
-            throw Error("--tolerance " + format_number(tolerance) + " not met: the dielectric-eavg texel at alpha = " +
-                            format_number(t.x.parameter[worst % t.x.parameter.size()]) + ", eta = " +
-                            format_number(t.z.parameter[worst / t.x.parameter.size()]) + " has an error of " +
-                            format_number(t.error[worst]) + " after " + std::to_string(avg.panels) + " mu panels",
-                        kExitViolation);
-    }
+    if (tolerance > 0.0) require_tolerance_met(t, tolerance, avg.panels);
     describe(t, r, m, "dielectric (exact, unpolarised) at each texel's eta", avg.method, avg.samples, clamped);
     t.attributes["mu_quadrature"] = avg.rule;
     return t;
 }
 
 void validate_dielectric_eavg(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
-    if (m.id != BB_MODEL_GGX) throw Error("the dielectric-eavg table is computed for GGX microfacets; use --model ggx");
-    if (m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING)
-        throw Error("the dielectric-eavg table has no masking-only form: its transmitted lobe needs shadowing; use "
-                    "shadowing=correlated or separable");
-    if (f.kind != BB_FRESNEL_NONE)
-        throw Error("the dielectric-eavg table uses the exact dielectric Fresnel term; drop --fresnel");
-    if (r.method != Method::Importance && r.method != Method::Quadrature)
-        throw Error("the dielectric-eavg table is computed by importance sampling or quadrature; use --method auto, "
-                    "importance or quadrature");
+    validate_rough_dielectric(r, m, f);
     if (r.depth < 1 || r.depth > 1024 || double(r.width) * r.depth * 48 > kMaxTexels)
         throw Error("dielectric-eavg table depth must be 1 to 1024 and width x depth x 48 mu nodes at most 4M cells");
     if (!(r.eta_lo >= 1.0))

@@ -20,16 +20,11 @@
 namespace brdfbake {
 namespace tables {
 
-bool is_measured_metal(const std::string& fresnel) {
-    const std::string name = fresnel.substr(0, fresnel.find(':'));  // metal:Al is not key=value
-    return name == "metal" || name == "nk";
-}
-
 bool has_mirror_limit(const ModelConfig& m) {
     // The Smith microfacet lobes: as alpha -> 0, D tends to a delta about the normal and G to 1,
     // so E(mu) -> F(mu), the mirror's albedo (Walter et al. 2007, "Microfacet Models for
     // Refraction through Rough Surfaces", eq. 20 with D -> delta).
-    return m.id == BB_MODEL_GGX || m.id == BB_MODEL_BECKMANN;
+    return m.smith_shadowing_slot >= 0;
 }
 
 Axis mu_axis(const LutRequest& r, int size) {

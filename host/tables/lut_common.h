@@ -17,9 +17,6 @@ namespace tables {
 
 constexpr int kMaxTexels = 1 << 22;
 
-/// A measured metal (metal:X, nk:FILE), whose Fresnel term depends on the wavelength.
-bool is_measured_metal(const std::string& fresnel);
-
 /// Whether the model's alpha -> 0 limit is a mirror (the Smith microfacet lobes), so that a
 /// texel at alpha = 0 is computed as that limit rather than at the alpha floor.
 bool has_mirror_limit(const ModelConfig& m);
@@ -71,6 +68,13 @@ Table directional_albedo_table(Engine& engine, const LutRequest& r, const ModelC
 /// where `clamped`.
 void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::string& fresnel,
               const std::string& method, std::uint64_t samples_per_cell, bool clamped);
+
+/// The rough dielectric integration's request for a table's cells (the dielectric and
+/// dielectric-eavg kinds): the model's shadowing, the request's method, samples and precision.
+DielectricRequest dielectric_request(const LutRequest& r, const ModelConfig& m);
+/// The checks the rough dielectric kinds share: GGX, a shadowing with a transmitted form (not
+/// masking), no --fresnel (they hold the exact dielectric's), importance sampling or quadrature.
+void validate_rough_dielectric(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f);
 
 /// A kind that is `base` in all but its id, name, description and computation (eavg of albedo,
 /// dfg-ms of dfg).

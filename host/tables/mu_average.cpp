@@ -6,6 +6,8 @@
 #include <cmath>
 
 #include "brdfbake/error.h"
+#include "models/key_reader.h"
+#include "tables/lut_common.h"
 
 namespace brdfbake {
 namespace tables {
@@ -114,6 +116,28 @@ MuAverage average_over_mu(size_t n_integrals, double tolerance, const MuIntegran
                                 : "composite Gauss-Legendre over " + std::to_string(done.size()) +
                                       " mu panels, 32 nodes each (16-node rule per panel for the error estimate)";
     return out;
+}
+
+Table roughness_table(const LutRequest& r, const std::string& quantity, bool& clamped) {
+    Table t;
+    t.kind = r.kind;
+    t.quantity = quantity;
+    t.x = alpha_axis(r, r.width, clamped);
+    t.y = make_axis("-", "-", 0.0, 1.0, 1);
+    t.y.parameter = {0.5};
+    return t;
+}
+
+void require_tolerance_met(const Table& t, double tolerance, size_t mu_panels) {
+    const size_t worst = size_t(std::max_element(t.error.begin(), t.error.end()) - t.error.begin());
+    if (t.error[worst] <= tolerance) return;
+    const size_t n_alpha = t.x.parameter.size();
+    std::string where = "alpha = " + format_number(t.x.parameter[worst % n_alpha]);
+    if (!t.z.parameter.empty()) where += ", eta = " + format_number(t.z.parameter[worst / n_alpha]);
+    throw Error("--tolerance " + format_number(tolerance) + " not met: the " + t.kind + " texel at " + where +
+                    " has an error of " + format_number(t.error[worst]) + " after " + std::to_string(mu_panels) +
+                    " mu panels",
+                kExitViolation);
 }
 
 }  // namespace tables

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/table.h"
 
 namespace brdfbake {
 namespace tables {
@@ -40,6 +42,15 @@ struct MuAverage {
 /// error is the integrand's errors, weighted as the rule weights them and added linearly, plus
 /// |G32 - G16| per panel).
 MuAverage average_over_mu(size_t n_integrals, double tolerance, const MuIntegrand& integrand);
+
+/// The layout of the average-albedo kinds: kind and quantity set, x the request's roughness axis
+/// (`clamped` as alpha_axis sets it), y one placeholder texel; the caller adds a z axis.
+Table roughness_table(const LutRequest& r, const std::string& quantity, bool& clamped);
+
+/// Throws Error (exit status 1) unless every texel of an average-albedo table meets `tolerance`
+/// (> 0), naming the worst texel by its alpha (and eta, where the table has an eta axis) and the
+/// mu panels spent.
+void require_tolerance_met(const Table& t, double tolerance, size_t mu_panels);
 
 }  // namespace tables
 }  // namespace brdfbake

@@ -3,55 +3,33 @@
 // and in the README's "Drop-in tables" section); where an engine's own table sits away from where
 // its shader reads, the preset writes what the shader reads.
 #include <limits>
+#include <tuple>
+#include <utility>
 
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
+#include "brdfbake/table_kinds.h"
 
 namespace brdfbake {
 namespace {
 
 /// What every preset shares: height-correlated GGX (each engine's visibility term is the
 /// height-correlated Smith G2 of Heitz 2014, or an approximation of it), F = 1 or factored out,
-/// a fixed sample count per texel.
-LutRequest base(const LutRequest& r) {
-    LutRequest p;
-    p.kind = r.kind;
-    p.estimator = r.estimator;
-    p.model = "ggx:shadowing=correlated";
-    p.alpha_map = "roughness";  // every engine indexes by perceptual roughness r, alpha = r^2
-    p.alpha_lo = 0.0;
-    p.alpha_hi = 1.0;
-    p.samples = std::uint64_t(1) << 16;
-    return p;
-}
-
-// glTF Sample Viewer (KhronosGroup/glTF-Sample-Viewer, source/Renderer/shaders/ibl.glsl): the
-// split-sum LUT lut_ggx.png is read as texture(u_GGXLUT, vec2(NdotV, roughness)).rg, f_ab.x the
-// scale A and f_ab.y the bias B; 16-bit PNG, WebGL upload without a flip (row 0 at t = 0).
-void gltf(LutRequest& r) {
-    r = base(r);
-    r.width = r.height = 1024;
-}
-
-// Filament (google/filament, libs/ibl/src/CubemapIBL.cpp, CubemapIBL::DFG with multiscatter):
-// R = sum of V Fc = B, G = sum of V = E = A + B, read as mix(dfg.xxx, dfg.yyy, f0)
-// (shaders/src/surface_light_indirect.fs); x = NoV at texel centres, rows ordered from the
-// roughest (row 0) down. cmgen computes row y at perceptual roughness (height - y + 0.5)/height,
-// one texel above the centre (height - y - 0.5)/height that a sampler reads: the preset writes
-// the centres.
-void filament(LutRequest& r) {
-    r = base(r);
-    r.width = r.height = 128;
-    r.flip = {"roughness"};
-}
-
-// three.js (mrdoob/three.js, src/renderers/shaders/DFGLUTData.js): a 16 x 16 RG16F DataTexture,
-// (scale, bias) = (A, B), sampled at vec2(roughness, dotNV): x = roughness, y = NoV, texel
-// centres, row 0 at NoV near 0.
-void three(LutRequest& r) {
-    r = base(r);
-    r.width = r.height = 16;
-    r.axes = {"roughness", "mu"};
+/// a fixed sample count per texel, every engine indexing by perceptual roughness r, alpha = r^2;
+/// then the engine's size, axis order and flips.
+LutRequest engine_layout(int width, int height, std::vector<std::string> axes = {},
+                         std::vector<std::string> flip = {}) {
+    LutRequest r;
+    r.model = "ggx:shadowing=correlated";
+    r.alpha_map = "roughness";
+    r.alpha_lo = 0.0;
+    r.alpha_hi = 1.0;
+    r.samples = std::uint64_t(1) << 16;
+    r.width = width;
+    r.height = height;
+    r.axes = std::move(axes);
+    r.flip = std::move(flip);
+    return r;
 }
 
 // Blender Cycles (intern/cycles/app/cycles_precompute.cpp): table_ggx_E[y * 32 + x] with
@@ -60,93 +38,115 @@ void three(LutRequest& r) {
 // which interpolates between texels at i/(N - 1) (edges), at roughness sqrt(sqrt(alpha_x alpha_y))
 // (intern/cycles/kernel/closure/bsdf_microfacet.h). The r = 0 column is Cycles' r = 1e-4
 // (alpha = 1e-8): computed here as the mirror limit, E = 1, which Cycles' own values reach.
-void cycles(LutRequest& r) {
-    r = base(r);
+// Cycles prints 6 decimals: half a unit of the last is 5e-7, the tolerance of every table but
+// the glass ones (cycles_glass_layout).
+LutRequest cycles_layout(int width, int height, int depth, std::vector<std::string> axes, double tolerance = 5e-7) {
+    LutRequest r = engine_layout(width, height, std::move(axes));
+    r.depth = depth;
     r.texels = Texels::Edge;
     r.mu_lo = 0.0;
     r.mu_hi = 1.0;
     r.mu_floor = 1e-4;
-    if (r.kind == "eavg") {
-        r.width = 32;
-        r.height = 1;
-    } else if (r.kind == "gen-schlick" || r.kind == "gen-schlick-ior") {
-        // table_ggx_gen_schlick_s and table_ggx_gen_schlick_ior_s[(z * 16 + y) * 16 + x]: x and y
-        // as above, z = i/15 on the kind's own z axis (cycles_z: Cycles' exponent or eta
-        // parameterisation, clamped to [1e-4, 0.99]), read by lookup_table_read_3D.
-        r.width = r.height = r.depth = 16;
-        r.axes = {"roughness", "mu", "cycles_z"};
-        // --estimator cycles: what Cycles' own tables hold, the albedo of the lobe whose G2 is the
-        // masking term G1(wo) alone (its Monte-Carlo estimator averages w over the visible normals).
-        if (r.estimator == "cycles") r.model = "ggx:shadowing=masking";
-    } else if (r.kind == "dielectric" || r.kind == "dielectric-eavg") {
-        // table_ggx_glass_E and table_ggx_glass_inv_E[(z * 16 + y) * 16 + x], table_ggx_glass_Eavg
-        // and table_ggx_glass_inv_Eavg[z * 16 + x]: the single-scattering albedo R + T of a rough
-        // GGX glass interface (Eavg: 2 integral of (R + T) mu dmu over mu) with the exact
-        // dielectric Fresnel and Cycles' G2 = 1/(1 + Lambda_i + Lambda_o) for both lobes; x =
-        // roughness i/15, y = mu j/15 (floored at 1e-4), z = k/15 with eta = (1 + z^2)/(1 - z^2)
-        // (ior_from_F0(z^4)), z clamped to [1e-4, 0.99] (eta 1 to 99.5); "inv" is light from the
-        // denser side, at 1/eta: brdfbake's *_inside channels. Read by microfacet_ggx_preserve_energy
-        // at z = sqrt(|eta - 1|/(eta + 1)) with eta < 1 inverted onto the inv tables
-        // (bsdf_microfacet.h). z = 0 (eta = 1, no interface) is E = 1: Cycles computes it at z =
-        // 1e-4, where eta rounds to 1 in float, and treats |eta - 1| < 1e-4 as a smooth pass.
-        r.model = "ggx:shadowing=correlated,transmission_shadowing=cycles";
-        r.eta_map = "cycles";
-        r.eta_lo = 1.0;
-        r.eta_hi = std::numeric_limits<double>::infinity();  // z up to 1, computed at 0.99 (eta_axis)
-        r.depth = 16;
-        r.width = 16;
-        if (r.kind == "dielectric-eavg") {
-            r.height = 1;  // x = roughness, z = cycles_z: already Cycles' order
-        } else {
-            r.height = 16;
-            r.axes = {"roughness", "mu", "cycles_z"};
-        }
-    } else {
-        r.width = r.height = 32;
-        r.axes = {"roughness", "mu"};
-    }
     r.precision = Precision::Double;
-    // Cycles prints 6 decimals: half a unit of the last is 5e-7. The glass tables are Monte Carlo
-    // of 2^23 (E) and 2^26 (Eavg) samples a texel in Cycles, about 1e-4 of noise; 5e-7 is out of
-    // the dielectric kind's reach at a few texels (67M samples each), 1e-6 takes about 4 minutes.
-    // dielectric-eavg shares its tolerance out, a quarter to each of R and T: 4e-6 holds them to 1e-6.
-    r.tolerance.tolerance = r.kind == "dielectric" ? 1e-6 : r.kind == "dielectric-eavg" ? 4e-6 : 5e-7;
+    r.tolerance.tolerance = tolerance;
     r.tolerance.auto_method = true;
+    return r;
 }
 
-// Unreal Engine (Engine/Shaders/Private/BRDF.ush, EnvBRDF): the split-sum texture PreIntegratedGF
-// is read at float2(NoV, Roughness), .x the scale A and .y the bias B of
-// SpecularColor * A + saturate(50 * SpecularColor.g) * B; 128 x 32 texels, centres.
-void unreal(LutRequest& r) {
-    r = base(r);
-    r.width = 128;
-    r.height = 32;
+// table_ggx_glass_E and table_ggx_glass_inv_E[(z * 16 + y) * 16 + x], table_ggx_glass_Eavg and
+// table_ggx_glass_inv_Eavg[z * 16 + x]: the single-scattering albedo R + T of a rough GGX glass
+// interface (Eavg: 2 integral of (R + T) mu dmu over mu) with the exact dielectric Fresnel and
+// Cycles' G2 = 1/(1 + Lambda_i + Lambda_o) for both lobes; x = roughness i/15, y = mu j/15
+// (floored at 1e-4), z = k/15 with eta = (1 + z^2)/(1 - z^2) (ior_from_F0(z^4)), z clamped to
+// [1e-4, 0.99] (eta 1 to 99.5); "inv" is light from the denser side, at 1/eta: brdfbake's
+// *_inside channels. Read by microfacet_ggx_preserve_energy at z = sqrt(|eta - 1|/(eta + 1)) with
+// eta < 1 inverted onto the inv tables (bsdf_microfacet.h). z = 0 (eta = 1, no interface) is
+// E = 1: Cycles computes it at z = 1e-4, where eta rounds to 1 in float, and treats
+// |eta - 1| < 1e-4 as a smooth pass. The glass tables are Monte Carlo of 2^23 (E) and 2^26 (Eavg)
+// samples a texel in Cycles, about 1e-4 of noise; 5e-7 is out of the dielectric kind's reach at
+// a few texels (67M samples each), 1e-6 takes about 4 minutes.
+LutRequest cycles_glass_layout(int height, std::vector<std::string> axes, double tolerance) {
+    LutRequest r = cycles_layout(16, height, 16, std::move(axes), tolerance);
+    r.model = "ggx:shadowing=correlated,transmission_shadowing=cycles";
+    r.eta_map = "cycles";
+    r.eta_lo = 1.0;
+    r.eta_hi = std::numeric_limits<double>::infinity();  // z up to 1, computed at 0.99 (eta_axis)
+    return r;
+}
+
+std::string join_names(const std::vector<std::string>& names) {
+    std::string list;
+    for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+    return list;
+}
+
+/// A preset row: its layouts' kind names filled in from the table-kind registry.
+LutPreset preset_row(LutPreset p) {
+    for (const PresetLayout& l : p.layouts) p.kinds.push_back(table_kind(l.kind).name);
+    return p;
 }
 
 }  // namespace
 
 const std::vector<LutPreset>& lut_presets() {
+    using K = TableKindId;
+    static const std::vector<std::string> roughness_mu = {"roughness", "mu"},
+                                          cycles_3d = {"roughness", "mu", "cycles_z"};
     static const std::vector<LutPreset> presets = {
-        {"gltf", "glTF Sample Viewer", "lut_ggx.png", {"dfg"}, "png", false,
-         "1024 x 1024, x = NdotV, y = roughness (row 0 at 0), texel centres, R = A, G = B, B = 0, 16-bit PNG", gltf},
-        {"filament", "Filament", "dfg.inc (cmgen --ibl-dfg-multiscatter)", {"dfg-ms"}, "exr", true,
-         "128 x 128, x = NoV, y = perceptual roughness from 1 (row 0) down, texel centres, R = B, G = E = A + B, "
-         "half-float EXR",
-         filament},
-        {"three", "three.js", "src/renderers/shaders/DFGLUTData.js", {"dfg"}, "exr", true,
-         "16 x 16, x = roughness, y = NoV, texel centres, R = A (scale), G = B (bias), half-float EXR (RG16F)", three},
-        {"cycles", "Blender Cycles",
-         "table_ggx_E, table_ggx_Eavg, table_ggx_gen_schlick_s, table_ggx_gen_schlick_ior_s, table_ggx_glass_E "
-         "and table_ggx_glass_inv_E (dielectric: R + T and R_inside + T_inside), table_ggx_glass_Eavg and "
-         "table_ggx_glass_inv_Eavg (dielectric-eavg: Eavg, Eavg_inside) (intern/cycles/scene/shader.tables)",
-         {"albedo", "eavg", "gen-schlick", "gen-schlick-ior", "dielectric", "dielectric-eavg"}, "h", false,
-         "32 x 32 (32 for eavg; 16 x 16 x 16 for gen-schlick, gen-schlick-ior and dielectric with z = cycles_z, "
-         "16 x 16 for dielectric-eavg with z = cycles_z, the dielectric kinds with Cycles' transmission shadowing; "
-         "gen-schlick kinds with --estimator cycles: Cycles' own estimator on ggx:shadowing=masking), "
-         "x = roughness, y = mu, edge texels (i/(N - 1)), mu floored at 1e-4, double precision to 5e-7 (dielectric: 1e-6, dielectric-eavg: 4e-6), C header",
-         cycles},
-        {"unreal", "Unreal Engine", "PreIntegratedGF (EnvBRDF)", {"dfg"}, "png", false,
-         "128 x 32, x = NoV, y = roughness, texel centres, R = A, G = B, 16-bit PNG", unreal},
+        // glTF Sample Viewer (KhronosGroup/glTF-Sample-Viewer, source/Renderer/shaders/ibl.glsl): the
+        // split-sum LUT lut_ggx.png is read as texture(u_GGXLUT, vec2(NdotV, roughness)).rg, f_ab.x the
+        // scale A and f_ab.y the bias B; 16-bit PNG, WebGL upload without a flip (row 0 at t = 0).
+        preset_row({"gltf", "glTF Sample Viewer", "lut_ggx.png", "png", false,
+                    "1024 x 1024, x = NdotV, y = roughness (row 0 at 0), texel centres, R = A, G = B, B = 0, 16-bit PNG",
+                    {{K::Dfg, engine_layout(1024, 1024), ""}}}),
+        // Filament (google/filament, libs/ibl/src/CubemapIBL.cpp, CubemapIBL::DFG with multiscatter):
+        // R = sum of V Fc = B, G = sum of V = E = A + B, read as mix(dfg.xxx, dfg.yyy, f0)
+        // (shaders/src/surface_light_indirect.fs); x = NoV at texel centres, rows ordered from the
+        // roughest (row 0) down. cmgen computes row y at perceptual roughness (height - y + 0.5)/height,
+        // one texel above the centre (height - y - 0.5)/height that a sampler reads: the preset writes
+        // the centres.
+        preset_row({"filament", "Filament", "dfg.inc (cmgen --ibl-dfg-multiscatter)", "exr", true,
+                    "128 x 128, x = NoV, y = perceptual roughness from 1 (row 0) down, texel centres, R = B, "
+                    "G = E = A + B, half-float EXR",
+                    {{K::DfgMs, engine_layout(128, 128, {}, {"roughness"}), ""}}}),
+        // three.js (mrdoob/three.js, src/renderers/shaders/DFGLUTData.js): a 16 x 16 RG16F DataTexture,
+        // (scale, bias) = (A, B), sampled at vec2(roughness, dotNV): x = roughness, y = NoV, texel
+        // centres, row 0 at NoV near 0.
+        preset_row({"three", "three.js", "src/renderers/shaders/DFGLUTData.js", "exr", true,
+                    "16 x 16, x = roughness, y = NoV, texel centres, R = A (scale), G = B (bias), half-float EXR "
+                    "(RG16F)",
+                    {{K::Dfg, engine_layout(16, 16, roughness_mu), ""}}}),
+        // Blender Cycles: see cycles_layout and cycles_glass_layout. table_ggx_gen_schlick_s and
+        // table_ggx_gen_schlick_ior_s[(z * 16 + y) * 16 + x]: x and y as table_ggx_E's, z = i/15 on
+        // the kind's own z axis (cycles_z: Cycles' exponent or eta parameterisation, clamped to
+        // [1e-4, 0.99]), read by lookup_table_read_3D; with --estimator cycles, what Cycles' own
+        // tables hold: the albedo of the lobe whose G2 is the masking term G1(wo) alone (its
+        // Monte-Carlo estimator averages w over the visible normals). dielectric-eavg shares its
+        // tolerance out, a quarter to each of R and T: 4e-6 holds them to 1e-6.
+        preset_row({"cycles", "Blender Cycles",
+                    "table_ggx_E, table_ggx_Eavg, table_ggx_gen_schlick_s, table_ggx_gen_schlick_ior_s, "
+                    "table_ggx_glass_E and table_ggx_glass_inv_E (dielectric: R + T and R_inside + T_inside), "
+                    "table_ggx_glass_Eavg and table_ggx_glass_inv_Eavg (dielectric-eavg: Eavg, Eavg_inside) "
+                    "(intern/cycles/scene/shader.tables)",
+                    "h", false,
+                    "32 x 32 (32 for eavg; 16 x 16 x 16 for gen-schlick, gen-schlick-ior and dielectric with z = "
+                    "cycles_z, 16 x 16 for dielectric-eavg with z = cycles_z, the dielectric kinds with Cycles' "
+                    "transmission shadowing; gen-schlick kinds with --estimator cycles: Cycles' own estimator on "
+                    "ggx:shadowing=masking), x = roughness, y = mu, edge texels (i/(N - 1)), mu floored at 1e-4, "
+                    "double precision to 5e-7 (dielectric: 1e-6, dielectric-eavg: 4e-6), C header",
+                    {{K::Albedo, cycles_layout(32, 32, 16, roughness_mu), ""},
+                     {K::Eavg, cycles_layout(32, 1, 16, {}), ""},
+                     {K::GenSchlick, cycles_layout(16, 16, 16, cycles_3d), "ggx:shadowing=masking"},
+                     {K::GenSchlickIor, cycles_layout(16, 16, 16, cycles_3d), "ggx:shadowing=masking"},
+                     {K::Dielectric, cycles_glass_layout(16, cycles_3d, 1e-6), ""},
+                     // x = roughness, z = cycles_z: already Cycles' order
+                     {K::DielectricEavg, cycles_glass_layout(1, {}, 4e-6), ""}}}),
+        // Unreal Engine (Engine/Shaders/Private/BRDF.ush, EnvBRDF): the split-sum texture
+        // PreIntegratedGF is read at float2(NoV, Roughness), .x the scale A and .y the bias B of
+        // SpecularColor * A + saturate(50 * SpecularColor.g) * B; 128 x 32 texels, centres.
+        preset_row({"unreal", "Unreal Engine", "PreIntegratedGF (EnvBRDF)", "png", false,
+                    "128 x 32, x = NoV, y = roughness, texel centres, R = A, G = B, 16-bit PNG",
+                    {{K::Dfg, engine_layout(128, 32), ""}}}),
     };
     return presets;
 }
@@ -158,6 +158,116 @@ const LutPreset& lut_preset(const std::string& name) {
         known += (known.empty() ? "" : ", ") + p.name;
     }
     throw Error("unknown preset '" + name + "'; known: " + known);
+}
+
+const PresetLayout* LutPreset::layout(const std::string& kind) const {
+    const TableKind* asked = find_table_kind(kind);
+    for (const PresetLayout& l : layouts)
+        if (asked && l.kind == asked->id) return &l;
+    return nullptr;
+}
+
+void LutPreset::apply(LutRequest& request) const {
+    // A kind without a layout of its own gets the default one: the scene planner's --target gltf
+    // writes the sample viewer's sheen tables in its split-sum layout.
+    const PresetLayout* own = layout(request.kind);
+    const PresetLayout* l = own ? own : &layouts.front();
+    LutRequest r = l->settings;
+    r.kind = request.kind;
+    r.estimator = request.estimator;  // the preset's model follows the quantity asked for
+    if (!l->cycles_estimator_model.empty() && r.estimator == "cycles")
+        r.model = l->cycles_estimator_model;
+    request = std::move(r);
+}
+
+namespace {
+
+/// "--size 32x32x4", for the messages of set_lut_size.
+std::string size_text(const std::vector<int>& size) {
+    std::string text;
+    for (int n : size) text += (text.empty() ? "" : "x") + std::to_string(n);
+    return text;
+}
+
+std::pair<double, double> range_of(const std::vector<double>& range, const std::string& option) {
+    if (range.size() != 2) throw Error(option + " needs two numbers: LO,HI");
+    return {range[0], range[1]};
+}
+
+Precision precision_of(const std::string& name) {
+    if (name == "float") return Precision::Float;
+    if (name == "double") return Precision::Double;
+    throw Error("--precision must be float or double, not '" + name + "'");
+}
+
+/// The kind asked for (the preset's first without one) and the preset's layout for it.
+const LutPreset* preset_for_kind(const LutSettings& given, LutRequest& r) {
+    const LutPreset* preset = given.preset ? &lut_preset(*given.preset) : nullptr;
+    if (given.kind) {
+        r.kind = *given.kind;
+    } else {
+        if (!preset) throw Error("lut needs a table kind (" + table_kind_names() + ")");
+        r.kind = preset->kinds.front();
+    }
+    const TableKind& kind = table_kind(r.kind);
+    if (given.estimator) {
+        if (!kind.cycles_estimator)
+            throw Error("--estimator is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
+        r.estimator = *given.estimator;
+    }
+    if (preset) {
+        if (!preset->layout(r.kind))
+            throw Error("preset '" + preset->name + "' has a layout for " + join_names(preset->kinds) + " tables, not " +
+                        r.kind);
+        preset->apply(r);  // its layout for the kind (the kind and estimator stay)
+    } else if (!given.model) {
+        throw Error("--model is required (or give --preset)");
+    }
+    return preset;
+}
+
+}  // namespace
+
+LutSetup apply_preset(const LutSettings& given) {
+    LutSetup setup;
+    LutRequest& r = setup.request;
+    const LutPreset* preset = preset_for_kind(given, r);
+    setup.half = given.half ? *given.half : preset && preset->half;
+    if (given.model) r.model = *given.model;
+    if (given.fresnel) r.fresnel = *given.fresnel;
+    if (given.wavelength_nm) r.wavelength_nm = *given.wavelength_nm;
+    if (given.size) {
+        try {
+            set_lut_size(r, *given.size);
+        } catch (const Error& e) {
+            throw Error(std::string(e.what()) + " (--size " + size_text(*given.size) + ")");
+        }
+    } else if (!preset) {
+        set_lut_size(r, {kDefaultLutTexels});
+    }
+    if (given.mu_map) r.mu_map = *given.mu_map;
+    if (given.alpha_map) r.alpha_map = *given.alpha_map;
+    if (given.eta_map) r.eta_map = *given.eta_map;
+    if (given.alpha_range) std::tie(r.alpha_lo, r.alpha_hi) = range_of(*given.alpha_range, "--alpha-range");
+    if (given.eta_range) std::tie(r.eta_lo, r.eta_hi) = range_of(*given.eta_range, "--eta-range");
+    if (given.mu_range) std::tie(r.mu_lo, r.mu_hi) = range_of(*given.mu_range, "--mu-range");
+    if (given.mu_floor) r.mu_floor = *given.mu_floor;
+    if (given.texels) r.texels = parse_texels(*given.texels);
+    if (given.axes) r.axes = *given.axes;
+    if (given.flip) r.flip = *given.flip;
+    if (given.samples && given.tolerance) throw Error("--tolerance excludes --samples");
+    if (given.samples || given.tolerance || given.method || given.max_samples) {
+        const LutRequest defaults;
+        const MethodChoice choice =
+            choose_method(given.method.value_or("auto"), given.samples.value_or(double(defaults.samples)),
+                          given.tolerance.value_or(0.0),
+                          given.max_samples.value_or(double(defaults.tolerance.max_samples)));
+        r.samples = choice.samples;
+        r.method = choice.method;
+        r.tolerance = choice.tolerance;
+    }
+    if (given.precision) r.precision = precision_of(*given.precision);
+    return setup;
 }
 
 }  // namespace brdfbake

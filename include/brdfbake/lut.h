@@ -3,6 +3,7 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -61,24 +62,77 @@ void validate_lut(const LutRequest& request);
 /// bad input or non-finite results.
 Table compute_lut(Engine& engine, const LutRequest& request);
 
+/// The table kinds of the registry (brdfbake/table_kinds.h).
+enum class TableKindId;
+
+/// A preset's layout for one table kind: the request it writes for that kind.
+struct PresetLayout {
+    TableKindId kind;
+    /// Every setting of the table but its kind and estimator (size, model, texels, ranges,
+    /// mappings, axes, flips, precision, samples or tolerance).
+    LutRequest settings;
+    /// The model when the request asks for Blender Cycles' estimator (--estimator cycles of the
+    /// gen-schlick kinds: Cycles' own tables hold the masking-only lobe); empty: settings.model.
+    std::string cycles_estimator_model;
+};
+
 /// A preset: the settings that make a table replace one an engine ships (host/tables/presets.cpp;
-/// README "Drop-in tables" says where each convention comes from).
+/// README "Drop-in tables" says where each convention comes from). A row of data: one layout per
+/// table kind it has a layout for.
 struct LutPreset {
     std::string name;         // --preset NAME
     std::string engine;       // "glTF Sample Viewer", "Blender Cycles", ...
     std::string ships;        // the file or symbol the engine ships
-    std::vector<std::string> kinds;  // the table kinds it has a layout for; the first is the default
     std::string extension;    // the file format the engine loads: "png", "h", "exr"
     bool half = false;        // an EXR of half floats (the engine's texture is 16-bit float)
     std::string summary;      // the layout in one line
-    /// Replaces the request by the preset's for its kind (size, model, texels, ranges, mappings,
-    /// axes, flips, precision, samples or tolerance); the kind stays.
-    void (*apply)(LutRequest& request);
+    std::vector<PresetLayout> layouts;  // the first is the default kind
+    std::vector<std::string> kinds;     // the layouts' kind names, in order (from the table-kind registry)
+
+    /// The layout for the table kind of that name, or nullptr.
+    const PresetLayout* layout(const std::string& kind) const;
+    /// Replaces the request by the preset's layout for request.kind (the default layout, the
+    /// first, for a kind without one of its own: the scene planner's --target gltf lays the sheen
+    /// tables out as the split-sum one); the kind and the estimator stay.
+    void apply(LutRequest& request) const;
 };
 
 /// Every preset, in help order.
 const std::vector<LutPreset>& lut_presets();
 /// The preset of that name; throws Error "unknown preset 'X'; known: ...".
 const LutPreset& lut_preset(const std::string& name);
+
+/// The options of `brdfbake lut` as a user gives them (the command line, and Python's lut(), which
+/// initializes the fields in their order): an empty field was not given. apply_preset turns them
+/// into a request.
+struct LutSettings {
+    std::optional<std::string> kind, preset, model, estimator, fresnel;
+    std::optional<double> wavelength_nm;
+    std::optional<std::vector<int>> size;  // N, W x H or W x H x D (set_lut_size)
+    std::optional<std::string> mu_map, alpha_map, eta_map, texels;
+    std::optional<std::vector<double>> alpha_range, eta_range, mu_range;  // LO, HI each
+    std::optional<double> mu_floor;
+    std::optional<std::vector<std::string>> axes, flip;
+    std::optional<double> samples, tolerance, max_samples;
+    std::optional<std::string> method, precision;
+    std::optional<bool> half;
+};
+
+/// Texels on every axis of a table without --size or a preset.
+constexpr int kDefaultLutTexels = 32;
+
+/// A request with what its files need beside it.
+struct LutSetup {
+    LutRequest request;
+    bool half = false;  // EXR channels as half floats (--half, or the preset's engine texture)
+};
+
+/// The one merge of a preset and the options given beside it, for the command line and Python:
+/// the preset's layout for the kind (the preset's first kind when none is given), then every
+/// option given overrides its field; without a preset, the options over LutRequest's defaults
+/// (--model required, kDefaultLutTexels on every axis). The method options (samples, tolerance, method, max_samples) count as one:
+/// any of them given replaces the preset's, the others at their defaults. Throws Error with the
+/// command line's messages; the request is then checked by validate_lut.
+LutSetup apply_preset(const LutSettings& given);
 
 }  // namespace brdfbake

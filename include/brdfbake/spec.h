@@ -58,6 +58,9 @@ struct ModelConfig {
     ParamBlock params{};        // slots as the model header defines them
     bool anisotropic = false;   // albedo depends on phi_o
     bool uses_fresnel = false;  // the model multiplies by a Fresnel term
+    /// The slot of the Smith shadowing choice (BB_SMITH_* of brdf/smith.h) of the Smith microfacet
+    /// lobes (ggx, beckmann), which their resolver sets; -1: the model has none.
+    int smith_shadowing_slot = -1;
 
     /// The model's registry entry.
     const ModelTraits& traits() const { return model_traits(id); }

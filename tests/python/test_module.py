@@ -211,6 +211,7 @@ def test_other_bad_input_raises_value_error():
 def test_the_registries_are_the_command_lines():
     assert "ggx" in brdfbake.models() and "lambert" in brdfbake.models()
     assert "albedo" in brdfbake.table_kinds() and "dfg" in brdfbake.table_kinds()
+    assert "schlick" in brdfbake.fresnel_terms() and "metal" in brdfbake.fresnel_terms()
 
 
 # ------------------------------------------------------------------ the README's example
@@ -309,3 +310,127 @@ def test_a_preset_equals_the_command_lines():
         t = brdfbake.lut(preset="cycles")
         assert t.kind == from_cli.kind and t.attributes == from_cli.attributes
         assert np.array_equal(t.values, from_cli.values)
+
+
+# ------------------------------------------------------------------ lut() has every option of `brdfbake lut`
+
+def cli_lut_options():
+    """The options `brdfbake lut --help` lists, by their long names."""
+    cli = run_cli("lut", "--help")
+    assert cli.returncode == 0, cli.stderr
+    names = set(re.findall(r"^\s+(?:-\w,)?(--[a-z][a-z0-9-]*)", cli.stdout, re.M))
+    assert {"--preset", "--model", "--size"} <= names, cli.stdout
+    return sorted(names)
+
+
+# The options that are not about the table: where the module has them instead, or why not.
+NOT_LUT_ARGUMENTS = {
+    "--help": "Python's help(brdfbake.lut)",
+    "--preview": "the command line's preview picture (drawn with MathGL, which the module does not link)",
+    "--no-preview": "the module draws no preview",
+    "--shard": "part files for `brdfbake merge`; a Python call computes the whole table",
+}
+
+# Every lut option with a value for it: (command-line words, lut() keyword arguments). Each is
+# given on top of a small albedo table of ggx; lut() must then write what the command line
+# writes, or refuse it with the command line's message.
+LUT_OPTION_VALUES = {
+    "--preset": (["--preset", "cycles"], {"preset": "cycles"}),
+    "--model": (["--model", "ggx:shadowing=separable"], {"model": "ggx:shadowing=separable"}),
+    "--estimator": (["--estimator", "cycles"], {"estimator": "cycles"}),
+    "--fresnel": (["--fresnel", "schlick:f0=0.5"], {"fresnel": "schlick:f0=0.5"}),
+    "--wavelength": (["--fresnel", "metal:Au", "--wavelength", "600"], {"fresnel": "metal:Au", "wavelength": 600.0}),
+    "--size": (["--size", "3x2"], {"size": (3, 2)}),
+    "--mu-map": (["--mu-map", "sqrt"], {"mu_map": "sqrt"}),
+    "--alpha-map": (["--alpha-map", "roughness"], {"alpha_map": "roughness"}),
+    "--alpha-range": (["--alpha-range", "0.1,0.9"], {"alpha_range": [0.1, 0.9]}),
+    "--eta-range": (["--eta-range", "1.2,2"], {"eta_range": [1.2, 2.0]}),
+    "--eta-map": (["--eta-map", "f0"], {"eta_map": "f0"}),
+    "--texels": (["--texels", "edge"], {"texels": "edge"}),
+    "--mu-range": (["--mu-range", "0.2,1"], {"mu_range": [0.2, 1.0]}),
+    "--mu-floor": (["--mu-floor", "0.3"], {"mu_floor": 0.3}),
+    "--axes": (["--axes", "alpha,mu"], {"axes": ["alpha", "mu"]}),
+    "--flip": (["--flip", "mu"], {"flip": ["mu"]}),
+    "--samples": (["--samples", "512"], {"samples": 512}),
+    "--method": (["--method", "qmc"], {"method": "qmc"}),
+    "--tolerance": (["--tolerance", "1e-3"], {"tolerance": 1e-3}),
+    "--max-samples": (["--tolerance", "1e-3", "--max-samples", "4096"], {"tolerance": 1e-3, "max_samples": 4096}),
+    "--precision": (["--precision", "double"], {"precision": "double"}),
+    "--half": (["--half"], {"half": True}),
+    "--output": ([], {}),  # every call writes its table: -o and output=
+}
+
+
+def lut_both_ways(words, kwargs, d, name):
+    """Runs `brdfbake lut albedo --model ggx --size 2x2 --samples 64 WORDS -o FILE` and lut() with
+    the same settings; returns (CLI's table or message, Python's)."""
+    cli_path, py_path = os.path.join(d, name + "-cli.exr"), os.path.join(d, name + "-py.exr")
+    base_words = {"--model": ["ggx"], "--size": ["2x2"], "--samples": ["64"]}
+    base_kwargs = {"model": "ggx", "size": (2, 2), "samples": 64}
+    for w in words:  # an option given replaces the base's (and --tolerance its --samples)
+        base_words.pop(w, None)
+        if w == "--tolerance":
+            base_words.pop("--samples", None)
+    for k in kwargs:
+        base_kwargs.pop(k, None)
+        if k == "tolerance":
+            base_kwargs.pop("samples", None)
+    args = ["lut", "albedo"] + [x for k, v in base_words.items() for x in [k] + v] + words
+    cli = run_cli(*args, "--no-preview", "-o", cli_path)
+    if cli.returncode != 0:
+        assert cli.returncode == 2, cli.stderr
+        cli_out = cli.stderr.strip()[len("brdfbake: error: "):]
+    else:
+        cli_out = brdfbake.read_table(cli_path)
+    try:
+        brdfbake.lut("albedo", output=py_path, **base_kwargs, **kwargs)
+        py_out = brdfbake.read_table(py_path)
+    except ValueError as e:
+        py_out = str(e)
+    return cli_out, py_out
+
+
+def test_lut_takes_every_option_of_the_command_line():
+    options = cli_lut_options()
+    missing = [o for o in options if o not in LUT_OPTION_VALUES and o not in NOT_LUT_ARGUMENTS]
+    assert not missing, "brdfbake lut options without a lut() argument in this test: " + ", ".join(missing)
+    with tempfile.TemporaryDirectory() as d:
+        for option in options:
+            if option in NOT_LUT_ARGUMENTS:
+                continue
+            words, kwargs = LUT_OPTION_VALUES[option]
+            try:
+                cli_out, py_out = lut_both_ways(words, kwargs, d, option.strip("-"))
+            except TypeError as e:  # lut() has no such keyword
+                raise AssertionError("lut() lacks " + option + ": " + str(e))
+            if isinstance(cli_out, str) or isinstance(py_out, str):
+                assert cli_out == py_out, option
+                continue
+            assert py_out.attributes == cli_out.attributes, option
+            assert np.array_equal(py_out.values, cli_out.values), option
+            assert [a["name"] for a in py_out.axes] == [a["name"] for a in cli_out.axes], option
+
+
+@pytest.mark.parametrize("words,kwargs", [
+    (["--preset", "gltf", "eavg"], {"preset": "gltf", "kind": "eavg"}),
+    (["dfg", "--model", "ggx", "--estimator", "cycles"], {"kind": "dfg", "model": "ggx", "estimator": "cycles"}),
+    (["--model", "ggx"], {"model": "ggx"}),
+    (["albedo"], {"kind": "albedo"}),
+    (["albedo", "--model", "ggx", "--size", "2x2x2"], {"kind": "albedo", "model": "ggx", "size": (2, 2, 2)}),
+    (["eavg", "--model", "ggx", "--size", "4x4"], {"kind": "eavg", "model": "ggx", "size": (4, 4)}),
+    (["albedo", "--model", "ggx", "--alpha-range", "0.1,0.2,0.3"],
+     {"kind": "albedo", "model": "ggx", "alpha_range": [0.1, 0.2, 0.3]}),
+    (["gen-schlick", "--preset", "cycles", "--estimator", "cycles", "--model", "ggx"],
+     {"kind": "gen-schlick", "preset": "cycles", "estimator": "cycles", "model": "ggx"}),
+    (["albedo", "--preset", "nope"], {"kind": "albedo", "preset": "nope"}),
+])
+def test_lut_refuses_what_the_command_line_refuses_with_its_message(words, kwargs):
+    with tempfile.TemporaryDirectory() as d:
+        cli = run_cli("lut", *words, "--no-preview", "-o", os.path.join(d, "t.exr"))
+        assert cli.returncode == 2, cli.stderr
+        message = cli.stderr.strip()
+        assert message.startswith("brdfbake: error: ")
+        with pytest.raises(ValueError) as e:
+            brdfbake.lut(**kwargs)
+        assert str(e.value) == message[len("brdfbake: error: "):]
+        assert not os.listdir(d)
