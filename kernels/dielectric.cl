@@ -4,7 +4,7 @@
  *   dielectric_replicas       scalar real, one sample per step (GPUs);
  *   dielectric_replicas_disk  -D BB_VECTOR_WIDTH=W, real a vector of W lanes: W samples per
  *                             step, their disk points read from the table the host fills once
- *                             for all cells (host/integrate/albedo.cpp, disk_table: W x, W y, W h per
+ *                             for all cells (host/integrate/replicas.cpp, disk_table: W x, W y, W h per
  *                             step; h is not used here), as albedo_replicas_disk does.
  * And, built with -D BB_QUADRATURE -D BB_MODEL=<ggx's id> (a program of its own):
  *   dielectric_quadrature     the product rule in half-vector space (dielectric_quadrature.h),
