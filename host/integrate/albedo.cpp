@@ -87,8 +87,8 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     BuildRequest build;
     build.kernel_file = "albedo.cl";
     build.precision = req.precision;
-    build.defines = {{"BB_MODEL", std::to_string(req.model)},
-                     {"BB_FRESNEL", std::to_string(req.fresnel.kind)}};
+    build.model = req.model;
+    build.fresnel = req.fresnel.kind;
     build.random123 = req.method == Method::MonteCarlo;
     // The vector paths: importance sampling (GGX's disk path, or the model's own branch-free
     // sampler) and qmc's uniform hemisphere weights for models with a branch-free evaluation.
@@ -107,15 +107,13 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
                                 lanes > 1 ? (disk ? BB_DISK_VALUES : BB_POINTS_VALUES) : 1, req.precision),
                  "integrating " + std::to_string(n_cells) + (n_cells == 1 ? " direction with " : " directions with ") + std::to_string(req.samples) +
                      " samples each");
-    if (lanes > 1 && !disk) build.defines.push_back({"BB_VECTOR_POINTS", "1"});
-    if (lanes > 1 && uniform) build.defines.push_back({"BB_VECTOR_UNIFORM", "1"});
+    build.vector_path = disk ? VectorPath::Default : uniform ? VectorPath::UniformPoints : VectorPath::Points;
     if (lanes > 1 && disk) {
         // A launch whose cells are all isotropic gets the disk weight without the terms that
         // vanish then (bb_model_disk_isotropic): a program of its own, cached as any other.
-        bool isotropic = true;
+        build.isotropic = true;
         for (const AlbedoCell& c : req.cells)
-            isotropic = isotropic && bb_model_disk_isotropic(req.model, to_bb_params(c.params));
-        if (isotropic) build.defines.push_back({"BB_ISOTROPIC", "1"});
+            build.isotropic = build.isotropic && bb_model_disk_isotropic(req.model, to_bb_params(c.params));
     }
     cl::Program& program = engine.program(build);
 
@@ -186,9 +184,9 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     BuildRequest build;
     build.kernel_file = "albedo.cl";
     build.precision = req.precision;
-    build.defines = {{"BB_MODEL", std::to_string(req.model)},
-                     {"BB_FRESNEL", std::to_string(req.fresnel.kind)},
-                     {"BB_QUADRATURE", "1"}};
+    build.model = req.model;
+    build.fresnel = req.fresnel.kind;
+    build.quadrature = true;
     // The vector path (albedo_quadrature_rows, one row of the rule per lane): the half-vector
     // rule, and the sampler's square for models whose sampler (or, for the cosine warp's rule in
     // cos(theta_i), evaluation) is branch-free (-D BB_QUAD_SAMPLER_ROWS).
@@ -198,7 +196,7 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     build.has_vector_path = traits.halfvector_quadrature || sampler_rows;
     build.vector_width = req.vector_width;
     const unsigned lanes = engine.vector_width(build);
-    if (lanes > 1 && sampler_rows) build.defines.push_back({"BB_QUAD_SAMPLER_ROWS", "1"});
+    if (sampler_rows) build.vector_path = VectorPath::SamplerRows;
     check_memory(launch_bytes(n_cells, n_items, 2.0 * (n + m + l + 3 * lanes), 1, req.precision),
                  "integrating " + std::to_string(n_cells) + (n_cells == 1 ? " direction" : " directions") + " by quadrature");
     cl::Program& program = engine.program(build);

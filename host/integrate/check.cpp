@@ -30,7 +30,8 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     BuildRequest build;
     build.kernel_file = "scan.cl";
     build.precision = precision;
-    build.defines = {{"BB_MODEL", std::to_string(model.id)}, {"BB_FRESNEL", std::to_string(fresnel.kind)}};
+    build.model = model.id;
+    build.fresnel = fresnel.kind;
     cl::Program& program = engine.program(build);
 
     const size_t cells = size_t(n_theta) * n_theta;

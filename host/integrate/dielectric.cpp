@@ -79,7 +79,8 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
     BuildRequest build;
     build.kernel_file = "dielectric.cl";
     build.precision = req.precision;
-    build.defines = {{"BB_MODEL", std::to_string(BB_MODEL_GGX)}, {"BB_QUADRATURE", "1"}};
+    build.model = BB_MODEL_GGX;
+    build.quadrature = true;
     // The vector path (dielectric_quadrature_rows): one row of the rule per lane.
     build.has_vector_path = true;
     build.vector_width = req.vector_width;

@@ -19,7 +19,8 @@ cl::Program& eval_program(Engine& engine, const ModelConfig& model, const Fresne
     BuildRequest build;
     build.kernel_file = "eval.cl";
     build.precision = p;
-    build.defines = {{"BB_MODEL", std::to_string(model.id)}, {"BB_FRESNEL", std::to_string(fresnel.kind)}};
+    build.model = model.id;
+    build.fresnel = fresnel.kind;
     return engine.program(build);
 }
 

@@ -12,6 +12,20 @@
 #define BB_ENTRY_NAME_(entry) #entry
 #define BB_ENTRY_NAME(entry) BB_ENTRY_NAME_(entry)
 
+/* Build options: the macros a kernel is compiled with (-D NAME=VALUE), their names as the host
+ * writes them. Engine::build_options (host/engine/engine.cpp) decides every one from a
+ * BuildRequest; the kernels test the bare names (#ifdef BB_QUADRATURE, BB_MODEL == ...). */
+#define BB_OPTION_REAL_DOUBLE "BB_REAL_DOUBLE"       /* real is double (else float) */
+#define BB_OPTION_VECTOR_WIDTH "BB_VECTOR_WIDTH"     /* real is a vector of that many lanes */
+#define BB_OPTION_MODEL "BB_MODEL"                   /* the model compiled in (BB_MODEL_*) */
+#define BB_OPTION_FRESNEL "BB_FRESNEL"               /* the Fresnel term compiled in (BB_FRESNEL_*) */
+#define BB_OPTION_QUADRATURE "BB_QUADRATURE"         /* the quadrature entry points */
+#define BB_OPTION_VECTOR_POINTS "BB_VECTOR_POINTS"   /* albedo_replicas_points */
+#define BB_OPTION_VECTOR_UNIFORM "BB_VECTOR_UNIFORM" /* with it: qmc's uniform hemisphere weights */
+#define BB_OPTION_ISOTROPIC "BB_ISOTROPIC"           /* the disk path of isotropic cells */
+#define BB_OPTION_QUAD_SAMPLER_ROWS "BB_QUAD_SAMPLER_ROWS" /* albedo_quadrature_rows in the sampler's square */
+#define BB_OPTION_PHILOX "BB_PHILOX"                 /* Random123's Philox for the mc method */
+
 /* -------------------------------------------------------------- kernels/albedo.cl */
 
 /* Sampling methods: the scalar entry point, all three methods. */
