@@ -282,6 +282,7 @@ double azimuth_from_degrees(double degrees) {
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
     if (auto shared = shared_albedo(engine, request)) return std::move(*shared);  // MPI ranks, shards
     if (request.cells.empty()) throw Error("no directions to integrate");
+    check_method_for_model(model_traits(request.model), request.method);
     AlbedoRequest req = request;
     for (auto& c : req.cells) {
         if (!(c.mu > 0.0 && c.mu <= 1.0)) throw Error("mu must lie in (0, 1]; got " + format_number(c.mu));

@@ -43,6 +43,13 @@ MethodChoice choose_method(const std::string& method, double samples, double tol
     return c;
 }
 
+void check_method_for_model(const ModelTraits& model, Method method) {
+    if (model.stochastic && method == Method::Quadrature)
+        throw Error(std::string("model ") + model.name +
+                    " is stochastic (its value is an estimate): quadrature cannot integrate it; use --method "
+                    "importance, qmc or mc");
+}
+
 double tolerance_floor(Precision precision) {
     return 8.0 * (precision == Precision::Double ? 2.220446049250313e-16 : 1.1920929e-7);
 }

@@ -162,7 +162,11 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
     check_tolerance(tol.tolerance, req.precision);
     if (req.cells.empty()) throw Error("no directions to integrate");
 
-    const std::vector<RefineStep> steps = tolerance_steps(tol, req.method);
+    // A stochastic model's plan has no quadrature rounds (check_method_for_model).
+    check_method_for_model(model_traits(req.model), req.method);
+    ToleranceRequest plan = tol;
+    plan.auto_method = tol.auto_method && !model_traits(req.model).stochastic;
+    const std::vector<RefineStep> steps = tolerance_steps(plan, req.method);
 
     const RefineOptions options = refine_options(engine, tol, "albedo", req.cells.size(), true);
     const RefineOutcome o =
