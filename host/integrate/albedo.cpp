@@ -123,7 +123,7 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
 
     RealBuffers bufs(engine, req.precision);
     cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
-               b_fp = bufs.input(fparams);
+               b_fp = bufs.input(fparams), b_data = model_data_buffer(bufs, req.model);
     // mc: each cell's Philox stream from its content (cell_identity), not its place in the
     // launch, so that a cell has one value whichever cells share its launch (refinement rounds,
     // MPI ranks, shards).
@@ -143,7 +143,7 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     cl::Kernel kernel(program, lanes == 1 ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS)
                                : disk     ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_DISK)
                                           : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_POINTS));
-    cl_uint a = set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_points, cl_uint(points), cl_uint(req.replicas),
+    cl_uint a = set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_data, b_points, cl_uint(points), cl_uint(req.replicas),
                          cl_uint(n_cells));
     if (lanes == 1) {
         const int method = req.method == Method::Importance        ? BB_METHOD_IMPORTANCE
@@ -209,13 +209,13 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
     RealBuffers bufs(engine, req.precision);
     cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
-               b_fp = bufs.input(fparams), b_nodes = bufs.input(nodes);
+               b_fp = bufs.input(fparams), b_data = model_data_buffer(bufs, req.model), b_nodes = bufs.input(nodes);
     cl::Buffer b_sum = bufs.output(n_items);
     const NonFiniteCounts bad_counts(engine, n_items);
 
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_QUADRATURE_ROWS)
                                          : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_QUADRATURE));
-    set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_nodes, cl_uint(n), cl_uint(m), cl_uint(l), cl_uint(n_cells), b_sum,
+    set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_data, b_nodes, cl_uint(n), cl_uint(m), cl_uint(l), cl_uint(n_cells), b_sum,
              bad_counts.buffer);
     const double kernel_seconds =
         run_items(engine, kernel, n_items, double(n) * n / 4.0,

@@ -39,10 +39,11 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     cl::Buffer b_theta = bufs.input(m.theta);
     cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
     cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
+    cl::Buffer b_data = model_data_buffer(bufs, model.id);
     cl::Buffer b_rel = bufs.output(cells), b_phi = bufs.output(cells), b_min = bufs.output(cells);
     const NonFiniteCounts bad_counts(engine, cells);
     cl::Kernel k(program, BB_ENTRY_NAME(BB_ENTRY_RECIPROCITY_SCAN));
-    set_args(k, 0, b_theta, cl_uint(n_theta), cl_uint(n_phi), cl_uint(m.n_phi_o), b_p, b_fp, b_rel, b_phi, b_min,
+    set_args(k, 0, b_theta, cl_uint(n_theta), cl_uint(n_phi), cl_uint(m.n_phi_o), b_p, b_fp, b_data, b_rel, b_phi, b_min,
              bad_counts.buffer);
     m.evaluations = std::uint64_t(cells) * n_phi * m.n_phi_o * 2;
     // Work-items (theta_i, theta_o) in groups of 4 x 4; a large scan runs in slices of theta_o

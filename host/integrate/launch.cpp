@@ -2,6 +2,7 @@
 
 #include <algorithm>
 
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/params.h"
 #include "brdfbake/cancel.h"
 #include "brdfbake/progress.h"
@@ -43,6 +44,10 @@ std::vector<cl_uint> NonFiniteCounts::read(Engine& engine) const {
     std::vector<cl_uint> counts(size);
     engine.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, size * sizeof(cl_uint), counts.data());
     return counts;
+}
+
+cl::Buffer model_data_buffer(RealBuffers& buffers, int /*model: every registered model is a closed form*/) {
+    return buffers.input(std::vector<double>(BB_MODEL_DATA_DUMMY_SIZE, 0.0));
 }
 
 double launch_bytes(size_t n_cells, size_t n_items, double table_points, unsigned table_values, Precision p) {

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "brdfbake/engine.h"
+#include "engine/device_buffer.h"
 
 namespace brdfbake {
 
@@ -35,9 +36,9 @@ struct LaunchShape {
 
 /// Runs a kernel over a launch shape and returns the kernel time in seconds. `work_per_item`
 /// is the item's cost (albedo samples, or what the shape's slice_work counts): a long launch
-/// (more than slice_work) runs in up to 64 slices of the index range (the work-items keep their global ids, so the results are the
-/// same), reporting progress (`what`) and honouring a cancel request between slices; a short
-/// one is one launch.
+/// (more than slice_work) runs in up to 64 slices of the index range (the work-items keep their
+/// global ids, so the results are the same), reporting progress (`what`) and honouring a cancel
+/// request between slices; a short one is one launch.
 double run_items(Engine& engine, cl::Kernel& kernel, const LaunchShape& shape, double work_per_item,
                  const std::string& what);
 
@@ -58,6 +59,10 @@ struct NonFiniteCounts {
     cl::Buffer buffer;
     size_t size;
 };
+
+/// The model data buffer of an entry point that evaluates a model (BB_MODEL_DATA_ARG in
+/// kernel_abi.h): a closed-form model reads none and gets BB_MODEL_DATA_DUMMY_SIZE zeros.
+cl::Buffer model_data_buffer(RealBuffers& buffers, int model);
 
 /// Memory a sampling or quadrature launch takes, for check_memory before anything is allocated:
 /// the cell arrays (mu, phi and the parameter block, in double on the host and again in the

@@ -48,7 +48,14 @@
 #define BB_METHOD_MC 2         /* uniform hemisphere, Philox4x32-10 (-D BB_PHILOX) */
 
 /* Model and Fresnel parameters: BB_MAX_PARAMS values per cell (params.h), in the slots of the
- * model's header; the Fresnel term's BB_MAX_PARAMS once per launch. */
+ * model's header; the Fresnel term's BB_MAX_PARAMS once per launch.
+ *
+ * BB_MODEL_DATA_ARG: every entry point that evaluates a model (albedo.cl, scan.cl, eval.cl) takes,
+ * right after the Fresnel parameters, `__global const bb_scalar* model_data`: the model's data
+ * (a measured model's table, a fitted model's coefficients), uploaded once per launch in the
+ * kernel's precision. Every model registered today is a closed form and reads none: the host
+ * passes BB_MODEL_DATA_DUMMY_SIZE numbers (docs/architecture.md, "The seam for new models"). */
+#define BB_MODEL_DATA_DUMMY_SIZE 1
 
 /* The vector paths' point tables, values per step of W points: the disk points' x, y and
  * sqrt(1 - x^2) (albedo and dielectric), or the rotated Hammersley points' u1, u2. */
