@@ -1,9 +1,6 @@
-// Baseline driver: replica shifts, flavour dispatch (tuned and plain loops), mean and error
+// Baseline driver: compute_albedo's replica shifts, flavour dispatch (tuned and plain loops), mean and error
 // estimate (as compute_albedo).
 #include "baseline.h"
-
-#include <Random123/philox.h>
-#include <Random123/uniform.hpp>
 
 #include <algorithm>
 #include <chrono>
@@ -14,27 +11,10 @@
 
 #include "baseline_flags.h"
 #include "baseline_kernels.h"
+#include "integrate/replicas.h"
 
 namespace brdfbake {
 namespace baseline {
-
-// The same Philox4x32-10 stream as host/integrate/albedo.cpp's replica_shifts: counter (r, "albd", 0, 0),
-// key = the seed's two halves, 53-bit doubles from two words each.
-std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed) {
-    using Philox = r123::Philox4x32;
-    Philox rng;
-    Philox::key_type key = {{std::uint32_t(seed), std::uint32_t(seed >> 32)}};
-    std::vector<double> shifts;
-    for (unsigned r = 0; r < replicas; ++r) {
-        Philox::ctr_type ctr = {{r, 0x616c6264u, 0, 0}};
-        const Philox::ctr_type out = rng(ctr, key);
-        shifts.push_back(r123::u01<double>(std::uint64_t(out[0]) << 32 | out[1]));
-        shifts.push_back(r123::u01<double>(std::uint64_t(out[2]) << 32 | out[3]));
-    }
-    for (double& s : shifts)
-        if (s >= 1.0) s = 0.0;
-    return shifts;
-}
 
 Result albedo_table(const Request& req) {
     if (req.mu.size() != req.alpha.size()) throw std::invalid_argument("baseline: mu and alpha differ in length");
@@ -42,7 +22,8 @@ Result albedo_table(const Request& req) {
     const std::uint64_t points = req.samples / req.replicas;
     if (req.kernel_arithmetic && (req.fast_math || req.plain))
         throw std::invalid_argument("baseline: the kernel-arithmetic flavour is strict and tuned only");
-    std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
+    // compute_albedo's Cranley-Patterson shifts (host/integrate/replicas.cpp).
+    std::vector<double> shifts = brdfbake::replica_shifts(req.replicas, req.seed);
     if (req.single)  // the float kernel reads its shifts as float
         for (double& s : shifts) s = double(float(s));
     std::vector<double> means;
@@ -69,7 +50,7 @@ Result albedo_table(const Request& req) {
         double ss = 0.0;
         for (unsigned k = 0; k < R; ++k) ss += (means[c * R + k] - mean) * (means[c * R + k] - mean);
         r.value.push_back(mean);
-        // As compute_albedo's estimate (summarize in host/integrate/albedo.cpp): 3 standard errors
+        // As compute_albedo's estimate (summarize in host/integrate/replicas.cpp): 3 standard errors
         // of the replica means, 3 |E| / N for the mass the N points may not have seen, and the
         // floating-point bound 8 eps max(|E|, 1e-3).
         const double n_total = double(points * R);

@@ -61,9 +61,6 @@ struct Result {
 /// (kernel_arithmetic with fast_math or plain, too few samples).
 Result albedo_table(const Request& request);
 
-/// The Cranley-Patterson shifts of compute_albedo (two per replica), in double.
-std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed);
-
 /// Peak fused-multiply-add throughput of all cores in GFLOP/s (an FMA counts as 2 flops),
 /// measured for about `seconds` with independent FMA chains in the widest vectors the compiler
 /// targets (-march=native).

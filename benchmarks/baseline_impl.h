@@ -14,7 +14,7 @@
 // byte vectors" for the `omp simd` loop in every flavour) and the assembly (vsqrtps/vdivps):
 //   * the work that does not depend on the cell in tables computed once per call: the disk
 //     point (x, y) = sqrt(u1) (cos, sin)(2 pi u2) of every rotated Hammersley point, as the
-//     kernel's vector path does (host/integrate/albedo.cpp's disk_table), and also sqrt(1 - x^2);
+//     kernel's vector path does (host/integrate/replicas.cpp's disk_table), and also sqrt(1 - x^2);
 //   * the weight in closed form on the unnormalised normal: with n = (a Nh.x, a Nh.y,
 //     max(0, Nh.z)), L = |n|^2 and z = L wi.z = 2 (wo.n) n.z - wo.z L, the weight is
 //     c0 / (c0 + Lambda(wi)) = 2 c0 z / ((2 c0 - 1) z + sqrt(a^2 L^2 + (1 - a^2) z^2)),
@@ -66,7 +66,7 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
     bad.assign(size_t(n_items), 0);
     const long n = long(points);
     // The disk points sqrt(u1) (cos, sin)(2 pi u2) of every replica's rotated Hammersley set,
-    // computed in double and rounded to `real` as host/integrate/albedo.cpp's disk_table does (the float
+    // computed in double and rounded to `real` as host/integrate/replicas.cpp's disk_table does (the float
     // flavour's shifts are already rounded to float, baseline.cpp), and sqrt(1 - x^2).
     std::vector<real> disk_x(size_t(replicas) * size_t(n)), disk_y(disk_x.size());
 #ifndef BASELINE_KERNEL_ARITHMETIC

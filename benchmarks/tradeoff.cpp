@@ -605,8 +605,8 @@ std::string dielectric_markdown(const json& d) {
     return md.str();
 }
 
-std::string markdown(const json& j, const Options& o) {
-    std::ostringstream md;
+// The header (machine, run, method) and the cells with their references.
+void markdown_head(std::ostringstream& md, const json& j, const Options& o) {
     const json& m = j["machine"];
     md << "# brdfbake speed against accuracy: " << j["name"].get<std::string>() << "\n\n";
     md << "Machine: " << m["cpu"].get<std::string>() << ", " << m["cores"].get<unsigned>() << " cores, "
@@ -645,6 +645,10 @@ std::string markdown(const json& j, const Options& o) {
     md << "\n" << dropped << " cells dropped for an uncertain reference (uncertainty above "
        << sci(o.ref_unc_max, 0) << ").\n\n";
 
+}
+
+// The best run within each time budget.
+void markdown_budgets(std::ostringstream& md, const json& j, const Options& o) {
     const json& runs = j["runs"];
     // Summary: the best run within a time budget.
     md << "## Best within a time budget\n\n";
@@ -665,6 +669,11 @@ std::string markdown(const json& j, const Options& o) {
             md << " |\n";
         }
 
+}
+
+// How often each method's error estimate is exceeded by the true error.
+void markdown_honesty(std::ostringstream& md, const json& j, const Options& o) {
+    const json& runs = j["runs"];
     // Honesty per method and precision, over every family.
     md << "\n## Honesty of the error estimates\n\n";
     md << "Cells (over all families and sample counts) whose true error exceeds 3× the estimate.\n\n";
@@ -716,6 +725,10 @@ std::string markdown(const json& j, const Options& o) {
             md << " |\n";
         }
 
+}
+
+// The tolerance mode's runs.
+void markdown_tolerance(std::ostringstream& md, const json& j, const Options& o) {
     // The tolerance mode.
     if (!j["tolerance_runs"].empty()) {
         md << "\n## `--tolerance` (auto: quadrature first, then importance sampling)\n\n";
@@ -762,6 +775,11 @@ std::string markdown(const json& j, const Options& o) {
                    << "\n";
     }
 
+}
+
+// Every run of every family.
+void markdown_runs(std::ostringstream& md, const json& j, const Options& o) {
+    const json& runs = j["runs"];
     // Every run.
     const double fl = o.ref_unc_floor;
     md << "\n## Every run\n\n";
@@ -787,6 +805,15 @@ std::string markdown(const json& j, const Options& o) {
         }
         md << "\n";
     }
+}
+
+std::string markdown(const json& j, const Options& o) {
+    std::ostringstream md;
+    markdown_head(md, j, o);
+    markdown_budgets(md, j, o);
+    markdown_honesty(md, j, o);
+    markdown_tolerance(md, j, o);
+    markdown_runs(md, j, o);
     return md.str();
 }
 

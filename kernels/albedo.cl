@@ -66,7 +66,8 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
  * BB_MAX_PARAMS model parameters; the BB_MAX_PARAMS Fresnel parameters of the launch. */
 #define BB_CELL_ARGS                                                                              \
     __global const bb_scalar *cell_mu, __global const bb_scalar *cell_phi,                        \
-        __global const bb_scalar *model_p, __global const bb_scalar *fresnel_p
+        __global const bb_scalar *model_p, __global const bb_scalar *fresnel_p,                   \
+        __global const bb_scalar *model_data /* BB_MODEL_DATA_ARG */
 
 /* The prologue of the replica kernels: work-item gid is replica `rep` of cell `cell` (returns
  * beyond the last); declares gid, cell, rep, the cell's parameters p, fp (params_ok) and wo. */

@@ -17,7 +17,8 @@ BB_FN bb_vec3 load_vec3(__global const real* src, unsigned int i) {
 }
 
 __kernel void BB_ENTRY_MODEL_EVAL(__global const real* wo, __global const real* wi, __global const real* model_p,
-                         __global const real* fresnel_p, const unsigned int n, __global real* out) {
+                         __global const real* fresnel_p,
+                         __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */, const unsigned int n, __global real* out) {
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)
         return;
@@ -26,7 +27,8 @@ __kernel void BB_ENTRY_MODEL_EVAL(__global const real* wo, __global const real* 
 }
 
 __kernel void BB_ENTRY_MODEL_SAMPLE(__global const real* wo, __global const real* u, __global const real* model_p,
-                           __global const real* fresnel_p, const unsigned int n, __global real* out_wi,
+                           __global const real* fresnel_p,
+                         __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */, const unsigned int n, __global real* out_wi,
                            __global real* out_weight) {
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)

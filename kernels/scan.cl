@@ -13,6 +13,7 @@
 __kernel void BB_ENTRY_RECIPROCITY_SCAN(__global const real* theta, const unsigned int n_theta, const unsigned int n_phi,
                                const unsigned int n_phi_o, __global const real* model_p,
                                __global const real* fresnel_p,
+                               __global const bb_scalar* model_data, /* BB_MODEL_DATA_ARG */
                                __global real* max_rel,        /* n_theta * n_theta */
                                __global real* max_rel_phi,    /* phi_i - phi_o of the worst pair */
                                __global real* min_value,      /* smallest finite f */

@@ -170,4 +170,17 @@ TEST_CASE("Build options choose the vector path in one place", "[albedo][device]
     b.vector_width = 0;
     CHECK(e.build_options(b).find("BB_VECTOR_WIDTH") == std::string::npos);
     CHECK(e.build_options(b).find("fast-relaxed") == std::string::npos);
+    // A vector path's options only where the build has lanes; the model and Fresnel always.
+    b.has_vector_path = true;
+    b.vector_width = 4;
+    b.model = BB_MODEL_PHONG;
+    b.fresnel = BB_FRESNEL_SCHLICK;
+    b.vector_path = VectorPath::UniformPoints;
+    const std::string uniform = e.build_options(b);
+    CHECK(uniform.find(" -D BB_VECTOR_POINTS=1 -D BB_VECTOR_UNIFORM=1") != std::string::npos);
+    CHECK(uniform.find(" -D BB_MODEL=" + std::to_string(BB_MODEL_PHONG)) != std::string::npos);
+    b.vector_width = 1;
+    const std::string scalar = e.build_options(b);
+    CHECK(scalar.find("BB_VECTOR_") == std::string::npos);
+    CHECK(scalar.find(" -D BB_FRESNEL=" + std::to_string(BB_FRESNEL_SCHLICK)) != std::string::npos);
 }

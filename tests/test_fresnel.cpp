@@ -86,7 +86,7 @@ std::vector<double> kernel_values(int kind, const bb_params& p, const std::vecto
     BuildRequest build;
     build.kernel_file = "fresnel.cl";
     build.precision = prec;
-    build.defines = {{"BB_FRESNEL", std::to_string(kind)}};
+    build.fresnel = kind;
     cl::Program& program = engine.program(build);
     RealBuffers bufs(engine, prec);
     cl::Buffer b_cos = bufs.input(cosines);

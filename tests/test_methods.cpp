@@ -7,6 +7,7 @@
 #include <nlohmann/json.hpp>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/brdf/models.h"
 #include "model_refs.h"
 #include "reference/reference.h"
 #include "support.h"
@@ -257,5 +258,39 @@ TEST_CASE("estimates stay honest where the replicas cannot see the error", "[met
         INFO(std::setprecision(10) << c.ref.spec << " mu " << c.mu << " " << method_name(c.method) << " " << c.samples
                                    << ": " << r.values[0].value << " +- " << r.values[0].error << ", reference " << expect);
         CHECK(std::fabs(r.values[0].value - expect) <= 3.0 * r.values[0].error);
+    }
+}
+
+TEST_CASE("a stochastic model refuses quadrature and keeps the sampling methods", "[methods][registry]") {
+    // A registry row with BB_TRAIT_STOCHASTIC (a simulated BRDF: its value a random-walk
+    // estimate) must never meet a quadrature rule, which would read its noise as the integrand.
+    ModelTraits simulated = model_traits(BB_MODEL_LAMBERT);
+    simulated.stochastic = true;
+    try {
+        check_method_for_model(simulated, Method::Quadrature);
+        FAIL("quadrature of a stochastic model was accepted");
+    } catch (const Error& e) {
+        CHECK(std::string(e.what()).find("stochastic") != std::string::npos);
+        CHECK(std::string(e.what()).find("--method importance") != std::string::npos);
+    }
+    for (Method m : {Method::Importance, Method::QuasiMonteCarlo, Method::MonteCarlo})
+        CHECK_NOTHROW(check_method_for_model(simulated, m));
+    simulated.stochastic = false;
+    CHECK_NOTHROW(check_method_for_model(simulated, Method::Quadrature));
+}
+
+TEST_CASE("the host's model traits are the registry rows' flags, as the kernels read them", "[registry]") {
+    // Both sides are generated from BB_MODEL_REGISTRY: ModelTraits (host/models/spec.cpp) and
+    // bb_model_has_trait (model_registry.h, compiled into the kernels); every model registered
+    // today is a closed form, none stochastic.
+    for (const ModelTraits& t : model_registry()) {
+        INFO(t.name);
+        CHECK(t.delta == (bb_model_is_delta(t.id) != 0));
+        CHECK(t.samples_disk == (bb_model_samples_disk(t.id) != 0));
+        CHECK(t.samples_vector == (bb_model_samples_vector(t.id) != 0));
+        CHECK(t.evals_vector == (bb_model_evals_vector(t.id) != 0));
+        CHECK(t.cosine_sampler == (bb_quad_sampler_is_cosine(t.id) != 0));
+        CHECK(t.stochastic == (bb_model_has_trait(t.id, BB_TRAIT_STOCHASTIC) != 0));
+        CHECK_FALSE(t.stochastic);
     }
 }

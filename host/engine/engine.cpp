@@ -13,6 +13,7 @@
 #include <sstream>
 #include <thread>
 
+#include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/error.h"
 #include "engine/embedded_sources.h"
 
@@ -275,25 +276,38 @@ unsigned Engine::vector_width(const BuildRequest& request) const {
 
 std::string Engine::build_options(const BuildRequest& request) const {
     std::ostringstream o;
+    const auto define = [&o](const char* name, long long value) { o << " -D " << name << "=" << value; };
     // OpenCL C 1.2 is what PoCL and NVIDIA both accept. No -cl-fast-relaxed-math: it lets the
     // compiler assume finite values, and the kernels count non-finite samples (docs/architecture.md).
     o << "-cl-std=CL1.2";
     if (request.precision == Precision::Double) {
         if (!info_.fp64)
             throw Error("device '" + info_.name + "' has no double precision (cl_khr_fp64); use --precision float");
-        o << " -D BB_REAL_DOUBLE=1";
+        define(BB_OPTION_REAL_DOUBLE, 1);
     }
     // The vector path (real = floatN/doubleN) where the kernel has one and the device profits.
     const unsigned lanes = vector_width(request);
     if (lanes > 1) {
         if (lanes != 2 && lanes != 4 && lanes != 8 && lanes != 16)
             throw Error("vector width " + std::to_string(lanes) + " is not an OpenCL vector size (2, 4, 8, 16)");
-        o << " -D BB_VECTOR_WIDTH=" << lanes;
+        define(BB_OPTION_VECTOR_WIDTH, lanes);
     }
-    for (const auto& d : request.defines) o << " -D " << d.first << "=" << d.second;
+    if (request.model != 0) define(BB_OPTION_MODEL, request.model);
+    if (request.fresnel >= 0) define(BB_OPTION_FRESNEL, request.fresnel);
+    if (request.quadrature) define(BB_OPTION_QUADRATURE, 1);
+    if (lanes > 1) {
+        const VectorPath path = request.vector_path;
+        if (path == VectorPath::Points || path == VectorPath::UniformPoints) define(BB_OPTION_VECTOR_POINTS, 1);
+        if (path == VectorPath::UniformPoints) define(BB_OPTION_VECTOR_UNIFORM, 1);
+        if (request.isotropic) define(BB_OPTION_ISOTROPIC, 1);
+        if (path == VectorPath::SamplerRows) define(BB_OPTION_QUAD_SAMPLER_ROWS, 1);
+    }
     // Random123 is header-only and works in OpenCL C (its openclfeatures.h): the kernel
     // includes the installed headers (librandom123-dev), found by CMake at configure time.
-    if (request.random123) o << " -D BB_PHILOX=1 -I " << BRDFBAKE_RANDOM123_INCLUDE_DIR;
+    if (request.random123) {
+        define(BB_OPTION_PHILOX, 1);
+        o << " -I " << BRDFBAKE_RANDOM123_INCLUDE_DIR;
+    }
     return o.str();
 }
 

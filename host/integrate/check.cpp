@@ -12,6 +12,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
+#include "integrate/launch.h"
 
 namespace brdfbake {
 
@@ -29,7 +30,8 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     BuildRequest build;
     build.kernel_file = "scan.cl";
     build.precision = precision;
-    build.defines = {{"BB_MODEL", std::to_string(model.id)}, {"BB_FRESNEL", std::to_string(fresnel.kind)}};
+    build.model = model.id;
+    build.fresnel = fresnel.kind;
     cl::Program& program = engine.program(build);
 
     const size_t cells = size_t(n_theta) * n_theta;
@@ -37,47 +39,27 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     cl::Buffer b_theta = bufs.input(m.theta);
     cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
     cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
+    cl::Buffer b_data = model_data_buffer(bufs, model.id);
     cl::Buffer b_rel = bufs.output(cells), b_phi = bufs.output(cells), b_min = bufs.output(cells);
-    cl::Buffer b_bad(engine.context(), CL_MEM_WRITE_ONLY, cells * sizeof(cl_uint));
+    const NonFiniteCounts bad_counts(engine, cells);
     cl::Kernel k(program, BB_ENTRY_NAME(BB_ENTRY_RECIPROCITY_SCAN));
-    int a = 0;
-    k.setArg(a++, b_theta);
-    k.setArg(a++, cl_uint(n_theta));
-    k.setArg(a++, cl_uint(n_phi));
-    k.setArg(a++, cl_uint(m.n_phi_o));
-    k.setArg(a++, b_p);
-    k.setArg(a++, b_fp);
-    k.setArg(a++, b_rel);
-    k.setArg(a++, b_phi);
-    k.setArg(a++, b_min);
-    k.setArg(a++, b_bad);
-    const size_t local = 4, global = (size_t(n_theta) + local - 1) / local * local;
+    set_args(k, 0, b_theta, cl_uint(n_theta), cl_uint(n_phi), cl_uint(m.n_phi_o), b_p, b_fp, b_data, b_rel, b_phi, b_min,
+             bad_counts.buffer);
     m.evaluations = std::uint64_t(cells) * n_phi * m.n_phi_o * 2;
-    // A large scan runs in slices of theta_o rows (up to 64, each of about 2^22 evaluations or
-    // more), reporting progress and honouring a cancel request between them; the work-items keep
-    // their global ids, so the map is the same as one launch's.
-    const size_t row_groups = global / local;
-    const size_t slices = std::min<size_t>({row_groups, 64, size_t(std::max<double>(1.0, double(m.evaluations) / double(1 << 22)))});
-    const size_t groups_per_slice = (row_groups + slices - 1) / slices;
+    // Work-items (theta_i, theta_o) in groups of 4 x 4; a large scan runs in slices of theta_o
+    // rows (run_items), reporting progress and honouring a cancel request between them.
+    LaunchShape shape;
+    shape.n_items = size_t(n_theta);
+    shape.columns = size_t(n_theta);
+    shape.local = 4;
+    shape.slice_work = double(1 << 22);  // evaluations: a progress line about every 2^22
     std::ostringstream what;
     what << "reciprocity scan of " << n_theta << "x" << n_theta << " directions x " << n_phi * m.n_phi_o << " azimuths";
-    if (slices > 1) report_progress(what.str(), 0, row_groups);
-    for (size_t first = 0; first < row_groups; first += groups_per_slice) {
-        throw_if_cancelled();
-        const size_t count = std::min(groups_per_slice, row_groups - first);
-        engine.queue().enqueueNDRangeKernel(k, cl::NDRange(0, first * local), cl::NDRange(global, count * local),
-                                            cl::NDRange(local, local));
-        if (slices > 1) {
-            engine.queue().finish();
-            report_progress(what.str(), first + count, row_groups);
-        }
-    }
+    run_items(engine, k, shape, double(m.evaluations) / n_theta, what.str());
     m.max_rel = bufs.read(b_rel, cells);
     m.dphi_at_max = bufs.read(b_phi, cells);
     m.min_value = bufs.read(b_min, cells);
-    std::vector<cl_uint> bad(cells);
-    engine.queue().enqueueReadBuffer(b_bad, CL_TRUE, 0, cells * sizeof(cl_uint), bad.data());
-    for (cl_uint b : bad) m.nonfinite += b;
+    for (cl_uint b : bad_counts.read(engine)) m.nonfinite += b;
     return m;
 }
 

@@ -3,6 +3,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/brdf/kernel_abi.h"
 #include "engine/device_buffer.h"
+#include "integrate/launch.h"
 
 namespace brdfbake {
 namespace {
@@ -19,7 +20,8 @@ cl::Program& eval_program(Engine& engine, const ModelConfig& model, const Fresne
     BuildRequest build;
     build.kernel_file = "eval.cl";
     build.precision = p;
-    build.defines = {{"BB_MODEL", std::to_string(model.id)}, {"BB_FRESNEL", std::to_string(fresnel.kind)}};
+    build.model = model.id;
+    build.fresnel = fresnel.kind;
     return engine.program(build);
 }
 
@@ -40,16 +42,13 @@ std::vector<std::vector<double>> run_eval_entry(Engine& engine, const char* entr
     cl::Buffer b_wo = bufs.input(wo), b_second = bufs.input(second);
     cl::Buffer b_p = bufs.input({model.params.begin(), model.params.end()});
     cl::Buffer b_fp = bufs.input({fresnel.params.begin(), fresnel.params.end()});
+    cl::Buffer b_data = model_data_buffer(bufs, model.id);
     cl::Kernel k(eval_program(engine, model, fresnel, precision), entry);
-    k.setArg(0, b_wo);
-    k.setArg(1, b_second);
-    k.setArg(2, b_p);
-    k.setArg(3, b_fp);
-    k.setArg(4, cl_uint(n));
+    cl_uint a = set_args(k, 0, b_wo, b_second, b_p, b_fp, b_data, cl_uint(n));
     std::vector<cl::Buffer> outputs;
     for (size_t size : output_sizes) {
         outputs.push_back(bufs.output(size));
-        k.setArg(cl_uint(4 + outputs.size()), outputs.back());
+        k.setArg(a++, outputs.back());
     }
     run_1d(engine, k, n);
     std::vector<std::vector<double>> out;

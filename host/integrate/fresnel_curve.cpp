@@ -18,7 +18,7 @@ FresnelCurves fresnel_on_device(Engine& engine, const FresnelConfig& f, Precisio
     BuildRequest build;
     build.kernel_file = "fresnel.cl";
     build.precision = precision;
-    build.defines = {{"BB_FRESNEL", std::to_string(f.kind)}};
+    build.fresnel = f.kind;
     cl::Program& program = engine.program(build);
     RealBuffers bufs(engine, precision);
     const size_t n = cosines.size();

@@ -134,27 +134,44 @@ std::string progress_name(const std::string& integral, size_t cells, double tole
     return m.str();
 }
 
+// The options of a tolerance run of `integral` over `cells` cells.
+RefineOptions refine_options(const Engine& engine, const ToleranceRequest& tol, const std::string& integral,
+                             size_t cells, bool keep_best) {
+    RefineOptions options;
+    options.tolerance = tol.tolerance;
+    options.keep_best = keep_best;
+    options.verbose = engine.verbose();
+    options.progress_what = progress_name(integral, cells, tol.tolerance);
+    return options;
+}
+
+// One round's request: `req` with the step's method and samples, over the cells `todo` only.
+template <typename Request>
+Request round_request(const Request& req, const RefineStep& step, const std::vector<size_t>& todo) {
+    Request r = req;
+    r.method = step.method;
+    r.samples = step.samples;
+    r.cells.clear();
+    for (size_t c : todo) r.cells.push_back(req.cells[c]);
+    return r;
+}
+
 }  // namespace
 
 AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
     check_tolerance(tol.tolerance, req.precision);
     if (req.cells.empty()) throw Error("no directions to integrate");
 
-    const std::vector<RefineStep> steps = tolerance_steps(tol, req.method);
+    // A stochastic model's plan has no quadrature rounds (check_method_for_model).
+    check_method_for_model(model_traits(req.model), req.method);
+    ToleranceRequest plan = tol;
+    plan.auto_method = tol.auto_method && !model_traits(req.model).stochastic;
+    const std::vector<RefineStep> steps = tolerance_steps(plan, req.method);
 
-    RefineOptions options;
-    options.tolerance = tol.tolerance;
-    options.keep_best = true;
-    options.verbose = engine.verbose();
-    options.progress_what = progress_name("albedo", req.cells.size(), tol.tolerance);
+    const RefineOptions options = refine_options(engine, tol, "albedo", req.cells.size(), true);
     const RefineOutcome o =
         refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
-            AlbedoRequest r = req;
-            r.method = step.method;
-            r.samples = step.samples;
-            r.cells.clear();
-            for (size_t c : todo) r.cells.push_back(req.cells[c]);
-            const AlbedoResult part = compute_albedo(engine, r);
+            const AlbedoResult part = compute_albedo(engine, round_request(req, step, todo));
             RefineRound round;
             for (const auto& v : part.values) round.values.push_back({v});
             round.method = part.method;
@@ -196,25 +213,17 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
 DielectricResult compute_dielectric_to_tolerance(Engine& engine, const DielectricRequest& req, const ToleranceRequest& tol) {
     check_tolerance(tol.tolerance, req.precision);
     if (req.cells.empty()) throw Error("no cells to integrate");
-    // The dielectric's rules (dielectric_rule in albedo.cpp): Gauss-Kronrod of 21, 31 and 61
+    // The dielectric's rules (dielectric_rule in dielectric.cpp): Gauss-Kronrod of 21, 31 and 61
     // points, whose error estimates cost no extra node, then Gauss-Legendre of 128 to 512.
     const std::vector<RefineStep> steps = tolerance_steps(
         tol, req.method, {4 * 11 * 11, 4 * 16 * 16, 4 * 31 * 31, 4 * 128 * 128, 4 * 256 * 256, 4ull * 512 * 512});
-    RefineOptions options;
-    options.tolerance = tol.tolerance;
     // Importance rounds alone replace each estimate by the next (their errors fall steadily);
     // with quadrature rounds in the plan a cell keeps its best estimate, as the albedo's does.
-    options.keep_best = steps.front().method == Method::Quadrature;
-    options.verbose = engine.verbose();
-    options.progress_what = progress_name("rough dielectric", req.cells.size(), tol.tolerance);
+    const RefineOptions options = refine_options(engine, tol, "rough dielectric", req.cells.size(),
+                                                 steps.front().method == Method::Quadrature);
     const RefineOutcome o =
         refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
-            DielectricRequest r = req;
-            r.method = step.method;
-            r.samples = step.samples;
-            r.cells.clear();
-            for (size_t c : todo) r.cells.push_back(req.cells[c]);
-            const DielectricResult part = compute_dielectric(engine, r);
+            const DielectricResult part = compute_dielectric(engine, round_request(req, step, todo));
             RefineRound round;
             for (size_t i = 0; i < todo.size(); ++i) round.values.push_back({part.reflected[i], part.transmitted[i]});
             round.method = part.method;

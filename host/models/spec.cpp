@@ -275,9 +275,13 @@ struct ModelEntry {
     Resolver resolve;
 };
 
-#define BB_HOST_MODEL_ENTRY(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE)      \
-    {ModelTraits{BB_MODEL_##NAME, SPEC, EXAMPLE, FR != 0, BB_QUAD_SPACE_##QUAD == BB_QUAD_SPACE_HALFVECTOR, CO != 0, \
-                 DE != 0, DI != 0, VS != 0, VE != 0, RE != 0, AX, AY, EX, KI != 0, FU != 0,                        \
+#define BB_HOST_MODEL_ENTRY(NAME, name, SPEC, ARGS, QUAD, TRAITS, AX, AY, EX, EXAMPLE)                          \
+    {ModelTraits{BB_MODEL_##NAME, SPEC, EXAMPLE, BB_USES_FRESNEL_##ARGS != 0,                                     \
+                 BB_QUAD_SPACE_##QUAD == BB_QUAD_SPACE_HALFVECTOR, ((TRAITS) & BB_TRAIT_COSINE_SAMPLER) != 0,      \
+                 ((TRAITS) & BB_TRAIT_DELTA) != 0, ((TRAITS) & BB_TRAIT_SAMPLES_DISK) != 0,                        \
+                 ((TRAITS) & BB_TRAIT_SAMPLES_VECTOR) != 0, ((TRAITS) & BB_TRAIT_EVALS_VECTOR) != 0,               \
+                 ((TRAITS) & BB_TRAIT_RECIPROCAL) != 0, AX, AY, EX, ((TRAITS) & BB_TRAIT_KINKED) != 0,             \
+                 ((TRAITS) & BB_TRAIT_FURNACE) != 0, ((TRAITS) & BB_TRAIT_STOCHASTIC) != 0,                        \
                  roughness_refusal_of(BB_MODEL_##NAME)},                                                            \
      resolve_##name},
 

@@ -118,6 +118,11 @@ struct MethodChoice {
 /// positive, or an unknown method.
 MethodChoice choose_method(const std::string& method, double samples, double tolerance, double max_samples);
 
+/// Refuses a method the model cannot be integrated with: quadrature for a stochastic model (its
+/// value an estimate, ModelTraits::stochastic), whose rule would read noise as the integrand.
+/// Throws Error naming the model and the methods it takes.
+void check_method_for_model(const ModelTraits& model, Method method);
+
 /// The smallest tolerance a precision can honour: the floating-point bound of the error
 /// estimate at an albedo of 1.
 double tolerance_floor(Precision precision);

@@ -48,14 +48,31 @@ std::vector<DeviceInfo> list_devices();
 /// device, else the first device. Throws Error for a selector that matches nothing.
 DeviceInfo choose_device(const std::string& selector);
 
-/// What a program build needs besides the source.
+/// The vector path a build of a kernel file takes where it has lanes (Engine::vector_width > 1):
+/// the file's own (the disk points of albedo_replicas_disk, the half-vector rows of
+/// albedo_quadrature_rows, the dielectric's), or one chosen by a build option.
+enum class VectorPath {
+    Default,
+    Points,         // -D BB_VECTOR_POINTS: importance sampling from the Hammersley point table
+    UniformPoints,  // and -D BB_VECTOR_UNIFORM: qmc's uniform hemisphere weights from that table
+    SamplerRows,    // -D BB_QUAD_SAMPLER_ROWS: the quadrature in the sampler's square, one row per lane
+};
+
+/// What a program build needs besides the source. Engine::build_options turns it into the
+/// compiler's options, the one place they are decided (option names in brdf/kernel_abi.h).
 struct BuildRequest {
     std::string kernel_file;                       // e.g. "albedo.cl"
     Precision precision = Precision::Float;
-    std::vector<std::pair<std::string, std::string>> defines;  // -D NAME=VALUE
-    bool random123 = false;        // the kernel includes <Random123/philox.h>: add its -I
+    int model = 0;                 // -D BB_MODEL=<id> (BB_MODEL_*); 0: none (a kernel of no model)
+    int fresnel = -1;              // -D BB_FRESNEL=<kind> (BB_FRESNEL_*); -1: none
+    bool quadrature = false;       // -D BB_QUADRATURE: the file's quadrature entry points
+    bool random123 = false;        // the kernel includes <Random123/philox.h>: -D BB_PHILOX and its -I
     bool has_vector_path = false;  // the kernel file has a vector path for this request
     unsigned vector_width = 0;     // 0: the device's choice; 1: scalar; N: N lanes
+    VectorPath vector_path = VectorPath::Default;  // which one, where the build has lanes
+    /// Every cell of the launch isotropic: the disk path drops the terms that vanish then
+    /// (-D BB_ISOTROPIC, bb_model_disk_isotropic), where the build has lanes.
+    bool isotropic = false;
 };
 
 class Engine {

@@ -39,6 +39,7 @@ struct ModelTraits {
     int exponent_slot;             // a sampler-space cosine-power lobe's exponent N; -1: none
     bool kinked_quadrature;        // the quadrature's error estimate never assumes geometric convergence
     bool energy_conserving_example;  // the example's albedo is at most 1
+    bool stochastic;               // its value is an estimate: sampling methods only, never quadrature
     /// Why these parameters have no roughness to sweep although the model has alpha slots
     /// (torrance-sparrow with d=blinn), or nullptr.
     const char* (*roughness_refusal)(const ParamBlock& params);

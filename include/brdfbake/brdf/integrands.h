@@ -72,7 +72,7 @@ BB_FN real bb_albedo_point_weight(int method, int model, bb_params p, int fkind,
 #define BB_QUAD_DIST_CASE_HALFVECTOR(NAME, name) \
     case BB_MODEL_##NAME:                        \
         return bb_##name##_quad_dist(p);
-#define BB_QUAD_DIST_CASE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
+#define BB_QUAD_DIST_CASE(NAME, name, SPEC, ARGS, QUAD, ...) \
     BB_IF_COMPILED(NAME)(BB_PP_CAT(BB_QUAD_DIST_CASE_, QUAD)(NAME, name))
 
 BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
@@ -231,7 +231,7 @@ BB_FN bb_quad_row bb_make_quad_row(bb_quad_dist d, bb_vec3 wo, real phi_o, real 
     case BB_MODEL_##NAME:                                                \
         w = bb_##name##_halfvector_weight(p, f, wo, wi, oh, co, ch, djc); \
         break;
-#define BB_HALFVECTOR_CASE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
+#define BB_HALFVECTOR_CASE(NAME, name, SPEC, ARGS, QUAD, ...) \
     BB_IF_COMPILED(NAME)(BB_PP_CAT(BB_HALFVECTOR_CASE_, QUAD)(NAME, name))
 
 BB_FN real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_quad_dist d,

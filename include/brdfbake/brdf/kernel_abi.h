@@ -12,6 +12,20 @@
 #define BB_ENTRY_NAME_(entry) #entry
 #define BB_ENTRY_NAME(entry) BB_ENTRY_NAME_(entry)
 
+/* Build options: the macros a kernel is compiled with (-D NAME=VALUE), their names as the host
+ * writes them. Engine::build_options (host/engine/engine.cpp) decides every one from a
+ * BuildRequest; the kernels test the bare names (#ifdef BB_QUADRATURE, BB_MODEL == ...). */
+#define BB_OPTION_REAL_DOUBLE "BB_REAL_DOUBLE"       /* real is double (else float) */
+#define BB_OPTION_VECTOR_WIDTH "BB_VECTOR_WIDTH"     /* real is a vector of that many lanes */
+#define BB_OPTION_MODEL "BB_MODEL"                   /* the model compiled in (BB_MODEL_*) */
+#define BB_OPTION_FRESNEL "BB_FRESNEL"               /* the Fresnel term compiled in (BB_FRESNEL_*) */
+#define BB_OPTION_QUADRATURE "BB_QUADRATURE"         /* the quadrature entry points */
+#define BB_OPTION_VECTOR_POINTS "BB_VECTOR_POINTS"   /* albedo_replicas_points */
+#define BB_OPTION_VECTOR_UNIFORM "BB_VECTOR_UNIFORM" /* with it: qmc's uniform hemisphere weights */
+#define BB_OPTION_ISOTROPIC "BB_ISOTROPIC"           /* the disk path of isotropic cells */
+#define BB_OPTION_QUAD_SAMPLER_ROWS "BB_QUAD_SAMPLER_ROWS" /* albedo_quadrature_rows in the sampler's square */
+#define BB_OPTION_PHILOX "BB_PHILOX"                 /* Random123's Philox for the mc method */
+
 /* -------------------------------------------------------------- kernels/albedo.cl */
 
 /* Sampling methods: the scalar entry point, all three methods. */
@@ -34,7 +48,14 @@
 #define BB_METHOD_MC 2         /* uniform hemisphere, Philox4x32-10 (-D BB_PHILOX) */
 
 /* Model and Fresnel parameters: BB_MAX_PARAMS values per cell (params.h), in the slots of the
- * model's header; the Fresnel term's BB_MAX_PARAMS once per launch. */
+ * model's header; the Fresnel term's BB_MAX_PARAMS once per launch.
+ *
+ * BB_MODEL_DATA_ARG: every entry point that evaluates a model (albedo.cl, scan.cl, eval.cl) takes,
+ * right after the Fresnel parameters, `__global const bb_scalar* model_data`: the model's data
+ * (a measured model's table, a fitted model's coefficients), uploaded once per launch in the
+ * kernel's precision. Every model registered today is a closed form and reads none: the host
+ * passes BB_MODEL_DATA_DUMMY_SIZE numbers (docs/architecture.md, "The seam for new models"). */
+#define BB_MODEL_DATA_DUMMY_SIZE 1
 
 /* The vector paths' point tables, values per step of W points: the disk points' x, y and
  * sqrt(1 - x^2) (albedo and dielectric), or the rotated Hammersley points' u1, u2. */

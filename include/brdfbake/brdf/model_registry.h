@@ -91,55 +91,78 @@
 #endif
 
 /* ---------------------------------------------------------------------------- the table
- * X(NAME, name, SPEC, FRESNEL, QUAD, COSINE, DELTA, DISK, VSAMPLE, VEVAL, RECIPROCAL,
- *   ALPHA_X, ALPHA_Y, EXPONENT, KINKED, FURNACE, EXAMPLE), one row per model:
+ * X(NAME, name, SPEC, ARGS, QUAD, TRAITS, ALPHA_X, ALPHA_Y, EXPONENT, EXAMPLE), one row per model:
  *   NAME, name  its id is BB_MODEL_<NAME>; its functions are bb_<name>_eval and
  *               bb_<name>_sample, and for QUAD = HALFVECTOR bb_<name>_quad_dist and
  *               bb_<name>_halfvector_weight (integrands.h); its host resolver resolve_<name>.
  *   SPEC        the spec name (`--model SPEC:key=value,...`).
- *   FRESNEL     1: the model multiplies by the Fresnel term of --fresnel, and its functions
- *               take (p, fkind, fp, ...); 0: they take (p, ...).
+ *   ARGS        FRESNEL: the model multiplies by the Fresnel term of --fresnel, and its functions
+ *               take (p, fkind, fp, ...); PLAIN: they take (p, ...).
  *   QUAD        the space of its albedo quadrature: SAMPLER (the model's importance warp on
  *               the unit square) or HALFVECTOR (half-vector space, integrands.h).
- *   COSINE      1: its sampler is the cosine warp (sin^2 theta_i = u1), which the sampler-space
- *               rule runs in cos(theta_i) instead (bb_quad_sampler_is_cosine).
- *   DELTA       1: a delta lobe (eval is 0, the albedo is analytic; host/integrate/analytic.cpp).
- *   DISK        1: its sample is a function of the disk point bb_disk_polar(u1, u2) alone and
- *               it has the closed-form disk weight of the vector path (albedo_replicas_disk).
- *   VSAMPLE     1: its sampler is branch-free (the generic vector path albedo_replicas_points).
- *   VEVAL       1: its evaluation is branch-free (qmc on the vector path, BB_VECTOR_UNIFORM).
- *   RECIPROCAL  1: f(wo, wi) = f(wi, wo) (tests/test_model_battery.cpp holds it to that).
+ *   TRAITS      the BB_TRAIT_* flags below that hold for the model, or'ed (0: none).
  *   ALPHA_X, ALPHA_Y  the parameter slots a roughness axis sweeps (-1: no roughness axis).
  *   EXPONENT    the slot of a cosine-power exponent N whose lobe lies about the mirror
  *               direction (width sqrt(2/(N+2))) when QUAD = SAMPLER; -1 otherwise.
- *   KINKED      1: the quadrature's integrand has a kink everywhere (the V-groove min()), so its
- *               error estimate never assumes geometric convergence (host/integrate/albedo.cpp).
- *   FURNACE     1: EXAMPLE conserves energy, albedo <= 1 (the white furnace test claims it).
  *   EXAMPLE     a spec of the model for the generic tests. */
+
+/* The TRAITS flags. */
+#define BB_TRAIT_COSINE_SAMPLER 0x001 /* its sampler is the cosine warp (sin^2 theta_i = u1), which
+                                       * the sampler-space rule runs in cos(theta_i) instead */
+#define BB_TRAIT_DELTA 0x002          /* a delta lobe (eval is 0, the albedo is analytic;
+                                       * host/integrate/analytic.cpp) */
+#define BB_TRAIT_SAMPLES_DISK 0x004   /* its sample is a function of the disk point bb_disk_polar(u1,
+                                       * u2) alone and it has the closed-form disk weight of the
+                                       * vector path (albedo_replicas_disk) */
+#define BB_TRAIT_SAMPLES_VECTOR 0x008 /* its sampler is branch-free (albedo_replicas_points) */
+#define BB_TRAIT_EVALS_VECTOR 0x010   /* its evaluation is branch-free (qmc on the vector path) */
+#define BB_TRAIT_RECIPROCAL 0x020     /* f(wo, wi) = f(wi, wo) (tests/test_model_battery.cpp) */
+#define BB_TRAIT_KINKED 0x040         /* the quadrature's integrand has a kink everywhere (the
+                                       * V-groove min()), so its error estimate never assumes
+                                       * geometric convergence (host/integrate/quadrature_rules.cpp) */
+#define BB_TRAIT_FURNACE 0x080        /* EXAMPLE conserves energy, albedo <= 1 (the white furnace
+                                       * test claims it) */
+#define BB_TRAIT_STOCHASTIC 0x100     /* its value is itself an estimate (a random-walk simulation):
+                                       * only the sampling methods integrate it, never quadrature
+                                       * (docs/architecture.md, "The seam for new models") */
+
 #define BB_MODEL_REGISTRY(X)                                                                                      \
-    /* NAME                 name                 SPEC                   FR QUAD        CO DE DI VS VE RE */      \
-    X(LAMBERT,              lambert,             "lambert",             0, SAMPLER,    1, 0, 0, 1, 1, 1,          \
-      -1, -1, -1, 0, 1, "lambert:rho=1")                                                                          \
-    X(GGX,                  ggx,                 "ggx",                 1, HALFVECTOR, 0, 0, 1, 0, 1, 1,          \
-      BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, -1, 0, 1, "ggx:alpha=0.3")                                                  \
-    X(BECKMANN,             beckmann,            "beckmann",            1, HALFVECTOR, 0, 0, 0, 1, 1, 1,          \
-      BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y, -1, 0, 1, "beckmann:alpha=0.3")                                   \
-    X(OREN_NAYAR,           oren_nayar,          "oren-nayar",          0, SAMPLER,    1, 0, 0, 1, 1, 1,          \
-      -1, -1, -1, 0, 1, "oren-nayar:sigma=0.5")                                                                   \
-    X(PHONG,                phong,               "phong",               0, SAMPLER,    0, 0, 0, 1, 1, 1,          \
-      -1, -1, BB_PHONG_N, 0, 1, "phong:n=20,normalized=1")                                                        \
-    X(PHONG_ORIGINAL,       phong_original,      "phong-original",      0, SAMPLER,    0, 0, 0, 1, 1, 0,          \
-      -1, -1, BB_PHONG_N, 0, 1, "phong-original:n=20")                                                            \
-    X(BLINN_PHONG,          blinn_phong,         "blinn-phong",         0, HALFVECTOR, 0, 0, 0, 1, 1, 1,          \
-      -1, -1, -1, 0, 1, "blinn-phong:n=20,ks=0.25,normalized=1")                                                  \
-    X(TORRANCE_SPARROW,     torrance_sparrow,    "torrance-sparrow",    1, HALFVECTOR, 0, 0, 0, 1, 1, 1,          \
-      BB_TORRANCE_SPARROW_ALPHA_X, BB_TORRANCE_SPARROW_ALPHA_Y, -1, 1, 1, "torrance-sparrow:d=beckmann,alpha=0.3") \
-    X(MIRROR,               mirror,              "mirror",              1, SAMPLER,    0, 1, 0, 0, 0, 1,          \
-      -1, -1, -1, 0, 1, "mirror")                                                                                 \
-    X(DIELECTRIC_SPECULAR,  dielectric_specular, "dielectric-specular", 0, SAMPLER,    0, 1, 0, 0, 0, 1,          \
-      -1, -1, -1, 0, 1, "dielectric-specular:eta=1.5")                                                    \
-    X(SHEEN,                sheen,               "sheen",               0, SAMPLER,    0, 0, 0, 1, 1, 1,          \
-      BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, 0, 1, "sheen:roughness=0.5")
+    /* NAME                 name                 SPEC                   ARGS     QUAD        */                   \
+    X(LAMBERT,              lambert,             "lambert",             PLAIN,   SAMPLER,                         \
+      BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL |           \
+          BB_TRAIT_FURNACE,                                                                                       \
+      -1, -1, -1, "lambert:rho=1")                                                                                \
+    X(GGX,                  ggx,                 "ggx",                 FRESNEL, HALFVECTOR,                      \
+      BB_TRAIT_SAMPLES_DISK | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                     \
+      BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, -1, "ggx:alpha=0.3")                                                        \
+    X(BECKMANN,             beckmann,            "beckmann",            FRESNEL, HALFVECTOR,                      \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
+      BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y, -1, "beckmann:alpha=0.3")                                         \
+    X(OREN_NAYAR,           oren_nayar,          "oren-nayar",          PLAIN,   SAMPLER,                         \
+      BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL |           \
+          BB_TRAIT_FURNACE,                                                                                       \
+      -1, -1, -1, "oren-nayar:sigma=0.5")                                                                         \
+    X(PHONG,                phong,               "phong",               PLAIN,   SAMPLER,                         \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
+      -1, -1, BB_PHONG_N, "phong:n=20,normalized=1")                                                              \
+    X(PHONG_ORIGINAL,       phong_original,      "phong-original",      PLAIN,   SAMPLER,                         \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_FURNACE,                                         \
+      -1, -1, BB_PHONG_N, "phong-original:n=20")                                                                  \
+    X(BLINN_PHONG,          blinn_phong,         "blinn-phong",         PLAIN,   HALFVECTOR,                      \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
+      -1, -1, -1, "blinn-phong:n=20,ks=0.25,normalized=1")                                                        \
+    X(TORRANCE_SPARROW,     torrance_sparrow,    "torrance-sparrow",    FRESNEL, HALFVECTOR,                      \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_KINKED | BB_TRAIT_FURNACE, \
+      BB_TORRANCE_SPARROW_ALPHA_X, BB_TORRANCE_SPARROW_ALPHA_Y, -1, "torrance-sparrow:d=beckmann,alpha=0.3")      \
+    X(MIRROR,               mirror,              "mirror",              FRESNEL, SAMPLER,                         \
+      BB_TRAIT_DELTA | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                                                    \
+      -1, -1, -1, "mirror")                                                                                       \
+    X(DIELECTRIC_SPECULAR,  dielectric_specular, "dielectric-specular", PLAIN,   SAMPLER,                         \
+      BB_TRAIT_DELTA | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                                                    \
+      -1, -1, -1, "dielectric-specular:eta=1.5")                                                                  \
+    X(SHEEN,                sheen,               "sheen",               PLAIN,   SAMPLER,                         \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
+      BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, "sheen:roughness=0.5")
 
 /* The values of the QUAD column. */
 #define BB_QUAD_SPACE_SAMPLER 0
@@ -160,47 +183,44 @@
 #define BB_PP_IS_MARKED(...) BB_PP_SECOND(__VA_ARGS__, 0, 0)
 #define BB_IF_COMPILED(NAME) BB_PP_CAT(BB_PP_KEEP_, BB_PP_IS_MARKED(BB_COMPILED_##NAME))
 
-/* The arguments of a model's functions, by its FRESNEL column. */
-#define BB_EVAL_ARGS_0 (p, wo, wi)
-#define BB_EVAL_ARGS_1 (p, fkind, fp, wo, wi)
-#define BB_SAMPLE_ARGS_0 (p, wo, u1, u2)
-#define BB_SAMPLE_ARGS_1 (p, fkind, fp, wo, u1, u2)
+/* The arguments of a model's functions, by its ARGS column, and whether it takes the Fresnel term. */
+#define BB_EVAL_ARGS_PLAIN (p, wo, wi)
+#define BB_EVAL_ARGS_FRESNEL (p, fkind, fp, wo, wi)
+#define BB_SAMPLE_ARGS_PLAIN (p, wo, u1, u2)
+#define BB_SAMPLE_ARGS_FRESNEL (p, fkind, fp, wo, u1, u2)
+#define BB_USES_FRESNEL_PLAIN 0
+#define BB_USES_FRESNEL_FRESNEL 1
 
-/* A trait query: `case BB_MODEL_<NAME>: return <column>;` for every model (no model function is
- * named, so every case is compiled). */
-#define BB_MODEL_TRAIT_SWITCH(model, COLUMN_MACRO) \
-    switch (model) {                               \
-        BB_MODEL_REGISTRY(COLUMN_MACRO)            \
-    default:                                       \
-        return 0;                                  \
+/* The case of one row for bb_model_has_trait: whether the row's TRAITS hold `flag`. */
+#define BB_TRAIT_CASE(NAME, name, SPEC, ARGS, QUAD, TRAITS, ...) \
+    case BB_MODEL_##NAME:                                     \
+        return ((TRAITS) & flag) != 0;
+
+/* Whether the model's TRAITS hold the BB_TRAIT_* flag (every case is compiled: no model function
+ * is named). A kernel's model and flag are constants, so the query folds to one. */
+BB_FN int bb_model_has_trait(int model, int flag) {
+    switch (model) {
+        BB_MODEL_REGISTRY(BB_TRAIT_CASE)
+    default:
+        return 0;
     }
+}
 
-/* The case of one row for the trait switch, its value the row's COLUMN: one generator per
- * column, each naming the columns up to its own. */
-#define BB_TRAIT_CASE(NAME, value) \
-    case BB_MODEL_##NAME:          \
-        return value;
-#define BB_TRAIT_CASE_COSINE(NAME, name, SPEC, FR, QUAD, CO, ...) BB_TRAIT_CASE(NAME, CO)
-#define BB_TRAIT_CASE_DELTA(NAME, name, SPEC, FR, QUAD, CO, DE, ...) BB_TRAIT_CASE(NAME, DE)
-#define BB_TRAIT_CASE_DISK(NAME, name, SPEC, FR, QUAD, CO, DE, DI, ...) BB_TRAIT_CASE(NAME, DI)
-#define BB_TRAIT_CASE_VSAMPLE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, ...) BB_TRAIT_CASE(NAME, VS)
-#define BB_TRAIT_CASE_VEVAL(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, ...) BB_TRAIT_CASE(NAME, VE)
+/* True for the delta lobes (BB_TRAIT_DELTA): eval is 0, the albedo is analytic. */
+BB_FN int bb_model_is_delta(int model) { return bb_model_has_trait(model, BB_TRAIT_DELTA); }
 
-/* True for the delta lobes (DELTA): eval is 0, the albedo is analytic. */
-BB_FN int bb_model_is_delta(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_DELTA) }
-
-/* The model's sample is a function of the disk point bb_disk_polar(u1, u2) alone (DISK), so that
+/* The model's sample is a function of the disk point bb_disk_polar(u1, u2) alone (BB_TRAIT_SAMPLES_DISK), so that
  * a kernel can tabulate that point once for all cells: the vector path albedo_replicas_disk. */
-BB_FN int bb_model_samples_disk(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_DISK) }
+BB_FN int bb_model_samples_disk(int model) { return bb_model_has_trait(model, BB_TRAIT_SAMPLES_DISK); }
 
-/* The model's sampler is branch-free (VSAMPLE): the generic vector path albedo_replicas_points
+/* The model's sampler is branch-free (BB_TRAIT_SAMPLES_VECTOR): the generic vector path albedo_replicas_points
  * evaluates it on W lanes; tests/test_albedo_vector.cpp holds it to the scalar kernel. */
-BB_FN int bb_model_samples_vector(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_VSAMPLE) }
+BB_FN int bb_model_samples_vector(int model) { return bb_model_has_trait(model, BB_TRAIT_SAMPLES_VECTOR); }
 
-/* The model's evaluation is branch-free (VEVAL): qmc's uniform hemisphere weights on W lanes. */
-BB_FN int bb_model_evals_vector(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_VEVAL) }
+/* The model's evaluation is branch-free (BB_TRAIT_EVALS_VECTOR): qmc's uniform hemisphere weights on W lanes. */
+BB_FN int bb_model_evals_vector(int model) { return bb_model_has_trait(model, BB_TRAIT_EVALS_VECTOR); }
 
-/* The sampler is the cosine warp (COSINE): the sampler-space rule runs in cos(theta_i). */
-BB_FN int bb_quad_sampler_is_cosine(int model) { BB_MODEL_TRAIT_SWITCH(model, BB_TRAIT_CASE_COSINE) }
+/* The sampler is the cosine warp (BB_TRAIT_COSINE_SAMPLER): the sampler-space rule runs in cos(theta_i). */
+BB_FN int bb_quad_sampler_is_cosine(int model) { return bb_model_has_trait(model, BB_TRAIT_COSINE_SAMPLER); }
 
 #endif /* BRDFBAKE_BRDF_MODEL_REGISTRY_H */

@@ -10,10 +10,10 @@
 
 #include "brdfbake/brdf/model_registry.h"
 
-#define BB_EVAL_CASE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    BB_IF_COMPILED(NAME)(case BB_MODEL_##NAME: return bb_##name##_eval BB_PP_CAT(BB_EVAL_ARGS_, FR);)
-#define BB_SAMPLE_CASE(NAME, name, SPEC, FR, QUAD, CO, DE, DI, VS, VE, RE, AX, AY, EX, KI, FU, EXAMPLE) \
-    BB_IF_COMPILED(NAME)(case BB_MODEL_##NAME: return bb_##name##_sample BB_PP_CAT(BB_SAMPLE_ARGS_, FR);)
+#define BB_EVAL_CASE(NAME, name, SPEC, ARGS, ...) \
+    BB_IF_COMPILED(NAME)(case BB_MODEL_##NAME: return bb_##name##_eval BB_PP_CAT(BB_EVAL_ARGS_, ARGS);)
+#define BB_SAMPLE_CASE(NAME, name, SPEC, ARGS, ...) \
+    BB_IF_COMPILED(NAME)(case BB_MODEL_##NAME: return bb_##name##_sample BB_PP_CAT(BB_SAMPLE_ARGS_, ARGS);)
 
 /* f(wo, wi) without the cosine. */
 BB_FN real bb_model_eval(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {

@@ -108,7 +108,7 @@ BB_FN real bb_beta(real a, real b) { return bb_beta_lga(a, b, bb_lgamma(a)); }
  * importance sampler (below) divides both by G1(wo), the visible-normal density having taken
  * G1(wo) D(wh) (wo.wh) / wo.z; the quadrature (dielectric_quadrature.h) multiplies them by
  * D(wh) (wo.wh) / wo.z. Branch-free: the vector kernels evaluate it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, real eta, int correlated, real g1o,
+BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, real eta, int shadowing, real g1o,
                                       real lo, real lga_o) {
     bb_rt out;
     real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
@@ -117,15 +117,16 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, 
     bb_vec3 wr = bb_reflect(wo, wh);
     /* each G2 from its own G1 calls, merged by the compiler (as bb_smith_g2) */
     real g1r = bb_ggx_g1(wr, ax, ay);
-    real g2r = bb_select(bb_g2_separable_from_g1(g1o, g1r), bb_g2_correlated_from_g1(g1o, g1r), correlated != 0);
+    real g2r = bb_select(bb_g2_separable_from_g1(g1o, g1r), bb_g2_correlated_from_g1(g1o, g1r),
+                         shadowing != BB_DIELECTRIC_SHADOWING_SEPARABLE);
     out.r = bb_select(BB_R(0.0), f * g2r, wr.z > BB_R(0.0));
 
     bb_vec3 wt = bb_refract(wo, wh, c, eta);
     bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
-    /* correlated is the same for every sample (and every lane): only its branch is computed
+    /* shadowing is the same for every sample (and every lane): only its branch is computed
      * (the Beta function's log-gammas are the costliest part of a sample) */
     real g2t;
-    if (correlated == BB_DIELECTRIC_SHADOWING_BETA) {
+    if (shadowing == BB_DIELECTRIC_SHADOWING_BETA) {
         /* G1(wt) = 1 / (1 + lt) > 0 where wt_up.z > 0 and lt is finite (it is not where
          * 2z(s + z) underflows, as G1's closed form then gives 0) */
         real lt = bb_ggx_lambda(wt_up, ax, ay);
@@ -134,7 +135,7 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, 
     } else {
         real g1t = bb_ggx_g1(wt_up, ax, ay);
         g2t = g1o * g1t;
-        if (correlated == BB_DIELECTRIC_SHADOWING_CYCLES)
+        if (shadowing == BB_DIELECTRIC_SHADOWING_CYCLES)
             g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
     }
     out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t, wt.z < BB_R(0.0));
@@ -144,21 +145,21 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, 
 /* One sample of the reflected and transmitted fractions from the disk point d of the visible-
  * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
  * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int correlated, bb_vec2 d) {
+BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int shadowing, bb_vec2 d) {
     bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
     real g1o = bb_ggx_g1(wo, ax, ay);
     real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
     real lo = bb_ggx_lambda(wo, ax, ay);
-    bb_rt out = bb_rough_dielectric_split(wo, wh, ax, ay, eta, correlated, g1o, lo,
-                                          correlated == BB_DIELECTRIC_SHADOWING_BETA ? bb_lgamma(BB_R(1.0) + lo) : BB_R(0.0));
+    bb_rt out = bb_rough_dielectric_split(wo, wh, ax, ay, eta, shadowing, g1o, lo,
+                                          shadowing == BB_DIELECTRIC_SHADOWING_BETA ? bb_lgamma(BB_R(1.0) + lo) : BB_R(0.0));
     out.r = bb_select(BB_R(0.0), out.r * inv_g1o, g1o > BB_R(0.0));
     out.t = bb_select(BB_R(0.0), out.t * inv_g1o, g1o > BB_R(0.0));
     return out;
 }
 
 /* One sample of the reflected and transmitted fractions; u1, u2 in [0, 1). */
-BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, real ax, real ay, real eta, int correlated, real u1, real u2) {
-    return bb_rough_dielectric_sample_disk(wo, ax, ay, eta, correlated, bb_disk_polar(u1, u2));
+BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, real ax, real ay, real eta, int shadowing, real u1, real u2) {
+    return bb_rough_dielectric_sample_disk(wo, ax, ay, eta, shadowing, bb_disk_polar(u1, u2));
 }
 
 #endif /* BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H */

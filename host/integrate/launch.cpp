@@ -1,0 +1,60 @@
+#include "integrate/launch.h"
+
+#include <algorithm>
+
+#include "brdfbake/brdf/kernel_abi.h"
+#include "brdfbake/brdf/params.h"
+#include "brdfbake/cancel.h"
+#include "brdfbake/progress.h"
+#include "engine/device_buffer.h"
+
+namespace brdfbake {
+
+double run_items(Engine& engine, cl::Kernel& kernel, const LaunchShape& shape, double work_per_item,
+                 const std::string& what) {
+    throw_if_cancelled();
+    const size_t n_items = shape.n_items, local = shape.local;
+    const size_t groups = (n_items + local - 1) / local;
+    const double work = double(n_items) * work_per_item;
+    const size_t slices = std::min<size_t>({groups, 64, size_t(std::max(1.0, work / shape.slice_work))});
+    const size_t per_slice = slices <= 1 ? groups : (groups + slices - 1) / slices;
+    const size_t columns = (shape.columns + local - 1) / local * local;  // 2-D: padded to the groups
+    double seconds = 0.0;
+    if (slices > 1) report_progress(what, 0, n_items);
+    for (size_t first = 0; first < groups; first += per_slice) {
+        const size_t count = std::min(per_slice, groups - first);
+        cl::Event done;
+        if (shape.columns == 0)
+            engine.queue().enqueueNDRangeKernel(kernel, cl::NDRange(first * local), cl::NDRange(count * local),
+                                                cl::NDRange(local), nullptr, &done);
+        else
+            engine.queue().enqueueNDRangeKernel(kernel, cl::NDRange(0, first * local),
+                                                cl::NDRange(columns, count * local), cl::NDRange(local, local),
+                                                nullptr, &done);
+        done.wait();
+        seconds += event_seconds(done);
+        if (slices <= 1) break;
+        report_progress(what, std::min<std::uint64_t>(std::uint64_t(first + count) * local, n_items), n_items);
+        if (first + count < groups) throw_if_cancelled();
+    }
+    return seconds;
+}
+
+std::vector<cl_uint> NonFiniteCounts::read(Engine& engine) const {
+    std::vector<cl_uint> counts(size);
+    engine.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, size * sizeof(cl_uint), counts.data());
+    return counts;
+}
+
+cl::Buffer model_data_buffer(RealBuffers& buffers, int /*model: every registered model is a closed form*/) {
+    return buffers.input(std::vector<double>(BB_MODEL_DATA_DUMMY_SIZE, 0.0));
+}
+
+double launch_bytes(size_t n_cells, size_t n_items, double table_points, unsigned table_values, Precision p) {
+    const double real_bytes = p == Precision::Double ? 8.0 : 4.0;
+    const double per_number = 8.0 + 2.0 * real_bytes;
+    return double(n_cells) * (2 + BB_MAX_PARAMS) * per_number + table_points * table_values * per_number +
+           double(n_items) * (2.0 * real_bytes + 4.0) * 2.0;
+}
+
+}  // namespace brdfbake

@@ -1,0 +1,42 @@
+// What the sampling integrators (the albedo's and the rough dielectric's) share: the replicas'
+// Cranley-Patterson shifts, the point tables of the vector paths, and the statistics that turn
+// replica means into a value and an error estimate.
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <string>
+#include <vector>
+
+#include "brdfbake/albedo.h"
+
+namespace brdfbake {
+
+/// Cranley-Patterson shifts, two per replica (u1, u2), in [0, 1).
+std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed);
+
+/// The disk point table of the vector paths (albedo_replicas_disk, dielectric_replicas_disk):
+/// per replica, per step of `lanes` points, BB_DISK_VALUES rows of lanes.
+std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
+                               unsigned lanes, Precision precision);
+
+/// The rotated Hammersley point table of the generic vector path (albedo_replicas_points):
+/// per replica, per step of `lanes` points, BB_POINTS_VALUES rows of lanes.
+std::vector<double> point_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
+                                unsigned lanes, Precision precision);
+
+/// Refuses a sample count the replicas cannot split (Error naming --samples).
+void check_sampling(std::uint64_t samples, unsigned replicas);
+
+/// What a sampling method did, in words ("importance sampling, randomised Hammersley (16
+/// replicas x 4096 points)").
+std::string method_text(Method method, unsigned replicas, std::uint64_t points);
+
+/// Mean and error estimate of each cell from its replica means (`means` and the non-finite
+/// counts `bad`, replicas per cell consecutive). Throws NonFiniteError, its text from
+/// `where(cell)`, if any sample of a cell was non-finite.
+std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::vector<cl_uint>& bad,
+                                   unsigned replicas, std::uint64_t samples_per_cell, Precision precision,
+                                   const std::function<std::string(size_t)>& where);
+
+}  // namespace brdfbake
