@@ -121,7 +121,7 @@ TEST_CASE("titles are shortened and wrapped to fit their panels", "[pictures][qu
           "ggx:alpha_x=0.1,alpha_y=0.5,\nshadowing=correlated");
 }
 
-TEST_CASE("lobe pictures: 3D panel titles do not run into each other; the plane's axes fit the lobe",
+TEST_CASE("lobe pictures: 3D panel titles do not run into each other, the plane's axes fit the lobe",
           "[pictures][cli]") {
     const std::string png = scratch("lobe3d.png");
     auto r = testing::run_cli("lobe --model ggx:alpha_x=0.1,alpha_y=0.5 --model ggx:alpha_x=0.5,alpha_y=0.1 "

@@ -106,6 +106,9 @@ size_t visible_chars(const std::string& text) {
     return longest;
 }
 
+/// The height of a title's line as a fraction of its panel's height (MathGL's default font, size 1.15).
+constexpr double kTitleLine = 0.075;
+
 /// The lines of a panel's title.
 int title_lines(const PlotSpec& p) { return p.title.empty() ? 0 : 1 + int(std::count(p.title.begin(), p.title.end(), '\n')); }
 
@@ -247,7 +250,11 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index, int cell_wi
     gr.SetOrigin(x0, y0);
     if (!p.title.empty()) {
         gr.SetCut(false);  // the title sits above the axes box, outside the data range
-        gr.Puts(mglPoint(0.5 * (x0 + x1), y1 + 0.05 * (y1 - y0)), p.title.c_str(), ":C",
+        // MathGL grows a title downwards from its first line: a picture's box is lowered by a line
+        // for each beyond two (write_figure), and the title raised by as much.
+        const int extra = p.axes ? 0 : std::max(0, title_lines(p) - 2);
+        const double raise = extra * kTitleLine / (0.86 - kTitleLine * extra);
+        gr.Puts(mglPoint(0.5 * (x0 + x1), y1 + (0.05 + raise) * (y1 - y0)), p.title.c_str(), ":C",
                 title_size(p.title, cell_width, cell_height));
         gr.SetCut(true);
     }
@@ -338,7 +345,7 @@ void write_figure(const std::string& path, const Figure& figure) {
             gr.InPlot(cx + kLeftMargin * cw, cx + right * cw, cy + bottom * ch, cy + 0.90 * ch, false);
         else  // a picture: only the title needs room, a line more for each beyond two
             gr.InPlot(cx + 0.03 * cw, cx + 0.97 * cw, cy + 0.02 * ch,
-                      cy + (0.88 - 0.12 * std::max(0, title_lines(panel) - 2)) * ch, false);
+                      cy + (0.88 - kTitleLine * std::max(0, title_lines(panel) - 2)) * ch, false);
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
         // MathGL's text scales with the panel: small panels (a table's summary) get larger text.
         gr.SetFontSize(3.0 * std::min(1.5, std::max(1.0, std::sqrt(560.0 / figure.panel_height))));
