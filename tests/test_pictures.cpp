@@ -95,7 +95,8 @@ TEST_CASE("a table preview's colours are not squashed by one outlier texel, whic
 TEST_CASE("a deep 3D table is previewed as a summary at most 1600 pixels wide, every slice beside it",
           "[pictures][quick]") {
     // lut dielectric --size 32x32x16: 4 channels of 16 slices.
-    const brdfbake::Table t = ramp_table(32, 32, 16, 4);
+    brdfbake::Table t = ramp_table(32, 32, 16, 4);
+    t.kind = "gen-schlick-ior";  // a long title: "E0 (gen-schlick-ior), eta = 1.933 ..."
     const std::string png = scratch("deep.png"), full = brdfbake::full_preview_path(png);
     CHECK(full == scratch("deep.full.png"));
     brdfbake::write_table_preview(t, png);
@@ -105,6 +106,10 @@ TEST_CASE("a deep 3D table is previewed as a summary at most 1600 pixels wide, e
     CHECK(summary.width <= brdfbake::kSummaryWidth);
     CHECK(summary.width >= 1000);  // panels large enough to read as a thumbnail
     CHECK(all.width > summary.width);  // more slices side by side
+    // Titles sized to their panels: no text reaches the picture's edges.
+    CHECK(all_white(summary, 0, 3, 0, summary.height));
+    CHECK(all_white(summary, summary.width - 3, summary.width, 0, summary.height));
+    CHECK(all_white(summary, 0, summary.width, 0, 3));
     // A table of 4 slices or fewer is its own full-size picture: no second file.
     const std::string shallow = scratch("shallow.png");
     brdfbake::write_table_preview(ramp_table(8, 8, 4, 1), shallow);

@@ -106,6 +106,9 @@ size_t visible_chars(const std::string& text) {
     return longest;
 }
 
+/// MathGL's text scales with the panel: small panels (a table's summary) get larger text, by this factor.
+double font_scale(int panel_height) { return std::min(1.5, std::max(1.0, std::sqrt(560.0 / panel_height))); }
+
 /// The height of a title's line as a fraction of its panel's height (MathGL's default font, size 1.15).
 constexpr double kTitleLine = 0.075;
 
@@ -117,8 +120,8 @@ int title_lines(const PlotSpec& p) { return p.title.empty() ? 0 : 1 + int(std::c
 /// cell's height wide (measured on MathGL's default font at font size 3).
 double title_size(const std::string& title, int cell_width, int cell_height) {
     const double chars = double(std::max<size_t>(1, visible_chars(title)));
-    const double width = chars * 0.0223 * cell_height;
-    return -1.15 * std::max(0.55, std::min(1.0, 0.9 * cell_width / width));
+    const double width = chars * 0.0223 * cell_height * font_scale(cell_height);
+    return -1.15 * std::max(0.45, std::min(1.0, 0.9 * cell_width / width));
 }
 
 /// The legend, drawn by hand in data coordinates: MathGL's Legend() scales its text with the
@@ -277,7 +280,9 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index, int cell_wi
     const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1), dx = x1 - x0, dy = y1 - y0;
     if (!p.x.label.empty()) gr.Puts(mglPoint(xm, y0 - 0.13 * dy), p.x.label.c_str(), ":C", -1.0);
     // Left of the upright tick labels, whatever the box's width (an Outside legend narrows it).
-    const double ylabel = 0.105 / (box_right(p) - kLeftMargin);
+    // The label's centre 0.025 of the cell's width from its left edge, more for larger text.
+    const double fs = font_scale(cell_height), left = kLeftMargin * fs;
+    const double ylabel = (left - 0.025 - 0.04 * (fs - 1.0)) / (box_right(p) - left);
     if (!p.y.label.empty())
         gr.Puts(mglPoint(x0 - ylabel * dx, ym), mglPoint(x0 - ylabel * dx, ym + dy), p.y.label.c_str(), ":C", -1.0);
     gr.SetCut(true);
@@ -342,13 +347,13 @@ void write_figure(const std::string& path, const Figure& figure) {
         const double right = box_right(panel);
         const double bottom = 0.16;
         if (panel.axes)
-            gr.InPlot(cx + kLeftMargin * cw, cx + right * cw, cy + bottom * ch, cy + 0.90 * ch, false);
+            gr.InPlot(cx + kLeftMargin * font_scale(figure.panel_height) * cw, cx + right * cw, cy + bottom * ch,
+                      cy + 0.90 * ch, false);
         else  // a picture: only the title needs room, a line more for each beyond two
             gr.InPlot(cx + 0.03 * cw, cx + 0.97 * cw, cy + 0.02 * ch,
                       cy + (0.88 - kTitleLine * std::max(0, title_lines(panel) - 2)) * ch, false);
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
-        // MathGL's text scales with the panel: small panels (a table's summary) get larger text.
-        gr.SetFontSize(3.0 * std::min(1.5, std::max(1.0, std::sqrt(560.0 / figure.panel_height))));
+        gr.SetFontSize(3.0 * font_scale(figure.panel_height));
         const PlotSpec& p = figure.panels[size_t(i)];
         draw_panel(gr, p, size_t(i), figure.panel_width, figure.panel_height);
     }
