@@ -13,7 +13,7 @@ set(prefixes
   "include/brdfbake/spec.h=models" "include/brdfbake/fresnel_terms.h=models" "host/models/=models"
   "include/brdfbake/albedo.h=integrate" "include/brdfbake/analytic.h=integrate" "include/brdfbake/evaluate.h=integrate" "include/brdfbake/check.h=integrate" "include/brdfbake/fresnel_curve.h=integrate"
   "host/integrate/=integrate"
-  "include/brdfbake/lut.h=tables" "include/brdfbake/table_kinds.h=tables" "host/tables/=tables"
+  "include/brdfbake/lut.h=tables" "include/brdfbake/table_kinds.h=tables" "include/brdfbake/api.h=tables" "host/tables/=tables"
   "host/scene/=scene"
   "host/plot/=plot"
   "benchmarks/=bench"

@@ -214,7 +214,7 @@ PlotAxis reflectance_axis() { return PlotAxis{"reflectance", 0.0, 1.0, 0.2}; }
 PlotSpec single_panel(const FresnelConfig& f) {
     const auto th = plot_thetas();
     PlotSpec p;
-    p.title = f.canonical;
+    p.title = plot_text(short_numbers(f.canonical));  // the title reads 1.33, the CSV keeps every digit
     p.x = theta_axis();
     p.y = reflectance_axis();
     const HostFresnel h(f);
@@ -257,7 +257,7 @@ Figure comparison_figure(const FresnelConfig& metal) {
     fig.panel_height = 680;
 
     PlotSpec a;
-    a.title = metal_title(metal);
+    a.title = short_numbers(metal_title(metal));
     a.x = theta_axis();
     a.y = reflectance_axis();
     a.y.lo = std::numeric_limits<double>::quiet_NaN();  // metals: zoom on the upper range

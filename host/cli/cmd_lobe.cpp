@@ -94,8 +94,9 @@ void write_lobe_3d(Engine& engine, const LobeOptions& o, const std::vector<Model
             p.axes = false;
             p.x.lo = p.y.lo = -1.15;
             p.x.hi = p.y.hi = 1.15;
-            // The spec on a line of its own: a long one (an anisotropic GGX) would run into the next panel.
-            p.title = plot_text(model.canonical) + "\n\\theta_i = " + format_number(ti) + "\\deg";
+            // The spec on lines of its own, broken after its commas: a long one (an anisotropic GGX)
+            // would run into the next panel.
+            p.title = plot_text(wrap_at_commas(model.canonical, 30)) + "\n\\theta_i = " + format_number(ti) + "\\deg";
             std::vector<std::array<double, 3>> base;
             for (int j = 0; j <= 72; ++j) base.push_back(direction(90.0, 5.0 * j));
             p.curves.push_back(projected(base, "h:1"));
@@ -235,8 +236,11 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         PlotSpec p;
         p.title = "lobe f(\\omega_i, \\omega_o) cos\\theta_i in the plane of incidence" +
                   std::string(o.log_scale ? " (radius: log_{10}, 6 decades)" : "");
-        p.x.label = "";
-        p.y.label = "";
+        // Axes in the units of the radius: a point at angle theta_o from the normal lies at
+        // r (sin theta_o, cos theta_o), r = f cos theta_i in sr^-1 (log_10 of it over six decades with --log).
+        const std::string unit = o.log_scale ? "log_{10}(f cos\\theta_i / floor), decades" : "f cos\\theta_i  (sr^{-1})";
+        p.x.label = unit + " \\times{} sin\\theta_o;  grey rays: \\theta_o every 30\\degree";
+        p.y.label = unit + " \\times{} cos\\theta_o";
         double radius = 0.0;
         for (const LobeCurve& c : curves)
             for (double v : c.f_cos) radius = std::max(radius, v);
@@ -245,6 +249,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         const double floor = radius * 1e-6;
         auto r_of = [&](double v) { return o.log_scale ? std::max(0.0, std::log10(std::max(v, floor) / floor)) : v; };
         const double r_max = r_of(radius);
+        double x_lo = 0.0, x_hi = 0.0, y_hi = 0.0;  // the lobes' extent: the ranges fit the data
         for (const LobeCurve& c : curves) {
             Curve curve;
             char angle[32];
@@ -262,19 +267,36 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
                     curve.y.push_back(r * std::cos(t));
                 }
             }
+            for (size_t k = 0; k < curve.x.size(); ++k) {
+                x_lo = std::min(x_lo, curve.x[k]);
+                x_hi = std::max(x_hi, curve.x[k]);
+                y_hi = std::max(y_hi, curve.y[k]);
+            }
             p.curves.push_back(curve);
         }
-        for (double ti : thetas) {  // the incident directions, thin and dotted: where light comes from
+        // The box: the lobes plus room for the legend above them (its rows take about 6% of the
+        // height each); at least 30% of the lobes' width on the side they leave empty (the
+        // incident direction's side, usually).
+        const double left = 1.05 * std::max({-x_lo, 0.3 * x_hi, 1e-3 * r_max});
+        const double right = 1.05 * std::max({x_hi, 0.3 * -x_lo, 1e-3 * r_max});
+        const double legend_rows = double(curves.size());
+        const double top = std::max(y_hi, 1e-3 * r_max) * (1.1 + 0.08 * legend_rows + 0.08);
+        auto ray = [&](double t_deg, const std::string& style) {  // from the origin to the box's edge
+            const double t = t_deg * kRad, s = std::sin(t), c = std::cos(t);
+            double len = top / std::max(c, 1e-9);
+            if (std::fabs(s) > 1e-9) len = std::min(len, (s < 0 ? left : right) / std::fabs(s));
             Curve in;
-            in.x = {-r_max * std::sin(ti * kRad), 0.0};
-            in.y = {r_max * std::cos(ti * kRad), 0.0};
-            in.style = "k:1";
-            p.curves.push_back(in);
-        }
-        p.x.lo = -1.05 * r_max;
-        p.x.hi = 1.05 * r_max;
+            in.x = {0.0, len * s};
+            in.y = {0.0, len * c};
+            in.style = style;
+            return in;
+        };
+        for (int t = -60; t <= 60; t += 30) p.curves.push_back(ray(t, "h:1"));  // the angle's guide rays
+        for (double ti : thetas) p.curves.push_back(ray(-ti, "k:1"));  // where light comes from
+        p.x.lo = -left;
+        p.x.hi = right;
         p.y.lo = 0.0;
-        p.y.hi = 1.05 * r_max;
+        p.y.hi = top;
         p.legend = LegendPlace::TopLeft;
         write_plot(o.output, p, 1000, 600);
         std::fprintf(stderr, "brdfbake: wrote %s\n", o.output.c_str());

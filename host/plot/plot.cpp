@@ -86,24 +86,51 @@ double box_right(const PlotSpec& p) {
     return 0.96;
 }
 
+/// The characters a line of MathGL markup shows, roughly: TeX commands and braces take little room.
+/// For several lines (split at '\n'), the longest.
+size_t visible_chars(const std::string& text) {
+    size_t longest = 0, visible = 0;
+    for (size_t i = 0; i < text.size(); ++i) {
+        if (text[i] == '\n') {
+            visible = 0;
+            continue;
+        }
+        if (text[i] == '\\') {
+            while (i + 1 < text.size() && std::isalpha((unsigned char)text[i + 1])) ++i;
+            ++visible;
+        } else if (text[i] != '{' && text[i] != '}' && text[i] != '_' && text[i] != '^') {
+            ++visible;
+        }
+        longest = std::max(longest, visible);
+    }
+    return longest;
+}
+
+/// MathGL's text scales with the panel: small panels (a table's summary) get larger text, by this factor.
+double font_scale(int panel_height) { return std::min(1.5, std::max(1.0, std::sqrt(560.0 / panel_height))); }
+
+/// The height of a title's line as a fraction of its panel's height (MathGL's default font, size 1.15).
+constexpr double kTitleLine = 0.075;
+
+/// The lines of a panel's title.
+int title_lines(const PlotSpec& p) { return p.title.empty() ? 0 : 1 + int(std::count(p.title.begin(), p.title.end(), '\n')); }
+
+/// The size of a panel's title (MathGL's negative relative size): 1.15, smaller where its longest
+/// line would not fit 90% of the cell's width. A character of size 1.15 is about 2.2% of the
+/// cell's height wide (measured on MathGL's default font at font size 3).
+double title_size(const std::string& title, int cell_width, int cell_height) {
+    const double chars = double(std::max<size_t>(1, visible_chars(title)));
+    const double width = chars * 0.0223 * cell_height * font_scale(cell_height);
+    return -1.15 * std::max(0.45, std::min(1.0, 0.9 * cell_width / width));
+}
+
 /// The legend, drawn by hand in data coordinates: MathGL's Legend() scales its text with the
 /// data ranges of an InPlot and comes out unreadably small or not at all.
 void draw_legend(mglGraph& gr, const PlotSpec& p, const std::vector<std::pair<std::string, std::string>>& entries,
                  double x0, double x1, double y0, double y1) {
     const double dx = x1 - x0, dy = y1 - y0;
     size_t chars = 0;
-    for (const auto& e : entries) {
-        size_t visible = 0;  // rough: TeX commands and braces take little room
-        for (size_t i = 0; i < e.first.size(); ++i) {
-            if (e.first[i] == '\\') {
-                while (i + 1 < e.first.size() && std::isalpha((unsigned char)e.first[i + 1])) ++i;
-                ++visible;
-            } else if (e.first[i] != '{' && e.first[i] != '}' && e.first[i] != '_' && e.first[i] != '^') {
-                ++visible;
-            }
-        }
-        chars = std::max(chars, visible);
-    }
+    for (const auto& e : entries) chars = std::max(chars, visible_chars(e.first));
     const double row = 0.058 * dy, sample = 0.08 * dx, pad = 0.015 * dx;
     double w = pad + sample + pad + 0.0125 * dx * double(chars) + pad;
     if (p.legend == LegendPlace::Outside) {  // the strip write_figure left right of the box
@@ -162,9 +189,12 @@ void draw_heatmap(mglGraph& gr, const Heatmap& h, double x0, double x1, double y
     if (!h.gap_colour.empty()) {
         // Gaps (non-finite z) show this colour rather than the canvas: a face below the map (which
         // MathGL draws at the bottom of the z range, -1; larger z is nearer the viewer).
+        // Within the axes box, which may end at the first and last cells' centres.
+        const double fx0 = std::max(h.x_lo, x0), fx1 = std::min(h.x_hi, x1);
+        const double fy0 = std::max(h.y_lo, y0), fy1 = std::min(h.y_hi, y1);
         gr.SetCut(false);
-        gr.Face(mglPoint(h.x_lo, h.y_lo, -1.5), mglPoint(h.x_hi, h.y_lo, -1.5), mglPoint(h.x_lo, h.y_hi, -1.5),
-                mglPoint(h.x_hi, h.y_hi, -1.5), h.gap_colour.c_str());
+        gr.Face(mglPoint(fx0, fy0, -1.5), mglPoint(fx1, fy0, -1.5), mglPoint(fx0, fy1, -1.5), mglPoint(fx1, fy1, -1.5),
+                h.gap_colour.c_str());
         gr.SetCut(true);
     }
     gr.Dens(x, y, z, h.scheme.c_str());
@@ -180,7 +210,7 @@ void draw_heatmap(mglGraph& gr, const Heatmap& h, double x0, double x1, double y
     }
 }
 
-void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
+void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index, int cell_width, int cell_height) {
     Bounds bx, by;
     if (p.heatmap.nx > 0) {
         if (p.heatmap.z.size() != size_t(p.heatmap.nx) * p.heatmap.ny)
@@ -223,7 +253,12 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     gr.SetOrigin(x0, y0);
     if (!p.title.empty()) {
         gr.SetCut(false);  // the title sits above the axes box, outside the data range
-        gr.Puts(mglPoint(0.5 * (x0 + x1), y1 + 0.05 * (y1 - y0)), p.title.c_str(), ":C", -1.15);
+        // MathGL grows a title downwards from its first line: a picture's box is lowered by a line
+        // for each beyond two (write_figure), and the title raised by as much.
+        const int extra = p.axes ? 0 : std::max(0, title_lines(p) - 2);
+        const double raise = extra * kTitleLine / (0.86 - kTitleLine * extra);
+        gr.Puts(mglPoint(0.5 * (x0 + x1), y1 + (0.05 + raise) * (y1 - y0)), p.title.c_str(), ":C",
+                title_size(p.title, cell_width, cell_height));
         gr.SetCut(true);
     }
     // Ticks counted from 0 (not from the range's lower end), so that they fall on round values.
@@ -245,7 +280,9 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index) {
     const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1), dx = x1 - x0, dy = y1 - y0;
     if (!p.x.label.empty()) gr.Puts(mglPoint(xm, y0 - 0.13 * dy), p.x.label.c_str(), ":C", -1.0);
     // Left of the upright tick labels, whatever the box's width (an Outside legend narrows it).
-    const double ylabel = 0.105 / (box_right(p) - kLeftMargin);
+    // The label's centre 0.025 of the cell's width from its left edge, more for larger text.
+    const double fs = font_scale(cell_height), left = kLeftMargin * fs;
+    const double ylabel = (left - 0.025 - 0.04 * (fs - 1.0)) / (box_right(p) - left);
     if (!p.y.label.empty())
         gr.Puts(mglPoint(x0 - ylabel * dx, ym), mglPoint(x0 - ylabel * dx, ym + dy), p.y.label.c_str(), ":C", -1.0);
     gr.SetCut(true);
@@ -302,30 +339,36 @@ void write_figure(const std::string& path, const Figure& figure) {
     for (int i = 0; i < n; ++i) {
         // Each panel is a cell of the grid (fractions of the canvas, y upwards); the axes box
         // leaves room for the y label on the left, the x label below and the title above.
-        const double cw = panels / cols, ch = 1.0 / rows;
+        // A caption takes a strip at the bottom of the canvas (the panels' cells lie above it).
+        const double caption = figure.caption.empty() ? 0.0 : 0.06 / rows;
+        const double cw = panels / cols, ch = (1.0 - caption) / rows;
         const double cx = cw * (i % cols), cy = 1.0 - ch * (i / cols + 1);
         const PlotSpec& panel = figure.panels[size_t(i)];
         const double right = box_right(panel);
-        // A caption takes a strip at the bottom of the canvas (the panels' cells shrink to above it).
-        const double bottom = figure.caption.empty() ? 0.16 : 0.16 + 0.06 * rows;
+        const double bottom = 0.16;
         if (panel.axes)
-            gr.InPlot(cx + kLeftMargin * cw, cx + right * cw, cy + bottom * ch, cy + 0.90 * ch, false);
-        else  // a picture: only the title needs room
-            gr.InPlot(cx + 0.03 * cw, cx + 0.97 * cw, cy + 0.02 * ch, cy + 0.88 * ch, false);
+            gr.InPlot(cx + kLeftMargin * font_scale(figure.panel_height) * cw, cx + right * cw, cy + bottom * ch,
+                      cy + 0.90 * ch, false);
+        else  // a picture: only the title needs room, a line more for each beyond two
+            gr.InPlot(cx + 0.03 * cw, cx + 0.97 * cw, cy + 0.02 * ch,
+                      cy + (0.88 - kTitleLine * std::max(0, title_lines(panel) - 2)) * ch, false);
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
-        gr.SetFontSize(3.0);
+        gr.SetFontSize(3.0 * font_scale(figure.panel_height));
         const PlotSpec& p = figure.panels[size_t(i)];
-        draw_panel(gr, p, size_t(i));
+        draw_panel(gr, p, size_t(i), figure.panel_width, figure.panel_height);
     }
     if (strip > 0) {
         // The strip as one plot (so that text keeps the panels' size), the bar in its left part.
         gr.InPlot(panels, 1.0, 0.0, 1.0, false);
         gr.SetPlotFactor(1.0);
         gr.SetRanges(0.0, 1.0, 0.0, 1.0);
-        gr.SetFontSize(6.0);  // relative to the strip, which is narrower than a panel
+        // Relative to the strip, which is narrower than a panel: tick labels and the label as large
+        // as a panel's axis text, whatever the panels' height.
+        gr.SetFontSize(8.0);
         gr.SetRange('c', figure.colorbar_lo, figure.colorbar_hi);
         gr.Colorbar((figure.colorbar_scheme + "I>").c_str(), 0.05, 0.06, 0.25, 0.82);
-        gr.Puts(mglPoint(0.62, 0.5), mglPoint(0.62, 1.5), figure.colorbar_label.c_str(), ":C", -0.6);
+        gr.Puts(mglPoint(0.66, 0.5), mglPoint(0.66, 1.5), figure.colorbar_label.c_str(), ":C",
+                -0.72 * std::min(1.0, 28.0 / double(std::max<size_t>(1, visible_chars(figure.colorbar_label)))));
     }
     if (!figure.caption.empty()) {
         gr.InPlot(0.0, 1.0, 0.0, 1.0, false);

@@ -103,6 +103,14 @@ void write_plot(const std::string& path, const PlotSpec& panel, int width = 900,
 /// True if `path` ends in .png or .svg (any case), the formats write_figure can produce.
 bool is_plot_path(const std::string& path);
 
+/// `text` broken into lines of at most `width` characters after its commas (a model spec keeps its
+/// keys whole), so that a long title fits its panel; a part longer than `width` stays on one line.
+std::string wrap_at_commas(const std::string& text, size_t width);
+
+/// `text` with every decimal number written to at most `digits` significant digits
+/// ("eta=1.3300000000000001" reads "eta=1.33"): for titles, never for a file's numbers.
+std::string short_numbers(const std::string& text, int digits = 4);
+
 /// Plain text as MathGL markup: '_' and '^' are escaped, so "R_inside" reads as written.
 std::string plot_text(const std::string& plain);
 
@@ -116,6 +124,20 @@ struct Table;
 /// bar naming the channel and its range, or curves for a 1D table. A 3D table shows z-slice
 /// `slice`, or with slice = -1 every slice as a small multiple (at most 8, evenly spread). The
 /// caption says which of the file's rows is at the bottom.
+///
+/// A 3D table with more slices than a summary shows (kSummarySlices per channel) gets a readable
+/// summary at `path` (at most kSummaryWidth pixels wide) and every slice, full size, beside it at
+/// full_preview_path(path). Colours are clipped at the 99.5th percentile of a channel's texels
+/// (widened to [0, 1]); the colour bar's label says how many lie above and how far.
 void write_table_preview(const Table& table, const std::string& path, int slice = -1);
+
+/// Slices of a 3D table a summary preview shows per channel, and its width at most (pixels).
+constexpr int kSummarySlices = 4;
+constexpr int kSummaryWidth = 1600;
+
+/// Where write_table_preview puts the full-size picture of a 3D table beside its summary at
+/// `preview`: NAME.full.png for NAME.png (the same extension). The file exists only for tables
+/// deeper than kSummarySlices.
+std::string full_preview_path(const std::string& preview);
 
 }  // namespace brdfbake
