@@ -139,6 +139,20 @@ const char* const kStyle =
     "pre{background:#f7f7f7;padding:.5em;overflow-x:auto;font-size:.85em}"
     ".pass{color:#176b2c;font-weight:bold}.fail{color:#a4161a;font-weight:bold}.note{color:#666}";
 
+/// A failed bake: why, and the tables of its plan that the index does not list.
+void write_failure(std::ostream& o, const Json& index, const BakeReportOptions& options) {
+    std::string missing;
+    for (const std::string& f : options.planned_tables) {
+        bool listed = false;
+        for (const Json& e : index["tables"]) listed = listed || e.value("file", std::string()) == f;
+        if (!listed) missing += (missing.empty() ? "" : ", ") + f;
+    }
+    o << "<p class=\"fail\">This bake failed: " << html(options.failure) << "</p>\n";
+    if (!missing.empty())
+        o << "<p>Not written: " << html(missing) << ". Run <code>brdfbake bake</code> again once the cause is "
+             "fixed; the tables below are complete and are kept.</p>\n";
+}
+
 }  // namespace
 
 BakeReportOptions::BakeReportOptions() {
@@ -190,18 +204,7 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
     o << "<h1>Bake report: " << html(fs::path(scene).filename().string()) << "</h1>\n";
     o << "<p>Scene <code>" << html(scene) << "</code>, baked by " << html(index.value("tool", std::string("brdfbake")))
       << "; " << index["tables"].size() << " tables. The numbers come from <code>index.json</code> beside this page.</p>\n";
-    if (!options.failure.empty()) {
-        std::string missing;
-        for (const std::string& f : options.planned_tables) {
-            bool listed = false;
-            for (const Json& e : index["tables"]) listed = listed || e.value("file", std::string()) == f;
-            if (!listed) missing += (missing.empty() ? "" : ", ") + f;
-        }
-        o << "<p class=\"fail\">This bake failed: " << html(options.failure) << "</p>\n";
-        if (!missing.empty())
-            o << "<p>Not written: " << html(missing) << ". Run <code>brdfbake bake</code> again once the cause is "
-                 "fixed; the tables below are complete and are kept.</p>\n";
-    }
+    if (!options.failure.empty()) write_failure(o, index, options);
     if (index.contains("settings")) {
         o << "<table><tr><th>setting</th><th>value</th></tr>\n";
         std::map<std::string, const Json*> settings;  // in the order of their names
