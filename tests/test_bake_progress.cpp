@@ -16,10 +16,7 @@
 
 namespace {
 
-std::string source_dir() {
-    const std::string here = __FILE__;
-    return here.substr(0, here.find_last_of('/', here.find_last_of('/') - 1));
-}
+std::string source_dir() { return BRDFBAKE_SOURCE_DIR; }  // the repository (CMake defines it)
 
 }  // namespace
 

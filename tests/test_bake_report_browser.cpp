@@ -22,10 +22,7 @@ namespace {
 
 namespace fs = std::filesystem;
 
-std::string source_dir() {
-    const std::string here = __FILE__;
-    return here.substr(0, here.find_last_of('/', here.find_last_of('/') - 1));
-}
+std::string source_dir() { return BRDFBAKE_SOURCE_DIR; }  // the repository (CMake defines it)
 
 const char* const kChromium = "chromium --headless --no-sandbox --disable-gpu --hide-scrollbars "
                               "--virtual-time-budget=10000 --user-data-dir=";
