@@ -362,8 +362,9 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
             log_line(step.substr(0, step.find(' ')) + " " + msg);
         }
     } catch (const Error& e) {
-        // The report shows the failure beside what was written; the error goes on to the caller.
-        if (o.finish) {
+        // The report shows the failure beside what was written (when the folder has an index: a
+        // bake that wrote nothing into a new folder leaves none); the error goes on to the caller.
+        if (o.finish && (had_index || result.computed > 0)) {
             try {
                 o.finish(engine.get(), e.what());
             } catch (const Error& report) {
