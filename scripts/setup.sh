@@ -13,6 +13,7 @@ packages=(
   libpng-dev  # 16-bit PNG tables (host/io/table_png.cpp)
   libjpeg-dev  # the ranges of glTF JPEG textures (host/scene/texture_image.cpp)
   libopenmpi-dev openmpi-bin  # MPI jobs (mpirun -np N brdfbake ...; docs/cluster.md) and their tests
+  chromium  # the bake report rendered headless by its test (tests/test_bake_report_browser.cpp)
 )
 
 missing=()

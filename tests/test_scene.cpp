@@ -375,3 +375,18 @@ TEST_CASE("bake a rough glass: the dielectric table over the scene's eta", "[sce
     CHECK(t.at("max_error").get<double>() < 0.1);
     std::system(("rm -rf " + out).c_str());
 }
+
+TEST_CASE("grouped_warnings: a warning several materials share is one line naming them", "[scene][quick]") {
+    const std::vector<std::string> in = {
+        "material 'a': KHR_materials_dispersion is not modelled",
+        "extension KHR_texture_transform is not modelled",
+        "material 'b': KHR_materials_dispersion is not modelled",
+        "material 'c': ior 1.2 is clamped",
+        "material 'd': KHR_materials_dispersion is not modelled",
+    };
+    const std::vector<std::string> out = brdfbake::grouped_warnings(in);
+    REQUIRE(out.size() == 3);
+    CHECK(out[0] == "KHR_materials_dispersion is not modelled (3 materials: a, b, d)");
+    CHECK(out[1] == in[1]);
+    CHECK(out[2] == in[3]);  // one material: as it was
+}

@@ -245,12 +245,14 @@ int run_bake(const BakeCommandOptions& o, const GlobalOptions& g) {
     // The bake report (DIR/index.html) from the index just written, with each lobe's check; when
     // every table was up to date, only if the folder has none.
     std::optional<BakeReportSummary> report;  // printed after the bake's summary
-    options.finish = [&](Engine* engine) {
+    options.finish = [&](Engine* engine, const std::string& failure) {
         if (!o.report || (!engine && std::ifstream(join_path(options.output, "index.html")))) return;
         std::unique_ptr<Engine> own;
         if (!engine) engine = (own = std::make_unique<Engine>(g.device, g.verbose)).get();
         BakeReportOptions ro;
         ro.draw_missing_previews = false;  // --no-previews holds for the report too
+        ro.failure = failure;
+        for (const auto& t : plan.tables) ro.planned_tables.push_back(t.file);
         report = write_bake_report(*engine, options.output, ro);
     };
     const BakeResult r = bake_plan(plan, options, [&] { return std::make_unique<Engine>(g.device, g.verbose); });

@@ -3,6 +3,7 @@
 #include <nlohmann/json.hpp>
 
 #include <algorithm>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <map>
@@ -11,8 +12,10 @@
 #include "brdfbake/error.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
+#include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/table.h"
 #include "scene/bake_index.h"
+#include "scene/scene.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -36,16 +39,36 @@ std::string html(const std::string& text) {
     return out;
 }
 
+/// A number as a person writes it: whole numbers in full (16384, not 1.638e+04), others to four
+/// significant digits, in exponent form only when very small or very large.
 std::string number(double v) {
     char b[32];
-    std::snprintf(b, sizeof b, "%.4g", v);
+    if (v == std::floor(v) && std::fabs(v) < 1e15)
+        std::snprintf(b, sizeof b, "%.0f", v);
+    else
+        std::snprintf(b, sizeof b, "%.4g", v);
     return b;
 }
 
 std::string text_of(const Json& j) {
     if (j.is_string()) return j.get<std::string>();
+    if (j.is_boolean()) return j.get<bool>() ? "yes" : "no";
     if (j.is_number()) return number(j.get<double>());
+    if (j.is_array()) {
+        std::string out;
+        for (const Json& x : j) out += (out.empty() ? "" : ", ") + text_of(x);
+        return out;
+    }
     return j.dump();
+}
+
+/// A setting's value in words; an empty one says what it means.
+std::string setting_text(const std::string& key, const Json& value) {
+    const bool empty = value.is_null() || (value.is_array() && value.empty()) ||
+                       (value.is_string() && value.get<std::string>().empty());
+    if (!empty) return text_of(value);
+    if (key == "tables") return "each lobe's default kinds";
+    return "none";
 }
 
 /// The spec of `model` at roughness alpha: the swept parameter set by its key.
@@ -64,15 +87,25 @@ struct Verdict {
 Verdict check_lobe(Engine& engine, const std::string& model, const std::string& fresnel, double alpha,
                    const CheckOptions& options) {
     Verdict v;
-    v.spec = at_alpha(model, alpha);
     v.fresnel = fresnel;
+    // A range that starts below the microfacet floor (glTF's roughness 0) is checked at the floor,
+    // where a table clamps its texels (include/brdfbake/brdf/microfacet.h, BB_ALPHA_MIN).
+    std::string note;
+    if (alpha < BB_ALPHA_MIN) {
+        note = "The range starts at alpha = " + number(alpha) + ", below the smallest alpha the models take (" +
+               number(BB_ALPHA_MIN) + ", where the table clamps its texels): checked there.\n";
+        alpha = BB_ALPHA_MIN;
+    }
+    v.spec = at_alpha(model, alpha);
     try {
         ModelConfig m;
         try {
             m = resolve_model(v.spec);
-        } catch (const Error&) {  // a model whose roughness key is not alpha: checked as specified
-            v.spec = model;
+        } catch (const Error&) {
+            // A model without a roughness key named alpha: checked as the scene specifies it.
             m = resolve_model(model);
+            v.spec = model;
+            note.clear();
         }
         FresnelConfig f = resolve_fresnel("none");
         if (m.uses_fresnel) {
@@ -83,16 +116,17 @@ Verdict check_lobe(Engine& engine, const std::string& model, const std::string& 
                     f = resolve_fresnel(fresnel, 550.0);  // a measured metal (n,k by wavelength): at 550 nm
                     v.fresnel += " at 550 nm";
                 } catch (const Error&) {
-                    v.fresnel = "none (" + fresnel + " is not a Fresnel spec check takes)";
+                    v.fresnel = "none: " + fresnel + " varies with the material, so the lobe is checked without it "
+                                "(a Fresnel factor of at most 1 only lowers the energy)";
                 }
             }
         }
         const CheckReport r = run_check(engine, m, f, options);
-        v.text = check_report_text(r);
+        v.text = note + check_report_text(r);
         v.passed = r.passed();
         v.ran = true;
     } catch (const Error& e) {
-        v.text = std::string("not checked: ") + e.what();
+        v.text = note + "not checked: " + e.what();
     }
     return v;
 }
@@ -104,6 +138,20 @@ const char* const kStyle =
     "vertical-align:top}th{background:#f3f3f3}img{max-width:100%;border:1px solid #ddd}"
     "pre{background:#f7f7f7;padding:.5em;overflow-x:auto;font-size:.85em}"
     ".pass{color:#176b2c;font-weight:bold}.fail{color:#a4161a;font-weight:bold}.note{color:#666}";
+
+/// A failed bake: why, and the tables of its plan that the index does not list.
+void write_failure(std::ostream& o, const Json& index, const BakeReportOptions& options) {
+    std::string missing;
+    for (const std::string& f : options.planned_tables) {
+        bool listed = false;
+        for (const Json& e : index["tables"]) listed = listed || e.value("file", std::string()) == f;
+        if (!listed) missing += (missing.empty() ? "" : ", ") + f;
+    }
+    o << "<p class=\"fail\">This bake failed: " << html(options.failure) << "</p>\n";
+    if (!missing.empty())
+        o << "<p>Not written: " << html(missing) << ". Run <code>brdfbake bake</code> again once the cause is "
+             "fixed; the tables below are complete and are kept.</p>\n";
+}
 
 }  // namespace
 
@@ -156,17 +204,21 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
     o << "<h1>Bake report: " << html(fs::path(scene).filename().string()) << "</h1>\n";
     o << "<p>Scene <code>" << html(scene) << "</code>, baked by " << html(index.value("tool", std::string("brdfbake")))
       << "; " << index["tables"].size() << " tables. The numbers come from <code>index.json</code> beside this page.</p>\n";
+    if (!options.failure.empty()) write_failure(o, index, options);
     if (index.contains("settings")) {
         o << "<table><tr><th>setting</th><th>value</th></tr>\n";
         std::map<std::string, const Json*> settings;  // in the order of their names
         for (const auto& kv : index["settings"].items()) settings[kv.key()] = &kv.value();
         for (const auto& kv : settings)
-            o << "<tr><td>" << html(kv.first) << "</td><td>" << html(text_of(*kv.second)) << "</td></tr>\n";
+            o << "<tr><td>" << html(kv.first) << "</td><td>" << html(setting_text(kv.first, *kv.second))
+              << "</td></tr>\n";
         o << "</table>\n";
     }
     if (index.contains("warnings") && !index["warnings"].empty()) {
         o << "<h2>Warnings</h2><ul>\n";
-        for (const Json& w : index["warnings"]) o << "<li>" << html(text_of(w)) << "</li>\n";
+        std::vector<std::string> warnings;
+        for (const Json& w : index["warnings"]) warnings.push_back(text_of(w));
+        for (const std::string& w : grouped_warnings(warnings)) o << "<li>" << html(w) << "</li>\n";
         o << "</ul>\n";
     }
     if (index.contains("materials")) {
@@ -187,6 +239,8 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
         const std::string file = entry.value("file", std::string());
         ++summary.tables;
         o << "<h2 id=\"" << html(file) << "\">" << html(file) << "</h2>\n";
+        const bool present = !file.empty() && fs::exists(fs::path(folder) / file);
+        if (!present) o << "<p class=\"fail\">Missing: the index lists this table but the folder has no such file.</p>\n";
         o << "<p>" << html(entry.value("kind", std::string())) << ": " << html(entry.value("quantity", std::string()))
           << "</p>\n<table>";
         for (const char* key : {"model", "fresnel", "size", "layout", "precision", "samples_per_cell", "max_error"})
@@ -210,7 +264,7 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
         if (!own.empty() && fs::exists(fs::path(folder) / own)) {
             o << "<p><img src=\"" << html(own) << "\" alt=\"preview of " << html(file) << "\"></p>\n";
             ++summary.previews;
-        } else if (options.draw_missing_previews) {
+        } else if (options.draw_missing_previews && present) {
             const std::string picture = "report/" + file + ".png";
             try {
                 const Table t = read_table((fs::path(folder) / file).string());
@@ -223,7 +277,7 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
             } catch (const Error& e) {
                 o << "<p class=\"note\">No preview: " << html(e.what()) << "</p>\n";
             }
-        } else {
+        } else if (present) {
             o << "<p class=\"note\">No preview (baked with --no-previews).</p>\n";
         }
         if (lobes_of_table.count(file)) {

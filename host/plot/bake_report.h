@@ -6,6 +6,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include "brdfbake/check.h"
 #include "brdfbake/engine.h"
@@ -18,6 +19,10 @@ struct BakeReportOptions {
     /// previews, DIR/previews/, are shown where they exist).
     bool draw_missing_previews = true;
     CheckOptions check;  // lighter than `check`'s defaults: see bake_report.cpp
+    /// A bake that stopped: why (empty: it did not fail), and the files its plan has, so that the
+    /// page names those it did not write.
+    std::string failure;
+    std::vector<std::string> planned_tables;
     BakeReportOptions();
 };
 

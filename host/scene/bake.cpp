@@ -180,12 +180,16 @@ struct Baking {
 /// staged under its own name and its content hash taken, then the index that lists it replaces
 /// the old one and the table is renamed into the folder (two renames back to back).
 /// `started`: when the table's computation began (its entry records the seconds until it is written).
-double commit_table(Baking& b, const PlannedTable& t, const LutRequest& r, const Table& table, Clock::time_point started) {
+/// `show(step)`: the bake's progress says what runs now (the preview is a step of its own).
+double commit_table(Baking& b, const PlannedTable& t, const LutRequest& r, const Table& table, Clock::time_point started,
+                    const std::function<void(const std::string&)>& show) {
     std::string preview;
     if (b.o.write_preview) {
         ::mkdir(join_path(b.o.output, "previews").c_str(), 0755);
         preview = "previews/" + t.file + ".png";
+        show("drawing its preview " + preview);
         b.o.write_preview(table, join_path(b.o.output, preview));
+        show("writing it");
         b.folder.commit();
     }
     const std::string staged = join_path(b.staging, t.file), path = join_path(b.o.output, t.file);
@@ -270,7 +274,7 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
     for (const auto& t : plan.tables)
         if (!t.unavailable.empty())
             throw Error("cannot bake '" + t.file + "' (for " + materials_of(t) + "): " + t.unavailable);
-    for (const auto& w : plan.warnings) log_line("warning: " + w);
+    for (const auto& w : grouped_warnings(plan.warnings)) log_line("warning: " + w);
 
     // The folder is locked from here on: the index read below is still the index when this bake
     // writes it, and another bake into the folder waits (docs/scenes.md, "Bake folders").
@@ -313,7 +317,7 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
         if (write_bake_index(o.output, b.index)) folder.commit();
     if (to_compute == 0) {
         result.seconds = since(t0);
-        if (o.finish) o.finish(nullptr);
+        if (o.finish) o.finish(nullptr, {});
         return result;
     }
 
@@ -324,7 +328,7 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
             throw Error("cannot write into '" + o.output + "': " + b.staging + ": " + std::strerror(errno));
     }
     std::unique_ptr<Engine> engine = make_engine();
-    {
+    try {
         ProgressStage stage("bake of " + std::to_string(to_compute) + " table" + (to_compute == 1 ? "" : "s") +
                                 " into " + o.output,
                             work);
@@ -344,7 +348,10 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
             log_line(step + ": computing " + detail);
             const Table table = compute_planned(*engine, t, r, stage, done, step);
             check_finite(table);
-            const double seconds = commit_table(b, t, r, table, t1);
+            // The table is computed: its units count as done while it is drawn and written.
+            const double seconds = commit_table(b, t, r, table, t1, [&](const std::string& what) {
+                stage.update(done + t.samples_total, step + ": " + what);
+            });
             done += t.samples_total;
             stage.update(done);
             result.max_error = std::max(result.max_error, table.max_error());
@@ -354,10 +361,21 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
                           seconds, table.max_error());
             log_line(step.substr(0, step.find(' ')) + " " + msg);
         }
+    } catch (const Error& e) {
+        // The report shows the failure beside what was written (when the folder has an index: a
+        // bake that wrote nothing into a new folder leaves none); the error goes on to the caller.
+        if (o.finish && (had_index || result.computed > 0)) {
+            try {
+                o.finish(engine.get(), e.what());
+            } catch (const Error& report) {
+                log_line(std::string("warning: no report of the failed bake: ") + report.what());
+            }
+        }
+        throw;
     }
     result.build_seconds = engine->build_seconds();
     result.seconds = since(t0);
-    if (o.finish) o.finish(engine.get());
+    if (o.finish) o.finish(engine.get(), {});
     return result;
 }
 

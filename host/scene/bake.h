@@ -23,8 +23,9 @@ struct BakeOptions {
     /// Draws a table's preview picture (PNG) at a path; empty: no previews (--no-previews).
     std::function<void(const Table&, const std::string&)> write_preview;
     /// Called at the end, while the folder is still locked, with the engine if one was started
-    /// (nullptr when every table was up to date): the bake report.
-    std::function<void(Engine*)> finish;
+    /// (nullptr when every table was up to date): the bake report. Also when a table's computation
+    /// or commit fails, with the error's text as `failure` (empty otherwise), before it is rethrown.
+    std::function<void(Engine*, const std::string& failure)> finish;
 };
 
 struct BakeResult {

@@ -154,7 +154,7 @@ std::string plan_text(const Plan& p) {
     }
     if (!p.warnings.empty()) {
         o << "\nwarnings:\n";
-        for (const auto& w : p.warnings) o << "  warning: " << w << "\n";
+        for (const auto& w : grouped_warnings(p.warnings)) o << "  warning: " << w << "\n";
     }
     o << "\ntotal: " << p.tables.size() << " tables, " << human_count(total_samples) << " samples, about "
       << human_seconds(total_s + p.build_seconds + p.startup_seconds + p.report_seconds) << " (" << human_seconds(total_s)

@@ -149,25 +149,39 @@ std::string g17(double v) {
     return b;
 }
 
-/// Samples per second the estimates assume: PoCL on one core of the development machine (AMD
-/// EPYC, float, GGX albedo on the vector path, which `bake` uses; 2 shared cores under load;
-/// benchmarks/results/scene-estimates-amd-epyc-2c.md) times the hardware threads.
-constexpr double kSamplesPerSecondPerCore = 5.0e7;
+// The cost model of `plan`'s estimates, calibrated against `bake`'s wall time by
+// benchmarks/plan_estimates.sh (docs/scenes.md, "Estimates"; the measurements:
+// benchmarks/results/plan-estimates-2c-shared.md). A table costs its samples times its kind's cost
+// per sample (the registry's sample_cost) times its model's (below), at the rate below, plus the
+// fixed costs of a table, its preview and the bake.
 
-/// A cold kernel build and first launch on PoCL (docs/scenes.md: 0.35 to 0.55 s for GGX).
-constexpr double kSecondsPerProgram = 0.5;
+/// Samples per second per hardware thread: GGX albedo on PoCL's vector path, float, which `bake`
+/// uses (measured: 1024x316 texels x 4096 samples in 5.8 s on 2 threads, 2.2e8 samples/s).
+constexpr double kSamplesPerSecondPerCore = 1.1e8;
+
+/// The cost of one sample of a model relative to GGX's, where it differs by more than 1.5x
+/// (measured on the same tables: sheen's 32x27 albedo at 16384 samples, 7.0e6 samples/s against
+/// GGX's 2.2e8: the Charlie distribution's sampling is uniform and its visibility term costly).
+double model_sample_cost(const std::string& model_name) {
+    static const std::map<std::string, double> costs = {{"sheen", 32.0}};
+    const auto it = costs.find(model_name);
+    return it == costs.end() ? 1.0 : it->second;
+}
+
+/// A kernel build and first launch on PoCL: 0.5 s cold, about 0.12 s from PoCL's kernel cache.
+constexpr double kSecondsPerProgram = 0.3;
 
 /// Per table: launches, assembling and writing the file (measured: 0.01 to 0.1 s), and the preview
-/// picture bake writes beside it (MathGL: 0.3 to 0.8 s on the shared development machine).
+/// picture bake writes beside it (MathGL: 0.5 to 1.0 s on the shared development machine).
 constexpr double kSecondsPerTable = 0.05;
-constexpr double kSecondsPerPreview = 0.4;
+constexpr double kSecondsPerPreview = 0.8;
 
 /// Starting the process, the device and the bake folder (measured: about 0.3 s).
 constexpr double kStartupSeconds = 0.3;
 
 /// One lobe check of the bake report (host/plot/bake_report.cpp: 24 directions x 2^14 samples and
-/// 16^3 reciprocity pairs; measured: 4 checks add 1.3 s of CPU to examples/scene.json's bake).
-constexpr double kSecondsPerReportCheck = 0.35;
+/// 16^3 reciprocity pairs; measured: 0.05 to 0.3 s a check).
+constexpr double kSecondsPerReportCheck = 0.2;
 
 
 /// What a group of lobes needs: one table per (kind, model, Fresnel in the table).
@@ -361,8 +375,8 @@ void finish_table(Plan& plan, PlannedTable t, const std::string& file, bool half
     const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
     t.cells = texels * std::uint64_t(kind.cells_per_texel);
     t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
-    t.est_seconds =
-        double(t.samples_total) * kind.sample_cost / plan.samples_per_second + kSecondsPerTable + kSecondsPerPreview;
+    t.est_seconds = double(t.samples_total) * kind.sample_cost * model_sample_cost(model_name) / plan.samples_per_second +
+                    kSecondsPerTable + kSecondsPerPreview;
     const int channels = kind.value_channels(r) + 1;  // values + error
     // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while the
     // kernel runs; the finished table holds doubles.
@@ -496,7 +510,7 @@ Plan make_plan(const Scene& scene) {
     plan.settings = s;
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     plan.samples_per_second = kSamplesPerSecondPerCore * cores;
-    plan.throughput_basis = std::to_string(cores) + " hardware threads x 5.0e7 (PoCL, float, measured; docs/scenes.md)";
+    plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.1e8 (PoCL, float, measured; docs/scenes.md)";
 
     plan.materials = scene.materials;
     if (!s.tables.empty()) override_lobe_kinds(plan.materials, s.tables, plan.warnings);

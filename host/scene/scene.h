@@ -163,6 +163,11 @@ Plan make_plan(const Scene& scene);
 
 /// The plan as text (--format table) or as one JSON object (--format json).
 std::string plan_text(const Plan& plan);
+
+/// Warnings as a person reads them: those that differ only in the material they name ("material
+/// 'X': REST") become one line, "REST (N materials: X, Y, Z)"; the others stay as they are, in
+/// their order. The index keeps every warning; plan, bake and the report show these.
+std::vector<std::string> grouped_warnings(const std::vector<std::string>& warnings);
 std::string plan_json(const Plan& plan);
 
 /// Copies the eta axis of a planned table of a kind with one (dielectric) into its request.

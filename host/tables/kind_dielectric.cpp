@@ -130,10 +130,10 @@ TableKind dielectric_kind() {
     k.cells_per_texel = 2;  // both sides of the interface
     k.plan_fresnel = "exact dielectric at each eta";
     k.lobe_requirement = "a dielectric table needs an index of refraction (fresnel dielectric:eta=E or 'eta')";
-    // A dielectric sample (microfacet normal, exact Fresnel, reflect or refract) costs about 3.5
-    // albedo samples (measured: 22 M samples of examples/scene.gltf in 8.8 s against 4.7 M albedo
-    // samples in 0.7 s on the same machine).
-    k.sample_cost = 3.5;
+    // A dielectric sample (microfacet normal, exact Fresnel, reflect or refract) costs about 7
+    // albedo samples (measured: 226 M samples of tests/data/materials.gltf in 7.6 s against GGX
+    // albedo's 2.2e8 samples/s on the same machine; benchmarks/results/plan-estimates-2c-shared.md).
+    k.sample_cost = 7.4;
     k.value_channels = four;
     k.validate = validate_dielectric;
     return k;

@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# `plan`'s estimate against the bake's real time (issue 32: within 1.5x both ways).
+# Usage: benchmarks/plan_estimates.sh BRDFBAKE [SCENE...]
+# Prints a Markdown table: scene, plan's estimate, the bake's wall and CPU seconds (the run of median
+# wall time of RUNS, default 3), wall/estimate.
+# Each bake runs with --force into a fresh folder (previews and report on, as `bake` does by
+# default), under `nice -n -20` when run as root so that other jobs on a shared machine do not
+# inflate the wall time (record the machine and its load beside the numbers: benchmarks/results/).
+# Not a test: timings depend on the machine; the planner's constants are calibrated from it
+# (docs/scenes.md, "Estimates").
+set -euo pipefail
+exe=$(realpath "${1:?usage: plan_estimates.sh BRDFBAKE [SCENE...]}")
+shift
+here=$(cd "$(dirname "$0")/.." && pwd)
+scenes=("$@")
+if [ ${#scenes[@]} -eq 0 ]; then
+  scenes=("$here/examples/scene.json" "$here/examples/scene.gltf" "$here/tests/data/materials.gltf"
+          "$here/tests/data/small_glass.json" "$here/tests/data/metals_glass.json")
+fi
+runs=${RUNS:-3}
+nice=()
+[ "$(id -u)" -eq 0 ] && nice=(nice -n -20)
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+echo "| scene | plan estimate (s) | bake wall (s) | bake CPU (s) | wall / estimate | load average |"
+echo "| --- | --- | --- | --- | --- | --- |"
+for s in "${scenes[@]}"; do
+  extra=()
+  case "$s" in *@*) extra=(${s#*@}); s=${s%%@*} ;; esac
+  est=$("$exe" plan "$s" "${extra[@]}" --format json | /usr/bin/python3 -c 'import json,sys; print("%.2f" % json.load(sys.stdin)["estimate"]["seconds"])')
+  load=$(cut -d' ' -f1 /proc/loadavg)
+  : >"$work/times"
+  for _ in $(seq "$runs"); do
+    /usr/bin/time -f "%e %U %S" -o "$work/time" "${nice[@]}" "$exe" bake "$s" "${extra[@]}" --force -o "$work/out" 2>"$work/log" >/dev/null ||
+      { echo "bake of $s failed:"; tail -3 "$work/log"; exit 1; }
+    cat "$work/time" >>"$work/times"
+    rm -rf "$work/out"
+  done
+  # The run of median wall time.
+  read -r wall user sys < <(sort -n "$work/times" | sed -n "$(( (runs + 1) / 2 ))p")
+  cpu=$(/usr/bin/python3 -c "print('%.2f' % ($user + $sys))")
+  ratio=$(/usr/bin/python3 -c "print('%.2f' % ($wall / $est))")
+  echo "| \`${s#$here/}\` ${extra[*]} | $est | $wall | $cpu | $ratio | $load |"
+done
