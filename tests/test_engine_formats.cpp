@@ -49,7 +49,7 @@ double from_half(unsigned h) {
 double half_rounding(double v) { return std::ldexp(1.0, std::ilogb(std::max(std::fabs(v), 6.2e-5)) - 11); }
 
 /// A 2-channel table over roughness (x) and mu (y), texel centres, whose values name their texel:
-/// A = roughness / 2 + 0.25, B = mu^2.
+/// A = roughness / 2 + 0.25, B = mu^2 / 3 (not a binary fraction: half floats round it).
 Table coordinate_table(int w, int h) {
     Table t;
     t.kind = "dfg";
@@ -63,7 +63,7 @@ Table coordinate_table(int w, int h) {
     for (int j = 0; j < h; ++j)
         for (int i = 0; i < w; ++i) {
             t.values[0][size_t(j) * w + i] = t.x.coordinate[size_t(i)] / 2 + 0.25;
-            t.values[1][size_t(j) * w + i] = t.y.coordinate[size_t(j)] * t.y.coordinate[size_t(j)];
+            t.values[1][size_t(j) * w + i] = t.y.coordinate[size_t(j)] * t.y.coordinate[size_t(j)] / 3;
         }
     t.error.assign(size_t(w) * h, 1e-6);
     t.attributes["precision"] = "float";
@@ -151,7 +151,7 @@ TEST_CASE("DFGLUTData.js: node imports it as three.js does; half floats within r
             const double r = (i + 0.5) / 16, mu = (j + 0.5) / 16;
             const double a = v[size_t(j * 16 + i) * 2], b = v[size_t(j * 16 + i) * 2 + 1];
             CHECK(std::fabs(a - (r / 2 + 0.25)) <= half_rounding(r / 2 + 0.25));
-            CHECK(std::fabs(b - mu * mu) <= half_rounding(mu * mu));
+            CHECK(std::fabs(b - mu * mu / 3) <= half_rounding(mu * mu / 3));
             worst = std::max(worst, std::fabs(b - t.values[1][size_t(j) * 16 + i]));
         }
     CHECK(worst > 0);  // half floats: some rounding shows, so the values were not passed as text
@@ -177,8 +177,9 @@ TEST_CASE("dfg.inc compiles where Filament includes it (const uint16_t DFG_LUT[]
           "GL order from a table stored roughest first",
           "[formats][engine][quick]") {
     // Filament's preset layout: x = NoV, y = perceptual roughness from the roughest (flipped).
-    Table t = coordinate_table(8, 4);
+    Table t = coordinate_table(4, 8);  // x = roughness (4), y = mu (8), then swapped
     arrange_axes(t, {"mu", "roughness"}, {"roughness"});
+    REQUIRE(t.x.name == "mu");
     REQUIRE(t.y.lo == 1.0);
     const std::string dir = scratch("filament");
     REQUIRE(run_shell("mkdir -p " + dir).status == 0);
@@ -197,7 +198,7 @@ TEST_CASE("dfg.inc compiles where Filament includes it (const uint16_t DFG_LUT[]
         for (int i = 0; i < 8; ++i) {
             const double r = (j + 0.5) / 4, mu = (i + 0.5) / 8;
             CHECK(std::fabs(from_half(h[size_t(j * 8 + i) * 2]) - (r / 2 + 0.25)) <= half_rounding(r / 2 + 0.25));
-            CHECK(std::fabs(from_half(h[size_t(j * 8 + i) * 2 + 1]) - mu * mu) <= half_rounding(mu * mu));
+            CHECK(std::fabs(from_half(h[size_t(j * 8 + i) * 2 + 1]) - mu * mu / 3) <= half_rounding(mu * mu / 3));
         }
     CHECK(std::regex_search(text, std::regex("\n    (0x[0-9a-f]{4}, ){8}\n")));
 }

@@ -15,6 +15,7 @@
 #include <cctype>
 #include <cmath>
 #include <csetjmp>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <set>
@@ -467,6 +468,15 @@ bool decode_png(const std::string& bytes, PngImage* image, std::string* message)
 /// every texel is the description's max_error plus half a step (the PNG stores no error channel).
 Table read_png(const std::string& path) {
     const std::string bytes = read_input_file(path, "table", kMaxTableFileBytes);
+    // The image the header declares must fit in the file's compressed data (deflate expands at
+    // most 1032:1): a few hostile bytes must not make libpng allocate gigabytes of rows.
+    if (bytes.size() >= 33 && bytes.compare(12, 4, "IHDR") == 0) {
+        auto u32 = [&](size_t p) { return uint64_t(uint8_t(bytes[p])) << 24 | uint64_t(uint8_t(bytes[p + 1])) << 16 |
+                                          uint64_t(uint8_t(bytes[p + 2])) << 8 | uint64_t(uint8_t(bytes[p + 3])); };
+        const uint64_t raw = (u32(16) * 4 * uint64_t(uint8_t(bytes[24])) / 8 + 1) * u32(20);  // at most 4 samples
+        if (raw > uint64_t(bytes.size()) * 1032 + (uint64_t(64) << 20))
+            throw Error("cannot read table '" + path + "': its header declares an image larger than its data can hold");
+    }
     PngImage image;
     std::string message;
     if (!decode_png(bytes, &image, &message)) throw Error("cannot read table '" + path + "': " + message);
@@ -474,14 +484,14 @@ Table read_png(const std::string& path) {
     if (image.width != png_uint_32(t.width()) || image.height != png_uint_32(t.image_height()))
         throw Error("'" + path + "': the image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
                     " but its description says " + std::to_string(t.width()) + "x" + std::to_string(t.image_height()));
+    const size_t n = texels_of(t);
+    t.values.assign(t.channels.size(), std::vector<double>(n));  // rgba_view counts the value channels
     const std::vector<int> view = rgba_view(t);
     const int samples = view.empty() ? 0 : view[3] >= 0 ? 4 : 3;
     if (image.depth != 16 || image.channels != samples)
         throw Error("'" + path + "': a table PNG holds 16-bit " + (samples == 4 ? "RGBA" : "RGB") + " samples for its " +
                     std::to_string(t.channels.size()) + " channels; this one has " + std::to_string(image.channels) +
                     " channels of " + std::to_string(image.depth) + " bits");
-    const size_t n = texels_of(t);
-    t.values.assign(t.channels.size(), std::vector<double>(n));
     for (size_t k = 0; k < n; ++k)
         for (int s = samples - 1; s >= 0; --s)  // R last: a one-channel table's R = G = B
             if (view[size_t(s)] >= 0)
