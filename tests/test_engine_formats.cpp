@@ -274,3 +274,37 @@ TEST_CASE("PNG tables: no colour-space chunk; read_table and `brdfbake show` rea
     const Table twice = read_table(again);
     CHECK(twice.values == back.values);
 }
+
+TEST_CASE("the presets' engine files hold the mirror limit where the engines sample smooth texels: three.js's at "
+          "x = roughness 1/32, Filament's dfg.inc in its first row",
+          "[formats][engine][presets]") {
+    // A near-mirror lobe (alpha = r^2 <= 1e-3) reflects about the normal: (1 - wo.wh)^5 = (1 - mu)^5, so
+    // the split-sum B = (1 - mu)^5 and A = 1 - (1 - mu)^5 (E = A + B = 1), to about alpha away from grazing.
+    const std::string three = scratch("preset/DFGLUTData.js");
+    REQUIRE(run_shell("mkdir -p " + scratch("preset")).status == 0);
+    auto r = run_cli("lut --preset three --no-preview -o " + three);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const nlohmann::json lut = import_with_node(three);
+    REQUIRE(lut["width"] == 16);
+    REQUIRE(lut["format"] == "RGFormat");
+    for (int j = 2; j < 16; ++j) {
+        const double mu = (j + 0.5) / 16, b = std::pow(1 - mu, 5);
+        INFO("NoV row " << j);
+        CHECK(double(lut["values"][size_t(j * 16) * 2]) == Approx(1 - b).margin(3e-3));
+        CHECK(double(lut["values"][size_t(j * 16) * 2 + 1]) == Approx(b).margin(3e-3));
+    }
+
+    const std::string inc = scratch("preset/dfg.inc");
+    r = run_cli("lut --preset filament --size 16x16 --no-preview -o " + inc);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const std::vector<unsigned> h = hex_numbers(slurp(inc));
+    REQUIRE(h.size() == 16 * 16 * 2);
+    for (int i = 2; i < 16; ++i) {  // row 0: perceptual roughness 1/32, x = NoV
+        const double mu = (i + 0.5) / 16, b = std::pow(1 - mu, 5);
+        INFO("NoV column " << i);
+        CHECK(from_half(h[size_t(i) * 2]) == Approx(b).margin(3e-3));  // Filament's R: the f90 term
+        CHECK(from_half(h[size_t(i) * 2 + 1]) == Approx(1).margin(3e-3));  // G: E = A + B
+    }
+}
