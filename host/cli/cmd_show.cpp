@@ -222,7 +222,7 @@ void add_show_command(CLI::App& app, const GlobalOptions& global, Action& action
     const auto [cmd, o] = add_command<ShowOptions>(
         app, "show", "what a table file holds (header, axes, statistics), a picture of a slice, or a conversion",
         global, action, run_show);
-    cmd->add_option("table", o->table, "a table brdfbake wrote: .exr, .csv or .npy")->required();
+    cmd->add_option("table", o->table, "a table brdfbake wrote: .exr, .csv, .npy or .png")->required();
     add_format_option(cmd, o->format, {"table", "json"});
     cmd->add_option("--slice", o->slice,
                     "z texel of a 3D table to draw (default: every slice as a small multiple; --curves: the middle one)");
@@ -231,7 +231,7 @@ void add_show_command(CLI::App& app, const GlobalOptions& global, Action& action
         ->capture_default_str();
     cmd->add_option("--at", o->at_x, "with --along z: the x coordinate of the curves (default: the middle texel)");
     cmd->add_option("--plot", o->plot, "a picture of the slice (.png or .svg): its preview, or --curves");
-    cmd->add_option("-o,--output", o->output, "convert: write the table as .exr, .csv, .h, .png or .npy");
+    cmd->add_option("-o,--output", o->output, "convert: write the table as .exr, .csv, .h, .png, .npy, .js (three.js), .inc (Filament) or .tables (Cycles)");
     cmd->add_flag("--half", o->half, "with -o FILE.exr: half-float channels");
 }
 

@@ -218,14 +218,21 @@ std::vector<std::pair<std::string, std::string>> table_description(const Table& 
     return a;
 }
 
-namespace {
-
-/// `name` with every character a C identifier cannot hold replaced by '_'.
 std::string c_identifier(const std::string& name) {
     std::string out;
     for (char c : name) out += std::isalnum(static_cast<unsigned char>(c)) ? c : '_';
     return out;
 }
+
+std::string comment_line_text(const std::string& line) {
+    std::string text = line;
+    for (char& c : text)
+        if (c == '\n' || c == '\r') c = ' ';
+    if (!text.empty() && text.back() == '\\') text += '.';
+    return text;
+}
+
+namespace {
 
 std::string extension(const std::string& path) {
     const size_t dot = path.find_last_of('.');
@@ -391,11 +398,7 @@ std::string table_header(const Table& t, const std::string& symbol) {
       << " + y) * " << t.width() << " + x.\n";
     for (const auto& kv : table_description(t)) {
         // A comment line: no line break inside, and no final backslash (which would splice the next line in).
-        std::string text = kv.second;
-        for (char& c : text)
-            if (c == '\n' || c == '\r') c = ' ';
-        if (!text.empty() && text.back() == '\\') text += '.';
-        o << "// " << kv.first << ": " << text << "\n";
+        o << "// " << kv.first << ": " << comment_line_text(kv.second) << "\n";
     }
     o << "#pragma once\n\n";
     o << "static const int " << symbol << "_width = " << t.width() << ";\n";
@@ -418,8 +421,10 @@ std::string table_header(const Table& t, const std::string& symbol) {
 
 void check_table_path(const std::string& path) {
     const std::string ext = extension(path);
-    if (ext != "exr" && ext != "csv" && ext != "h" && ext != "hpp" && ext != "png" && ext != "npy")
-        throw Error("cannot tell the table format from '" + path + "': use .exr, .csv, .h, .png or .npy");
+    if (ext != "exr" && ext != "csv" && ext != "h" && ext != "hpp" && ext != "png" && ext != "npy" && ext != "js" &&
+        ext != "inc" && ext != "tables")
+        throw Error("cannot tell the table format from '" + path +
+                    "': use .exr, .csv, .h, .png, .npy, .js (three.js), .inc (Filament) or .tables (Cycles)");
     check_output_path(path);
     if (ext == "npy") check_output_path(path + ".json");
 }
@@ -432,12 +437,13 @@ void write_table(const Table& t, const std::string& path, bool half) {
     if (ext == "png") return write_png16(t, path);
     if (ext == "npy") return write_npy(t, path);
     if (ext == "csv") return write_file_atomically(path, table_csv(t));
-    if (ext == "h" || ext == "hpp") {
-        // A C identifier from the file name: brdfbake_<stem>.
-        std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
-        stem = stem.substr(0, stem.find('.'));
-        return write_file_atomically(path, table_header(t, "brdfbake_" + c_identifier(stem)));
-    }
+    if (ext == "js") return write_file_atomically(path, table_threejs_module(t));
+    if (ext == "inc") return write_file_atomically(path, table_filament_include(t));
+    // A C identifier from the file name's stem: brdfbake_<stem> (a header), table_<stem> (Cycles).
+    std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+    stem = c_identifier(stem.substr(0, stem.find('.')));
+    if (ext == "tables") return write_file_atomically(path, table_cycles_tables(t, stem));
+    if (ext == "h" || ext == "hpp") return write_file_atomically(path, table_header(t, "brdfbake_" + stem));
     write_file_atomically(path, table_csv(t));
 }
 

@@ -1,6 +1,9 @@
 // 16-bit PNG tables (libpng): the RGB(A) view of the value channels (rgba_view in
 // brdfbake/table.h), linear, each value v stored as round(v * 65535), as the real-time viewers'
-// LUTs (the glTF sample viewer's lut_ggx.png) are. The description goes into tEXt chunks.
+// LUTs (the glTF sample viewer's lut_ggx.png) are. The description goes into tEXt chunks. No
+// colour-space chunk (gAMA, sRGB, iCCP, cHRM): a browser converts the samples of a PNG that
+// declares a gamma other than its display's (a gAMA 1.0 table uploaded by WebGL in Chromium
+// turned texels 211 into 234 and 5 into 39); one without any is uploaded as stored.
 #include <png.h>
 
 #include <cerrno>
@@ -91,10 +94,11 @@ void write_png16(const Table& t, const std::string& path) {
             image[(k * samples + s) * 2 + 1] = png_byte(q & 0xff);
         }
     std::vector<std::pair<std::string, std::string>> text = table_description(t);
-    text.emplace_back("png_encoding", "16-bit unsigned samples, linear (gAMA 1.0, no sRGB transfer): value = sample / 65535, "
+    text.emplace_back("png_encoding", "16-bit unsigned samples, linear data (no gAMA, sRGB or iCCP chunk, no transfer "
+                                      "function): value = sample / 65535, "
                                       "sample = round(value * 65535); values outside [0, 1] by at most their error "
                                       "estimate were clamped; the error channel is not stored (see max_error)");
-    write_png_file(path, w, h, 16, samples, image, text, 1.0);
+    write_png_file(path, w, h, 16, samples, image, text);
 }
 
 void write_png_file(const std::string& path, int w, int h, int depth, int channels, const std::vector<unsigned char>& bytes,

@@ -1,6 +1,7 @@
-// Reading back a table that write_table wrote (.exr, .csv, .npy with its .json sidecar): the
-// description (the brdfbake:* header, the CSV's "# key: value" lines, the sidecar's
-// "description") gives the kind, the axes and the channels; the data gives values and error.
+// Reading back a table that write_table wrote (.exr, .csv, .npy with its .json sidecar, 16-bit
+// .png): the description (the brdfbake:* header, the CSV's "# key: value" lines, the sidecar's
+// "description", the PNG's brdfbake:* tEXt chunks) gives the kind, the axes and the channels;
+// the data gives values and error.
 #include <OpenEXR/ImfChannelList.h>
 #include <OpenEXR/ImfFrameBuffer.h>
 #include <OpenEXR/ImfHeader.h>
@@ -9,9 +10,12 @@
 #include <OpenEXR/ImfStringAttribute.h>
 
 #include <nlohmann/json.hpp>
+#include <png.h>
 
 #include <cctype>
 #include <cmath>
+#include <csetjmp>
+#include <cstdint>
 #include <cstring>
 #include <map>
 #include <set>
@@ -101,7 +105,7 @@ Table table_from_description(const Description& d, const std::string& path) {
     t.quantity = get("quantity");
     std::set<std::string> structural = {"kind",          "quantity", "layout",    "texel_convention", "channels",
                                         "rgba_view",     "error_meaning", "max_error", "tool", "exr_channels",
-                                        "max_error_value"};
+                                        "max_error_value", "png_encoding"};
     auto axis = [&](const std::string& which, Axis& a) {
         if (!d.count(which + "_axis")) return;
         for (const char* k : {"_axis", "_mapping", "_range", "_size", "_texels", "_flipped", "_parameter_values",
@@ -392,6 +396,112 @@ Table read_npy(const std::string& path) {
     }
 }
 
+
+// ------------------------------------------------------------------ PNG
+
+struct PngBytes {
+    const std::string* bytes;
+    size_t pos;
+};
+
+void read_png_bytes(png_structp png, png_bytep out, size_t n) {
+    auto* source = static_cast<PngBytes*>(png_get_io_ptr(png));
+    if (source->pos + n > source->bytes->size()) png_error(png, "the file is cut short");
+    std::memcpy(out, source->bytes->data() + source->pos, n);
+    source->pos += n;
+}
+
+void on_png_read_error(png_structp png, png_const_charp message) {
+    *static_cast<std::string*>(png_get_error_ptr(png)) = message;
+    png_longjmp(png, 1);
+}
+
+void on_png_read_warning(png_structp, png_const_charp) {}
+
+struct PngImage {
+    png_uint_32 width = 0, height = 0;
+    int depth = 0, channels = 0;
+    std::vector<unsigned> samples;  // row-major, interleaved, as stored (no gamma or colour conversion)
+    Description text;               // the brdfbake:KEY tEXt chunks, by KEY
+};
+
+/// Decodes `bytes` with libpng (PNG_TRANSFORM_IDENTITY: the samples as stored); false with
+/// libpng's message on failure. Kept apart so that no local of the caller lives across libpng's
+/// longjmp.
+bool decode_png(const std::string& bytes, PngImage* image, std::string* message) {
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, message, on_png_read_error, on_png_read_warning);
+    if (!png) {
+        *message = "libpng could not start";
+        return false;
+    }
+    png_infop info = png_create_info_struct(png);
+    if (!info || setjmp(png_jmpbuf(png))) {
+        if (!info) *message = "libpng could not start";
+        png_destroy_read_struct(&png, &info, nullptr);
+        return false;
+    }
+    PngBytes source{&bytes, 0};
+    png_set_read_fn(png, &source, read_png_bytes);
+    png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
+    image->width = png_get_image_width(png, info);
+    image->height = png_get_image_height(png, info);
+    image->depth = png_get_bit_depth(png, info);
+    image->channels = png_get_channels(png, info);
+    const png_bytepp rows = png_get_rows(png, info);
+    const size_t per_row = size_t(image->width) * size_t(image->channels);
+    image->samples.resize(per_row * image->height);
+    for (png_uint_32 y = 0; y < image->height; ++y)
+        for (size_t s = 0; s < per_row; ++s)
+            image->samples[y * per_row + s] =
+                image->depth == 16 ? unsigned(rows[y][2 * s]) << 8 | rows[y][2 * s + 1] : unsigned(rows[y][s]);
+    png_textp text = nullptr;
+    const int n_text = png_get_text(png, info, &text, nullptr);
+    for (int i = 0; i < n_text; ++i) {
+        const std::string key = text[i].key;
+        if (key.rfind("brdfbake:", 0) == 0) image->text[key.substr(9)] = std::string(text[i].text, text[i].text_length);
+    }
+    png_destroy_read_struct(&png, &info, nullptr);
+    return true;
+}
+
+/// A 16-bit PNG table (write_png16): value = sample / 65535 through the RGB(A) view; the error of
+/// every texel is the description's max_error plus half a step (the PNG stores no error channel).
+Table read_png(const std::string& path) {
+    const std::string bytes = read_input_file(path, "table", kMaxTableFileBytes);
+    // The image the header declares must fit in the file's compressed data (deflate expands at
+    // most 1032:1): a few hostile bytes must not make libpng allocate gigabytes of rows.
+    if (bytes.size() >= 33 && bytes.compare(12, 4, "IHDR") == 0) {
+        auto u32 = [&](size_t p) { return uint64_t(uint8_t(bytes[p])) << 24 | uint64_t(uint8_t(bytes[p + 1])) << 16 |
+                                          uint64_t(uint8_t(bytes[p + 2])) << 8 | uint64_t(uint8_t(bytes[p + 3])); };
+        const uint64_t raw = (u32(16) * 4 * uint64_t(uint8_t(bytes[24])) / 8 + 1) * u32(20);  // at most 4 samples
+        if (raw > uint64_t(bytes.size()) * 1032 + (uint64_t(64) << 20))
+            throw Error("cannot read table '" + path + "': its header declares an image larger than its data can hold");
+    }
+    PngImage image;
+    std::string message;
+    if (!decode_png(bytes, &image, &message)) throw Error("cannot read table '" + path + "': " + message);
+    Table t = table_from_description(image.text, path);
+    if (image.width != png_uint_32(t.width()) || image.height != png_uint_32(t.image_height()))
+        throw Error("'" + path + "': the image is " + std::to_string(image.width) + "x" + std::to_string(image.height) +
+                    " but its description says " + std::to_string(t.width()) + "x" + std::to_string(t.image_height()));
+    const size_t n = texels_of(t);
+    t.values.assign(t.channels.size(), std::vector<double>(n));  // rgba_view counts the value channels
+    const std::vector<int> view = rgba_view(t);
+    const int samples = view.empty() ? 0 : view[3] >= 0 ? 4 : 3;
+    if (image.depth != 16 || image.channels != samples)
+        throw Error("'" + path + "': a table PNG holds 16-bit " + (samples == 4 ? "RGBA" : "RGB") + " samples for its " +
+                    std::to_string(t.channels.size()) + " channels; this one has " + std::to_string(image.channels) +
+                    " channels of " + std::to_string(image.depth) + " bits");
+    for (size_t k = 0; k < n; ++k)
+        for (int s = samples - 1; s >= 0; --s)  // R last: a one-channel table's R = G = B
+            if (view[size_t(s)] >= 0)
+                t.values[size_t(view[size_t(s)])][k] = image.samples[k * size_t(samples) + size_t(s)] / 65535.0;
+    const auto max_error = image.text.find("max_error");
+    if (max_error == image.text.end()) throw Error("'" + path + "' is not a brdfbake table: its description has no 'max_error'");
+    t.error.assign(n, number_of(max_error->second, path, "max_error") + 0.5 / 65535.0);
+    return t;
+}
+
 }  // namespace
 
 Table read_table(const std::string& path) {
@@ -403,8 +513,10 @@ Table read_table(const std::string& path) {
         t = read_csv(path);
     else if (e == "npy")
         t = read_npy(path);
+    else if (e == "png")
+        t = read_png(path);
     else
-        throw Error("cannot read '" + path + "' as a table: brdfbake reads back .exr, .csv and .npy (with its .json)");
+        throw Error("cannot read '" + path + "' as a table: brdfbake reads back .exr, .csv, .npy (with its .json) and .png");
     check_read_values(t, path);
     return t;
 }

@@ -1,6 +1,7 @@
 // Lookup tables: axes with their texel convention (centres or edges), value channels, a per-texel
 // error channel, the attributes that describe how the table was made, and the writers (OpenEXR,
-// CSV, C/C++ header, 16-bit PNG, NumPy .npy).
+// CSV, C/C++ header, 16-bit PNG, NumPy .npy, and the engines' own files: three.js's
+// DFGLUTData.js, Filament's dfg.inc, Cycles' shader.tables).
 #pragma once
 
 #include <cstdint>
@@ -85,12 +86,13 @@ std::string table_value_text(const Table& table, double value);
 void check_finite(const Table& table);
 
 /// Throws Error unless `path` ends in a table format write_table knows (.exr, .csv, .h, .hpp,
-/// .png, .npy).
+/// .png, .npy, .js, .inc, .tables).
 void check_table_path(const std::string& path);
 
 /// Writes by the extension of `path`: .exr (float32, or half when `half`), .csv, .h/.hpp, .png
-/// (16-bit), .npy (with its sidecar PATH.json). Every write goes through a temporary file and a
-/// rename. Throws Error.
+/// (16-bit), .npy (with its sidecar PATH.json), .js (table_threejs_module), .inc
+/// (table_filament_include), .tables (table_cycles_tables, arrays named after the file's stem).
+/// Every write goes through a temporary file and a rename. Throws Error.
 void write_table(const Table& table, const std::string& path, bool half = false);
 
 /// The description every format carries, in a stable order: (key, text) pairs that the EXR
@@ -98,6 +100,24 @@ void write_table(const Table& table, const std::string& path, bool half = false)
 std::vector<std::pair<std::string, std::string>> table_description(const Table& table);
 
 void write_exr(const Table& table, const std::string& path, bool half);
+/// three.js's DFGLUTData.js form: an ES module of the table's half floats (Uint16Array DATA,
+/// texel (x, y) at (y * width + x) * channels) whose getDFGLUT() returns a DataTexture (RedFormat,
+/// RGFormat or RGBAFormat for 1, 2 or 4 channels; HalfFloatType; linear; clamped). Rows in
+/// texture order: row 0 at the y axis's low end, a flipped axis written backwards (also along x).
+/// Throws Error for a 3D table or 3 or more than 4 channels.
+std::string table_threejs_module(const Table& table);
+/// Filament's dfg.inc form (cmgen --ibl-dfg=dfg.inc): "0x%04x, " half floats, 2 or 3 per texel,
+/// 4 texels per line, rows in GL order as table_threejs_module's, the description in // comments.
+/// Throws Error for a 3D table or other than 2 or 3 channels.
+std::string table_filament_include(const Table& table);
+/// Cycles' shader.tables syntax: between CCL_NAMESPACE_BEGIN and CCL_NAMESPACE_END, one
+/// `static const float table_SYMBOL[N]` (table_SYMBOL_CHANNEL for a table of several channels) per
+/// value channel in the stored order, 9 significant digits, `f` literals; no error array.
+std::string table_cycles_tables(const Table& table, const std::string& symbol);
+/// `text` fit for one // comment line: no line break inside, no final backslash.
+std::string comment_line_text(const std::string& text);
+/// `name` with every character a C identifier cannot hold replaced by '_'.
+std::string c_identifier(const std::string& name);
 std::string table_csv(const Table& table);
 std::string table_header(const Table& table, const std::string& symbol);
 /// 16-bit PNG: the RGB(A) view (rgba_view), each value v stored as round(v * 65535). Values must
@@ -111,9 +131,11 @@ void write_npy(const Table& table, const std::string& path);
 /// (value channels, then the error).
 std::vector<size_t> npy_shape(const Table& table);
 
-/// Reads back a table write_table wrote: .exr, .csv or .npy (with its PATH.json sidecar). Kind,
+/// Reads back a table write_table wrote: .exr, .csv, .npy (with its PATH.json sidecar) or .png. Kind,
 /// quantity, axes, channels, values, error and attributes come back; values of an EXR are its
-/// float32 (or half) samples, of a CSV its printed digits (round_trip_text). An axis's per-texel parameter
+/// float32 (or half) samples, of a CSV its printed digits (round_trip_text), of a PNG sample / 65535
+/// exactly (its error: the description's max_error plus half a step, 0.5 / 65535, for every texel,
+/// as a PNG stores no error channel). An axis's per-texel parameter
 /// comes back from the EXR header (brdfbake:x_parameter_values), the .npy sidecar or the CSV's
 /// parameter column, and equals the coordinate where the file has none. Throws Error for any
 /// other file (only regular files are opened: a FIFO or device is refused before it is read),
