@@ -223,6 +223,16 @@ bool fresnel_needs_wavelength(const std::string& text) {
     return e && e->term.measured;
 }
 
+int fresnel_kind_of(const std::string& text) {
+    const FresnelEntry* e = find_entry(text.substr(0, text.find(':')));
+    return e ? e->term.kind : -1;
+}
+
+bool fresnel_reads_file(const std::string& text) {
+    const FresnelEntry* e = find_entry(text.substr(0, text.find(':')));
+    return e && e->load == load_nk_file;
+}
+
 FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
     const std::string name = text.substr(0, text.find(':'));
     const FresnelEntry* e = find_entry(name);

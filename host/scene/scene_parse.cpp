@@ -30,7 +30,6 @@ namespace brdfbake {
 namespace {
 
 using json = nlohmann::json;
-using scene_text::fresnel_name;
 using scene_text::is_conductor_fresnel;
 
 std::string lower(std::string s) {
@@ -162,13 +161,14 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
             // A measured metal without a wavelength is checked at 550 nm; its conductor tables then
             // hold R, G and B (650, 550, 450 nm), and albedo and eavg tables do not depend on it.
             std::string text = string_at(m["fresnel"], w, "fresnel");
-            const std::string fname = fresnel_name(text);
             // nk:FILE names a file beside the scene (a relative path is read from the scene's folder).
-            if (fname == "nk" && text.size() > 3 && text[3] != '/') {
+            const size_t colon = text.find(':');
+            if (fresnel_reads_file(text) && colon != std::string::npos && colon + 1 < text.size() && text[colon + 1] != '/') {
                 const size_t slash = file.find_last_of('/');
-                if (slash != std::string::npos) text = "nk:" + file.substr(0, slash + 1) + text.substr(3);
+                if (slash != std::string::npos)
+                    text = text.substr(0, colon + 1) + file.substr(0, slash + 1) + text.substr(colon + 1);
             }
-            const bool measured = fname == "metal" || fname == "nk";
+            const bool measured = fresnel_needs_wavelength(text);
             resolve_fresnel(text, measured && wavelength == 0.0 ? 550.0 : wavelength);
             fresnel = measured ? text : resolve_fresnel(text, wavelength).canonical;
         } catch (const Error& e) {
@@ -209,7 +209,7 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
 
     // Index of refraction: from a dielectric Fresnel spec, or "eta" (a value or a range).
     std::optional<Interval> eta;
-    if (fresnel_name(fresnel) == "dielectric") {
+    if (fresnel_kind_of(fresnel) == BB_FRESNEL_DIELECTRIC) {
         const double e = resolve_fresnel(fresnel).params[0];
         eta = Interval{e, e};
     }

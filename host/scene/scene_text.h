@@ -4,6 +4,9 @@
 #include <string>
 #include <vector>
 
+#include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/fresnel_terms.h"
+
 namespace brdfbake {
 namespace scene_text {
 
@@ -13,12 +16,10 @@ inline std::string join(const std::vector<std::string>& v, const std::string& se
     return s;
 }
 
-/// The name of a Fresnel spec ("metal:Au" is not key=value, so not parse_spec).
-inline std::string fresnel_name(const std::string& fresnel) { return fresnel.substr(0, fresnel.find(':')); }
-
+/// Whether a Fresnel spec names a conductor term (exact, approximate or measured), by its registry kind.
 inline bool is_conductor_fresnel(const std::string& fresnel) {
-    const std::string name = fresnel_name(fresnel);
-    return name == "conductor" || name == "conductor-approx" || name == "metal" || name == "nk";
+    const int kind = fresnel_kind_of(fresnel);
+    return kind == BB_FRESNEL_CONDUCTOR || kind == BB_FRESNEL_CONDUCTOR_APPROX;
 }
 
 }  // namespace scene_text

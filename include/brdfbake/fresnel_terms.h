@@ -27,5 +27,10 @@ std::string fresnel_kind_name(int kind);
 /// Whether a Fresnel spec names a measured term (metal:X, nk:FILE), whose F depends on the
 /// wavelength.
 bool fresnel_needs_wavelength(const std::string& spec);
+/// The kernels' kind (BB_FRESNEL_*) of the term a spec names, read from the registry without
+/// resolving the spec (no file is read); -1 for a name the registry does not know.
+int fresnel_kind_of(const std::string& spec);
+/// Whether the spec's argument is a file path (nk:FILE), which a scene resolves beside itself.
+bool fresnel_reads_file(const std::string& spec);
 
 }  // namespace brdfbake
