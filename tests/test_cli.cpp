@@ -126,3 +126,19 @@ TEST_CASE("an option whose 0 means 'not given' refuses a given 0 or a negative v
     }
     CHECK(::access("/tmp/never-written.exr", F_OK) != 0);
 }
+
+TEST_CASE("a mistyped option is named with the nearest option of its command", "[cli][messages]") {
+    // CLI11 reported the required option the typo hid ("--model is required").
+    const auto r = run_cli("lut albedo --mdoel ggx --size 2x2 -o /tmp/never-written-mdoel.exr");
+    CHECK(r.status == 2);
+    CHECK(r.err == "brdfbake: error: unknown option '--mdoel' of `brdfbake lut`; did you mean '--model'?\n");
+    CHECK(::access("/tmp/never-written-mdoel.exr", F_OK) != 0);
+    const auto s = run_cli("albedo --model lambert --mu 0.5 --smaples=64");
+    CHECK(s.err == "brdfbake: error: unknown option '--smaples' of `brdfbake albedo`; did you mean '--samples'?\n");
+    const auto far = run_cli("albedo --model lambert --mu 0.5 --frobnicate");
+    CHECK(far.err == "brdfbake: error: unknown option '--frobnicate' of `brdfbake albedo`; see brdfbake albedo --help\n");
+    // A mistyped key of a spec gets the same treatment.
+    const auto k = run_cli("albedo --model ggx:alpah=0.5 --mu 0.5");
+    CHECK(k.err == "brdfbake: error: model 'ggx' has no key 'alpah'; did you mean 'alpha'?\n");
+}
+

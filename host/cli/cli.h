@@ -29,6 +29,12 @@ extern const CLI::Validator kPositive;
 /// A finite number of 0 or more (e.g. a time limit whose 0 means "at once").
 extern const CLI::Validator kNonNegative;
 
+/// The first word of `arguments` that looks like an option (-x, --name, --name=value) and that
+/// neither the command `arguments` name nor the program knows: "unknown option '--mdoel' of
+/// `brdfbake lut`; did you mean '--model'?", or empty. main() asks it when CLI11's parse fails, as
+/// CLI11 reports a missing required option before an unknown one.
+std::string unknown_option_message(CLI::App& app, const std::vector<std::string>& arguments);
+
 /// Options that every command shares.
 struct GlobalOptions {
     std::string device;  // device selector (see choose_device); empty: $BRDFBAKE_DEVICE or PoCL

@@ -1,5 +1,7 @@
 // Options shared by the commands: how much work an integration does, by which method, or to
 // which tolerance; the kernels' arithmetic; the output format.
+#include <algorithm>
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 
@@ -7,6 +9,7 @@
 #include "brdfbake/fresnel_terms.h"
 #include "brdfbake/output.h"
 #include "cli/cli.h"
+#include "models/key_reader.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -30,6 +33,33 @@ const CLI::Validator kNonNegative(
         return "";
     },
     "NONNEGATIVE");
+
+std::string unknown_option_message(CLI::App& app, const std::vector<std::string>& arguments) {
+    CLI::App* command = nullptr;
+    if (!arguments.empty()) {
+        for (CLI::App* sub : app.get_subcommands({}))
+            if (sub->get_name() == arguments[0]) command = sub;
+    }
+    std::vector<std::string> known;
+    for (CLI::App* scope : {command, &app}) {
+        if (!scope) continue;
+        for (const CLI::Option* option : scope->get_options()) {
+            for (const std::string& n : option->get_lnames()) known.push_back("--" + n);
+            for (const std::string& n : option->get_snames()) known.push_back("-" + n);
+        }
+    }
+    for (const std::string& word : arguments) {
+        if (word == "--") break;
+        if (word.size() < 2 || word[0] != '-' || std::isdigit((unsigned char)word[1]) || word[1] == '.') continue;
+        const std::string name = word[1] == '-' ? word.substr(0, word.find('=')) : word.substr(0, 2);
+        if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+        const std::string where = command ? "brdfbake " + command->get_name() : std::string("brdfbake");
+        const std::string hint = did_you_mean(name, known);
+        return "unknown option '" + name + "' of `" + where + "`" +
+               (hint.empty() ? "; see " + where + " --help" : hint);
+    }
+    return "";
+}
 
 void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per) {
     CLI::Option* s = cmd->add_option("--samples", o.samples,
