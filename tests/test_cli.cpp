@@ -142,3 +142,24 @@ TEST_CASE("a mistyped option is named with the nearest option of its command", "
     CHECK(k.err == "brdfbake: error: model 'ggx' has no key 'alpah'; did you mean 'alpha'?\n");
 }
 
+TEST_CASE("integer options take 1e6, 2^20 and 1<<20, and say when a value is not an integer", "[cli][messages]") {
+    // The same integer written four ways gives the same table (exact equality: same samples).
+    const auto plain = run_cli("albedo --model ggx:alpha=0.5 --mu 0.5 --format csv --samples 1024");
+    REQUIRE(plain.status == 0);
+    for (const char* form : {"1.024e3", "2^10", "1<<10"}) {
+        const auto r = run_cli(std::string("albedo --model ggx:alpha=0.5 --mu 0.5 --format csv --samples '") + form + "'");
+        INFO(form << ": " << r.err);
+        CHECK(r.status == 0);
+        CHECK(r.out == plain.out);
+    }
+    const auto half = run_cli("albedo --model ggx:alpha=0.5 --mu 0.5 --samples 1.5e0");
+    CHECK(half.status == 2);
+    CHECK(half.err == "brdfbake: error: --samples: must be an integer (e.g. 1000000, 1e6, 2^20 or 1<<20), got "
+                      "'1.5e0' (see brdfbake albedo --help)\n");
+    // Every command's integer options share the parser: furnace --pixels, check --samples.
+    const auto pixels = run_cli("furnace --model lambert --pixels abc -o /tmp/never-written-furnace.png");
+    CHECK(pixels.err.find("brdfbake: error: --pixels: must be an integer") == 0);
+    const auto huge = run_cli("albedo --model lambert --mu 0.5 --samples 2^70");
+    CHECK(huge.err.find("brdfbake: error: --samples: '2^70' is too large for an integer") == 0);
+}
+
