@@ -163,3 +163,14 @@ TEST_CASE("integer options take 1e6, 2^20 and 1<<20, and say when a value is not
     CHECK(huge.err.find("brdfbake: error: --samples: '2^70' is too large for an integer") == 0);
 }
 
+TEST_CASE("a --size that does not match the kind's axes is refused before any work", "[cli][messages]") {
+    // Before, 32x32 of a 3D kind silently became 32x32x32 (65,536 cells, minutes of work).
+    const auto r = run_cli("lut dielectric --model ggx --size 32x32 --no-preview -o /tmp/never-written-size.exr");
+    CHECK(r.status == 2);
+    CHECK(r.err == "brdfbake: error: --size: a dielectric table has 3 axes (mu x alpha x eta); give N (the same on "
+                   "every axis) or WIDTHxHEIGHTxDEPTH (--size 32x32)\n");
+    CHECK(::access("/tmp/never-written-size.exr", F_OK) != 0);
+    const auto two = run_cli("lut albedo --model ggx --size 2x2x2 --no-preview -o /tmp/never-written-size.exr");
+    CHECK(two.err == "brdfbake: error: --size: an albedo table has 2 axes (mu x alpha); give N (the same on every "
+                     "axis) or WIDTHxHEIGHT (--size 2x2x2)\n");
+}
