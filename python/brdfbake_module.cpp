@@ -7,6 +7,7 @@
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
 
+#include <cctype>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -32,6 +33,7 @@
 #include "brdfbake/table.h"
 #include "brdfbake/table_kinds.h"
 #include "brdfbake/version.h"
+#include "models/key_reader.h"
 
 namespace py = pybind11;
 using namespace brdfbake;
@@ -131,7 +133,7 @@ AlbedoOut albedo(const std::string& model_spec, const Array& mu, const std::opti
     for (size_t i = 0; i < n; ++i) {
         const double m = mu.data()[i];
         if (!(m > 0.0 && m <= 1.0))
-            throw Error("--mu: " + std::to_string(m) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
+            throw Error("mu: " + std::to_string(m) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
         req.cells.push_back(AlbedoCell{m, azimuth_from_degrees(phis[i]), model.params});
     }
     Engine& engine = engine_for(device);
@@ -256,7 +258,7 @@ py::dict fresnel(const std::string& spec, const Array& theta_deg, double wavelen
     for (py::ssize_t i = 0; i < theta_deg.size(); ++i) {
         const double t = theta_deg.data()[i];
         if (!(t >= 0.0 && t <= 90.0))
-            throw Error("--theta: " + std::to_string(t) + " is out of range; angles of incidence lie in [0, 90] degrees");
+            throw Error("theta_deg: " + std::to_string(t) + " is out of range; angles of incidence lie in [0, 90] degrees");
         cosines.push_back(std::sin((90.0 - t) * (M_PI / 180.0)));  // exact 1 at 0 and 0 at 90 degrees
     }
     Engine& engine = engine_for(device);
@@ -276,7 +278,7 @@ py::dict check(const std::string& model_spec, const std::string& fresnel_spec, d
     const FresnelConfig fresnel = resolve_fresnel(fresnel_spec, wavelength);
     if (fresnel.kind != 0 && !model.uses_fresnel)
         throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");
-    if (!(samples >= 1.0)) throw Error("--samples must be a positive number");
+    if (!(samples >= 1.0)) throw Error("samples must be a positive number");
     CheckOptions o;
     o.directions = directions;
     o.samples = std::uint64_t(samples);
@@ -378,6 +380,135 @@ py::array_t<double> eval(const std::string& model_spec, const Array& wo, const A
     return to_array(f, shape);
 }
 
+// ------------------------------------------------------------------ argument checks
+
+/// A parameter of a bound function, as its signature line spells it: name, type, whether it has
+/// a default.
+struct Parameter {
+    std::string name, type;
+    bool optional = false;
+};
+
+/// The parameters of `function` from the signature pybind11 writes on the first line of its
+/// docstring ("albedo(model: str, mu: numpy.ndarray[numpy.float64], phi: ... = None, ...) -> ..."),
+/// so that the py::arg lists stay the one place that names them.
+std::vector<Parameter> parameters_of(const py::object& function) {
+    const std::string doc = py::str(function.attr("__doc__"));
+    std::vector<Parameter> params;
+    size_t at = doc.find('(') + 1;
+    int depth = 0;
+    std::string piece;
+    auto flush = [&] {
+        const size_t colon = piece.find(':');
+        if (colon == std::string::npos) return;
+        Parameter p;
+        p.name = piece.substr(piece.find_first_not_of(' '), colon - piece.find_first_not_of(' '));
+        const size_t eq = piece.find(" = ");
+        p.type = piece.substr(colon + 2, eq == std::string::npos ? std::string::npos : eq - colon - 2);
+        p.optional = eq != std::string::npos;
+        params.push_back(p);
+        piece.clear();
+    };
+    for (; at < doc.size(); ++at) {
+        const char c = doc[at];
+        if (depth == 0 && c == ')') break;
+        if (c == '[' || c == '(') ++depth;
+        if (c == ']' || c == ')') --depth;
+        if (depth == 0 && c == ',') {
+            flush();
+            continue;
+        }
+        piece += c;
+    }
+    flush();
+    return params;
+}
+
+[[noreturn]] void type_error(const std::string& message) { throw py::type_error(message); }
+
+/// A number given as text: refused, as Python refuses 1 + "0.5" (numpy would read "0.5" as 0.5).
+void check_number_argument(const std::string& function, const Parameter& p, const py::handle& value) {
+    const bool numeric = p.type.find("str") == std::string::npos &&
+                         (p.type.find("float") != std::string::npos || p.type.find("int") != std::string::npos);
+    if (!numeric || value.is_none()) return;
+    if (py::isinstance<py::str>(value) || py::isinstance<py::bytes>(value))
+        type_error(function + "(): " + p.name + " must be a number" +
+                   (p.type.find("ndarray") != std::string::npos ? " or an array of numbers" : "") + ", not the string " +
+                   std::string(py::repr(value)));
+    if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value) || py::isinstance<py::array>(value)) {
+        const py::object array = py::module_::import("numpy").attr("asarray")(value);
+        const std::string kind = py::str(array.attr("dtype").attr("kind"));
+        if (kind != "f" && kind != "i" && kind != "u" && kind != "b")
+            type_error(function + "(): " + p.name + " must be numbers, not an array of " +
+                       std::string(py::str(array.attr("dtype"))));
+    }
+}
+
+/// Checks a call's arguments against `params` before pybind11 sees them: one line per mistake,
+/// naming the Python argument (a mistyped keyword with the nearest name), instead of pybind11's
+/// list of every signature.
+void check_call(const std::string& function, const std::vector<Parameter>& params, const py::args& args,
+                const py::kwargs& kwargs) {
+    if (args.size() > params.size())
+        type_error(function + "() takes at most " + std::to_string(params.size()) + " positional arguments (" +
+                   std::to_string(args.size()) + " given)");
+    std::vector<std::string> names;
+    for (const Parameter& p : params) names.push_back(p.name);
+    std::vector<bool> given(params.size(), false);
+    for (size_t i = 0; i < args.size(); ++i) {
+        given[i] = true;
+        check_number_argument(function, params[i], py::object(args[i]));
+    }
+    for (const auto& item : kwargs) {
+        const std::string key = py::str(item.first);
+        const auto it = std::find(names.begin(), names.end(), key);
+        if (it == names.end()) {
+            const std::string hint = did_you_mean(key, names);
+            std::string list;
+            for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
+            type_error(function + "() got an unexpected keyword argument '" + key + "'" +
+                       (hint.empty() ? "; its arguments: " + list : hint));
+        }
+        const size_t i = size_t(it - names.begin());
+        if (given[i]) type_error(function + "() got multiple values for argument '" + key + "'");
+        given[i] = true;
+        check_number_argument(function, params[i], item.second);
+    }
+    for (size_t i = 0; i < params.size(); ++i)
+        if (!given[i] && !params[i].optional) type_error(function + "() missing required argument '" + params[i].name + "'");
+}
+
+/// Defines `name` on `m` as `typed` behind check_call; a type pybind11 still refuses gets one
+/// line naming the arguments' types. The docstring is `typed`'s, with its signature.
+void def_checked(py::module_& m, const char* name, const py::cpp_function& typed) {
+    const std::vector<Parameter> params = parameters_of(typed);
+    const std::string function = name;
+    const std::string doc = py::str(typed.attr("__doc__"));
+    const py::object call = typed;  // captured as an object: cpp_function's own constructor would wrap it
+    m.def(
+        name,
+        [function, params, call](const py::args& args, const py::kwargs& kwargs) -> py::object {
+            check_call(function, params, args, kwargs);
+            try {
+                return call(*args, **kwargs);
+            } catch (py::error_already_set& e) {
+                if (!e.matches(PyExc_TypeError) || std::string(e.what()).find("incompatible function arguments") ==
+                                                       std::string::npos)
+                    throw;
+                std::string given;
+                for (size_t i = 0; i < args.size(); ++i)
+                    given += (given.empty() ? "" : ", ") + params[i].name + ": " +
+                             std::string(py::str(py::type::of(py::object(args[i])).attr("__name__")));
+                for (const auto& item : kwargs)
+                    given += (given.empty() ? "" : ", ") + std::string(py::str(item.first)) + ": " +
+                             std::string(py::str(py::type::of(item.second).attr("__name__")));
+                type_error(function + "(): an argument has the wrong type (given " + given + "); see help(brdfbake." +
+                           function + ")");
+            }
+        },
+        doc.c_str());
+}
+
 }  // namespace
 
 PYBIND11_MODULE(brdfbake, m) {
@@ -392,10 +523,20 @@ PYBIND11_MODULE(brdfbake, m) {
         try {
             if (p) std::rethrow_exception(p);
         } catch (const Error& e) {
+            // The library speaks the command line's flags; here they are arguments: "--mu-map" is mu_map.
+            std::string message = e.what();
+            for (size_t at = message.find("--"); at != std::string::npos; at = message.find("--", at)) {
+                size_t end = at + 2;
+                while (end < message.size() && (std::isalnum((unsigned char)message[end]) || message[end] == '-')) {
+                    if (message[end] == '-') message[end] = '_';
+                    ++end;
+                }
+                message.erase(at, 2);
+            }
             if (e.exit_code() == kExitViolation)
-                PyErr_SetString(PyExc_RuntimeError, e.what());
+                PyErr_SetString(PyExc_RuntimeError, message.c_str());
             else
-                PyErr_SetString(PyExc_ValueError, e.what());
+                PyErr_SetString(PyExc_ValueError, message.c_str());
         } catch (const cl::Error& e) {
             PyErr_SetString(PyExc_RuntimeError,
                             (std::string("OpenCL call ") + e.what() + " failed: " + cl_error_name(e.err())).c_str());
@@ -438,13 +579,13 @@ PYBIND11_MODULE(brdfbake, m) {
                    "x" + std::to_string(t.depth()) + ">";
         });
 
-    m.def("albedo", &albedo, py::arg("model"), py::arg("mu"), py::arg("phi") = py::none(),
+    def_checked(m, "albedo", py::cpp_function(&albedo, py::name("albedo"), py::arg("model"), py::arg("mu"), py::arg("phi") = py::none(),
           py::arg("fresnel") = "none", py::arg("wavelength") = 0.0, py::arg("samples") = double(1 << 18),
           py::arg("tolerance") = py::none(), py::arg("method") = "auto", py::arg("max_samples") = double(1 << 26),
           py::arg("precision") = "float", py::arg("device") = py::none(),
           "directional albedo E(mu) = integral of f cos(theta_i) over the hemisphere, as `brdfbake albedo`; phi in "
-          "degrees (one value or one per mu); tolerance refines every direction to that absolute error");
-    m.def("lut", &lut, py::arg("kind") = py::none(), py::arg("model") = py::none(), py::arg("size") = py::none(),
+          "degrees (one value or one per mu); tolerance refines every direction to that absolute error"));
+    def_checked(m, "lut", py::cpp_function(&lut, py::name("lut"), py::arg("kind") = py::none(), py::arg("model") = py::none(), py::arg("size") = py::none(),
           py::arg("preset") = py::none(), py::arg("estimator") = py::none(), py::arg("fresnel") = py::none(),
           py::arg("wavelength") = py::none(),
           py::arg("mu_map") = py::none(), py::arg("alpha_map") = py::none(), py::arg("alpha_range") = py::none(),
@@ -455,23 +596,23 @@ PYBIND11_MODULE(brdfbake, m) {
           py::arg("half") = py::none(), py::arg("output") = py::none(), py::arg("device") = py::none(),
           "a lookup table as `brdfbake lut KIND`: size is N, (W, H) or (W, H, D); preset names an engine's layout "
           "(the arguments given override it); output writes the table as -o does; every other argument is the "
-          "option of the same name");
-    m.def("read_table", &read_table, py::arg("path"),
-          "a table brdfbake wrote (.exr, .csv, .npy with its .json), as a Table");
+          "option of the same name"));
+    def_checked(m, "read_table", py::cpp_function(&read_table, py::name("read_table"), py::arg("path"),
+          "a table brdfbake wrote (.exr, .csv, .npy with its .json), as a Table"));
     m.def("presets", [] { return names_of(lut_presets(), &LutPreset::name); },
           "the engines' table layouts (lut(preset=...))");
-    m.def("fresnel", &fresnel, py::arg("spec"), py::arg("theta_deg"), py::arg("wavelength") = 0.0,
+    def_checked(m, "fresnel", py::cpp_function(&fresnel, py::name("fresnel"), py::arg("spec"), py::arg("theta_deg"), py::arg("wavelength") = 0.0,
           py::arg("precision") = "float", py::arg("device") = py::none(),
-          "F, Rs and Rp of a Fresnel spec at angles of incidence in degrees (dict of arrays)");
-    m.def("check", &check, py::arg("model"), py::arg("fresnel") = "none", py::arg("wavelength") = 0.0,
+          "F, Rs and Rp of a Fresnel spec at angles of incidence in degrees (dict of arrays)"));
+    def_checked(m, "check", py::cpp_function(&check, py::name("check"), py::arg("model"), py::arg("fresnel") = "none", py::arg("wavelength") = 0.0,
           py::arg("directions") = 48, py::arg("samples") = double(1 << 16), py::arg("precision") = "float",
           py::arg("energy_tolerance") = 1e-4, py::arg("resolution") = 32, py::arg("reciprocity_tolerance") = 1e-6,
           py::arg("device") = py::none(),
-          "white furnace, reciprocity and value scans with a verdict, as `brdfbake check` (a dict)");
-    m.def("eval", &eval, py::arg("model"), py::arg("wo"), py::arg("wi"), py::arg("fresnel") = "none",
+          "white furnace, reciprocity and value scans with a verdict, as `brdfbake check` (a dict)"));
+    def_checked(m, "eval", py::cpp_function(&eval, py::name("eval"), py::arg("model"), py::arg("wo"), py::arg("wi"), py::arg("fresnel") = "none",
           py::arg("wavelength") = 0.0, py::arg("precision") = "double", py::arg("device") = py::none(),
           "f(wo, wi) without the cosine, on the device, for arrays of unit vectors (..., 3) in the shading frame "
-          "(normal +z)");
+          "(normal +z)"));
     m.def("models", [] { return names_of(model_registry(), &ModelTraits::name); }, "the model names of the registry");
     m.def("fresnel_terms", [] { return names_of(fresnel_terms(), &FresnelTerm::name); },
           "the Fresnel term names of the registry (fresnel=NAME:...)");

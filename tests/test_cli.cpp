@@ -126,3 +126,51 @@ TEST_CASE("an option whose 0 means 'not given' refuses a given 0 or a negative v
     }
     CHECK(::access("/tmp/never-written.exr", F_OK) != 0);
 }
+
+TEST_CASE("a mistyped option is named with the nearest option of its command", "[cli][messages]") {
+    // CLI11 reported the required option the typo hid ("--model is required").
+    const auto r = run_cli("lut albedo --mdoel ggx --size 2x2 -o /tmp/never-written-mdoel.exr");
+    CHECK(r.status == 2);
+    CHECK(r.err == "brdfbake: error: unknown option '--mdoel' of `brdfbake lut`; did you mean '--model'?\n");
+    CHECK(::access("/tmp/never-written-mdoel.exr", F_OK) != 0);
+    const auto s = run_cli("albedo --model lambert --mu 0.5 --smaples=64");
+    CHECK(s.err == "brdfbake: error: unknown option '--smaples' of `brdfbake albedo`; did you mean '--samples'?\n");
+    const auto far = run_cli("albedo --model lambert --mu 0.5 --frobnicate");
+    CHECK(far.err == "brdfbake: error: unknown option '--frobnicate' of `brdfbake albedo`; see brdfbake albedo --help\n");
+    // A mistyped key of a spec gets the same treatment.
+    const auto k = run_cli("albedo --model ggx:alpah=0.5 --mu 0.5");
+    CHECK(k.err == "brdfbake: error: model 'ggx' has no key 'alpah'; did you mean 'alpha'?\n");
+}
+
+TEST_CASE("integer options take 1e6, 2^20 and 1<<20, and say when a value is not an integer", "[cli][messages]") {
+    // The same integer written four ways gives the same table (exact equality: same samples).
+    const auto plain = run_cli("albedo --model ggx:alpha=0.5 --mu 0.5 --format csv --samples 1024");
+    REQUIRE(plain.status == 0);
+    for (const char* form : {"1.024e3", "2^10", "1<<10"}) {
+        const auto r = run_cli(std::string("albedo --model ggx:alpha=0.5 --mu 0.5 --format csv --samples '") + form + "'");
+        INFO(form << ": " << r.err);
+        CHECK(r.status == 0);
+        CHECK(r.out == plain.out);
+    }
+    const auto half = run_cli("albedo --model ggx:alpha=0.5 --mu 0.5 --samples 1.5e0");
+    CHECK(half.status == 2);
+    CHECK(half.err == "brdfbake: error: --samples: must be an integer (e.g. 1000000, 1e6, 2^20 or 1<<20), got "
+                      "'1.5e0' (see brdfbake albedo --help)\n");
+    // Every command's integer options share the parser: furnace --pixels, check --samples.
+    const auto pixels = run_cli("furnace --model lambert --pixels abc -o /tmp/never-written-furnace.png");
+    CHECK(pixels.err.find("brdfbake: error: --pixels: must be an integer") == 0);
+    const auto huge = run_cli("albedo --model lambert --mu 0.5 --samples 2^70");
+    CHECK(huge.err.find("brdfbake: error: --samples: '2^70' is too large for an integer") == 0);
+}
+
+TEST_CASE("a --size that does not match the kind's axes is refused before any work", "[cli][messages]") {
+    // Before, 32x32 of a 3D kind silently became 32x32x32 (65,536 cells, minutes of work).
+    const auto r = run_cli("lut dielectric --model ggx --size 32x32 --no-preview -o /tmp/never-written-size.exr");
+    CHECK(r.status == 2);
+    CHECK(r.err == "brdfbake: error: --size: a dielectric table has 3 axes (mu x alpha x eta); give N (the same on "
+                   "every axis) or WIDTHxHEIGHTxDEPTH (--size 32x32)\n");
+    CHECK(::access("/tmp/never-written-size.exr", F_OK) != 0);
+    const auto two = run_cli("lut albedo --model ggx --size 2x2x2 --no-preview -o /tmp/never-written-size.exr");
+    CHECK(two.err == "brdfbake: error: --size: an albedo table has 2 axes (mu x alpha); give N (the same on every "
+                     "axis) or WIDTHxHEIGHT (--size 2x2x2)\n");
+}

@@ -4,6 +4,7 @@
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
+#include "brdfbake/table_kinds.h"
 #include "spec_checks.h"
 
 using namespace brdfbake;
@@ -41,4 +42,33 @@ TEST_CASE("bad model specs are refused", "[spec][quick]") {
     CHECK_THROWS_AS(resolve_model("lambert:rho=-1"), Error);
     CHECK_THROWS_AS(resolve_model("lambert:rho=0x1p-3junk"), Error);
     CHECK_THROWS_AS(resolve_model("nonsense"), Error);
+}
+
+TEST_CASE("a mistyped key, model, Fresnel term or table kind is named with the nearest valid one", "[spec][quick]") {
+    // The unknown key is the mistake, not the alpha it hid (before: "needs alpha=VALUE").
+    CHECK_THROWS_WITH(resolve_model("ggx:alpah=0.5"), "model 'ggx' has no key 'alpah'; did you mean 'alpha'?");
+    CHECK_THROWS_WITH(resolve_model("ggx:alpha=0.5,shadwing=masking"),
+                      "model 'ggx' has no key 'shadwing'; did you mean 'shadowing'?");
+    CHECK_THROWS_WITH(resolve_model("sheen:rougness=0.5"), "model 'sheen' has no key 'rougness'; did you mean 'roughness'?");
+    // Nothing near: the keys the model reads, every one of them.
+    try {
+        resolve_model("ggx:alpha=0.5,zzz=1");
+        FAIL("accepted an unknown key");
+    } catch (const Error& e) {
+        const std::string m = e.what();
+        CHECK(m.rfind("model 'ggx' has no key 'zzz'; its keys: ", 0) == 0);
+        for (const char* key : {"alpha", "roughness", "alpha_x", "alpha_y", "shadowing", "transmission_shadowing"})
+            CHECK(m.find(key) != std::string::npos);
+    }
+    CHECK_THROWS_WITH(resolve_model("mirror:eta=1.5"), "model 'mirror' has no key 'eta'; it takes no keys");
+    // A missing key alone is still named as missing.
+    CHECK_THROWS_WITH(resolve_model("ggx:shadowing=masking"),
+                      "model 'ggx' needs alpha=VALUE (or roughness=R with alpha = R^2)");
+    CHECK_THROWS_WITH(resolve_model("gxx:alpha=0.5"), Catch::StartsWith("unknown model 'gxx'; did you mean 'ggx'? Known models: "));
+    CHECK_THROWS_WITH(resolve_model("frobnicate"), Catch::StartsWith("unknown model 'frobnicate'; known models: "));
+    CHECK_THROWS_WITH(resolve_fresnel("schlik:f0=0.04", 0.0),
+                      Catch::StartsWith("unknown Fresnel term 'schlik'; did you mean 'schlick'? Known: "));
+    CHECK_THROWS_WITH(resolve_fresnel("schlick:fo=0.04", 0.0), "Fresnel 'schlick' has no key 'fo'; did you mean 'f0'?");
+    CHECK_THROWS_WITH(table_kind("dielectrc"),
+                      Catch::StartsWith("unknown table kind 'dielectrc'; did you mean 'dielectric'? Known: "));
 }

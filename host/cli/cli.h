@@ -29,6 +29,20 @@ extern const CLI::Validator kPositive;
 /// A finite number of 0 or more (e.g. a time limit whose 0 means "at once").
 extern const CLI::Validator kNonNegative;
 
+/// Lets every integer option of `app` and its commands (CLI11 type INT or UINT) take exact
+/// integers written as 1e6, 2^20 or 1<<20 besides plain digits; anything else (1.5e0, abc) is
+/// refused with "OPTION: must be an integer ...". main() installs it once, for every command.
+void accept_integer_forms(CLI::App& app);
+/// Reads an integer as accept_integer_forms does: the value's plain decimal text, or throws
+/// Error("`what`: must be an integer ...").
+std::string integer_text(const std::string& text, const std::string& what);
+
+/// The first word of `arguments` that looks like an option (-x, --name, --name=value) and that
+/// neither the command `arguments` name nor the program knows: "unknown option '--mdoel' of
+/// `brdfbake lut`; did you mean '--model'?", or empty. main() asks it when CLI11's parse fails, as
+/// CLI11 reports a missing required option before an unknown one.
+std::string unknown_option_message(CLI::App& app, const std::vector<std::string>& arguments);
+
 /// Options that every command shares.
 struct GlobalOptions {
     std::string device;  // device selector (see choose_device); empty: $BRDFBAKE_DEVICE or PoCL

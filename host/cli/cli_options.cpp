@@ -1,12 +1,17 @@
 // Options shared by the commands: how much work an integration does, by which method, or to
 // which tolerance; the kernels' arithmetic; the output format.
+#include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <limits>
 
 #include "brdfbake/error.h"
 #include "brdfbake/fresnel_terms.h"
 #include "brdfbake/output.h"
 #include "cli/cli.h"
+#include "models/key_reader.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -30,6 +35,103 @@ const CLI::Validator kNonNegative(
         return "";
     },
     "NONNEGATIVE");
+
+namespace {
+
+/// `text` as a whole decimal (base 0: also 0x hex, as CLI11 reads it) integer, if it is one.
+bool plain_integer(const std::string& text, long long& value, int base = 0) {
+    if (text.empty() || std::isspace((unsigned char)text[0])) return false;
+    char* end = nullptr;
+    errno = 0;
+    value = std::strtoll(text.c_str(), &end, base);
+    return *end == '\0' && errno != ERANGE;
+}
+
+/// base^exponent (power) or base * 2^exponent (shift), exponent >= 0, if it fits in a long long.
+bool integer_power(long long base, long long exponent, bool shift, long long& value) {
+    if (shift ? base == 0 : std::llabs(base) <= 1) {  // no growth: 0 << n, 0^n, 1^n, (-1)^n
+        value = shift ? 0 : base == 0 ? (exponent == 0 ? 1 : 0) : (base == -1 && exponent % 2 ? -1 : 1);
+        return true;
+    }
+    if (exponent > 64) return false;
+    const long long limit = std::numeric_limits<long long>::max();
+    value = shift ? base : 1;
+    for (long long i = 0; i < exponent; ++i) {
+        const long long factor = shift ? 2 : base;
+        if (factor != 0 && std::llabs(value) > limit / std::llabs(factor)) return false;
+        value *= factor;
+    }
+    return true;
+}
+
+}  // namespace
+
+std::string integer_text(const std::string& text, const std::string& what) {
+    const std::string wanted = what + ": must be an integer (e.g. 1000000, 1e6, 2^20 or 1<<20), got '" + text + "'";
+    long long value = 0;
+    if (plain_integer(text, value)) return text;
+    const size_t caret = text.find('^'), shift = text.find("<<");
+    if (caret != std::string::npos || shift != std::string::npos) {
+        const bool is_shift = shift != std::string::npos;
+        const size_t at = is_shift ? shift : caret;
+        long long base = 0, exponent = 0;
+        if (!plain_integer(text.substr(0, at), base, 10) || !plain_integer(text.substr(at + (is_shift ? 2 : 1)), exponent, 10))
+            throw Error(wanted);
+        if (exponent < 0) throw Error(wanted);
+        if (!integer_power(base, exponent, is_shift, value)) throw Error(what + ": '" + text + "' is too large for an integer");
+        return std::to_string(value);
+    }
+    char* end = nullptr;
+    const double v = std::strtod(text.c_str(), &end);
+    if (text.empty() || *end != '\0' || !std::isfinite(v) || v != std::floor(v)) throw Error(wanted);
+    if (std::fabs(v) >= 9.2e18) throw Error(what + ": '" + text + "' is too large for an integer");
+    return std::to_string((long long)v);
+}
+
+void accept_integer_forms(CLI::App& app) {
+    for (CLI::Option* option : app.get_options()) {
+        const std::string type = option->get_type_name();
+        if (type.rfind("INT", 0) != 0 && type.rfind("UINT", 0) != 0) continue;
+        option->transform(CLI::Validator(
+            [](std::string& text) -> std::string {
+                try {
+                    text = integer_text(text, "");
+                } catch (const Error& e) {
+                    return std::string(e.what()).substr(2);  // less the empty name's ": "
+                }
+                return "";
+            },
+            ""));
+    }
+    for (CLI::App* sub : app.get_subcommands({})) accept_integer_forms(*sub);
+}
+
+std::string unknown_option_message(CLI::App& app, const std::vector<std::string>& arguments) {
+    CLI::App* command = nullptr;
+    if (!arguments.empty()) {
+        for (CLI::App* sub : app.get_subcommands({}))
+            if (sub->get_name() == arguments[0]) command = sub;
+    }
+    std::vector<std::string> known;
+    for (CLI::App* scope : {command, &app}) {
+        if (!scope) continue;
+        for (const CLI::Option* option : scope->get_options()) {
+            for (const std::string& n : option->get_lnames()) known.push_back("--" + n);
+            for (const std::string& n : option->get_snames()) known.push_back("-" + n);
+        }
+    }
+    for (const std::string& word : arguments) {
+        if (word == "--") break;
+        if (word.size() < 2 || word[0] != '-' || std::isdigit((unsigned char)word[1]) || word[1] == '.') continue;
+        const std::string name = word[1] == '-' ? word.substr(0, word.find('=')) : word.substr(0, 2);
+        if (std::find(known.begin(), known.end(), name) != known.end()) continue;
+        const std::string where = command ? "brdfbake " + command->get_name() : std::string("brdfbake");
+        const std::string hint = did_you_mean(name, known);
+        return "unknown option '" + name + "' of `" + where + "`" +
+               (hint.empty() ? "; see " + where + " --help" : hint);
+    }
+    return "";
+}
 
 void add_method_options(CLI::App* cmd, MethodOptions& o, const std::string& per) {
     CLI::Option* s = cmd->add_option("--samples", o.samples,

@@ -115,6 +115,7 @@ int run_command_line(const std::vector<std::string>& arguments) {
     add_report_command(app, global, action);
     add_bench_command(app, global, action);
     add_merge_command(app, global, action);
+    accept_integer_forms(app);
 
     std::string names;
     for (const CLI::App* sub : app.get_subcommands({})) names += (names.empty() ? "" : ", ") + sub->get_name();
@@ -149,6 +150,10 @@ int run_command_line(const std::vector<std::string>& arguments) {
     } catch (const CLI::CallForVersion&) {
         return answer(std::string("brdfbake ") + BRDFBAKE_VERSION + "\n");
     } catch (const CLI::ParseError& e) {
+        // A mistyped option first: CLI11 would report the required option it hid ("--mdoel":
+        // "--model is required").
+        const std::string unknown = unknown_option_message(app, arguments);
+        if (!unknown.empty()) return fail(Error(unknown));
         // One line: CLI11's message (some span lines) and where the usage is.
         std::string message = e.what();
         for (char& c : message)

@@ -244,7 +244,11 @@ FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
     }
     const Spec spec = parse_spec(text);
     e = find_entry(spec.name);
-    if (!e) throw Error("unknown Fresnel term '" + spec.name + "'; known: " + fresnel_spec_forms());
+    if (!e) {
+        std::vector<std::string> names;
+        for (const FresnelEntry& entry : registry()) names.push_back(entry.term.name);
+        throw Error(unknown_name_message("Fresnel term", spec.name, names, "known", fresnel_spec_forms()));
+    }
     return resolve_keys(*e, spec);
 }
 

@@ -336,7 +336,7 @@ ModelConfig resolve_model(const std::string& text) {
     }
     std::string list;
     for (const auto& n : model_names()) list += (list.empty() ? "" : ", ") + n;
-    throw Error("unknown model '" + spec.name + "'; known models: " + list);
+    throw Error(unknown_name_message("model", spec.name, model_names(), "known models", list));
 }
 
 }  // namespace brdfbake

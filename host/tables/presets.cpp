@@ -9,6 +9,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/table_kinds.h"
+#include "models/key_reader.h"
 
 namespace brdfbake {
 namespace {
@@ -153,11 +154,13 @@ const std::vector<LutPreset>& lut_presets() {
 
 const LutPreset& lut_preset(const std::string& name) {
     std::string known;
+    std::vector<std::string> names;
     for (const LutPreset& p : lut_presets()) {
         if (p.name == name) return p;
         known += (known.empty() ? "" : ", ") + p.name;
+        names.push_back(p.name);
     }
-    throw Error("unknown preset '" + name + "'; known: " + known);
+    throw Error(unknown_name_message("preset", name, names, "known", known));
 }
 
 const PresetLayout* LutPreset::layout(const std::string& kind) const {

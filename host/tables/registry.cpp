@@ -2,6 +2,7 @@
 #include "brdfbake/table_kinds.h"
 
 #include "brdfbake/error.h"
+#include "models/key_reader.h"
 #include "tables/lut_common.h"
 
 namespace brdfbake {
@@ -35,7 +36,9 @@ std::string table_kind_names() {
 
 const TableKind& table_kind(const std::string& name) {
     if (const TableKind* k = find_table_kind(name)) return *k;
-    throw Error("unknown table kind '" + name + "'; known: " + table_kind_names());
+    std::vector<std::string> names;
+    for (const TableKind* k : table_kinds()) names.push_back(k->name);
+    throw Error(unknown_name_message("table kind", name, names, "known", table_kind_names()));
 }
 
 const TableKind& table_kind(TableKindId id) {

@@ -23,6 +23,12 @@ def run_cli(*args):
     return subprocess.run([EXE, *args], capture_output=True, text=True)
 
 
+def as_python(message):
+    """The command line's message as the module words it: a flag is the argument of the same
+    name (--mu-map is mu_map)."""
+    return re.sub(r"--([a-z][a-z0-9-]*)", lambda m: m.group(1).replace("-", "_"), message)
+
+
 # ------------------------------------------------------------------ independent references
 
 def ggx_f(wo, wi, alpha):
@@ -194,7 +200,7 @@ def test_bad_specs_raise_value_error_with_the_command_lines_message(spec):
     assert message.startswith("brdfbake: error: ")
     with pytest.raises(ValueError) as e:
         brdfbake.albedo(spec, 0.5)
-    assert str(e.value) == message[len("brdfbake: error: "):]
+    assert str(e.value) == as_python(message[len("brdfbake: error: "):])
 
 
 def test_other_bad_input_raises_value_error():
@@ -206,6 +212,62 @@ def test_other_bad_input_raises_value_error():
         brdfbake.lut("nonsense", "ggx", size=4)
     with pytest.raises(ValueError, match="last axis of 3"):
         brdfbake.eval("lambert", np.zeros((4, 2)), np.zeros((4, 2)))
+
+
+def test_errors_name_the_python_arguments_not_the_flags():
+    with pytest.raises(ValueError) as e:
+        brdfbake.albedo("lambert", 1.5)
+    assert str(e.value) == "mu: 1.500000 is out of range; mu = cos(theta_o) must lie in (0, 1]"
+    with pytest.raises(ValueError) as e:
+        brdfbake.albedo("lambert", 0.5, tolerance=-1.0)
+    assert "tolerance" in str(e.value) and "--" not in str(e.value)
+    with pytest.raises(ValueError) as e:
+        brdfbake.lut("dielectric", "ggx", size=(4, 4))
+    assert str(e.value) == ("size: a dielectric table has 3 axes (mu x alpha x eta); give N (the same on every "
+                            "axis) or WIDTHxHEIGHTxDEPTH (size 4x4)")
+    with pytest.raises(ValueError) as e:
+        brdfbake.lut("albedo", "ggx", size=4, mu_map="cube")
+    assert "mu_map" in str(e.value) and "--" not in str(e.value)
+
+
+def test_a_mistyped_keyword_gets_one_line_with_the_nearest_argument():
+    with pytest.raises(TypeError) as e:
+        brdfbake.albedo("lambert", 0.5, tolerence=1e-3)
+    assert str(e.value) == "albedo() got an unexpected keyword argument 'tolerence'; did you mean 'tolerance'?"
+    with pytest.raises(TypeError) as e:
+        brdfbake.lut("albedo", "ggx", sizes=4)
+    assert str(e.value) == "lut() got an unexpected keyword argument 'sizes'; did you mean 'size'?"
+    with pytest.raises(TypeError) as e:
+        brdfbake.albedo("lambert", 0.5, frobnicate=1)
+    assert str(e.value) == ("albedo() got an unexpected keyword argument 'frobnicate'; its arguments: model, mu, phi, "
+                            "fresnel, wavelength, samples, tolerance, method, max_samples, precision, device")
+    with pytest.raises(TypeError) as e:
+        brdfbake.albedo("lambert")
+    assert str(e.value) == "albedo() missing required argument 'mu'"
+    with pytest.raises(TypeError) as e:
+        brdfbake.albedo("lambert", 0.5, model="ggx")
+    assert str(e.value) == "albedo() got multiple values for argument 'model'"
+    # help() still shows the arguments
+    assert "albedo(model: str, mu: " in brdfbake.albedo.__doc__
+
+
+def test_strings_for_numbers_are_refused():
+    with pytest.raises(TypeError) as e:
+        brdfbake.albedo("lambert", "0.5")
+    assert str(e.value) == "albedo(): mu must be a number or an array of numbers, not the string '0.5'"
+    with pytest.raises(TypeError) as e:
+        brdfbake.albedo("lambert", ["0.5", "1"])
+    assert str(e.value) == "albedo(): mu must be numbers, not an array of <U3"
+    with pytest.raises(TypeError) as e:
+        brdfbake.albedo("lambert", 0.5, samples="1024")
+    assert str(e.value) == "albedo(): samples must be a number, not the string '1024'"
+    with pytest.raises(TypeError) as e:
+        brdfbake.fresnel("schlick:f0=0.04", theta_deg="45")
+    assert str(e.value) == "fresnel(): theta_deg must be a number or an array of numbers, not the string '45'"
+    # numbers in every spelling still pass: int, float, numpy scalars, lists, arrays
+    for mu in (1, 0.5, np.float32(0.5), [0.5, 1], np.array([0.25, 0.5])):
+        r = brdfbake.albedo("lambert:rho=0.5", mu, samples=64)
+        assert np.allclose(r.albedo, 0.5, atol=1e-6)
 
 
 def test_the_registries_are_the_command_lines():
@@ -379,7 +441,7 @@ def lut_both_ways(words, kwargs, d, name):
     cli = run_cli(*args, "--no-preview", "-o", cli_path)
     if cli.returncode != 0:
         assert cli.returncode == 2, cli.stderr
-        cli_out = cli.stderr.strip()[len("brdfbake: error: "):]
+        cli_out = as_python(cli.stderr.strip()[len("brdfbake: error: "):])
     else:
         cli_out = brdfbake.read_table(cli_path)
     try:
@@ -432,5 +494,5 @@ def test_lut_refuses_what_the_command_line_refuses_with_its_message(words, kwarg
         assert message.startswith("brdfbake: error: ")
         with pytest.raises(ValueError) as e:
             brdfbake.lut(**kwargs)
-        assert str(e.value) == message[len("brdfbake: error: "):]
+        assert str(e.value) == as_python(message[len("brdfbake: error: "):])
         assert not os.listdir(d)
