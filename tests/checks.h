@@ -10,9 +10,17 @@
 #include <string>
 
 #include "brdfbake/lut.h"
+#include "brdfbake/table.h"
 #include "support.h"
 
 namespace testing {
+
+/// An axis whose parameter is its coordinate (synthetic test tables: the value names the texel).
+inline brdfbake::Axis identity_axis(const std::string& name, const std::string& mapping, double lo, double hi, int n) {
+    brdfbake::Axis a = brdfbake::make_axis(name, mapping, lo, hi, n);
+    a.parameter = a.coordinate;
+    return a;
+}
 
 /// One bad command line and a piece of the one-line message it must give.
 struct BadInput {

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "brdfbake/table.h"
+#include "checks.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -54,10 +55,8 @@ Table coordinate_table(int w, int h) {
     Table t;
     t.kind = "dfg";
     t.quantity = "test values naming their texel";
-    t.x = make_axis("roughness", "alpha = r^2", 0, 1, w);
-    t.x.parameter = t.x.coordinate;
-    t.y = make_axis("mu", "mu = u", 0, 1, h);
-    t.y.parameter = t.y.coordinate;
+    t.x = testing::identity_axis("roughness", "alpha = r^2", 0, 1, w);
+    t.y = testing::identity_axis("mu", "mu = u", 0, 1, h);
     t.channels = {"A", "B"};
     t.values.assign(2, std::vector<double>(size_t(w) * h));
     for (int j = 0; j < h; ++j)

@@ -26,6 +26,7 @@
 #include "brdfbake/table.h"
 #include "brdfbake/table_kinds.h"
 #include "image_readers.h"
+#include "checks.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -43,12 +44,9 @@ Table synthetic(int channels, int w, int h, int d = 1) {
     Table t;
     t.kind = "albedo";
     t.quantity = "test values";
-    t.x = make_axis("mu", "mu = u", 0, 1, w);
-    t.x.parameter = t.x.coordinate;
-    t.y = make_axis("alpha", "alpha = v", 0, 1, h);
-    t.y.parameter = t.y.coordinate;
-    t.z = make_axis("eta", "eta = w", 1, 2, d);
-    t.z.parameter = t.z.coordinate;
+    t.x = testing::identity_axis("mu", "mu = u", 0, 1, w);
+    t.y = testing::identity_axis("alpha", "alpha = v", 0, 1, h);
+    t.z = testing::identity_axis("eta", "eta = w", 1, 2, d);
     const size_t n = size_t(w) * h * d;
     const char* names[] = {"E", "T", "R_inside", "T_inside"};
     for (int c = 0; c < channels; ++c) {

@@ -25,6 +25,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/table.h"
 #include "brdfbake/table_kinds.h"
+#include "io/png_memory.h"
 #include "models/input_file.h"
 
 namespace brdfbake {
@@ -399,25 +400,6 @@ Table read_npy(const std::string& path) {
 
 // ------------------------------------------------------------------ PNG
 
-struct PngBytes {
-    const std::string* bytes;
-    size_t pos;
-};
-
-void read_png_bytes(png_structp png, png_bytep out, size_t n) {
-    auto* source = static_cast<PngBytes*>(png_get_io_ptr(png));
-    if (source->pos + n > source->bytes->size()) png_error(png, "the file is cut short");
-    std::memcpy(out, source->bytes->data() + source->pos, n);
-    source->pos += n;
-}
-
-void on_png_read_error(png_structp png, png_const_charp message) {
-    *static_cast<std::string*>(png_get_error_ptr(png)) = message;
-    png_longjmp(png, 1);
-}
-
-void on_png_read_warning(png_structp, png_const_charp) {}
-
 struct PngImage {
     png_uint_32 width = 0, height = 0;
     int depth = 0, channels = 0;
@@ -429,7 +411,7 @@ struct PngImage {
 /// libpng's message on failure. Kept apart so that no local of the caller lives across libpng's
 /// longjmp.
 bool decode_png(const std::string& bytes, PngImage* image, std::string* message) {
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, message, on_png_read_error, on_png_read_warning);
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, message, png_error_to_message, png_warning_ignored);
     if (!png) {
         *message = "libpng could not start";
         return false;
@@ -440,8 +422,8 @@ bool decode_png(const std::string& bytes, PngImage* image, std::string* message)
         png_destroy_read_struct(&png, &info, nullptr);
         return false;
     }
-    PngBytes source{&bytes, 0};
-    png_set_read_fn(png, &source, read_png_bytes);
+    PngMemorySource source{&bytes};
+    png_set_read_fn(png, &source, read_png_from_memory);
     png_read_png(png, info, PNG_TRANSFORM_IDENTITY, nullptr);
     image->width = png_get_image_width(png, info);
     image->height = png_get_image_height(png, info);

@@ -17,6 +17,7 @@
 
 #include "brdfbake/error.h"
 #include "brdfbake/memory_limit.h"
+#include "io/png_memory.h"
 
 namespace brdfbake {
 
@@ -31,36 +32,16 @@ std::string image_format(const std::string& b) {
 
 namespace {
 
-struct MemoryReader {
-    const std::string* bytes;
-    std::size_t pos = 0;
-};
-
-void read_from_memory(png_structp png, png_bytep out, png_size_t n) {
-    auto* r = static_cast<MemoryReader*>(png_get_io_ptr(png));
-    if (r->pos + n > r->bytes->size()) png_error(png, "truncated PNG data");
-    std::memcpy(out, r->bytes->data() + r->pos, n);
-    r->pos += n;
-}
-
-void on_png_error(png_structp png, png_const_charp message) {
-    auto* text = static_cast<std::string*>(png_get_error_ptr(png));
-    *text = message;
-    png_longjmp(png, 1);
-}
-
-void on_png_warning(png_structp, png_const_charp) {}
-
 }  // namespace
 
 ChannelRanges png_channel_ranges(const std::string& bytes, const std::string& what) {
     // Decoded a row at a time: the memory is one row whatever the image's size, which the IHDR
     // gives before a pixel is decoded (a 1 MB file may hold a 20000 x 20000 image).
     std::string message;
-    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &message, on_png_error, on_png_warning);
+    png_structp png = png_create_read_struct(PNG_LIBPNG_VER_STRING, &message, png_error_to_message, png_warning_ignored);
     if (!png) throw Error(what + ": cannot start the PNG reader");
     png_infop info = png_create_info_struct(png);
-    MemoryReader reader{&bytes};
+    PngMemorySource reader{&bytes};
     std::vector<png_byte> row;
     ChannelRanges out;
     std::array<unsigned, 4> lo{~0u, ~0u, ~0u, ~0u}, hi{0, 0, 0, 0};
@@ -68,7 +49,7 @@ ChannelRanges png_channel_ranges(const std::string& bytes, const std::string& wh
         png_destroy_read_struct(&png, &info, nullptr);
         throw Error(what + " is not a readable PNG: " + message);
     }
-    png_set_read_fn(png, &reader, read_from_memory);
+    png_set_read_fn(png, &reader, read_png_from_memory);
     png_read_info(png, info);
     const png_uint_32 w = png_get_image_width(png, info), h = png_get_image_height(png, info);
     const bool interlaced = png_get_interlace_type(png, info) != PNG_INTERLACE_NONE;
