@@ -19,6 +19,7 @@
 #include <type_traits>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/api.h"
 #include "brdfbake/analytic.h"
 #include "brdfbake/cancel.h"
 #include "brdfbake/check.h"
@@ -102,7 +103,7 @@ struct AlbedoOut {
     double seconds = 0.0;
 };
 
-AlbedoOut albedo(const std::string& model_spec, const Array& mu, const std::optional<Array>& phi_deg,
+AlbedoOut python_albedo(const std::string& model_spec, const Array& mu, const std::optional<Array>& phi_deg,
                  const std::string& fresnel_spec, double wavelength, double samples, std::optional<double> tolerance,
                  const std::string& method, double max_samples, const std::string& precision,
                  const std::optional<std::string>& device) {
@@ -139,20 +140,17 @@ AlbedoOut albedo(const std::string& model_spec, const Array& mu, const std::opti
     Engine& engine = engine_for(device);
     const AlbedoResult r =
         interruptible([&] { return albedo_of_model(engine, model, fresnel, req, choice.tolerance); });
-    std::vector<double> values, errors;
-    for (const AlbedoValue& v : r.values) {
-        values.push_back(v.value);
-        errors.push_back(v.error);
-    }
+    const AlbedoValues v = albedo_values(r, model, fresnel, engine.device().name,
+                                         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
     AlbedoOut out;
-    out.albedo = to_array(values, shape_of(mu));
-    out.error = to_array(errors, shape_of(mu));
-    out.model = model.canonical;
-    out.fresnel = fresnel.canonical;
-    out.method = r.method;
-    out.samples = r.samples_per_cell;
-    out.device = engine.device().name;
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.albedo = to_array(v.albedo, shape_of(mu));
+    out.error = to_array(v.error, shape_of(mu));
+    out.model = v.model;
+    out.fresnel = v.fresnel;
+    out.method = v.method;
+    out.samples = v.samples;
+    out.device = v.device;
+    out.seconds = v.seconds;
     return out;
 }
 
@@ -227,7 +225,7 @@ std::vector<std::string> names_of(const Entries& entries, Name Entry::*name) {
 /// As `brdfbake lut`: every argument given (not None) is the option of the same name, merged
 /// with the preset by the core's apply_preset; `output` writes the table as -o does (with the
 /// preset's --half unless half is given).
-Table lut(Opt<std::string> kind, Opt<std::string> model, const py::object& size, Opt<std::string> preset,
+Table python_lut(Opt<std::string> kind, Opt<std::string> model, const py::object& size, Opt<std::string> preset,
           Opt<std::string> estimator, Opt<std::string> fresnel, Opt<double> wavelength, Opt<std::string> mu_map,
           Opt<std::string> alpha_map, Opt<std::vector<double>> alpha_range, Opt<std::vector<double>> mu_range,
           Opt<double> mu_floor, Opt<std::vector<double>> eta_range, Opt<std::string> eta_map,
@@ -579,13 +577,13 @@ PYBIND11_MODULE(brdfbake, m) {
                    "x" + std::to_string(t.depth()) + ">";
         });
 
-    def_checked(m, "albedo", py::cpp_function(&albedo, py::name("albedo"), py::arg("model"), py::arg("mu"), py::arg("phi") = py::none(),
+    def_checked(m, "albedo", py::cpp_function(&python_albedo, py::name("albedo"), py::arg("model"), py::arg("mu"), py::arg("phi") = py::none(),
           py::arg("fresnel") = "none", py::arg("wavelength") = 0.0, py::arg("samples") = double(1 << 18),
           py::arg("tolerance") = py::none(), py::arg("method") = "auto", py::arg("max_samples") = double(1 << 26),
           py::arg("precision") = "float", py::arg("device") = py::none(),
           "directional albedo E(mu) = integral of f cos(theta_i) over the hemisphere, as `brdfbake albedo`; phi in "
           "degrees (one value or one per mu); tolerance refines every direction to that absolute error"));
-    def_checked(m, "lut", py::cpp_function(&lut, py::name("lut"), py::arg("kind") = py::none(), py::arg("model") = py::none(), py::arg("size") = py::none(),
+    def_checked(m, "lut", py::cpp_function(&python_lut, py::name("lut"), py::arg("kind") = py::none(), py::arg("model") = py::none(), py::arg("size") = py::none(),
           py::arg("preset") = py::none(), py::arg("estimator") = py::none(), py::arg("fresnel") = py::none(),
           py::arg("wavelength") = py::none(),
           py::arg("mu_map") = py::none(), py::arg("alpha_map") = py::none(), py::arg("alpha_range") = py::none(),

@@ -64,6 +64,12 @@ AlbedoValues albedo(const std::string& model_spec, const std::vector<double>& mu
     std::unique_lock<std::mutex> lock;
     Engine& engine = engine_for(o.device, lock);
     const AlbedoResult r = albedo_of_model(engine, model, fresnel, req, choice.tolerance);
+    return albedo_values(r, model, fresnel, engine.device().name,
+                         std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count());
+}
+
+AlbedoValues albedo_values(const AlbedoResult& r, const ModelConfig& model, const FresnelConfig& fresnel,
+                           const std::string& device, double seconds) {
     AlbedoValues out;
     for (const AlbedoValue& v : r.values) {
         out.albedo.push_back(v.value);
@@ -73,8 +79,8 @@ AlbedoValues albedo(const std::string& model_spec, const std::vector<double>& mu
     out.fresnel = fresnel.canonical;
     out.method = r.method;
     out.samples = r.samples_per_cell;
-    out.device = engine.device().name;
-    out.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+    out.device = device;
+    out.seconds = seconds;
     return out;
 }
 

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/spec.h"
 #include "brdfbake/table.h"
 
 namespace brdfbake {
@@ -52,6 +53,10 @@ struct AlbedoValues {
 /// The directional albedo E(mu) = integral of f cos(theta_i) over the hemisphere of the model
 /// `model` (a spec: "ggx:alpha=0.5") at each mu = cos(theta_o) in (0, 1].
 AlbedoValues albedo(const std::string& model, const std::vector<double>& mu, const AlbedoOptions& options = {});
+
+/// What albedo() returns, from a computed result (the Python module's albedo() shapes it into arrays).
+AlbedoValues albedo_values(const AlbedoResult& result, const ModelConfig& model, const FresnelConfig& fresnel,
+                           const std::string& device, double seconds);
 
 /// The same at one mu: the value and its error estimate.
 AlbedoValue albedo(const std::string& model, double mu, const AlbedoOptions& options = {});
