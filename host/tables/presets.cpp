@@ -74,6 +74,19 @@ LutRequest cycles_glass_layout(int height, std::vector<std::string> axes, double
     return r;
 }
 
+// The glTF Sample Viewer's sheen LUTs (host/tables/kind_sheen_viewer.cpp): x = NdotV, y =
+// sheenRoughness, texel centres, row 0 at roughness near 0 (no flip, as lut_ggx.png), one channel
+// written R = G = B (lut_charlie is read .b, lut_sheen_E .r); 128 x 128 (the shaders read by
+// normalized coordinates with linear filtering, so any size drops in; the viewer renders its own
+// at 1024 x 1024: --size 1024x1024 takes 64 times as long). The model picks the table: visibility
+// charlie is lut_sheen_E (the default), ashikhmin lut_charlie.
+LutRequest gltf_sheen_layout() {
+    LutRequest r = engine_layout(128, 128);
+    r.model = "sheen:visibility=charlie";
+    r.samples = 128 * 128 + 64 * 64;  // the nodes of its two quadrature rules: what the plan's estimate counts
+    return r;
+}
+
 std::string join_names(const std::vector<std::string>& names) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -96,9 +109,15 @@ const std::vector<LutPreset>& lut_presets() {
         // glTF Sample Viewer (KhronosGroup/glTF-Sample-Viewer, source/Renderer/shaders/ibl.glsl): the
         // split-sum LUT lut_ggx.png is read as texture(u_GGXLUT, vec2(NdotV, roughness)).rg, f_ab.x the
         // scale A and f_ab.y the bias B; 16-bit PNG, WebGL upload without a flip (row 0 at t = 0).
-        preset_row({"gltf", "glTF Sample Viewer", "lut_ggx.png", "png", false,
-                    "1024 x 1024, x = NdotV, y = roughness (row 0 at 0), texel centres, R = A, G = B, B = 0, 16-bit PNG",
-                    {{K::Dfg, engine_layout(1024, 1024), ""}}}),
+        // Its sheen LUTs: gltf_sheen_layout.
+        preset_row({"gltf", "glTF Sample Viewer",
+                    "lut_ggx.png; sheen-viewer: lut_sheen_E.png (model sheen:visibility=charlie, the default) and "
+                    "lut_charlie.png (sheen:visibility=ashikhmin)",
+                    "png", false,
+                    "1024 x 1024, x = NdotV, y = roughness (row 0 at 0), texel centres, R = A, G = B, B = 0, 16-bit PNG; "
+                    "sheen-viewer: 128 x 128, x = NdotV, y = sheenRoughness (row 0 at 0), texel centres, R = G = B = "
+                    "min(E, 1), 16-bit PNG",
+                    {{K::Dfg, engine_layout(1024, 1024), ""}, {K::SheenViewer, gltf_sheen_layout(), ""}}}),
         // Filament (google/filament, libs/ibl/src/CubemapIBL.cpp, CubemapIBL::DFG with multiscatter):
         // R = sum of V Fc = B, G = sum of V = E = A + B, read as mix(dfg.xxx, dfg.yyy, f0)
         // (shaders/src/surface_light_indirect.fs); x = NoV at texel centres, rows ordered from the
@@ -168,8 +187,7 @@ const PresetLayout* LutPreset::layout(const std::string& kind) const {
 }
 
 void LutPreset::apply(LutRequest& request) const {
-    // A kind without a layout of its own gets the default one: the scene planner's --target gltf
-    // writes the sample viewer's sheen tables in its split-sum layout.
+    // A kind without a layout of its own gets the default one (the first).
     const PresetLayout* own = layout(request.kind);
     const PresetLayout* l = own ? own : &layouts.front();
     LutRequest r = l->settings;
