@@ -16,6 +16,7 @@
 #include <png.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -328,4 +329,21 @@ TEST_CASE("apply_preset: the preset's layout for the kind, each option given rep
     bare.model = "ggx";
     bare.estimator = "cycles";
     CHECK_THROWS_WITH(apply_preset(bare), "--estimator is for the gen-schlick and gen-schlick-ior tables, not albedo");
+}
+
+TEST_CASE("preset cycles gen-schlick-ior: the z = 0 slice (eta = 1, no interface) holds s = 0 in closed form",
+          "[presets][gen-schlick]") {
+    // At eta = 1 the dielectric Fresnel is 0 at every angle and F0 = ((eta - 1)/(eta + 1))^2 = 0,
+    // so w = clamp((F - F0)/(1 - F0), 0, 1) = 0 and s = E_w / E = 0 (Cycles' table holds 0
+    // there); both estimators. z = 1 (computed at 0.99, eta 99.5) reflects.
+    TempDir dir;
+    for (const char* estimator : {"ratio", "cycles"}) {
+        INFO("--estimator " << estimator);
+        const std::vector<float> s =
+            written_channel(dir, std::string("lut gen-schlick-ior --preset cycles --estimator ") + estimator +
+                                     " --size 3x3x2 --samples 4096",
+                            std::string("ior-") + estimator + ".exr", "s", 3, 6);
+        for (int i = 0; i < 9; ++i) CHECK(s[i] == 0.0f);        // z = 0: rows 0-2
+        CHECK(*std::max_element(s.begin() + 9, s.end()) > 0.1f);  // z = 1: rows 3-5 (s = 0 only at mu = 1)
+    }
 }
