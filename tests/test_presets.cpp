@@ -207,9 +207,10 @@ TEST_CASE("presets three, gltf, unreal, filament: the texels an engine's shader 
         // Unreal EnvBRDF: PreIntegratedGF at float2(NoV, Roughness), .x = A, .y = B.
         {"unreal", "png", 8, 4, false, [](int, int y, int, int h) { return (y + 0.5) / h; },
          [](int x, int, int w, int) { return (x + 0.5) / w; }, [](const SplitSum& s, int c) { return c ? s.b : s.a; }},
-        // Filament DFG (multiscatter): x = NoV, rows from the roughest down, R = B, G = E; the
-        // centre of row y is roughness (h - y - 0.5)/h.
-        {"filament", "exr", 8, 6, false, [](int, int y, int, int h) { return (h - y - 0.5) / h; },
+        // Filament DFG (multiscatter), in dfg.inc's GL order (cmgen.cpp iblLutDfg writes row y from
+        // image row size - 1 - y): x = NoV, row 0 the smoothest, R = B, G = E; the centre of row y
+        // is roughness (y + 0.5)/h.
+        {"filament", "exr", 8, 6, false, [](int, int y, int, int h) { return (y + 0.5) / h; },
          [](int x, int, int w, int) { return (x + 0.5) / w; },
          [](const SplitSum& s, int c) { return c ? s.a + s.b : s.b; }},
     };

@@ -120,14 +120,17 @@ const std::vector<LutPreset>& lut_presets() {
                     {{K::Dfg, engine_layout(1024, 1024), ""}, {K::SheenViewer, gltf_sheen_layout(), ""}}}),
         // Filament (google/filament, libs/ibl/src/CubemapIBL.cpp, CubemapIBL::DFG with multiscatter):
         // R = sum of V Fc = B, G = sum of V = E = A + B, read as mix(dfg.xxx, dfg.yyy, f0)
-        // (shaders/src/surface_light_indirect.fs); x = NoV at texel centres, rows ordered from the
-        // roughest (row 0) down. cmgen computes row y at perceptual roughness (height - y + 0.5)/height,
-        // one texel above the centre (height - y - 0.5)/height that a sampler reads: the preset writes
-        // the centres.
+        // (shaders/src/surface_light_indirect.fs); x = NoV at texel centres. cmgen's image has its
+        // row 0 at the roughest, but the dfg.inc Filament builds in (tools/cmgen/src/cmgen.cpp,
+        // iblLutDfg: "in GL order", row y written from image row size - 1 - y) starts at the
+        // smoothest, row 0 at t = 0 of the texture the shader samples at perceptual roughness: the
+        // preset writes that order (no flip); --flip roughness gives cmgen's image order. cmgen
+        // computes image row y at (height - y + 0.5)/height, one texel off the centre that a sampler
+        // reads: the preset writes the centres.
         preset_row({"filament", "Filament", "dfg.inc (cmgen --ibl-dfg-multiscatter)", "exr", true,
-                    "128 x 128, x = NoV, y = perceptual roughness from 1 (row 0) down, texel centres, R = B, "
-                    "G = E = A + B, half-float EXR",
-                    {{K::DfgMs, engine_layout(128, 128, {}, {"roughness"}), ""}}}),
+                    "128 x 128, x = NoV, y = perceptual roughness from 0 (row 0) up as in dfg.inc, texel centres, "
+                    "R = B, G = E = A + B, half-float EXR",
+                    {{K::DfgMs, engine_layout(128, 128), ""}}}),
         // three.js (mrdoob/three.js, src/renderers/shaders/DFGLUTData.js): a 16 x 16 RG16F DataTexture,
         // (scale, bias) = (A, B), sampled at vec2(roughness, dotNV): x = roughness, y = NoV, texel
         // centres, row 0 at NoV near 0.
