@@ -323,7 +323,7 @@ TEST_CASE("apply_preset: the preset's layout for the kind, each option given rep
     CHECK(apply_preset(plain).request.height == 1);
     // The command line's messages.
     plain.preset = "gltf";
-    CHECK_THROWS_WITH(apply_preset(plain), "preset 'gltf' has a layout for dfg tables, not eavg");
+    CHECK_THROWS_WITH(apply_preset(plain), "preset 'gltf' has a layout for dfg, sheen-viewer tables, not eavg");
     LutSettings bare;
     bare.kind = "albedo";
     CHECK_THROWS_WITH(apply_preset(bare), "--model is required (or give --preset)");
