@@ -57,7 +57,7 @@ std::string tmp_path(const std::string& name) { return "/tmp/brdfbake-lut-" + st
 TEST_CASE("the table-kind registry: every kind once, found by name and id, unknown names listed", "[lut][quick]") {
     const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms",
                                                "sheen-albedo", "dielectric-eavg", "gen-schlick", "gen-schlick-ior",
-                                               "dfg-f82"};
+                                               "dfg-f82", "sheen-viewer"};
     REQUIRE(table_kinds().size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         const TableKind* k = table_kinds()[i];
@@ -76,7 +76,7 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
                       "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms, "
-                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82");
+                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82, sheen-viewer");
 }
 
 TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {
@@ -181,6 +181,7 @@ TEST_CASE("each kind's computed table has the axes and channels the README docum
         {"gen-schlick", {{"s"}, "mu", false, true}},
         {"gen-schlick-ior", {{"s"}, "mu", false, true}},
         {"dfg-f82", {{"A", "B", "C"}, "mu", false, false}},
+        {"sheen-viewer", {{"E"}, "mu", false, false}},
     };
     for (const TableKind* k : table_kinds()) {
         INFO(k->name);
@@ -189,7 +190,7 @@ TEST_CASE("each kind's computed table has the axes and channels the README docum
         LutRequest r = request(k->name, 3, doc.one_dimensional ? 1 : 2, 1024);
         r.depth = 2;
         if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
-        if (k->id == TableKindId::SheenAlbedo) r.model = "sheen";  // the kind of the sheen model only
+        if (k->required_model == "sheen") r.model = "sheen";  // the kinds of the sheen model only
         const Table t = compute_lut(testing::engine(), r);
         CHECK(t.kind == k->name);
         CHECK(t.channels == doc.channels);
@@ -631,7 +632,7 @@ TEST_CASE("every kind takes the grid conventions: edge texels, a flipped and reo
         LutRequest r = request(k->name, 3, k->one_dimensional ? 1 : 2, 1024);
         r.depth = 2;
         if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
-        if (k->id == TableKindId::SheenAlbedo) r.model = "sheen";  // the kind of the sheen model only
+        if (k->required_model == "sheen") r.model = "sheen";  // the kinds of the sheen model only
         r.texels = Texels::Edge;
         r.alpha_map = "roughness";
         r.alpha_lo = 0.2;

@@ -16,6 +16,7 @@
 #include <png.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -206,9 +207,10 @@ TEST_CASE("presets three, gltf, unreal, filament: the texels an engine's shader 
         // Unreal EnvBRDF: PreIntegratedGF at float2(NoV, Roughness), .x = A, .y = B.
         {"unreal", "png", 8, 4, false, [](int, int y, int, int h) { return (y + 0.5) / h; },
          [](int x, int, int w, int) { return (x + 0.5) / w; }, [](const SplitSum& s, int c) { return c ? s.b : s.a; }},
-        // Filament DFG (multiscatter): x = NoV, rows from the roughest down, R = B, G = E; the
-        // centre of row y is roughness (h - y - 0.5)/h.
-        {"filament", "exr", 8, 6, false, [](int, int y, int, int h) { return (h - y - 0.5) / h; },
+        // Filament DFG (multiscatter), in dfg.inc's GL order (cmgen.cpp iblLutDfg writes row y from
+        // image row size - 1 - y): x = NoV, row 0 the smoothest, R = B, G = E; the centre of row y
+        // is roughness (y + 0.5)/h.
+        {"filament", "exr", 8, 6, false, [](int, int y, int, int h) { return (y + 0.5) / h; },
          [](int x, int, int w, int) { return (x + 0.5) / w; },
          [](const SplitSum& s, int c) { return c ? s.a + s.b : s.b; }},
     };
@@ -321,11 +323,28 @@ TEST_CASE("apply_preset: the preset's layout for the kind, each option given rep
     CHECK(apply_preset(plain).request.height == 1);
     // The command line's messages.
     plain.preset = "gltf";
-    CHECK_THROWS_WITH(apply_preset(plain), "preset 'gltf' has a layout for dfg tables, not eavg");
+    CHECK_THROWS_WITH(apply_preset(plain), "preset 'gltf' has a layout for dfg, sheen-viewer tables, not eavg");
     LutSettings bare;
     bare.kind = "albedo";
     CHECK_THROWS_WITH(apply_preset(bare), "--model is required (or give --preset)");
     bare.model = "ggx";
     bare.estimator = "cycles";
     CHECK_THROWS_WITH(apply_preset(bare), "--estimator is for the gen-schlick and gen-schlick-ior tables, not albedo");
+}
+
+TEST_CASE("preset cycles gen-schlick-ior: the z = 0 slice (eta = 1, no interface) holds s = 0 in closed form",
+          "[presets][gen-schlick]") {
+    // At eta = 1 the dielectric Fresnel is 0 at every angle and F0 = ((eta - 1)/(eta + 1))^2 = 0,
+    // so w = clamp((F - F0)/(1 - F0), 0, 1) = 0 and s = E_w / E = 0 (Cycles' table holds 0
+    // there); both estimators. z = 1 (computed at 0.99, eta 99.5) reflects.
+    TempDir dir;
+    for (const char* estimator : {"ratio", "cycles"}) {
+        INFO("--estimator " << estimator);
+        const std::vector<float> s =
+            written_channel(dir, std::string("lut gen-schlick-ior --preset cycles --estimator ") + estimator +
+                                     " --size 3x3x2 --samples 4096",
+                            std::string("ior-") + estimator + ".exr", "s", 3, 6);
+        for (int i = 0; i < 9; ++i) CHECK(s[i] == 0.0f);        // z = 0: rows 0-2
+        CHECK(*std::max_element(s.begin() + 9, s.end()) > 0.1f);  // z = 1: rows 3-5 (s = 0 only at mu = 1)
+    }
 }

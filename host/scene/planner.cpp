@@ -309,7 +309,7 @@ std::vector<PlannedTable> plan_engine_tables(const SceneSettings& s, std::vector
         const std::string dfg_model = model_without_alpha(dfg.model);
         out.push_back(engine_table(preset, s, dfg.kind, dfg_model, "lut_ggx." + preset.extension, groups,
                                    [&](const Group& g) { return g.model == dfg_model; }));
-        const TableKind& sheen = table_kind(TableKindId::SheenAlbedo);
+        const TableKind& sheen = table_kind(TableKindId::SheenViewer);  // the viewer's sheen LUTs
         auto is_sheen = [&](const Group& g) { return g.model_name == sheen.required_model; };
         if (std::any_of(groups.begin(), groups.end(), is_sheen)) {
             out.push_back(engine_table(preset, s, sheen.name, sheen.required_model + ":visibility=ashikhmin",

@@ -34,18 +34,26 @@ namespace {
 /// The name of the kinds' own z axis (their registry entries state it).
 const char* const kZAxisName = "cycles_z";
 
+/// Whether a gen-schlick-ior texel sits at z = 0: eta = 1, no interface, so that F_dielectric = F0
+/// = 0 and w = 0 at every angle: s = 0 in closed form (E_w = 0 for --estimator cycles too), what
+/// Cycles' table holds there (it computes z = 1e-4, where eta rounds to 1 in float). Computing it
+/// at eta = 1 + 2e-8 instead would give the 0/0 limit of the remapped Fresnel, not the texel.
+bool no_interface(double z) { return z == 0.0; }
+
 /// The z axis (the kind's own, named by its registry entry; --eta-map and --eta-range do not
 /// apply): z over [0, 1] with the request's texel placement, the parameter clamped as Cycles
 /// computes it.
 Axis cycles_z_axis(const LutRequest& r, bool ior) {
     Axis a = make_axis(kZAxisName,
-                       ior ? "eta = (1 + z^2) / (1 - z^2), z clamped to [1e-4, 0.99] (Cycles' ggx_gen_schlick_ior_s)"
+                       ior ? "eta = (1 + z^2) / (1 - z^2), z clamped to [1e-4, 0.99] (Cycles' ggx_gen_schlick_ior_s); "
+                             "z = 0 is eta = 1, no interface: s = 0 in closed form"
                            : "exponent = 5 (1 - z) / z, z clamped to [1e-4, 0.99] (Cycles' ggx_gen_schlick_s)",
                        0.0, 1.0, r.depth, r.texels);
     a.parameter_name = ior ? "eta" : "exponent";
     for (double z : a.coordinate) {
         const double zc = std::clamp(z, kCyclesZLo, kCyclesZHi), z2 = zc * zc;
-        a.parameter.push_back(ior ? (1.0 + z2) / (1.0 - z2) : 5.0 * (1.0 - zc) / zc);
+        if (ior && no_interface(z)) a.parameter.push_back(1.0);
+        else a.parameter.push_back(ior ? (1.0 + z2) / (1.0 - z2) : 5.0 * (1.0 - zc) / zc);
     }
     return a;
 }
@@ -81,6 +89,7 @@ Table cycles_estimator_table(Engine& engine, const LutRequest& r, const ModelCon
     t.error.assign(plane * t.z.parameter.size(), 0.0);
     AlbedoResult w;
     for (size_t k = 0; k < t.z.parameter.size(); ++k) {
+        if (ior && no_interface(t.z.coordinate[k])) continue;  // s = 0, error 0 (no_interface)
         w = integrate(engine, r, m, weight_fresnel(ior, t.z.parameter[k], eta_m1[k]), g.cells);
         for (size_t c = 0; c < plane; ++c) {
             // E_w lies in [0, 1] (0 <= w <= 1, the masking-only lobe reflects at most 1)
@@ -102,6 +111,8 @@ Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& 
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
     t.z = cycles_z_axis(r, ior);
+    if (ior && std::any_of(t.z.coordinate.begin(), t.z.coordinate.end(), no_interface))
+        t.attributes["eta_one"] = "texels at z = 0 (eta = 1) have no interface: s = 0 in closed form";
     std::vector<double> eta_m1;  // eta - 1 = 2 z^2 / (1 - z^2), exact where eta is near 1
     for (double z : t.z.coordinate) {
         const double zc = std::clamp(z, kCyclesZLo, kCyclesZHi);
@@ -119,6 +130,7 @@ Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.values.assign(1, std::vector<double>(plane * t.z.parameter.size()));
     t.error.assign(plane * t.z.parameter.size(), 0.0);
     for (size_t k = 0; k < t.z.parameter.size(); ++k) {
+        if (ior && no_interface(t.z.coordinate[k])) continue;  // s = 0, error 0 (no_interface)
         const AlbedoResult w = integrate(engine, r, m, weight_fresnel(ior, t.z.parameter[k], eta_m1[k]), g.cells, e_min / 2);
         for (size_t c = 0; c < plane; ++c) {
             const double ev = e.values[c].value, ee = e.values[c].error;

@@ -1,8 +1,9 @@
 // The directional albedo of the Charlie sheen lobe, E(mu_o, sheenRoughness), with either
 // visibility of the sheen model (include/brdfbake/brdf/sheen.h): the table that scales the layer
 // beneath a sheen (glTF's albedo scaling, KHR_materials_sheen "Sheen layering") and the sheen
-// term of image-based lighting (Filament's cloth DFG channel, the glTF sample viewer's
-// lut_charlie). docs/models.md says which visibility each engine's table uses.
+// term of image-based lighting (Filament's cloth DFG channel). The glTF Sample Viewer's
+// lut_charlie and lut_sheen_E clamp the visibility: kind_sheen_viewer.cpp. docs/models.md says
+// which visibility each engine's table uses.
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "tables/lut_common.h"

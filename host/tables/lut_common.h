@@ -89,6 +89,7 @@ TableKind dfg_ms_kind();
 TableKind dielectric_kind();
 TableKind conductor_kind();
 TableKind sheen_albedo_kind();
+TableKind sheen_viewer_kind();
 TableKind dielectric_eavg_kind();
 TableKind gen_schlick_kind();
 TableKind gen_schlick_ior_kind();

@@ -75,6 +75,19 @@ LutRequest cycles_glass_layout(int height, std::vector<std::string> axes, double
     return r;
 }
 
+// The glTF Sample Viewer's sheen LUTs (host/tables/kind_sheen_viewer.cpp): x = NdotV, y =
+// sheenRoughness, texel centres, row 0 at roughness near 0 (no flip, as lut_ggx.png), one channel
+// written R = G = B (lut_charlie is read .b, lut_sheen_E .r); 128 x 128 (the shaders read by
+// normalized coordinates with linear filtering, so any size drops in; the viewer renders its own
+// at 1024 x 1024: --size 1024x1024 takes 64 times as long). The model picks the table: visibility
+// charlie is lut_sheen_E (the default), ashikhmin lut_charlie.
+LutRequest gltf_sheen_layout() {
+    LutRequest r = engine_layout(128, 128);
+    r.model = "sheen:visibility=charlie";
+    r.samples = 128 * 128 + 64 * 64;  // the nodes of its two quadrature rules: what the plan's estimate counts
+    return r;
+}
+
 std::string join_names(const std::vector<std::string>& names) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -97,19 +110,28 @@ const std::vector<LutPreset>& lut_presets() {
         // glTF Sample Viewer (KhronosGroup/glTF-Sample-Viewer, source/Renderer/shaders/ibl.glsl): the
         // split-sum LUT lut_ggx.png is read as texture(u_GGXLUT, vec2(NdotV, roughness)).rg, f_ab.x the
         // scale A and f_ab.y the bias B; 16-bit PNG, WebGL upload without a flip (row 0 at t = 0).
-        preset_row({"gltf", "glTF Sample Viewer", "lut_ggx.png", "png", false,
-                    "1024 x 1024, x = NdotV, y = roughness (row 0 at 0), texel centres, R = A, G = B, B = 0, 16-bit PNG",
-                    {{K::Dfg, engine_layout(1024, 1024), ""}}}),
+        // Its sheen LUTs: gltf_sheen_layout.
+        preset_row({"gltf", "glTF Sample Viewer",
+                    "lut_ggx.png; sheen-viewer: lut_sheen_E.png (model sheen:visibility=charlie, the default) and "
+                    "lut_charlie.png (sheen:visibility=ashikhmin)",
+                    "png", false,
+                    "1024 x 1024, x = NdotV, y = roughness (row 0 at 0), texel centres, R = A, G = B, B = 0, 16-bit PNG; "
+                    "sheen-viewer: 128 x 128, x = NdotV, y = sheenRoughness (row 0 at 0), texel centres, R = G = B = "
+                    "min(E, 1), 16-bit PNG",
+                    {{K::Dfg, engine_layout(1024, 1024), ""}, {K::SheenViewer, gltf_sheen_layout(), ""}}}),
         // Filament (google/filament, libs/ibl/src/CubemapIBL.cpp, CubemapIBL::DFG with multiscatter):
         // R = sum of V Fc = B, G = sum of V = E = A + B, read as mix(dfg.xxx, dfg.yyy, f0)
-        // (shaders/src/surface_light_indirect.fs); x = NoV at texel centres, rows ordered from the
-        // roughest (row 0) down. cmgen computes row y at perceptual roughness (height - y + 0.5)/height,
-        // one texel above the centre (height - y - 0.5)/height that a sampler reads: the preset writes
-        // the centres.
+        // (shaders/src/surface_light_indirect.fs); x = NoV at texel centres. cmgen's image has its
+        // row 0 at the roughest, but the dfg.inc Filament builds in (tools/cmgen/src/cmgen.cpp,
+        // iblLutDfg: "in GL order", row y written from image row size - 1 - y) starts at the
+        // smoothest, row 0 at t = 0 of the texture the shader samples at perceptual roughness: the
+        // preset writes that order (no flip); --flip roughness gives cmgen's image order. cmgen
+        // computes image row y at (height - y + 0.5)/height, one texel off the centre that a sampler
+        // reads: the preset writes the centres.
         preset_row({"filament", "Filament", "dfg.inc (cmgen --ibl-dfg-multiscatter)", "exr", true,
-                    "128 x 128, x = NoV, y = perceptual roughness from 1 (row 0) down, texel centres, R = B, "
-                    "G = E = A + B, half-float EXR",
-                    {{K::DfgMs, engine_layout(128, 128, {}, {"roughness"}), ""}}}),
+                    "128 x 128, x = NoV, y = perceptual roughness from 0 (row 0) up as in dfg.inc, texel centres, "
+                    "R = B, G = E = A + B, half-float EXR",
+                    {{K::DfgMs, engine_layout(128, 128), ""}}}),
         // three.js (mrdoob/three.js, src/renderers/shaders/DFGLUTData.js): a 16 x 16 RG16F DataTexture,
         // (scale, bias) = (A, B), sampled at vec2(roughness, dotNV): x = roughness, y = NoV, texel
         // centres, row 0 at NoV near 0.
@@ -171,8 +193,7 @@ const PresetLayout* LutPreset::layout(const std::string& kind) const {
 }
 
 void LutPreset::apply(LutRequest& request) const {
-    // A kind without a layout of its own gets the default one: the scene planner's --target gltf
-    // writes the sample viewer's sheen tables in its split-sum layout.
+    // A kind without a layout of its own gets the default one (the first).
     const PresetLayout* own = layout(request.kind);
     const PresetLayout* l = own ? own : &layouts.front();
     LutRequest r = l->settings;

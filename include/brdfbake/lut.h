@@ -92,8 +92,7 @@ struct LutPreset {
     /// The layout for the table kind of that name, or nullptr.
     const PresetLayout* layout(const std::string& kind) const;
     /// Replaces the request by the preset's layout for request.kind (the default layout, the
-    /// first, for a kind without one of its own: the scene planner's --target gltf lays the sheen
-    /// tables out as the split-sum one); the kind and the estimator stay.
+    /// first, for a kind without one of its own); the kind and the estimator stay.
     void apply(LutRequest& request) const;
 };
 
