@@ -47,7 +47,7 @@ RsRp textbook(ld cos_i, ld eta, ld k) {
     const cld sin_t = sin_i / n2;
     cld cos_t = std::sqrt(cld(1) - sin_t * sin_t);
     const cld wave = n2 * cos_t;
-    if (wave.imag() < 0 || (wave.imag() == 0 && wave.bb_real() < 0)) cos_t = -cos_t;
+    if (wave.imag() < 0 || (wave.imag() == 0 && wave.real() < 0)) cos_t = -cos_t;
     const cld rs = (cos_i - n2 * cos_t) / (cos_i + n2 * cos_t);
     const cld rp = (n2 * cos_i - cos_t) / (n2 * cos_i + cos_t);
     return {std::norm(rs), std::norm(rp)};
