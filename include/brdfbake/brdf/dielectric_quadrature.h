@@ -226,12 +226,12 @@ BB_FN bb_dielectric_row bb_make_dielectric_row(bb_vec3 wo, real a, real eta, rea
 
 /* The integrand at row coordinate t: D J (wo.m)/wo.z times the microfacet's split, so that
  * R = sum over pieces, rows and segments of (weights) x .r, and T likewise with .t. */
-BB_FN bb_rt bb_dielectric_quad_point(bb_vec3 wo, real a, real eta, int shadowing, real g1o, real lo, real lga_o,
-                                     real cos_phi, real sin_phi, real t) {
+BB_FN bb_rt bb_dielectric_quad_point(bb_vec3 wo, real a, real eta, int shadowing, int transmission_shadowing,
+                                     real g1o, real lo, real lga_o, real cos_phi, real sin_phi, real t) {
     bb_dielectric_node n = bb_dielectric_node_at(cos_phi, sin_phi, a, t);
     real c = bb_dot(wo, n.h);
     real w = n.dj * c * (BB_R(1.0) / wo.z); /* 1/wo.z: the same for every node of a cell */
-    bb_rt s = bb_rough_dielectric_split(wo, n.h, a, a, eta, shadowing, g1o, lo, lga_o);
+    bb_rt s = bb_rough_dielectric_split(wo, n.h, a, a, eta, shadowing, transmission_shadowing, g1o, lo, lga_o);
     bb_mask ok = c > BB_R(0.0);
     s.r = bb_select(BB_R(0.0), w * s.r, ok);
     s.t = bb_select(BB_R(0.0), w * s.t, ok);
