@@ -5,4 +5,4 @@
 #define BASELINE_FN replicas_fast_float
 #include "baseline_impl.h"
 
-static_assert(sizeof(bb_fast_float::real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");
+static_assert(sizeof(bb_fast_float::bb_real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");

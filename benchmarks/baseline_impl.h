@@ -46,15 +46,15 @@
 
 namespace BASELINE_NS {
 #ifdef BB_HOST_REAL_FLOAT
-using real = float;
+using bb_real = float;
 #else
-using real = double;
+using bb_real = double;
 #endif
 
 using brdfbake::baseline::reverse_bits;
 
 // max(x, 0) by value (NaN gives 0, as fmax(x, 0) and the kernel's bb_max).
-inline real max0(real x) { return x > real(0) ? x : real(0); }
+inline bb_real max0(bb_real x) { return x > bb_real(0) ? x : bb_real(0); }
 
 // Replica means and non-finite counts of every (cell, replica), cell-major: exactly the work
 // items of kernels/albedo.cl.
@@ -68,9 +68,9 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
     // The disk points sqrt(u1) (cos, sin)(2 pi u2) of every replica's rotated Hammersley set,
     // computed in double and rounded to `real` as host/integrate/replicas.cpp's disk_table does (the float
     // flavour's shifts are already rounded to float, baseline.cpp), and sqrt(1 - x^2).
-    std::vector<real> disk_x(size_t(replicas) * size_t(n)), disk_y(disk_x.size());
+    std::vector<bb_real> disk_x(size_t(replicas) * size_t(n)), disk_y(disk_x.size());
 #ifndef BASELINE_KERNEL_ARITHMETIC
-    std::vector<real> disk_h(disk_x.size());
+    std::vector<bb_real> disk_h(disk_x.size());
 #endif
 #pragma omp parallel for
     for (long k = 0; k < long(replicas) * n; ++k) {
@@ -80,72 +80,72 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
         u1 -= u1 >= 1.0 ? 1.0 : 0.0;
         u2 -= u2 >= 1.0 ? 1.0 : 0.0;
         const double r = std::sqrt(u1), phi = 2.0 * M_PI * u2;
-        const real x = real(r * std::cos(phi));
+        const bb_real x = bb_real(r * std::cos(phi));
         disk_x[size_t(k)] = x;
-        disk_y[size_t(k)] = real(r * std::sin(phi));
+        disk_y[size_t(k)] = bb_real(r * std::sin(phi));
 #ifndef BASELINE_KERNEL_ARITHMETIC
-        disk_h[size_t(k)] = std::sqrt(max0(real(1) - x * x));
+        disk_h[size_t(k)] = std::sqrt(max0(bb_real(1) - x * x));
 #endif
     }
 #pragma omp parallel for schedule(dynamic, 1)
     for (long item = 0; item < n_items; ++item) {
         const long cell = item / replicas, rep = item - cell * replicas;
-        const real a = real(alphas[size_t(cell)]), a2 = a * a;
-        const real oz = real(mus[size_t(cell)]), ox = std::sqrt(std::max(real(0), real(1) - oz * oz));
+        const bb_real a = bb_real(alphas[size_t(cell)]), a2 = a * a;
+        const bb_real oz = bb_real(mus[size_t(cell)]), ox = std::sqrt(std::max(bb_real(0), bb_real(1) - oz * oz));
         // The view direction in the hemisphere configuration: Vh = normalize(a ox, 0, oz), with
         // T1 = (0, 1, 0) and T2 = Vh x T1 = (-vz, 0, vx).
-        const real vl = real(1) / std::sqrt(a2 * ox * ox + oz * oz);
-        const real vx = a * ox * vl, vz = oz * vl;
-        const real s = real(0.5) * (real(1) + vz), s1 = real(1) - s;
+        const bb_real vl = bb_real(1) / std::sqrt(a2 * ox * ox + oz * oz);
+        const bb_real vx = a * ox * vl, vz = oz * vl;
+        const bb_real s = bb_real(0.5) * (bb_real(1) + vz), s1 = bb_real(1) - s;
         // c0 = 1 + Lambda(wo) = 1 / G1(wo), with Lambda(z) = (sqrt(1 + a^2 (1 - z^2) / z^2) - 1) / 2.
-        const real inv_g1o = real(0.5) * (real(1) + std::sqrt(real(1) + a2 * (real(1) - oz * oz) / (oz * oz)));
-        const real* dx = disk_x.data() + size_t(rep) * size_t(n);
-        const real* dy = disk_y.data() + size_t(rep) * size_t(n);
+        const bb_real inv_g1o = bb_real(0.5) * (bb_real(1) + std::sqrt(bb_real(1) + a2 * (bb_real(1) - oz * oz) / (oz * oz)));
+        const bb_real* dx = disk_x.data() + size_t(rep) * size_t(n);
+        const bb_real* dy = disk_y.data() + size_t(rep) * size_t(n);
 #ifndef BASELINE_KERNEL_ARITHMETIC
-        const real* dh = disk_h.data() + size_t(rep) * size_t(n);
-        const real c0 = correlated ? inv_g1o : real(1);
-        const real k2 = real(2) * c0, k1 = k2 - real(1), b2 = real(1) - a2;
+        const bb_real* dh = disk_h.data() + size_t(rep) * size_t(n);
+        const bb_real c0 = correlated ? inv_g1o : bb_real(1);
+        const bb_real k2 = bb_real(2) * c0, k1 = k2 - bb_real(1), b2 = bb_real(1) - a2;
 #else
-        const real g1o = real(1) / inv_g1o, corr = correlated ? real(1) : real(0);
+        const bb_real g1o = bb_real(1) / inv_g1o, corr = correlated ? bb_real(1) : bb_real(0);
 #endif
         double sum = 0.0, nbad = 0.0;
         for (long b = 0; b < n; b += 512) {
             const long e = std::min(n, b + 512);
-            real block = 0, block_bad = 0;
+            bb_real block = 0, block_bad = 0;
 #pragma omp simd reduction(+ : block, block_bad)
             for (long i = b; i < e; ++i) {
-                const real t1 = dx[i];
+                const bb_real t1 = dx[i];
 #ifndef BASELINE_KERNEL_ARITHMETIC
-                const real t2 = s1 * dh[i] + s * dy[i];
-                const real t3 = std::sqrt(max0(real(1) - t1 * t1 - t2 * t2));
+                const bb_real t2 = s1 * dh[i] + s * dy[i];
+                const bb_real t3 = std::sqrt(max0(bb_real(1) - t1 * t1 - t2 * t2));
                 // Nh = t1 T1 + t2 T2 + t3 Vh, unstretched: n = (a Nh.x, a Nh.y, max(0, Nh.z)).
-                const real nx = a * (t3 * vx - t2 * vz), ny = a * t1, nz = max0(t2 * vx + t3 * vz);
-                const real L = nx * nx + ny * ny + nz * nz;
-                const real z = real(2) * (ox * nx + oz * nz) * nz - oz * L;  // L wi.z
-                const real q = std::sqrt(a2 * L * L + b2 * z * z);
-                const real w = k2 * z / (k1 * z + q);
-                const real v = z > real(0) ? w : real(0);  // below the horizon: 0
+                const bb_real nx = a * (t3 * vx - t2 * vz), ny = a * t1, nz = max0(t2 * vx + t3 * vz);
+                const bb_real L = nx * nx + ny * ny + nz * nz;
+                const bb_real z = bb_real(2) * (ox * nx + oz * nz) * nz - oz * L;  // L wi.z
+                const bb_real q = std::sqrt(a2 * L * L + b2 * z * z);
+                const bb_real w = k2 * z / (k1 * z + q);
+                const bb_real v = z > bb_real(0) ? w : bb_real(0);  // below the horizon: 0
 #else
-                const real t2 = s1 * std::sqrt(max0(real(1) - t1 * t1)) + s * dy[i];
-                const real t3 = std::sqrt(max0(real(1) - t1 * t1 - t2 * t2));
-                const real nx = a * (t3 * vx - t2 * vz), ny = a * t1, nz = max0(t2 * vx + t3 * vz);
-                const real l2 = nx * nx + ny * ny + nz * nz;  // bb_normalize
-                const real inv = l2 > real(0) ? real(1) / std::sqrt(l2) : real(0);
-                const real hx = nx * inv, hy = ny * inv, hz = nz * inv;
-                const real d0 = ox * hx + oz * hz;  // bb_clamp_cos(wo.wh), bb_reflect
-                const real d1 = d0 < real(1) ? d0 : real(1), d = d1 > real(-1) ? d1 : real(-1);
-                const real ix = real(2) * d * hx - ox, iy = real(2) * d * hy, iz = real(2) * d * hz - oz;
-                const real zi = max0(iz), r2 = a2 * (ix * ix + iy * iy);  // bb_ggx_g1(wi)
-                const real ga = real(2) * zi * (std::sqrt(zi * zi + r2) + zi);
-                const real g1i = iz > real(0) ? ga / (ga + r2) : real(0);
-                const real p = g1o * g1i, den = g1o + g1i - p;  // bb_g2_correlated_from_g1
-                const real g2c = p > real(0) ? p / (den <= real(0) ? real(1) : den) : real(0);
-                const real g2 = corr > real(0) ? g2c : p;
-                const real v = iz > real(0) ? g2 / g1o : real(0);
+                const bb_real t2 = s1 * std::sqrt(max0(bb_real(1) - t1 * t1)) + s * dy[i];
+                const bb_real t3 = std::sqrt(max0(bb_real(1) - t1 * t1 - t2 * t2));
+                const bb_real nx = a * (t3 * vx - t2 * vz), ny = a * t1, nz = max0(t2 * vx + t3 * vz);
+                const bb_real l2 = nx * nx + ny * ny + nz * nz;  // bb_normalize
+                const bb_real inv = l2 > bb_real(0) ? bb_real(1) / std::sqrt(l2) : bb_real(0);
+                const bb_real hx = nx * inv, hy = ny * inv, hz = nz * inv;
+                const bb_real d0 = ox * hx + oz * hz;  // bb_clamp_cos(wo.wh), bb_reflect
+                const bb_real d1 = d0 < bb_real(1) ? d0 : bb_real(1), d = d1 > bb_real(-1) ? d1 : bb_real(-1);
+                const bb_real ix = bb_real(2) * d * hx - ox, iy = bb_real(2) * d * hy, iz = bb_real(2) * d * hz - oz;
+                const bb_real zi = max0(iz), r2 = a2 * (ix * ix + iy * iy);  // bb_ggx_g1(wi)
+                const bb_real ga = bb_real(2) * zi * (std::sqrt(zi * zi + r2) + zi);
+                const bb_real g1i = iz > bb_real(0) ? ga / (ga + r2) : bb_real(0);
+                const bb_real p = g1o * g1i, den = g1o + g1i - p;  // bb_g2_correlated_from_g1
+                const bb_real g2c = p > bb_real(0) ? p / (den <= bb_real(0) ? bb_real(1) : den) : bb_real(0);
+                const bb_real g2 = corr > bb_real(0) ? g2c : p;
+                const bb_real v = iz > bb_real(0) ? g2 / g1o : bb_real(0);
 #endif
                 const bool ok = std::isfinite(v);  // NaN/Inf counted, never summed
-                block_bad += ok ? real(0) : real(1);
-                block += ok ? v : real(0);
+                block_bad += ok ? bb_real(0) : bb_real(1);
+                block += ok ? v : bb_real(0);
             }
             sum += double(block);
             nbad += double(block_bad);

@@ -7,4 +7,4 @@
 #define BASELINE_FN replicas_kernel_arith_double
 #include "baseline_impl.h"
 
-static_assert(sizeof(bb_kernel_arith_double::real) == sizeof(double), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");
+static_assert(sizeof(bb_kernel_arith_double::bb_real) == sizeof(double), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");

@@ -7,4 +7,4 @@
 #define BASELINE_FN replicas_kernel_arith_float
 #include "baseline_impl.h"
 
-static_assert(sizeof(bb_kernel_arith_float::real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");
+static_assert(sizeof(bb_kernel_arith_float::bb_real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");

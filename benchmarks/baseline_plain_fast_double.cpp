@@ -4,5 +4,5 @@
 #define BASELINE_FN replicas_plain_fast_double
 #include "baseline_plain_impl.h"
 
-static_assert(sizeof(bb_plain_fast_double::real) == sizeof(double),
+static_assert(sizeof(bb_plain_fast_double::bb_real) == sizeof(double),
               "baseline_plain_impl.h ignores BB_HOST_REAL_FLOAT");

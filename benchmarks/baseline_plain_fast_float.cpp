@@ -5,5 +5,5 @@
 #define BASELINE_FN replicas_plain_fast_float
 #include "baseline_plain_impl.h"
 
-static_assert(sizeof(bb_plain_fast_float::real) == sizeof(float),
+static_assert(sizeof(bb_plain_fast_float::bb_real) == sizeof(float),
               "baseline_plain_impl.h ignores BB_HOST_REAL_FLOAT");

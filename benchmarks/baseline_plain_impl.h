@@ -43,31 +43,31 @@
 
 namespace BASELINE_NS {
 #ifdef BB_HOST_REAL_FLOAT
-using real = float;
+using bb_real = float;
 #else
-using real = double;
+using bb_real = double;
 #endif
 
 using brdfbake::baseline::reverse_bits;
 
 // The radical inverse in base 2 as a real in [0, 1), as the kernel's bb_unit_from_bits.
-inline real radical_inverse(std::uint32_t i) {
+inline bb_real radical_inverse(std::uint32_t i) {
 #ifdef BB_HOST_REAL_FLOAT
-    return real(reverse_bits(i) >> 8) * real(5.9604644775390625e-8);  // 2^-24
+    return bb_real(reverse_bits(i) >> 8) * bb_real(5.9604644775390625e-8);  // 2^-24
 #else
-    return real(reverse_bits(i)) * real(2.3283064365386963e-10);  // 2^-32
+    return bb_real(reverse_bits(i)) * bb_real(2.3283064365386963e-10);  // 2^-32
 #endif
 }
 
 // (x + shift) mod 1 for x, shift in [0, 1).
-inline real rotate(real x, real shift) {
-    const real u = x + shift;
-    return u >= real(1) ? u - real(1) : u;
+inline bb_real rotate(bb_real x, bb_real shift) {
+    const bb_real u = x + shift;
+    return u >= bb_real(1) ? u - bb_real(1) : u;
 }
 
 // Smith's Lambda for GGX: (sqrt(1 + a^2 tan^2 theta) - 1) / 2, tan^2 theta = (x^2 + y^2) / z^2.
-inline real smith_lambda(real x, real y, real z, real a2) {
-    return real(0.5) * (std::sqrt(real(1) + a2 * (x * x + y * y) / (z * z)) - real(1));
+inline bb_real smith_lambda(bb_real x, bb_real y, bb_real z, bb_real a2) {
+    return bb_real(0.5) * (std::sqrt(bb_real(1) + a2 * (x * x + y * y) / (z * z)) - bb_real(1));
 }
 
 // Replica means and non-finite counts of every (cell, replica), cell-major: exactly the work
@@ -79,34 +79,34 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
     means.assign(size_t(n_items), 0.0);
     bad.assign(size_t(n_items), 0);
     const long n = long(points);
-    const real pi2 = real(6.283185307179586);
+    const bb_real pi2 = bb_real(6.283185307179586);
 #pragma omp parallel for schedule(dynamic, 1)
     for (long item = 0; item < n_items; ++item) {
         const long cell = item / replicas, rep = item - cell * replicas;
-        const real a = real(alphas[size_t(cell)]), a2 = a * a;
-        const real sh1 = real(shifts[2 * size_t(rep)]), sh2 = real(shifts[2 * size_t(rep) + 1]);
+        const bb_real a = bb_real(alphas[size_t(cell)]), a2 = a * a;
+        const bb_real sh1 = bb_real(shifts[2 * size_t(rep)]), sh2 = bb_real(shifts[2 * size_t(rep) + 1]);
         // wo = (sin theta_o, 0, cos theta_o).
-        const real woz = real(mus[size_t(cell)]);
-        const real wox = std::sqrt(real(1) - woz * woz > real(0) ? real(1) - woz * woz : real(0)), woy = real(0);
+        const bb_real woz = bb_real(mus[size_t(cell)]);
+        const bb_real wox = std::sqrt(bb_real(1) - woz * woz > bb_real(0) ? bb_real(1) - woz * woz : bb_real(0)), woy = bb_real(0);
         // Listing 1: the stretched view Vh and its basis T1, T2 (the same for every sample).
-        const real vlx = a * wox, vly = a * woy, vlen = std::sqrt(vlx * vlx + vly * vly + woz * woz);
-        const real vhx = vlx / vlen, vhy = vly / vlen, vhz = woz / vlen;
-        const real lensq = vhx * vhx + vhy * vhy;
-        const real inv_len = lensq > real(0) ? real(1) / std::sqrt(lensq) : real(0);
-        const real t1x = lensq > real(0) ? -vhy * inv_len : real(1), t1y = lensq > real(0) ? vhx * inv_len : real(0);
-        const real t1z = real(0);
-        const real t2x = vhy * t1z - vhz * t1y, t2y = vhz * t1x - vhx * t1z, t2z = vhx * t1y - vhy * t1x;
-        const real s = real(0.5) * (real(1) + vhz);
+        const bb_real vlx = a * wox, vly = a * woy, vlen = std::sqrt(vlx * vlx + vly * vly + woz * woz);
+        const bb_real vhx = vlx / vlen, vhy = vly / vlen, vhz = woz / vlen;
+        const bb_real lensq = vhx * vhx + vhy * vhy;
+        const bb_real inv_len = lensq > bb_real(0) ? bb_real(1) / std::sqrt(lensq) : bb_real(0);
+        const bb_real t1x = lensq > bb_real(0) ? -vhy * inv_len : bb_real(1), t1y = lensq > bb_real(0) ? vhx * inv_len : bb_real(0);
+        const bb_real t1z = bb_real(0);
+        const bb_real t2x = vhy * t1z - vhz * t1y, t2y = vhz * t1x - vhx * t1z, t2z = vhx * t1y - vhy * t1x;
+        const bb_real s = bb_real(0.5) * (bb_real(1) + vhz);
         // G1(wo) = 1 / (1 + Lambda(wo)).
-        const real lambda_o = smith_lambda(wox, woy, woz, a2);
-        const real g1o = real(1) / (real(1) + lambda_o);
-        const real corr = correlated ? real(1) : real(0);
+        const bb_real lambda_o = smith_lambda(wox, woy, woz, a2);
+        const bb_real g1o = bb_real(1) / (bb_real(1) + lambda_o);
+        const bb_real corr = correlated ? bb_real(1) : bb_real(0);
         double sum = 0.0, nbad = 0.0;
         for (long b = 0; b < n; b += 512) {
             const long e = n < b + 512 ? n : b + 512;
-            real block = 0, block_bad = 0;
+            bb_real block = 0, block_bad = 0;
 #if BASELINE_PLAIN_COS_LOOP
-            real cos_phi[512];
+            bb_real cos_phi[512];
 #pragma omp simd
             for (long i = b; i < e; ++i)
                 cos_phi[i - b] = std::cos(pi2 * rotate(radical_inverse(std::uint32_t(i)), sh2));
@@ -114,39 +114,39 @@ inline void BASELINE_FN(const std::vector<double>& mus, const std::vector<double
 #pragma omp simd reduction(+ : block, block_bad)
             for (long i = b; i < e; ++i) {
                 // The rotated Hammersley point.
-                const real u1 = rotate((real(i) + real(0.5)) / real(n), sh1);
-                const real u2 = rotate(radical_inverse(std::uint32_t(i)), sh2);
+                const bb_real u1 = rotate((bb_real(i) + bb_real(0.5)) / bb_real(n), sh1);
+                const bb_real u2 = rotate(radical_inverse(std::uint32_t(i)), sh2);
                 // Listing 1: the disk point, warped to the projected hemisphere.
-                const real r = std::sqrt(u1), phi = pi2 * u2;
+                const bb_real r = std::sqrt(u1), phi = pi2 * u2;
 #if BASELINE_PLAIN_COS_LOOP
-                const real t1 = r * cos_phi[i - b];
+                const bb_real t1 = r * cos_phi[i - b];
 #else
-                const real t1 = r * std::cos(phi);
+                const bb_real t1 = r * std::cos(phi);
 #endif
-                const real t2d = r * std::sin(phi);
-                const real h = std::sqrt(real(1) - t1 * t1 > real(0) ? real(1) - t1 * t1 : real(0));
-                const real t2 = (real(1) - s) * h + s * t2d;
-                const real pz = real(1) - t1 * t1 - t2 * t2;
-                const real t3 = std::sqrt(pz > real(0) ? pz : real(0));
+                const bb_real t2d = r * std::sin(phi);
+                const bb_real h = std::sqrt(bb_real(1) - t1 * t1 > bb_real(0) ? bb_real(1) - t1 * t1 : bb_real(0));
+                const bb_real t2 = (bb_real(1) - s) * h + s * t2d;
+                const bb_real pz = bb_real(1) - t1 * t1 - t2 * t2;
+                const bb_real t3 = std::sqrt(pz > bb_real(0) ? pz : bb_real(0));
                 // Reprojection Nh = t1 T1 + t2 T2 + t3 Vh, unstretched and normalised.
-                const real nhx = t1 * t1x + t2 * t2x + t3 * vhx;
-                const real nhy = t1 * t1y + t2 * t2y + t3 * vhy;
-                const real nhz = t1 * t1z + t2 * t2z + t3 * vhz;
-                const real nx = a * nhx, ny = a * nhy, nz = nhz > real(0) ? nhz : real(0);
-                const real inv_m = real(1) / std::sqrt(nx * nx + ny * ny + nz * nz);
-                const real mx = nx * inv_m, my = ny * inv_m, mz = nz * inv_m;
+                const bb_real nhx = t1 * t1x + t2 * t2x + t3 * vhx;
+                const bb_real nhy = t1 * t1y + t2 * t2y + t3 * vhy;
+                const bb_real nhz = t1 * t1z + t2 * t2z + t3 * vhz;
+                const bb_real nx = a * nhx, ny = a * nhy, nz = nhz > bb_real(0) ? nhz : bb_real(0);
+                const bb_real inv_m = bb_real(1) / std::sqrt(nx * nx + ny * ny + nz * nz);
+                const bb_real mx = nx * inv_m, my = ny * inv_m, mz = nz * inv_m;
                 // Reflection and the weight G2 / G1(wo).
-                const real d = wox * mx + woy * my + woz * mz;
-                const real wix = real(2) * d * mx - wox, wiy = real(2) * d * my - woy, wiz = real(2) * d * mz - woz;
-                const real lambda_i = smith_lambda(wix, wiy, wiz, a2);
-                const real g2_corr = real(1) / (real(1) + lambda_o + lambda_i);
-                const real g2_sep = g1o / (real(1) + lambda_i);
-                const real g2 = corr > real(0) ? g2_corr : g2_sep;
-                const real w = g2 / g1o;
-                const real v = wiz > real(0) ? w : real(0);  // below the horizon: 0
+                const bb_real d = wox * mx + woy * my + woz * mz;
+                const bb_real wix = bb_real(2) * d * mx - wox, wiy = bb_real(2) * d * my - woy, wiz = bb_real(2) * d * mz - woz;
+                const bb_real lambda_i = smith_lambda(wix, wiy, wiz, a2);
+                const bb_real g2_corr = bb_real(1) / (bb_real(1) + lambda_o + lambda_i);
+                const bb_real g2_sep = g1o / (bb_real(1) + lambda_i);
+                const bb_real g2 = corr > bb_real(0) ? g2_corr : g2_sep;
+                const bb_real w = g2 / g1o;
+                const bb_real v = wiz > bb_real(0) ? w : bb_real(0);  // below the horizon: 0
                 const bool ok = std::isfinite(v);            // NaN/Inf counted, never summed
-                block_bad += ok ? real(0) : real(1);
-                block += ok ? v : real(0);
+                block_bad += ok ? bb_real(0) : bb_real(1);
+                block += ok ? v : bb_real(0);
             }
             sum += double(block);
             nbad += double(block_bad);

@@ -5,4 +5,4 @@
 #define BASELINE_FN replicas_strict_float
 #include "baseline_impl.h"
 
-static_assert(sizeof(bb_strict_float::real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");
+static_assert(sizeof(bb_strict_float::bb_real) == sizeof(float), "baseline_impl.h ignores BB_HOST_REAL_FLOAT");

@@ -55,8 +55,8 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     unsigned int ok = 1;
     for (int k = 0; k < BB_MAX_PARAMS; ++k) {
         const bb_scalar a = model_p[cell * BB_MAX_PARAMS + k], b = fresnel_p[k];
-        p->v[k] = (real)a;
-        fp->v[k] = (real)b;
+        p->v[k] = (bb_real)a;
+        fp->v[k] = (bb_real)b;
         ok &= (unsigned int)(isfinite(a) && isfinite(b));
     }
     return ok;
@@ -79,7 +79,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     const unsigned int rep = gid - cell * n_replicas;                                             \
     bb_params p, fp;                                                                              \
     const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
-    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], (real)cell_phi[cell])
+    const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], (bb_real)cell_phi[cell])
 
 #ifdef BB_QUADRATURE
 
@@ -112,8 +112,8 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                         \
     bb_params p, fp;                                                                              \
     const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
-    const real phi_o = (real)cell_phi[cell];                                                      \
-    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], phi_o);                            \
+    const bb_real phi_o = (bb_real)cell_phi[cell];                                                      \
+    const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], phi_o);                            \
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \
     const int mirrored = bb_quad_mirrored(dist, phi_o);                                           \
     if ((mirrored && q >= 2u) ||                                                                  \
@@ -136,7 +136,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
 #ifndef BB_QUADRATURE
 
 __kernel void BB_ENTRY_ALBEDO_REPLICAS(BB_CELL_ARGS,
-                              __global const real* shifts,     /* 2 per replica */
+                              __global const bb_real* shifts,     /* 2 per replica */
                               const unsigned int n_points,     /* points per replica */
                               const unsigned int n_replicas,
                               const unsigned int n_cells,
@@ -144,19 +144,19 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(BB_CELL_ARGS,
                               const unsigned int seed_lo,      /* Philox key (mc) */
                               const unsigned int seed_hi,
                               __global const unsigned int* cell_stream, /* mc: each cell's stream */
-                              __global real* replica_mean,     /* n_cells * n_replicas */
+                              __global bb_real* replica_mean,     /* n_cells * n_replicas */
                               __global unsigned int* bad_count) /* n_cells * n_replicas */
 {
     BB_REPLICA_PROLOGUE;
-    const real s1 = shifts[2 * rep], s2 = shifts[2 * rep + 1];
+    const bb_real s1 = shifts[2 * rep], s2 = shifts[2 * rep + 1];
 #ifdef BB_PHILOX
     philox4x32_key_t key = {{seed_lo, seed_hi}};
 #endif
 
-    real sum = BB_R(0.0), comp = BB_R(0.0);
+    bb_real sum = BB_R(0.0), comp = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int i = 0; i < n_points; ++i) {
-        real u1, u2;
+        bb_real u1, u2;
 #ifdef BB_PHILOX
         if (method == BB_METHOD_MC) {
             /* Counter (point, replica, cell stream, "albd"): every sample its own stream position;
@@ -172,12 +172,12 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(BB_CELL_ARGS,
             u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
             u2 = bb_rotate(bb_hammersley_u2(i), s2);
         }
-        const real w = bb_albedo_point_weight(method, BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
+        const bb_real w = bb_albedo_point_weight(method, BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
         const int ok = isfinite(w);
         bad += ok ? 0u : 1u;
         BB_KAHAN_ADD(sum, comp, ok ? w : BB_R(0.0));
     }
-    replica_mean[gid] = sum / (real)n_points;
+    replica_mean[gid] = sum / (bb_real)n_points;
     bad_count[gid] = params_ok ? bad : n_points;
 }
 
@@ -188,24 +188,24 @@ __kernel void BB_ENTRY_ALBEDO_REPLICAS(BB_CELL_ARGS,
 __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
     BB_QUADRATURE_PROLOGUE;
 
-    real sum = BB_R(0.0), comp = BB_R(0.0);
+    bb_real sum = BB_R(0.0), comp = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int j = 0; j < n; ++j) {
-        const real s = ((real)q + x[j]) * BB_R(0.25); /* fraction of the full turn */
-        real row = BB_R(0.0), row_comp = BB_R(0.0), scale;
+        const bb_real s = ((bb_real)q + x[j]) * BB_R(0.25); /* fraction of the full turn */
+        bb_real row = BB_R(0.0), row_comp = BB_R(0.0), scale;
         if (dist.kind == BB_QUAD_SAMPLER) {
             if (bb_quad_sampler_is_cosine(BB_MODEL)) {
-                const real cos_s = bb_cos(BB_2PI * s), sin_s = bb_sin(BB_2PI * s);
+                const bb_real cos_s = bb_cos(BB_2PI * s), sin_s = bb_sin(BB_2PI * s);
                 /* c = cos(theta_i) over [0, mu_o] and [mu_o, 1]; u1 = 1 - c^2, du1 = 2c dc */
                 for (int piece = 0; piece < 2; ++piece) {
-                    const real lo = piece == 0 ? BB_R(0.0) : wo.z, len = piece == 0 ? wo.z : BB_R(1.0) - wo.z;
+                    const bb_real lo = piece == 0 ? BB_R(0.0) : wo.z, len = piece == 0 ? wo.z : BB_R(1.0) - wo.z;
                     for (unsigned int k = 0; k < n; ++k) {
                         /* wi from c directly (not through u1 = 1 - c^2, which rounds to 1
                          * for c < 2.4e-4 in float): the weight is pi f, the pdf being c/pi */
-                        const real c = lo + len * x[k];
-                        const real sn = bb_safe_sqrt(bb_sin2_from_cos(c));
+                        const bb_real c = lo + len * x[k];
+                        const bb_real sn = bb_safe_sqrt(bb_sin2_from_cos(c));
                         const bb_vec3 wi = bb_v3(sn * cos_s, sn * sin_s, c);
-                        const real w = BB_PI * bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, wi);
+                        const bb_real w = BB_PI * bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, wi);
                         const int ok = isfinite(w);
                         bad += ok ? 0u : 1u;
                         BB_KAHAN_ADD(row, row_comp, ok ? BB_R(2.0) * c * len * wt[k] * w : BB_R(0.0));
@@ -213,7 +213,7 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
                 }
             } else {
                 for (unsigned int k = 0; k < n; ++k) {
-                    const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, x[k], s).weight;
+                    const bb_real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, x[k], s).weight;
                     const int ok = isfinite(w);
                     bad += ok ? 0u : 1u;
                     BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
@@ -224,7 +224,7 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
             const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, x[j]);
             const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
             for (unsigned int k = 0; k < n; ++k) {
-                const real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
+                const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
                 const int ok = isfinite(w);
                 bad += ok ? 0u : 1u;
                 BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
@@ -262,7 +262,7 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
 __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
     BB_QUADRATURE_PROLOGUE;
 
-    real sum = BB_R(0.0), comp = BB_R(0.0);
+    bb_real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
 #ifdef BB_QUAD_SAMPLER_ROWS
     /* -D BB_QUAD_SAMPLER_ROWS: the sampler's unit square, for the models whose sampler and
@@ -270,50 +270,50 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
      * the row u2 = s of abscissa j0 + l, as in albedo_quadrature; the nodes u1 (or c) one at a
      * time for all W rows. */
     for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
-        const real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
+        const bb_real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
         const bb_mask live = wj > BB_R(0.0);
-        const real s = ((real)q + xj) * BB_R(0.25); /* fraction of the full turn */
-        real row = BB_R(0.0), row_comp = BB_R(0.0);
+        const bb_real s = ((bb_real)q + xj) * BB_R(0.25); /* fraction of the full turn */
+        bb_real row = BB_R(0.0), row_comp = BB_R(0.0);
         if (bb_quad_sampler_is_cosine(BB_MODEL)) {
-            const real cos_s = bb_cos(BB_2PI * s), sin_s = bb_sin(BB_2PI * s);
+            const bb_real cos_s = bb_cos(BB_2PI * s), sin_s = bb_sin(BB_2PI * s);
             for (int part = 0; part < 2; ++part) {
-                const real lo = part == 0 ? BB_R(0.0) : wo.z, len = part == 0 ? wo.z : BB_R(1.0) - wo.z;
+                const bb_real lo = part == 0 ? BB_R(0.0) : wo.z, len = part == 0 ? wo.z : BB_R(1.0) - wo.z;
                 for (unsigned int k = 0; k < n; ++k) {
-                    const real c = lo + len * (real)x[k];
-                    const real sn = bb_safe_sqrt(bb_sin2_from_cos(c));
+                    const bb_real c = lo + len * (bb_real)x[k];
+                    const bb_real sn = bb_safe_sqrt(bb_sin2_from_cos(c));
                     const bb_vec3 wi = bb_v3(sn * cos_s, sn * sin_s, c);
-                    const real w = BB_PI * bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, wi);
+                    const bb_real w = BB_PI * bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, wi);
                     const bb_mask ok = isfinite(w);
                     bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
-                    BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), BB_R(2.0) * c * len * (real)wt[k] * w, ok));
+                    BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), BB_R(2.0) * c * len * (bb_real)wt[k] * w, ok));
                 }
             }
         } else {
             for (unsigned int k = 0; k < n; ++k) {
-                const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, (real)x[k], s).weight;
+                const bb_real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, (bb_real)x[k], s).weight;
                 const bb_mask ok = isfinite(w);
                 bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
-                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), (real)wt[k] * w, ok));
+                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), (bb_real)wt[k] * w, ok));
             }
         }
         BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * BB_R(0.25) * row, live));
     }
 #else
     for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
-        const real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
+        const bb_real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
         const bb_mask live = wj > BB_R(0.0);
         const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, xj);
         const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
-        real row = BB_R(0.0), row_comp = BB_R(0.0);
+        bb_real row = BB_R(0.0), row_comp = BB_R(0.0);
         /* Not unrolled: 4x unrolling saved ~15% of this loop's time (5-7 ms of the 64x64 table
          * at --tolerance 1e-5) but cost ~0.1 s more of PoCL's cold compile. */
         for (unsigned int k = 0; k < n; ++k) {
-            const real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
+            const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
             const bb_mask ok = isfinite(w);
             bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
             BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), wt[k] * w, ok));
         }
-        const real scale = az.ddelta * r.t_max;
+        const bb_real scale = az.ddelta * r.t_max;
         BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * scale * row, live));
     }
 #endif
@@ -352,25 +352,25 @@ __kernel void BB_VECTOR_KERNEL(BB_CELL_ARGS,
 
     /* Per lane: plain sums over blocks of BB_VECTOR_BLOCK steps (at most 32 terms, exact to a few
      * ulps), the blocks added with Kahan compensation (no loop-carried compensation per sample). */
-    real sum = BB_R(0.0), comp = BB_R(0.0);
+    bb_real sum = BB_R(0.0), comp = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_chunks = n_points / BB_VECTOR_WIDTH;
     __global const bb_scalar* d = disk + (size_t)rep * n_chunks * BB_STEP;
     for (unsigned int c0 = 0; c0 < n_chunks; c0 += BB_VECTOR_BLOCK) {
         const unsigned int c1 = min(n_chunks, c0 + BB_VECTOR_BLOCK);
-        real block = BB_R(0.0);
+        bb_real block = BB_R(0.0);
         /* Unrolled: the body is one long dependency chain (two square roots and a division
          * in sequence), and four independent steps in flight keep the units busy (issue 9:
          * x1.35 in float, x1.3 in double on the development machine; 8 gave no more). */
         __attribute__((opencl_unroll_hint(4)))
         for (unsigned int c = c0; c < c1; ++c, d += BB_STEP) {
 #if defined(BB_VECTOR_POINTS) && defined(BB_VECTOR_UNIFORM)
-            const real w = bb_uniform_hemisphere_weight(BB_MODEL, p, BB_FRESNEL, fp, wo, bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
+            const bb_real w = bb_uniform_hemisphere_weight(BB_MODEL, p, BB_FRESNEL, fp, wo, bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
 #elif defined(BB_VECTOR_POINTS)
-            const real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH)).weight;
+            const bb_real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH)).weight;
 #else
             const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
-            const real w = bb_model_disk_weight(BB_MODEL, dc, BB_FRESNEL, fp, pt, bb_vload(d + 2 * BB_VECTOR_WIDTH),
+            const bb_real w = bb_model_disk_weight(BB_MODEL, dc, BB_FRESNEL, fp, pt, bb_vload(d + 2 * BB_VECTOR_WIDTH),
                                                 BB_ISOTROPIC);
 #endif
             const bb_mask ok = isfinite(w);

@@ -46,13 +46,13 @@
     __global const bb_scalar* x = BB_QUAD_RULE_NODES(nodes, rule, n_fine, n_coarse);                   \
     __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                              \
     __global const bb_scalar* wg = wt + BB_QUAD_PADDED(n);                                             \
-    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], BB_R(0.0));                            \
-    const real a = (real)cell_alpha[cell], eta = (real)cell_eta[cell];                                 \
-    const real g1o = bb_ggx_g1(wo, a, a), lo = bb_ggx_lambda(wo, a, a);                                \
-    const real lga_o =                                                                                 \
+    const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], BB_R(0.0));                            \
+    const bb_real a = (bb_real)cell_alpha[cell], eta = (bb_real)cell_eta[cell];                                 \
+    const bb_real g1o = bb_ggx_g1(wo, a, a), lo = bb_ggx_lambda(wo, a, a);                                \
+    const bb_real lga_o =                                                                                 \
         bb_dielectric_beta_transmission(shadowing, transmission_shadowing) ? bb_lgamma(BB_R(1.0) + lo) \
                                                                            : BB_R(0.0);                \
-    const real r_cap = bb_dielectric_r_cap(wo, a);                                                     \
+    const bb_real r_cap = bb_dielectric_r_cap(wo, a);                                                     \
     const bb_interval az = bb_dielectric_piece(wo, eta, piece)
 
 #ifndef BB_VECTOR_WIDTH
@@ -64,22 +64,22 @@
  * (counted twice: delta in [0, pi] stands for [-pi, pi]) and the number of non-finite nodes. */
 __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
     BB_DIELECTRIC_QUADRATURE_PROLOGUE;
-    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0), gr = BB_R(0.0), gt = BB_R(0.0);
+    bb_real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0), gr = BB_R(0.0), gt = BB_R(0.0);
     unsigned int bad = 0;
     if (az.hi > az.lo) {
         for (unsigned int j = 0; j < n; ++j) {
-            const real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(x[j]);
-            const real w_delta = BB_R(2.0) * (az.hi - az.lo) * bb_smoothstep_d(x[j]);
+            const bb_real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(x[j]);
+            const bb_real w_delta = BB_R(2.0) * (az.hi - az.lo) * bb_smoothstep_d(x[j]);
             const bb_dielectric_row row = bb_make_dielectric_row(wo, a, eta, r_cap, delta);
-            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0), er = BB_R(0.0), et = BB_R(0.0);
+            bb_real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0), er = BB_R(0.0), et = BB_R(0.0);
             for (int s = 0; s < BB_DIELECTRIC_QUAD_SEGMENTS; ++s) {
-                const real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
+                const bb_real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
                 if (!(len > BB_R(0.0)))
                     continue;
                 const int tail = row.t[s + 1] >= row.t[BB_DIELECTRIC_QUAD_SEGMENTS];
                 for (unsigned int k = 0; k < n; ++k) {
                     const bb_segment_node node = bb_dielectric_segment_node(t0, len, tail, x[k]);
-                    const real jac = node.dt;
+                    const bb_real jac = node.dt;
                     const bb_rt p = bb_dielectric_quad_point(wo, a, eta, shadowing, transmission_shadowing, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              node.t);
                     const int ok = isfinite(p.r) && isfinite(p.t);
@@ -123,42 +123,42 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
  * padded to a multiple of W with weight 0: such lanes are neither summed nor counted. */
 __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS(BB_DIELECTRIC_QUADRATURE_ARGS) {
     BB_DIELECTRIC_QUADRATURE_PROLOGUE;
-    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0), gr = BB_R(0.0), gt = BB_R(0.0);
+    bb_real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0), gr = BB_R(0.0), gt = BB_R(0.0);
     bb_mask bad = 0;
     if (bb_all(az.hi > az.lo)) {
         for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
-            const real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
+            const bb_real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
             const bb_mask live = wj > BB_R(0.0);
-            const real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(xj);
-            const real w_delta = BB_R(2.0) * (az.hi - az.lo) * bb_smoothstep_d(xj);
+            const bb_real delta = az.lo + (az.hi - az.lo) * bb_smoothstep(xj);
+            const bb_real w_delta = BB_R(2.0) * (az.hi - az.lo) * bb_smoothstep_d(xj);
             const bb_dielectric_row row = bb_make_dielectric_row(wo, a, eta, r_cap, delta);
-            real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0), er = BB_R(0.0), et = BB_R(0.0);
+            bb_real rr = BB_R(0.0), rc = BB_R(0.0), tr = BB_R(0.0), tc = BB_R(0.0), er = BB_R(0.0), et = BB_R(0.0);
             for (int s = 0; s < BB_DIELECTRIC_QUAD_SEGMENTS; ++s) {
-                const real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
+                const bb_real t0 = row.t[s], len = row.t[s + 1] - row.t[s];
                 const bb_mask on = live & (len > BB_R(0.0));
                 if (bb_all(!on))
                     continue;
                 const bb_mask tail = row.t[s + 1] >= row.t[BB_DIELECTRIC_QUAD_SEGMENTS];
                 for (unsigned int k = 0; k < n; ++k) {
-                    const bb_segment_node node = bb_dielectric_segment_node(t0, len, tail, (real)x[k]);
-                    const real jac = node.dt;
+                    const bb_segment_node node = bb_dielectric_segment_node(t0, len, tail, (bb_real)x[k]);
+                    const bb_real jac = node.dt;
                     const bb_rt p = bb_dielectric_quad_point(wo, a, eta, shadowing, transmission_shadowing, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              node.t);
                     const bb_mask ok = isfinite(p.r) & isfinite(p.t);
                     bad += bb_select((bb_mask)0, (bb_mask)1, on & ~ok);
-                    const real pr = bb_select(BB_R(0.0), jac * p.r, on & ok), pt = bb_select(BB_R(0.0), jac * p.t, on & ok);
-                    BB_KAHAN_ADD(rr, rc, (real)wt[k] * pr);
-                    BB_KAHAN_ADD(tr, tc, (real)wt[k] * pt);
+                    const bb_real pr = bb_select(BB_R(0.0), jac * p.r, on & ok), pt = bb_select(BB_R(0.0), jac * p.t, on & ok);
+                    BB_KAHAN_ADD(rr, rc, (bb_real)wt[k] * pr);
+                    BB_KAHAN_ADD(tr, tc, (bb_real)wt[k] * pt);
                     if (embedded != 0u) {
-                        er += (real)wg[k] * pr;
-                        et += (real)wg[k] * pt;
+                        er += (bb_real)wg[k] * pr;
+                        et += (bb_real)wg[k] * pt;
                     }
                 }
             }
             BB_KAHAN_ADD(sr, cr, bb_select(BB_R(0.0), wj * w_delta * rr, live));
             BB_KAHAN_ADD(st, ct, bb_select(BB_R(0.0), wj * w_delta * tr, live));
             if (embedded != 0u) {
-                const real gj = bb_vload(wg + j0);
+                const bb_real gj = bb_vload(wg + j0);
                 gr += bb_select(BB_R(0.0), gj * w_delta * er, live);
                 gt += bb_select(BB_R(0.0), gj * w_delta * et, live);
             }
@@ -181,12 +181,12 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS(BB_DIELECTRIC_QUADRATURE_ARGS)
 
 #elif !defined(BB_VECTOR_WIDTH)
 
-__kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const real* cell_mu, __global const real* cell_alpha,
-                                  __global const real* cell_eta, __global const real* shifts,
+__kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const bb_real* cell_mu, __global const bb_real* cell_alpha,
+                                  __global const bb_real* cell_eta, __global const bb_real* shifts,
                                   const unsigned int n_points, const unsigned int n_replicas,
                                   const unsigned int n_cells, const int shadowing,
-                                  const int transmission_shadowing, __global real* replica_r,
-                                  __global real* replica_t,
+                                  const int transmission_shadowing, __global bb_real* replica_r,
+                                  __global bb_real* replica_t,
                                   __global unsigned int* bad_count) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     if (gid >= n_cells * n_replicas)
@@ -194,19 +194,19 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const real* cell_mu, __globa
     const unsigned int cell = gid / n_replicas;
     const unsigned int rep = gid - cell * n_replicas;
     const bb_vec3 wo = bb_dir_from_mu_phi(cell_mu[cell], BB_R(0.0));
-    const real alpha = cell_alpha[cell], eta = cell_eta[cell];
-    const real s1 = shifts[2 * rep], s2 = shifts[2 * rep + 1];
-    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
+    const bb_real alpha = cell_alpha[cell], eta = cell_eta[cell];
+    const bb_real s1 = shifts[2 * rep], s2 = shifts[2 * rep + 1];
+    bb_real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int i = 0; i < n_points; ++i) {
-        const real u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
-        const real u2 = bb_rotate(bb_hammersley_u2(i), s2);
+        const bb_real u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
+        const bb_real u2 = bb_rotate(bb_hammersley_u2(i), s2);
         const bb_rt s = bb_rough_dielectric_sample(wo, alpha, alpha, eta, shadowing, transmission_shadowing, u1, u2);
         const int ok = isfinite(s.r) && isfinite(s.t);
         bad += ok ? 0u : 1u;
         /* Kahan-compensated sums */
-        real y = (ok ? s.r : BB_R(0.0)) - cr;
-        real t = sr + y;
+        bb_real y = (ok ? s.r : BB_R(0.0)) - cr;
+        bb_real t = sr + y;
         cr = (t - sr) - y;
         sr = t;
         y = (ok ? s.t : BB_R(0.0)) - ct;
@@ -214,8 +214,8 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const real* cell_mu, __globa
         ct = (t - st) - y;
         st = t;
     }
-    replica_r[gid] = sr / (real)n_points;
-    replica_t[gid] = st / (real)n_points;
+    replica_r[gid] = sr / (bb_real)n_points;
+    replica_t[gid] = st / (bb_real)n_points;
     bad_count[gid] = bad;
 }
 
@@ -239,16 +239,16 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS_DISK(__global const bb_scalar* cell_m
         return;
     const unsigned int cell = gid / n_replicas;
     const unsigned int rep = gid - cell * n_replicas;
-    const bb_vec3 wo = bb_dir_from_mu_phi((real)cell_mu[cell], BB_R(0.0));
-    const real alpha = (real)cell_alpha[cell], eta = (real)cell_eta[cell];
+    const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], BB_R(0.0));
+    const bb_real alpha = (bb_real)cell_alpha[cell], eta = (bb_real)cell_eta[cell];
     /* Per lane: plain sums over blocks of BB_VECTOR_BLOCK steps, Kahan-compensated across blocks. */
-    real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
+    bb_real sr = BB_R(0.0), cr = BB_R(0.0), st = BB_R(0.0), ct = BB_R(0.0);
     bb_mask bad = 0;
     const unsigned int n_steps = n_points / BB_VECTOR_WIDTH;
     __global const bb_scalar* d = disk + (size_t)rep * n_steps * (BB_DISK_VALUES * BB_VECTOR_WIDTH);
     for (unsigned int c0 = 0; c0 < n_steps; c0 += BB_VECTOR_BLOCK) {
         const unsigned int c1 = min(n_steps, c0 + BB_VECTOR_BLOCK);
-        real br = BB_R(0.0), bt = BB_R(0.0);
+        bb_real br = BB_R(0.0), bt = BB_R(0.0);
         __attribute__((opencl_unroll_hint(2)))
         for (unsigned int c = c0; c < c1; ++c, d += BB_DISK_VALUES * BB_VECTOR_WIDTH) {
             const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
@@ -258,7 +258,7 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS_DISK(__global const bb_scalar* cell_m
             br += bb_select(BB_R(0.0), s.r, ok);
             bt += bb_select(BB_R(0.0), s.t, ok);
         }
-        real y = br - cr, t = sr + y;
+        bb_real y = br - cr, t = sr + y;
         cr = (t - sr) - y;
         sr = t;
         y = bt - ct;

@@ -6,19 +6,19 @@
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
 
-BB_FN bb_params load_params(__global const real* src) {
+BB_FN bb_params load_params(__global const bb_real* src) {
     bb_params p;
     for (int k = 0; k < BB_MAX_PARAMS; ++k) p.v[k] = src[k];
     return p;
 }
 
-BB_FN bb_vec3 load_vec3(__global const real* src, unsigned int i) {
+BB_FN bb_vec3 load_vec3(__global const bb_real* src, unsigned int i) {
     return bb_v3(src[3 * i], src[3 * i + 1], src[3 * i + 2]);
 }
 
-__kernel void BB_ENTRY_MODEL_EVAL(__global const real* wo, __global const real* wi, __global const real* model_p,
-                         __global const real* fresnel_p,
-                         __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */, const unsigned int n, __global real* out) {
+__kernel void BB_ENTRY_MODEL_EVAL(__global const bb_real* wo, __global const bb_real* wi, __global const bb_real* model_p,
+                         __global const bb_real* fresnel_p,
+                         __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */, const unsigned int n, __global bb_real* out) {
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)
         return;
@@ -26,10 +26,10 @@ __kernel void BB_ENTRY_MODEL_EVAL(__global const real* wo, __global const real* 
                            load_vec3(wo, i), load_vec3(wi, i));
 }
 
-__kernel void BB_ENTRY_MODEL_SAMPLE(__global const real* wo, __global const real* u, __global const real* model_p,
-                           __global const real* fresnel_p,
-                         __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */, const unsigned int n, __global real* out_wi,
-                           __global real* out_weight) {
+__kernel void BB_ENTRY_MODEL_SAMPLE(__global const bb_real* wo, __global const bb_real* u, __global const bb_real* model_p,
+                           __global const bb_real* fresnel_p,
+                         __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */, const unsigned int n, __global bb_real* out_wi,
+                           __global bb_real* out_weight) {
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)
         return;

@@ -8,10 +8,10 @@
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/fresnel.h"
 
-__kernel void BB_ENTRY_FRESNEL_CURVE(__global const real* cos_theta, /* n values in [-1, 1] */
-                            __global const real* fresnel_p, /* BB_MAX_PARAMS */
+__kernel void BB_ENTRY_FRESNEL_CURVE(__global const bb_real* cos_theta, /* n values in [-1, 1] */
+                            __global const bb_real* fresnel_p, /* BB_MAX_PARAMS */
                             const unsigned int n,
-                            __global real* out)             /* 3 per value: F, Rs, Rp */
+                            __global bb_real* out)             /* 3 per value: F, Rs, Rp */
 {
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)
@@ -19,7 +19,7 @@ __kernel void BB_ENTRY_FRESNEL_CURVE(__global const real* cos_theta, /* n values
     bb_params fp;
     for (int k = 0; k < BB_MAX_PARAMS; ++k)
         fp.v[k] = fresnel_p[k];
-    const real c = cos_theta[i];
+    const bb_real c = cos_theta[i];
     const bb_fresnel_sp r = bb_fresnel_eval_sp(BB_FRESNEL, fp, c);
     out[3 * i + 0] = bb_fresnel_eval(BB_FRESNEL, fp, c);
     out[3 * i + 1] = r.rs;

@@ -4,16 +4,16 @@
  * OpenCL C 1.2 accept, and includes this file first. It defines:
  *   BB_FN        the qualifier of every shared function (inlined on both sides; PoCL leaves
  *                helpers without always_inline as calls)
- *   real         the working type: double on the host (float with -D BB_HOST_REAL_FLOAT); float,
+ *   bb_real      the working type: double on the host (float with -D BB_HOST_REAL_FLOAT); float,
  *                or double with -D BB_REAL_DOUBLE, in kernels; with -D BB_VECTOR_WIDTH=W a vector
  *                of W lanes (float16, double8): one source for scalar and vector kernels
- *   bb_scalar    the element type of real; bb_mask the type of a comparison of reals
+ *   bb_scalar    the element type of bb_real; bb_mask the type of a comparison of reals
  *   bb_first(x), bb_all(m)  the first lane of x and whether every lane of m holds (for values
  *                that are equal in every lane; the value itself in scalar builds)
- *   BB_R(x)       a literal of type real
+ *   BB_R(x)       a literal of type bb_real
  *   bb_select(a, b, c)   c ? b : a, branch-free (OpenCL select() semantics)
  *   bb_clamp, bb_min, bb_max, bb_sqrt ...  math that maps to the OpenCL built-ins
- *   bb_vec3      a 3-vector of real with bb_v3, bb_dot, bb_normalize, ...
+ *   bb_vec3      a 3-vector of bb_real with bb_v3, bb_dot, bb_normalize, ...
  * No templates, references, namespaces or overloading in shared code (docs/architecture.md).
  */
 #ifndef BRDFBAKE_BRDF_COMPAT_H
@@ -35,17 +35,17 @@ typedef float bb_scalar;
 #define BB_EPS_REAL 1.1920929e-7f
 #define BB_REAL_MAX 3.4028235e38f
 #endif
-/* -D BB_VECTOR_WIDTH=W makes `real` an OpenCL vector of W lanes (float16, double8, ...): every
+/* -D BB_VECTOR_WIDTH=W makes `bb_real` an OpenCL vector of W lanes (float16, double8, ...): every
  * shared function then evaluates W samples at once, which PoCL turns into SIMD code (it does not
  * vectorise across scalar work-items whose code calls built-ins). bb_mask is the type of a
  * comparison of reals: int for scalars (0/1), the signed integer vector of the lane size for
  * vectors (0/-1); bb_select treats both alike. */
 #ifdef BB_VECTOR_WIDTH
 #ifdef BB_REAL_DOUBLE
-typedef BB_CAT(double, BB_VECTOR_WIDTH) real;
+typedef BB_CAT(double, BB_VECTOR_WIDTH) bb_real;
 typedef BB_CAT(long, BB_VECTOR_WIDTH) bb_mask;
 #else
-typedef BB_CAT(float, BB_VECTOR_WIDTH) real;
+typedef BB_CAT(float, BB_VECTOR_WIDTH) bb_real;
 typedef BB_CAT(int, BB_VECTOR_WIDTH) bb_mask;
 #endif
 #define bb_vload(p) BB_CAT(vload, BB_VECTOR_WIDTH)(0, (p))
@@ -57,12 +57,12 @@ typedef BB_CAT(int, BB_VECTOR_WIDTH) bb_mask;
  * that passing them "changes the ABI": every helper is inlined (BB_FN), so no call passes one. */
 #pragma clang diagnostic ignored "-Wpsabi"
 #else
-typedef bb_scalar real;
+typedef bb_scalar bb_real;
 typedef int bb_mask;
 #define bb_first(x) (x)
 #define bb_all(m) (m)
 #endif
-#define BB_R(x) ((real)(x))
+#define BB_R(x) ((bb_real)(x))
 /* The ternary operator: for vector operands OpenCL C applies it per component, like select(). */
 #define bb_select(a, b, c) ((c) ? (b) : (a))
 #define bb_sqrt sqrt
@@ -87,21 +87,21 @@ typedef int bb_mask;
 /* double on the host; -D BB_HOST_REAL_FLOAT (a float host build of the shared math)
  * gives float, as a --precision float kernel computes. */
 #ifdef BB_HOST_REAL_FLOAT
-typedef float real;
+typedef float bb_real;
 #define BB_REAL_IS_FLOAT 1
 #define BB_EPS_REAL 1.1920929e-7f
 #define BB_REAL_MAX 3.4028235e38f
 #else
-typedef double real;
+typedef double bb_real;
 #define BB_EPS_REAL 2.220446049250313e-16
 #define BB_REAL_MAX 1.7976931348623157e308
 #endif
-typedef real bb_scalar;
+typedef bb_real bb_scalar;
 typedef int bb_mask;
 #define bb_first(x) (x)
 #define bb_all(m) (m)
 #define BB_FN static inline
-#define BB_R(x) ((real)(x))
+#define BB_R(x) ((bb_real)(x))
 /* OpenCL's select(a, b, c) for scalars: c ? b : a */
 #define bb_select(a, b, c) ((c) ? (b) : (a))
 #define bb_sqrt std::sqrt
@@ -127,10 +127,10 @@ typedef int bb_mask;
 
 /* A point in the plane (e.g. on the unit disk). */
 typedef struct {
-    real x, y;
+    bb_real x, y;
 } bb_vec2;
 
-BB_FN bb_vec2 bb_v2(real x, real y) {
+BB_FN bb_vec2 bb_v2(bb_real x, bb_real y) {
     bb_vec2 v = {x, y};
     return v;
 }
@@ -138,39 +138,39 @@ BB_FN bb_vec2 bb_v2(real x, real y) {
 /* ----------------------------------------------------------- 3-vectors
  * A plain struct rather than OpenCL's real3, so that host and device share the code. */
 typedef struct {
-    real x, y, z;
+    bb_real x, y, z;
 } bb_vec3;
 
-BB_FN bb_vec3 bb_v3(real x, real y, real z) {
+BB_FN bb_vec3 bb_v3(bb_real x, bb_real y, bb_real z) {
     bb_vec3 v = {x, y, z};
     return v;
 }
-BB_FN real bb_dot(bb_vec3 a, bb_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+BB_FN bb_real bb_dot(bb_vec3 a, bb_vec3 b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 BB_FN bb_vec3 bb_add(bb_vec3 a, bb_vec3 b) { return bb_v3(a.x + b.x, a.y + b.y, a.z + b.z); }
-BB_FN bb_vec3 bb_scale(bb_vec3 a, real s) { return bb_v3(a.x * s, a.y * s, a.z * s); }
+BB_FN bb_vec3 bb_scale(bb_vec3 a, bb_real s) { return bb_v3(a.x * s, a.y * s, a.z * s); }
 BB_FN bb_vec3 bb_cross(bb_vec3 a, bb_vec3 b) {
     return bb_v3(a.y * b.z - a.z * b.y, a.z * b.x - a.x * b.z, a.x * b.y - a.y * b.x);
 }
 /* Edge-case policy: a zero-length vector normalises to (0,0,0) rather than NaN; callers
  * treat a zero half vector as "no contribution". */
 BB_FN bb_vec3 bb_normalize(bb_vec3 a) {
-    real len2 = bb_dot(a, a);
-    real inv = bb_select(BB_R(0.0), BB_R(1.0) / bb_sqrt(len2), len2 > BB_R(0.0));
+    bb_real len2 = bb_dot(a, a);
+    bb_real inv = bb_select(BB_R(0.0), BB_R(1.0) / bb_sqrt(len2), len2 > BB_R(0.0));
     return bb_scale(a, inv);
 }
 
 /* ------------------------------------------------------ scalar helpers */
 /* sqrt that never returns NaN for a tiny negative argument produced by rounding. */
-BB_FN real bb_safe_sqrt(real x) { return bb_sqrt(bb_max(x, BB_R(0.0))); }
-BB_FN real bb_sqr(real x) { return x * x; }
+BB_FN bb_real bb_safe_sqrt(bb_real x) { return bb_sqrt(bb_max(x, BB_R(0.0))); }
+BB_FN bb_real bb_sqr(bb_real x) { return x * x; }
 /* Cosines are clamped to [-1, 1] everywhere (edge-case policy). */
-BB_FN real bb_clamp_cos(real c) { return bb_clamp(c, BB_R(-1.0), BB_R(1.0)); }
+BB_FN bb_real bb_clamp_cos(bb_real c) { return bb_clamp(c, BB_R(-1.0), BB_R(1.0)); }
 /* sin^2 from cos written as (1-c)(1+c): exact near c = 1 where 1 - c*c cancels. */
-BB_FN real bb_sin2_from_cos(real c) { return bb_max((BB_R(1.0) - c) * (BB_R(1.0) + c), BB_R(0.0)); }
+BB_FN bb_real bb_sin2_from_cos(bb_real c) { return bb_max((BB_R(1.0) - c) * (BB_R(1.0) + c), BB_R(0.0)); }
 
 /* The direction with cos(theta) = mu and azimuth phi in the local frame (n = +z). */
-BB_FN bb_vec3 bb_dir_from_mu_phi(real mu, real phi) {
-    real s = bb_safe_sqrt(bb_sin2_from_cos(mu));
+BB_FN bb_vec3 bb_dir_from_mu_phi(bb_real mu, bb_real phi) {
+    bb_real s = bb_safe_sqrt(bb_sin2_from_cos(mu));
     return bb_v3(s * bb_cos(phi), s * bb_sin(phi), mu);
 }
 /* Mirror reflection of w about the unit vector m: 2(w.m)m - w. */
@@ -185,7 +185,7 @@ BB_FN bb_vec3 bb_reflect(bb_vec3 w, bb_vec3 m) {
 #define BB_VECTOR_BLOCK 32u
 
 /* The sum of the lanes of v - c (a per-lane sum and its Kahan compensation), compensated. */
-BB_FN bb_scalar bb_lane_sum(real v, real c) {
+BB_FN bb_scalar bb_lane_sum(bb_real v, bb_real c) {
     bb_scalar a[BB_VECTOR_WIDTH], b[BB_VECTOR_WIDTH];
     BB_CAT(vstore, BB_VECTOR_WIDTH)(v, 0, a);
     BB_CAT(vstore, BB_VECTOR_WIDTH)(c, 0, b);
@@ -212,8 +212,8 @@ BB_FN unsigned int bb_lane_count(bb_mask m) {
 /* Kahan-compensated accumulation: a float sum of 2^16 terms keeps ~1e-7 relative accuracy. */
 #define BB_KAHAN_ADD(sum, comp, x)       \
     do {                                 \
-        const real y_ = (x) - (comp);    \
-        const real t_ = (sum) + y_;      \
+        const bb_real y_ = (x) - (comp);    \
+        const bb_real t_ = (sum) + y_;      \
         (comp) = (t_ - (sum)) - y_;      \
         (sum) = t_;                      \
     } while (0)

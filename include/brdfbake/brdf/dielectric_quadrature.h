@@ -53,8 +53,8 @@
 #define BB_DIELECTRIC_QUAD_SEGMENTS 6
 
 /* The smoothstep map of a segment: S(x) = x^2 (3 - 2x) and its derivative 6x(1 - x). */
-BB_FN real bb_smoothstep(real x) { return x * x * (BB_R(3.0) - BB_R(2.0) * x); }
-BB_FN real bb_smoothstep_d(real x) { return BB_R(6.0) * x * (BB_R(1.0) - x); }
+BB_FN bb_real bb_smoothstep(bb_real x) { return x * x * (BB_R(3.0) - BB_R(2.0) * x); }
+BB_FN bb_real bb_smoothstep_d(bb_real x) { return BB_R(6.0) * x * (BB_R(1.0) - x); }
 
 /* The node of a row segment [t0, t0 + len] at x in [0, 1]: t and dt/dx. Through the smoothstep
  * u = S(x); on the row's last segment (`tail`) t - t0 is then distributed exponentially,
@@ -64,13 +64,13 @@ BB_FN real bb_smoothstep_d(real x) { return BB_R(6.0) * x * (BB_R(1.0) - x); }
  * out to slope r_cap (t ~ 38 in double), the 15-node Gauss rule misjudged the tail by 4e-4.
  * 1 - u q is formed as (1 - x)^2 (1 + 2x) + u e^-len, which loses nothing as u -> 1. */
 typedef struct {
-    real t, dt;
+    bb_real t, dt;
 } bb_segment_node;
 
-BB_FN bb_segment_node bb_dielectric_segment_node(real t0, real len, bb_mask tail, real x) {
-    real u = bb_smoothstep(x), du = bb_smoothstep_d(x);
-    real e = bb_exp(-len);
-    real rest = (BB_R(1.0) - x) * (BB_R(1.0) - x) * (BB_R(1.0) + BB_R(2.0) * x) + u * e; /* 1 - u q */
+BB_FN bb_segment_node bb_dielectric_segment_node(bb_real t0, bb_real len, bb_mask tail, bb_real x) {
+    bb_real u = bb_smoothstep(x), du = bb_smoothstep_d(x);
+    bb_real e = bb_exp(-len);
+    bb_real rest = (BB_R(1.0) - x) * (BB_R(1.0) - x) * (BB_R(1.0) + BB_R(2.0) * x) + u * e; /* 1 - u q */
     bb_segment_node n;
     n.t = t0 + bb_select(len * u, -bb_log(rest), tail);
     n.dt = du * bb_select(len, (BB_R(1.0) - e) / rest, tail);
@@ -78,44 +78,44 @@ BB_FN bb_segment_node bb_dielectric_segment_node(real t0, real len, bb_mask tail
 }
 
 /* The slope where every row ends (see the head of this file). */
-BB_FN real bb_dielectric_r_cap(bb_vec3 wo, real a) {
-    real tan_o = wo.x / wo.z; /* phi_o = 0: wo.x = sin(theta_o) */
+BB_FN bb_real bb_dielectric_r_cap(bb_vec3 wo, bb_real a) {
+    bb_real tan_o = wo.x / wo.z; /* phi_o = 0: wo.x = sin(theta_o) */
     return a * a * (BB_R(1.0) + BB_R(2.0) * tan_o) / (BB_EPS_REAL / BB_R(16.0)) + a;
 }
 
 /* The row coordinate t = asinh(r/a) of slope r. */
-BB_FN real bb_dielectric_t_of_r(real r, real a) {
-    real x = r / a;
+BB_FN bb_real bb_dielectric_t_of_r(bb_real r, bb_real a) {
+    bb_real x = r / a;
     return bb_log(x + bb_sqrt(x * x + BB_R(1.0)));
 }
 
 /* The slope tan(theta) of polar angle theta, 0 below 0 and r_cap from pi/2 on. */
-BB_FN real bb_dielectric_r_of_theta(real theta, real r_cap) {
-    real c = bb_cos(theta), s = bb_sin(theta);
-    real r = bb_select(r_cap, bb_min(r_cap, s / c), c > BB_R(0.0));
+BB_FN bb_real bb_dielectric_r_of_theta(bb_real theta, bb_real r_cap) {
+    bb_real c = bb_cos(theta), s = bb_sin(theta);
+    bb_real r = bb_select(r_cap, bb_min(r_cap, s / c), c > BB_R(0.0));
     return bb_select(r, BB_R(0.0), theta <= BB_R(0.0));
 }
 
 /* The cosine of the critical angle of total internal reflection, sqrt(1 - eta^2) for eta < 1,
  * and 0 for eta >= 1 (no such angle). */
-BB_FN real bb_dielectric_c_crit(real eta) { return bb_safe_sqrt((BB_R(1.0) - eta) * (BB_R(1.0) + eta)); }
+BB_FN bb_real bb_dielectric_c_crit(bb_real eta) { return bb_safe_sqrt((BB_R(1.0) - eta) * (BB_R(1.0) + eta)); }
 
 /* The azimuth interval [lo, hi] of piece 0 to 3 (see the head of this file). */
 typedef struct {
-    real lo, hi;
+    bb_real lo, hi;
 } bb_interval;
 
-BB_FN bb_interval bb_dielectric_piece(bb_vec3 wo, real eta, unsigned int piece) {
-    const real q = BB_R(0.5) * BB_PI;
-    real cc = bb_dielectric_c_crit(eta), sin_o = wo.x;
-    real inv_sin_o = BB_R(1.0) / bb_select(BB_R(1.0), sin_o, sin_o > BB_R(0.0));
+BB_FN bb_interval bb_dielectric_piece(bb_vec3 wo, bb_real eta, unsigned int piece) {
+    const bb_real q = BB_R(0.5) * BB_PI;
+    bb_real cc = bb_dielectric_c_crit(eta), sin_o = wo.x;
+    bb_real inv_sin_o = BB_R(1.0) / bb_select(BB_R(1.0), sin_o, sin_o > BB_R(0.0));
     /* rho(delta)^2 = wo.z^2 + sin_o^2 cos^2(delta) = c_crit^2 */
-    real cos_star = bb_safe_sqrt((cc - wo.z) * (cc + wo.z)) * inv_sin_o;
-    real star = bb_select(q, bb_atan2(bb_safe_sqrt(BB_R(1.0) - cos_star * cos_star), cos_star),
+    bb_real cos_star = bb_safe_sqrt((cc - wo.z) * (cc + wo.z)) * inv_sin_o;
+    bb_real star = bb_select(q, bb_atan2(bb_safe_sqrt(BB_R(1.0) - cos_star * cos_star), cos_star),
                           eta < BB_R(1.0) && wo.z < cc && sin_o > BB_R(0.0) && cos_star <= BB_R(1.0));
     /* sin_o cos(delta) = c_crit: the edge of total internal reflection meets the horizon */
-    real cos_h = cc * inv_sin_o;
-    real edge = bb_select(BB_R(0.0), bb_min(star, bb_atan2(bb_safe_sqrt(BB_R(1.0) - cos_h * cos_h), cos_h)),
+    bb_real cos_h = cc * inv_sin_o;
+    bb_real edge = bb_select(BB_R(0.0), bb_min(star, bb_atan2(bb_safe_sqrt(BB_R(1.0) - cos_h * cos_h), cos_h)),
                           eta < BB_R(1.0) && sin_o > BB_R(0.0) && cos_h <= BB_R(1.0));
     bb_interval out;
     out.lo = piece == 0u ? BB_R(0.0) : (piece == 1u ? edge : (piece == 2u ? star : q));
@@ -125,31 +125,31 @@ BB_FN bb_interval bb_dielectric_piece(bb_vec3 wo, real eta, unsigned int piece) 
 
 /* One row: the half vectors at azimuth delta, its segments [t[k], t[k + 1]] ascending. */
 typedef struct {
-    real cos_phi, sin_phi;
-    real t[BB_DIELECTRIC_QUAD_SEGMENTS + 1];
+    bb_real cos_phi, sin_phi;
+    bb_real t[BB_DIELECTRIC_QUAD_SEGMENTS + 1];
 } bb_dielectric_row;
 
 /* The half vector at row coordinate t, and D J there (J = dm / (dt d delta)), from D J cos(theta_m)
  * as the albedo's rule forms it (bb_quad_halfvector_point). */
 typedef struct {
     bb_vec3 h;
-    real dj;
+    bb_real dj;
 } bb_dielectric_node;
 
-BB_FN bb_dielectric_node bb_dielectric_node_at(real cos_phi, real sin_phi, real a, real t) {
-    real em1 = bb_expm1(t);
-    real inv_et = BB_R(1.0) / (em1 + BB_R(1.0)); /* e^-t */
-    real sinh_t = BB_R(0.5) * em1 * (em1 + BB_R(2.0)) * inv_et;
-    real cosh_t = sinh_t + inv_et;
-    real r = a * sinh_t;
-    real sec = bb_sqrt(BB_R(1.0) + r * r); /* 1 / cos(theta_m) */
-    real ch = BB_R(1.0) / sec;
-    real sh = r * ch;
+BB_FN bb_dielectric_node bb_dielectric_node_at(bb_real cos_phi, bb_real sin_phi, bb_real a, bb_real t) {
+    bb_real em1 = bb_expm1(t);
+    bb_real inv_et = BB_R(1.0) / (em1 + BB_R(1.0)); /* e^-t */
+    bb_real sinh_t = BB_R(0.5) * em1 * (em1 + BB_R(2.0)) * inv_et;
+    bb_real cosh_t = sinh_t + inv_et;
+    bb_real r = a * sinh_t;
+    bb_real sec = bb_sqrt(BB_R(1.0) + r * r); /* 1 / cos(theta_m) */
+    bb_real ch = BB_R(1.0) / sec;
+    bb_real sh = r * ch;
     bb_dielectric_node n;
     n.h = bb_v3(sh * cos_phi, sh * sin_phi, ch);
     /* D J cos(theta_m) = a r cosh(t) times the GGX slope density 1/(pi a^2 (1 + r^2/a^2)^2)
      * (bb_quad_slope_density), with 1 + r^2/a^2 = cosh^2(t): sinh(t) / (pi cosh^3(t)) */
-    real inv_cosh = BB_R(1.0) / cosh_t;
+    bb_real inv_cosh = BB_R(1.0) / cosh_t;
     n.dj = BB_INV_PI * sinh_t * inv_cosh * inv_cosh * inv_cosh * sec;
     return n;
 }
@@ -163,13 +163,13 @@ BB_FN bb_dielectric_node bb_dielectric_node_at(real cos_phi, real sin_phi, real 
  * eta sin(psi - delta) = sin_o sin(delta): with s = sin_o sin(delta) / eta and k = +-sqrt(1 - s^2)
  * (the two crossings, `branch` +1 or -1), cos(psi - delta) = k, and the slope of m along the row
  * is (sin_o cos(delta) + eta k) / wo.z, counted only where positive (m on the row's side). */
-BB_FN real bb_dielectric_t_horizon(bb_vec3 wo, real a, real eta, real r_cap, real cos_d, real sin_d, real branch,
-                                   real t_none) {
-    real sin_o = wo.x;
-    real s = sin_o * sin_d / eta;
-    real k = branch * bb_safe_sqrt((BB_R(1.0) - s) * (BB_R(1.0) + s));
-    real cos_psi = cos_d * k - sin_d * s;
-    real r = (sin_o * cos_d + eta * k) / wo.z;
+BB_FN bb_real bb_dielectric_t_horizon(bb_vec3 wo, bb_real a, bb_real eta, bb_real r_cap, bb_real cos_d, bb_real sin_d, bb_real branch,
+                                   bb_real t_none) {
+    bb_real sin_o = wo.x;
+    bb_real s = sin_o * sin_d / eta;
+    bb_real k = branch * bb_safe_sqrt((BB_R(1.0) - s) * (BB_R(1.0) + s));
+    bb_real cos_psi = cos_d * k - sin_d * s;
+    bb_real r = (sin_o * cos_d + eta * k) / wo.z;
     bb_mask ok = eta < BB_R(1.0) && bb_fabs(s) <= BB_R(1.0) && sin_o * cos_psi < -eta && r > BB_R(0.0) && r < r_cap;
     return bb_select(t_none, bb_dielectric_t_of_r(bb_select(BB_R(1.0), r, ok), a), ok);
 }
@@ -177,32 +177,32 @@ BB_FN real bb_dielectric_t_horizon(bb_vec3 wo, real a, real eta, real r_cap, rea
 /* Swaps a and b into ascending order (a sorting-network comparator). */
 #define BB_SORT2(a, b)                   \
     do {                                 \
-        const real lo_ = bb_min((a), (b)); \
+        const bb_real lo_ = bb_min((a), (b)); \
         (b) = bb_max((a), (b));          \
         (a) = lo_;                       \
     } while (0)
 
-BB_FN bb_dielectric_row bb_make_dielectric_row(bb_vec3 wo, real a, real eta, real r_cap, real delta) {
+BB_FN bb_dielectric_row bb_make_dielectric_row(bb_vec3 wo, bb_real a, bb_real eta, bb_real r_cap, bb_real delta) {
     bb_dielectric_row row;
     row.cos_phi = bb_cos(delta);
     row.sin_phi = bb_sin(delta);
-    real A = wo.z, sin_o = wo.x, B = sin_o * row.cos_phi;
+    bb_real A = wo.z, sin_o = wo.x, B = sin_o * row.cos_phi;
     /* wo.m = 0 and wr.z = 0 */
-    real r_v = bb_select(r_cap, bb_min(r_cap, A / -B), B < BB_R(0.0));
-    real r_r = bb_min(bb_quad_tan_max(A, sin_o, row.cos_phi), r_v);
+    bb_real r_v = bb_select(r_cap, bb_min(r_cap, A / -B), B < BB_R(0.0));
+    bb_real r_r = bb_min(bb_quad_tan_max(A, sin_o, row.cos_phi), r_v);
     /* the edges of total internal reflection, wo.m = c_crit */
-    real cc = bb_dielectric_c_crit(eta);
-    real rho = bb_sqrt(A * A + B * B), phi0 = bb_atan2(B, A);
-    real psi = bb_atan2(bb_safe_sqrt((rho - cc) * (rho + cc)), cc);
+    bb_real cc = bb_dielectric_c_crit(eta);
+    bb_real rho = bb_sqrt(A * A + B * B), phi0 = bb_atan2(B, A);
+    bb_real psi = bb_atan2(bb_safe_sqrt((rho - cc) * (rho + cc)), cc);
     bb_mask crit = eta < BB_R(1.0) && rho > cc;
-    real r_a = bb_select(BB_R(0.0), bb_min(bb_dielectric_r_of_theta(phi0 - psi, r_cap), r_v), crit);
-    real r_b = bb_select(BB_R(0.0), bb_min(bb_dielectric_r_of_theta(phi0 + psi, r_cap), r_v), crit);
-    real t_v = bb_dielectric_t_of_r(r_v, a);
-    real t_a = bb_dielectric_t_of_r(r_a, a), t_b = bb_dielectric_t_of_r(r_b, a);
-    real t_r = bb_dielectric_t_of_r(r_r, a);
+    bb_real r_a = bb_select(BB_R(0.0), bb_min(bb_dielectric_r_of_theta(phi0 - psi, r_cap), r_v), crit);
+    bb_real r_b = bb_select(BB_R(0.0), bb_min(bb_dielectric_r_of_theta(phi0 + psi, r_cap), r_v), crit);
+    bb_real t_v = bb_dielectric_t_of_r(r_v, a);
+    bb_real t_a = bb_dielectric_t_of_r(r_a, a), t_b = bb_dielectric_t_of_r(r_b, a);
+    bb_real t_r = bb_dielectric_t_of_r(r_r, a);
     /* where wt reaches the horizon: up to two crossings, in closed form */
-    real t_w = bb_min(t_v, bb_dielectric_t_horizon(wo, a, eta, r_cap, row.cos_phi, row.sin_phi, BB_R(1.0), t_v));
-    real t_x = bb_min(t_v, bb_dielectric_t_horizon(wo, a, eta, r_cap, row.cos_phi, row.sin_phi, BB_R(-1.0), t_v));
+    bb_real t_w = bb_min(t_v, bb_dielectric_t_horizon(wo, a, eta, r_cap, row.cos_phi, row.sin_phi, BB_R(1.0), t_v));
+    bb_real t_x = bb_min(t_v, bb_dielectric_t_horizon(wo, a, eta, r_cap, row.cos_phi, row.sin_phi, BB_R(-1.0), t_v));
     /* sort t_a, t_b, t_w, t_x, t_r: an optimal 9-comparator network for 5 values [Knuth, TAOCP 3,
      * 5.3.4] */
     BB_SORT2(t_a, t_b);
@@ -226,11 +226,11 @@ BB_FN bb_dielectric_row bb_make_dielectric_row(bb_vec3 wo, real a, real eta, rea
 
 /* The integrand at row coordinate t: D J (wo.m)/wo.z times the microfacet's split, so that
  * R = sum over pieces, rows and segments of (weights) x .r, and T likewise with .t. */
-BB_FN bb_rt bb_dielectric_quad_point(bb_vec3 wo, real a, real eta, int shadowing, int transmission_shadowing,
-                                     real g1o, real lo, real lga_o, real cos_phi, real sin_phi, real t) {
+BB_FN bb_rt bb_dielectric_quad_point(bb_vec3 wo, bb_real a, bb_real eta, int shadowing, int transmission_shadowing,
+                                     bb_real g1o, bb_real lo, bb_real lga_o, bb_real cos_phi, bb_real sin_phi, bb_real t) {
     bb_dielectric_node n = bb_dielectric_node_at(cos_phi, sin_phi, a, t);
-    real c = bb_dot(wo, n.h);
-    real w = n.dj * c * (BB_R(1.0) / wo.z); /* 1/wo.z: the same for every node of a cell */
+    bb_real c = bb_dot(wo, n.h);
+    bb_real w = n.dj * c * (BB_R(1.0) / wo.z); /* 1/wo.z: the same for every node of a cell */
     bb_rt s = bb_rough_dielectric_split(wo, n.h, a, a, eta, shadowing, transmission_shadowing, g1o, lo, lga_o);
     bb_mask ok = c > BB_R(0.0);
     s.r = bb_select(BB_R(0.0), w * s.r, ok);

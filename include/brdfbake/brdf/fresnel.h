@@ -68,17 +68,17 @@
 
 /* The two polarised reflectances of one evaluation. */
 typedef struct {
-    real rs; /* s-polarised (perpendicular, TE) */
-    real rp; /* p-polarised (parallel, TM) */
+    bb_real rs; /* s-polarised (perpendicular, TE) */
+    bb_real rp; /* p-polarised (parallel, TM) */
 } bb_fresnel_sp;
 
-BB_FN bb_fresnel_sp bb_make_fresnel_sp(real rs, real rp) {
+BB_FN bb_fresnel_sp bb_make_fresnel_sp(bb_real rs, bb_real rp) {
     bb_fresnel_sp r = {rs, rp};
     return r;
 }
 
 /* num / den, or `fallback` where den is 0 (a 0/0 that the caller's limit defines). */
-BB_FN real bb_ratio_or(real num, real den, real fallback) {
+BB_FN bb_real bb_ratio_or(bb_real num, bb_real den, bb_real fallback) {
     return bb_select(num / bb_select(den, BB_R(1.0), den == BB_R(0.0)), fallback, den == BB_R(0.0));
 }
 
@@ -86,9 +86,9 @@ BB_FN real bb_ratio_or(real num, real den, real fallback) {
 
 /* [S94] eq. 24: F = F0 + (1 - F0)(1 - cos)^5. Relative error against the exact dielectric below
  * 1% for eta in [1.3, 1.7] away from grazing; no polarisation, so Rs = Rp = F. */
-BB_FN real bb_fresnel_schlick(real cos_theta, real f0) {
-    real m = bb_clamp(BB_R(1.0) - cos_theta, BB_R(0.0), BB_R(1.0));
-    real m2 = m * m;
+BB_FN bb_real bb_fresnel_schlick(bb_real cos_theta, bb_real f0) {
+    bb_real m = bb_clamp(BB_R(1.0) - cos_theta, BB_R(0.0), BB_R(1.0));
+    bb_real m2 = m * m;
     return f0 + (BB_R(1.0) - f0) * (m2 * m2 * m);
 }
 
@@ -101,9 +101,9 @@ BB_FN real bb_fresnel_schlick(real cos_theta, real f0) {
  * f90 = 1) and by cos (1 - cos)^6 serves every colour. Not clamped: an F82-tint term with a
  * small f0 can go below 0, which resolve_fresnel rejects for the f82-tint spelling. exponent = 0
  * gives f90 at every angle (pow(0, 0) = 1); cos is clamped to [0, 1]. */
-BB_FN real bb_fresnel_gen_schlick(real cos_theta, real f0, real f90, real exponent, real b) {
-    real m = bb_clamp(BB_R(1.0) - cos_theta, BB_R(0.0), BB_R(1.0));
-    real m3 = m * m * m;
+BB_FN bb_real bb_fresnel_gen_schlick(bb_real cos_theta, bb_real f0, bb_real f90, bb_real exponent, bb_real b) {
+    bb_real m = bb_clamp(BB_R(1.0) - cos_theta, BB_R(0.0), BB_R(1.0));
+    bb_real m3 = m * m * m;
     return f0 + (f90 - f0) * bb_pow(m, exponent) - b * (BB_R(1.0) - m) * (m3 * m3);
 }
 
@@ -119,43 +119,43 @@ BB_FN real bb_fresnel_gen_schlick(real cos_theta, real f0, real f90, real expone
  *                                                     =>  r_p = d ((eta^2 + 1) cos_i^2 - 1) / (eta^2 cos_i + w)^2
  * (r_p multiplied through by eta). Total internal reflection (d + cos_i^2 <= 0) gives 1,
  * eta = 1 gives 0. */
-BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp_m1(real cos_theta, real eta, real eta_m1) {
-    real c = bb_clamp_cos(cos_theta);
+BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp_m1(bb_real cos_theta, bb_real eta, bb_real eta_m1) {
+    bb_real c = bb_clamp_cos(cos_theta);
     /* Seen from the other side: invert the relative index [PBR4 FrDielectric];
      * 1/eta - 1 = -(eta - 1)/eta. */
     bb_mask back = c < BB_R(0.0);
-    real e = bb_select(eta, BB_R(1.0) / eta, back);
-    real em1 = bb_select(eta_m1, -eta_m1 / eta, back);
+    bb_real e = bb_select(eta, BB_R(1.0) / eta, back);
+    bb_real em1 = bb_select(eta_m1, -eta_m1 / eta, back);
     c = bb_fabs(c);
-    real d = em1 * (e + BB_R(1.0)); /* eta^2 - 1, exact near eta = 1 */
-    real q = d + c * c;                         /* eta^2 - sin_i^2 = (eta cos_t)^2 */
-    real w = bb_safe_sqrt(q);                   /* eta cos_t */
-    real e2 = e * e;
-    real ds = c + w, dp = e2 * c + w;
-    real rs = bb_ratio_or(-d, ds * ds, BB_R(0.0));
-    real rp = bb_ratio_or(d * ((e2 + BB_R(1.0)) * c * c - BB_R(1.0)), dp * dp, BB_R(0.0));
+    bb_real d = em1 * (e + BB_R(1.0)); /* eta^2 - 1, exact near eta = 1 */
+    bb_real q = d + c * c;                         /* eta^2 - sin_i^2 = (eta cos_t)^2 */
+    bb_real w = bb_safe_sqrt(q);                   /* eta cos_t */
+    bb_real e2 = e * e;
+    bb_real ds = c + w, dp = e2 * c + w;
+    bb_real rs = bb_ratio_or(-d, ds * ds, BB_R(0.0));
+    bb_real rp = bb_ratio_or(d * ((e2 + BB_R(1.0)) * c * c - BB_R(1.0)), dp * dp, BB_R(0.0));
     bb_mask tir = q <= BB_R(0.0);
     bb_mask unit = em1 == BB_R(0.0);
     /* |r| <= 1 exactly, but near grazing (cos_i -> 0) (cos_i + w)^2 -> w^2 = d only up to the
      * rounding of w = sqrt(d + cos_i^2): |r| may round to 1 + 2 ulp. Clamp to 1. */
-    real Rs = bb_select(bb_select(bb_min(rs * rs, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
-    real Rp = bb_select(bb_select(bb_min(rp * rp, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
+    bb_real Rs = bb_select(bb_select(bb_min(rs * rs, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
+    bb_real Rp = bb_select(bb_select(bb_min(rp * rp, BB_R(1.0)), BB_R(1.0), tir), BB_R(0.0), unit);
     return bb_make_fresnel_sp(Rs, Rp);
 }
 
 /* The same with eta - 1 computed from eta. */
-BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(real cos_theta, real eta) {
+BB_FN bb_fresnel_sp bb_fresnel_dielectric_sp(bb_real cos_theta, bb_real eta) {
     return bb_fresnel_dielectric_sp_m1(cos_theta, eta, eta - BB_R(1.0));
 }
 
-BB_FN real bb_fresnel_dielectric_rs(real cos_theta, real eta) {
+BB_FN bb_real bb_fresnel_dielectric_rs(bb_real cos_theta, bb_real eta) {
     return bb_fresnel_dielectric_sp(cos_theta, eta).rs;
 }
-BB_FN real bb_fresnel_dielectric_rp(real cos_theta, real eta) {
+BB_FN bb_real bb_fresnel_dielectric_rp(bb_real cos_theta, bb_real eta) {
     return bb_fresnel_dielectric_sp(cos_theta, eta).rp;
 }
 /* Unpolarised: F = (Rs + Rp) / 2. */
-BB_FN real bb_fresnel_dielectric(real cos_theta, real eta) {
+BB_FN bb_real bb_fresnel_dielectric(bb_real cos_theta, bb_real eta) {
     bb_fresnel_sp r = bb_fresnel_dielectric_sp(cos_theta, eta);
     return BB_R(0.5) * (r.rs + r.rp);
 }
@@ -165,11 +165,11 @@ BB_FN real bb_fresnel_dielectric(real cos_theta, real eta) {
  * dielectric specular: intern/cycles/kernel/closure/bsdf_microfacet.h). The weight is clamped to
  * [0, 1] as Cycles clamps it: a high index's unpolarised F dips below its F0 before Brewster's
  * angle. */
-BB_FN real bb_fresnel_gen_schlick_ior(real cos_theta, real f0, real f90, real eta, real eta_m1) {
+BB_FN bb_real bb_fresnel_gen_schlick_ior(bb_real cos_theta, bb_real f0, bb_real f90, bb_real eta, bb_real eta_m1) {
     bb_fresnel_sp r = bb_fresnel_dielectric_sp_m1(cos_theta, eta, eta_m1);
-    real q = eta_m1 / (eta + BB_R(1.0)); /* (eta - 1)/(eta + 1), exact near eta = 1 */
-    real F0 = q * q;
-    real w = bb_clamp((BB_R(0.5) * (r.rs + r.rp) - F0) / (BB_R(1.0) - F0), BB_R(0.0), BB_R(1.0));
+    bb_real q = eta_m1 / (eta + BB_R(1.0)); /* (eta - 1)/(eta + 1), exact near eta = 1 */
+    bb_real F0 = q * q;
+    bb_real w = bb_clamp((BB_R(0.5) * (r.rs + r.rp) - F0) / (BB_R(1.0) - F0), BB_R(0.0), BB_R(1.0));
     return f0 + (f90 - f0) * w;
 }
 
@@ -177,7 +177,7 @@ BB_FN real bb_fresnel_gen_schlick_ior(real cos_theta, real f0, real f90, real et
 
 /* A complex number, for the conductor only. */
 typedef struct {
-    real re, im;
+    bb_real re, im;
 } bb_complex;
 
 /* The square root of z = a + ib on the branch with Im >= 0 (and Re >= 0), the physical one for
@@ -188,11 +188,11 @@ typedef struct {
  *   t = sqrt((|z| + |a|)/2),  sqrt(z) = (t, |b|/(2t)) for a >= 0, (|b|/(2t), t) for a < 0,
  * which avoids the cancellation of |z| - |a| (Kahan, "Branch cuts for complex elementary
  * functions", 1987). z = 0 gives 0. */
-BB_FN bb_complex bb_complex_sqrt_upper(real a, real b) {
-    real ab = bb_fabs(b);
-    real mag = bb_sqrt(a * a + ab * ab);
-    real t = bb_sqrt(BB_R(0.5) * (mag + bb_fabs(a)));
-    real other = bb_ratio_or(ab, BB_R(2.0) * t, BB_R(0.0));
+BB_FN bb_complex bb_complex_sqrt_upper(bb_real a, bb_real b) {
+    bb_real ab = bb_fabs(b);
+    bb_real mag = bb_sqrt(a * a + ab * ab);
+    bb_real t = bb_sqrt(BB_R(0.5) * (mag + bb_fabs(a)));
+    bb_real other = bb_ratio_or(ab, BB_R(2.0) * t, BB_R(0.0));
     bb_mask pos = a >= BB_R(0.0);
     bb_complex root = {bb_select(other, t, pos), bb_select(t, other, pos)};
     return root;
@@ -207,32 +207,32 @@ BB_FN bb_complex bb_complex_sqrt_upper(real a, real b) {
  * the real part written with (eta - 1)(eta + 1) to keep eta near 1 accurate. Then
  *   Rs = |cos_i - w|^2 / |cos_i + w|^2,  Rp = |n^2 cos_i - w|^2 / |n^2 cos_i + w|^2.
  * For k = 0 this is the exact dielectric, total internal reflection included. */
-BB_FN bb_fresnel_sp bb_fresnel_conductor_sp(real cos_theta, real eta, real k) {
-    real c = bb_clamp(cos_theta, BB_R(0.0), BB_R(1.0));
-    real n2_re = (eta - k) * (eta + k); /* Re n^2 = eta^2 - k^2 */
-    real n2_im = BB_R(2.0) * eta * k;   /* Im n^2 */
+BB_FN bb_fresnel_sp bb_fresnel_conductor_sp(bb_real cos_theta, bb_real eta, bb_real k) {
+    bb_real c = bb_clamp(cos_theta, BB_R(0.0), BB_R(1.0));
+    bb_real n2_re = (eta - k) * (eta + k); /* Re n^2 = eta^2 - k^2 */
+    bb_real n2_im = BB_R(2.0) * eta * k;   /* Im n^2 */
     bb_complex w = bb_complex_sqrt_upper((eta - BB_R(1.0)) * (eta + BB_R(1.0)) - k * k + c * c, n2_im);
     /* Rs */
     /* Both ratios are <= 1 exactly (Re w >= 0, and Re(n^2 cos_i conj(w)) >= 0 for a passive
      * medium), but at grazing numerator and denominator agree to rounding and the ratio may be
      * 1 + 2 ulp: clamp to 1. */
-    real dm = c - w.re, dp = c + w.re, w_im2 = w.im * w.im;
-    real Rs = bb_min(bb_ratio_or(dm * dm + w_im2, dp * dp + w_im2, BB_R(0.0)), BB_R(1.0));
+    bb_real dm = c - w.re, dp = c + w.re, w_im2 = w.im * w.im;
+    bb_real Rs = bb_min(bb_ratio_or(dm * dm + w_im2, dp * dp + w_im2, BB_R(0.0)), BB_R(1.0));
     /* Rp */
-    real a_re = n2_re * c, a_im = n2_im * c; /* n^2 cos_i */
-    real pm_re = a_re - w.re, pm_im = a_im - w.im;
-    real pp_re = a_re + w.re, pp_im = a_im + w.im;
-    real Rp = bb_min(bb_ratio_or(pm_re * pm_re + pm_im * pm_im, pp_re * pp_re + pp_im * pp_im, BB_R(0.0)), BB_R(1.0));
+    bb_real a_re = n2_re * c, a_im = n2_im * c; /* n^2 cos_i */
+    bb_real pm_re = a_re - w.re, pm_im = a_im - w.im;
+    bb_real pp_re = a_re + w.re, pp_im = a_im + w.im;
+    bb_real Rp = bb_min(bb_ratio_or(pm_re * pm_re + pm_im * pm_im, pp_re * pp_re + pp_im * pp_im, BB_R(0.0)), BB_R(1.0));
     return bb_make_fresnel_sp(Rs, Rp);
 }
 
-BB_FN real bb_fresnel_conductor_rs(real cos_theta, real eta, real k) {
+BB_FN bb_real bb_fresnel_conductor_rs(bb_real cos_theta, bb_real eta, bb_real k) {
     return bb_fresnel_conductor_sp(cos_theta, eta, k).rs;
 }
-BB_FN real bb_fresnel_conductor_rp(real cos_theta, real eta, real k) {
+BB_FN bb_real bb_fresnel_conductor_rp(bb_real cos_theta, bb_real eta, bb_real k) {
     return bb_fresnel_conductor_sp(cos_theta, eta, k).rp;
 }
-BB_FN real bb_fresnel_conductor(real cos_theta, real eta, real k) {
+BB_FN bb_real bb_fresnel_conductor(bb_real cos_theta, bb_real eta, bb_real k) {
     bb_fresnel_sp r = bb_fresnel_conductor_sp(cos_theta, eta, k);
     return BB_R(0.5) * (r.rs + r.rp);
 }
@@ -254,15 +254,15 @@ BB_FN real bb_fresnel_conductor(real cos_theta, real eta, real k) {
  * cos = eta, or cos = 1/eta) and there rounded to small negative values (-1e-16 in double,
  * -6e-8 in float). The sums of squares are >= 0 and each numerator <= its denominator in
  * floating point, so both values lie in [0, 1]. */
-BB_FN bb_fresnel_sp bb_fresnel_conductor_approx_sp(real cos_theta, real eta, real k) {
-    real c = bb_clamp(cos_theta, BB_R(0.0), BB_R(1.0));
-    real k2 = k * k, kc2 = bb_sqr(k * c);
-    real r_perp = (bb_sqr(eta - c) + k2) / (bb_sqr(eta + c) + k2);
-    real r_par = (bb_sqr(eta * c - BB_R(1.0)) + kc2) / (bb_sqr(eta * c + BB_R(1.0)) + kc2);
+BB_FN bb_fresnel_sp bb_fresnel_conductor_approx_sp(bb_real cos_theta, bb_real eta, bb_real k) {
+    bb_real c = bb_clamp(cos_theta, BB_R(0.0), BB_R(1.0));
+    bb_real k2 = k * k, kc2 = bb_sqr(k * c);
+    bb_real r_perp = (bb_sqr(eta - c) + k2) / (bb_sqr(eta + c) + k2);
+    bb_real r_par = (bb_sqr(eta * c - BB_R(1.0)) + kc2) / (bb_sqr(eta * c + BB_R(1.0)) + kc2);
     return bb_make_fresnel_sp(r_perp, r_par);
 }
 
-BB_FN real bb_fresnel_conductor_approx(real cos_theta, real eta, real k) {
+BB_FN bb_real bb_fresnel_conductor_approx(bb_real cos_theta, bb_real eta, bb_real k) {
     bb_fresnel_sp r = bb_fresnel_conductor_approx_sp(cos_theta, eta, k);
     return BB_R(0.5) * (r.rs + r.rp);
 }
@@ -271,10 +271,10 @@ BB_FN real bb_fresnel_conductor_approx(real cos_theta, real eta, real k) {
 
 /* Rs and Rp for the given kind. The unpolarised kinds (none, Schlick) return Rs = Rp = F.
  * Unknown kinds behave as none (1). */
-BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, real cos_theta) {
+BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, bb_real cos_theta) {
     switch (kind) {
     case BB_FRESNEL_SCHLICK: {
-        real f = bb_fresnel_schlick(cos_theta, fp.v[BB_SCHLICK_F0]);
+        bb_real f = bb_fresnel_schlick(cos_theta, fp.v[BB_SCHLICK_F0]);
         return bb_make_fresnel_sp(f, f);
     }
     case BB_FRESNEL_DIELECTRIC:
@@ -286,12 +286,12 @@ BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, real cos_theta) {
     case BB_FRESNEL_CONDUCTOR_APPROX:
         return bb_fresnel_conductor_approx_sp(cos_theta, fp.v[BB_FRESNEL_ETA], fp.v[BB_FRESNEL_K]);
     case BB_FRESNEL_GEN_SCHLICK: {
-        real f = bb_fresnel_gen_schlick(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+        bb_real f = bb_fresnel_gen_schlick(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
                                         fp.v[BB_GEN_SCHLICK_EXPONENT], fp.v[BB_GEN_SCHLICK_B]);
         return bb_make_fresnel_sp(f, f);
     }
     case BB_FRESNEL_GEN_SCHLICK_IOR: {
-        real f = bb_fresnel_gen_schlick_ior(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
+        bb_real f = bb_fresnel_gen_schlick_ior(cos_theta, fp.v[BB_GEN_SCHLICK_F0], fp.v[BB_GEN_SCHLICK_F90],
                                             fp.v[BB_GEN_SCHLICK_IOR_ETA], fp.v[BB_GEN_SCHLICK_IOR_ETA_M1]);
         return bb_make_fresnel_sp(f, f);
     }
@@ -300,15 +300,15 @@ BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, real cos_theta) {
     }
 }
 
-BB_FN real bb_fresnel_eval_rs(int kind, bb_params fp, real cos_theta) {
+BB_FN bb_real bb_fresnel_eval_rs(int kind, bb_params fp, bb_real cos_theta) {
     return bb_fresnel_eval_sp(kind, fp, cos_theta).rs;
 }
-BB_FN real bb_fresnel_eval_rp(int kind, bb_params fp, real cos_theta) {
+BB_FN bb_real bb_fresnel_eval_rp(int kind, bb_params fp, bb_real cos_theta) {
     return bb_fresnel_eval_sp(kind, fp, cos_theta).rp;
 }
 
 /* F(cos_theta) for the given kind: (Rs + Rp)/2, or F itself for the unpolarised kinds. */
-BB_FN real bb_fresnel_eval(int kind, bb_params fp, real cos_theta) {
+BB_FN bb_real bb_fresnel_eval(int kind, bb_params fp, bb_real cos_theta) {
     switch (kind) {
     case BB_FRESNEL_NONE:
         return BB_R(1.0);

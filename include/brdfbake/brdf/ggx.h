@@ -39,10 +39,10 @@ typedef struct {
     bb_vec3 wo;             /* the view; (sin, 0, cos) when isotropic */
     bb_vec3 vh, t1, t2;     /* the stretched view and its basis [H18 sec. 3.2, 4.1], */
     bb_vec3 a_t1, a_t2, a_vh; /* ... and the same scaled by (ax, ay, 1) */
-    real ax, ay, s;         /* s = (1 + vh.z) / 2 [H18 sec. 4.2] */
-    real ax2, ay2, b2;      /* ax^2, ay^2 and 1 - ax^2 */
-    real k2, k1, kq;        /* 2 c0, 2 c0 - 1 and q's factor */
-    real live;              /* 1 where G1(wo) > 0, else 0: every weight 0 */
+    bb_real ax, ay, s;         /* s = (1 + vh.z) / 2 [H18 sec. 4.2] */
+    bb_real ax2, ay2, b2;      /* ax^2, ay^2 and 1 - ax^2 */
+    bb_real k2, k1, kq;        /* 2 c0, 2 c0 - 1 and q's factor */
+    bb_real live;              /* 1 where G1(wo) > 0, else 0: every weight 0 */
 } bb_ggx_disk_cell;
 
 /* isotropic (a constant: the kernels pass -D BB_ISOTROPIC when every cell has ax = ay) rotates
@@ -54,8 +54,8 @@ BB_FN bb_ggx_disk_cell bb_ggx_disk_cell_make(bb_params p, bb_vec3 wo, int isotro
     c.ay = isotropic ? c.ax : p.v[BB_GGX_ALPHA_Y];
     c.wo = isotropic ? bb_v3(bb_sqrt(wo.x * wo.x + wo.y * wo.y), BB_R(0.0), wo.z) : wo;
     c.vh = bb_normalize(bb_v3(c.ax * c.wo.x, c.ay * c.wo.y, c.wo.z));
-    real lensq = c.vh.x * c.vh.x + c.vh.y * c.vh.y;
-    real inv_len = BB_R(1.0) / bb_sqrt(bb_select(BB_R(1.0), lensq, lensq > BB_R(0.0)));
+    bb_real lensq = c.vh.x * c.vh.x + c.vh.y * c.vh.y;
+    bb_real inv_len = BB_R(1.0) / bb_sqrt(bb_select(BB_R(1.0), lensq, lensq > BB_R(0.0)));
     c.t1 = bb_v3(bb_select(BB_R(1.0), -c.vh.y * inv_len, lensq > BB_R(0.0)),
                  bb_select(BB_R(0.0), c.vh.x * inv_len, lensq > BB_R(0.0)), BB_R(0.0));
     if (isotropic) /* (0, 1, 0) also at normal incidence: the disk turned by 90 degrees there */
@@ -68,8 +68,8 @@ BB_FN bb_ggx_disk_cell bb_ggx_disk_cell_make(bb_params p, bb_vec3 wo, int isotro
     c.ax2 = c.ax * c.ax;
     c.ay2 = c.ay * c.ay;
     c.b2 = BB_R(1.0) - c.ax2;
-    real g1o = bb_ggx_g1(c.wo, c.ax, c.ay);
-    real c0 = bb_select(BB_R(1.0), BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0)),
+    bb_real g1o = bb_ggx_g1(c.wo, c.ax, c.ay);
+    bb_real c0 = bb_select(BB_R(1.0), BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0)),
                         p.v[BB_GGX_SHADOWING] == BB_R(BB_SHADOWING_CORRELATED));
     c.kq = bb_select(BB_R(1.0), BB_R(0.0), p.v[BB_GGX_SHADOWING] == BB_R(BB_SHADOWING_MASKING)); /* 0: masking only */
     c.k2 = bb_select(BB_R(1.0), BB_R(2.0) * c0, c.kq > BB_R(0.5));
@@ -80,14 +80,14 @@ BB_FN bb_ggx_disk_cell bb_ggx_disk_cell_make(bb_params p, bb_vec3 wo, int isotro
 
 /* The weight of the disk point d = bb_disk_polar(u1, u2), given h = sqrt(1 - d.x^2) (both
  * cell-independent: the host tabulates them); isotropic as for bb_ggx_disk_cell_make. */
-BB_FN real bb_ggx_disk_weight(bb_ggx_disk_cell c, int fkind, bb_params fp, bb_vec2 d, real h, int isotropic) {
+BB_FN bb_real bb_ggx_disk_weight(bb_ggx_disk_cell c, int fkind, bb_params fp, bb_vec2 d, bb_real h, int isotropic) {
     /* [H18 sec. 4.2, 4.3]: the point of the projected area, lifted onto the hemisphere */
-    real p1 = d.x;
-    real p2 = (BB_R(1.0) - c.s) * h + c.s * d.y;
-    real p3 = bb_safe_sqrt(BB_R(1.0) - p1 * p1 - p2 * p2);
+    bb_real p1 = d.x;
+    bb_real p2 = (BB_R(1.0) - c.s) * h + c.s * d.y;
+    bb_real p3 = bb_safe_sqrt(BB_R(1.0) - p1 * p1 - p2 * p2);
     /* n = (ax, ay, 1) (p1 t1 + p2 t2 + p3 vh) (t1.z = 0), max(0, z) [H18 sec. 3.4], not
      * normalised; L = |n|^2 and W = L wi = 2 (wo.n) n - L wo */
-    real nx, ny, nz, len2, on, wz, q;
+    bb_real nx, ny, nz, len2, on, wz, q;
     nz = bb_max(BB_R(0.0), p2 * c.t2.z + p3 * c.vh.z);
     if (isotropic) { /* t1 = (0, 1, 0), t2.y = vh.y = wo.y = 0, ax = ay */
         nx = p2 * c.a_t2.x + p3 * c.a_vh.x;
@@ -102,12 +102,12 @@ BB_FN real bb_ggx_disk_weight(bb_ggx_disk_cell c, int fkind, bb_params fp, bb_ve
         ny = p1 * c.a_t1.y + p2 * c.a_t2.y + p3 * c.a_vh.y;
         len2 = nx * nx + ny * ny + nz * nz;
         on = c.wo.x * nx + c.wo.y * ny + c.wo.z * nz;
-        real wx = BB_R(2.0) * on * nx - len2 * c.wo.x;
-        real wy = BB_R(2.0) * on * ny - len2 * c.wo.y;
+        bb_real wx = BB_R(2.0) * on * nx - len2 * c.wo.x;
+        bb_real wy = BB_R(2.0) * on * ny - len2 * c.wo.y;
         wz = BB_R(2.0) * on * nz - len2 * c.wo.z;
         q = bb_sqrt(wz * wz + c.ax2 * wx * wx + c.ay2 * wy * wy);
     }
-    real w = c.k2 * wz / (c.k1 * wz + c.kq * q);
+    bb_real w = c.k2 * wz / (c.k1 * wz + c.kq * q);
     if (fkind != BB_FRESNEL_NONE)
         w = w * bb_fresnel_eval(fkind, fp, bb_clamp_cos(on / bb_sqrt(len2)));
     return bb_select(BB_R(0.0), w, wz > BB_R(0.0) && c.live > BB_R(0.0));

@@ -44,11 +44,11 @@
 /* ------------------------------------------------------- uniform hemisphere */
 
 /* The weight 2 pi f cos(theta_i) of the uniform hemisphere sample (u1, u2). */
-BB_FN real bb_uniform_hemisphere_weight(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1,
-                                        real u2) {
-    real mu = u1;
-    real s = bb_safe_sqrt(bb_sin2_from_cos(mu));
-    real phi = BB_2PI * u2;
+BB_FN bb_real bb_uniform_hemisphere_weight(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1,
+                                        bb_real u2) {
+    bb_real mu = u1;
+    bb_real s = bb_safe_sqrt(bb_sin2_from_cos(mu));
+    bb_real phi = BB_2PI * u2;
     bb_vec3 wi = bb_v3(s * bb_cos(phi), s * bb_sin(phi), mu);
     return BB_2PI * mu * bb_model_eval(model, p, fkind, fp, wo, wi);
 }
@@ -57,8 +57,8 @@ BB_FN real bb_uniform_hemisphere_weight(int model, bb_params p, int fkind, bb_pa
  * divided by their number, is the replica's estimate of E(wo)): the model's importance-sample
  * weight f cos / pdf for BB_METHOD_IMPORTANCE, the uniform hemisphere weight for BB_METHOD_QMC
  * and BB_METHOD_MC (kernel_abi.h), which differ only in where (u1, u2) come from. */
-BB_FN real bb_albedo_point_weight(int method, int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1,
-                                  real u2) {
+BB_FN bb_real bb_albedo_point_weight(int method, int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1,
+                                  bb_real u2) {
     if (method == BB_METHOD_IMPORTANCE) return bb_model_sample(model, p, fkind, fp, wo, u1, u2).weight;
     return bb_uniform_hemisphere_weight(model, p, fkind, fp, wo, u1, u2);
 }
@@ -87,7 +87,7 @@ BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
  * equals that at delta (half-vector space; in the sampler's square phi_i -> -phi_i needs
  * phi_o = 0 too, and every sampler-space model is isotropic). Then two quarters suffice.
  * In a vector build d and phi_o are one cell's, equal in every lane. */
-BB_FN int bb_quad_mirrored(bb_quad_dist d, real phi_o) {
+BB_FN int bb_quad_mirrored(bb_quad_dist d, bb_real phi_o) {
     return d.kind == BB_QUAD_SAMPLER ? bb_all(phi_o == BB_R(0.0)) : bb_all(d.ax == d.ay);
 }
 
@@ -103,21 +103,21 @@ BB_FN int bb_quad_mirrored(bb_quad_dist d, real phi_o) {
  * For isotropic D (rho = 1) the map is the identity and the h = 1 pieces are empty, as they
  * are when phi_o is on an axis. */
 typedef struct {
-    real delta;  /* the node's azimuth offset */
-    real ddelta; /* d(delta)/dx */
+    bb_real delta;  /* the node's azimuth offset */
+    bb_real ddelta; /* d(delta)/dx */
 } bb_quad_azimuth;
 
 /* Where the axis crossing cuts each quarter of delta: pi/2 - (phi_o mod pi/2), or pi/2 (no
  * cut) for isotropic lobes and phi_o within 1e-6 rad of an axis. */
-BB_FN real bb_quad_piece_split(bb_quad_dist d, real phi_o) {
-    const real q = BB_R(0.5) * BB_PI;
-    real phi0 = phi_o - bb_floor(phi_o / q) * q;
+BB_FN bb_real bb_quad_piece_split(bb_quad_dist d, bb_real phi_o) {
+    const bb_real q = BB_R(0.5) * BB_PI;
+    bb_real phi0 = phi_o - bb_floor(phi_o / q) * q;
     bb_mask aligned = d.ax == d.ay || phi0 < BB_R(1e-6) || phi0 > q - BB_R(1e-6);
     return bb_select(q - phi0, q, aligned);
 }
 
 /* The number of non-empty pieces (the node count is this times n^2). */
-BB_FN int bb_quad_piece_count(bb_quad_dist d, real phi_o) {
+BB_FN int bb_quad_piece_count(bb_quad_dist d, bb_real phi_o) {
     if (bb_quad_mirrored(d, phi_o)) return 2;
     return bb_all(bb_quad_piece_split(d, phi_o) < BB_R(0.5) * BB_PI) ? 8 : 4;
 }
@@ -125,13 +125,13 @@ BB_FN int bb_quad_piece_count(bb_quad_dist d, real phi_o) {
 /* The azimuth of node x in [0, 1] of piece (k, h) (piece = 2k + h); ddelta = 0 for an empty
  * piece. In a vector build (one row per lane, kernels/albedo.cl) only x may differ between
  * lanes: d and phi_o are one cell's, so the branches below are taken by every lane alike. */
-BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, real phi_o, unsigned int piece, real x) {
-    const real q = BB_R(0.5) * BB_PI;
-    real split = bb_quad_piece_split(d, phi_o);
-    real k = (real)(piece >> 1);
+BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, bb_real phi_o, unsigned int piece, bb_real x) {
+    const bb_real q = BB_R(0.5) * BB_PI;
+    bb_real split = bb_quad_piece_split(d, phi_o);
+    bb_real k = (bb_real)(piece >> 1);
     int h = (int)(piece & 1u);
-    real lo = k * q + bb_select(BB_R(0.0), split, h);
-    real hi = bb_select(k * q + split, (k + BB_R(1.0)) * q, h);
+    bb_real lo = k * q + bb_select(BB_R(0.0), split, h);
+    bb_real hi = bb_select(k * q + split, (k + BB_R(1.0)) * q, h);
     bb_quad_azimuth a;
     if (bb_all(!(hi > lo))) {
         a.delta = lo;
@@ -143,13 +143,13 @@ BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, real phi_o, unsigned 
         a.ddelta = hi - lo;
         return a;
     }
-    real j = bb_floor((phi_o + BB_R(0.5) * (lo + hi)) / q);
-    real rho = bb_select(d.ax / d.ay, d.ay / d.ax, bb_floor(BB_R(0.5) * j) == BB_R(0.5) * j); /* j even */
-    real psi_lo = bb_clamp(phi_o + lo - j * q, BB_R(0.0), q), psi_hi = bb_clamp(phi_o + hi - j * q, BB_R(0.0), q);
-    real th_lo = bb_atan2(bb_sin(psi_lo), rho * bb_cos(psi_lo));
-    real th_hi = bb_atan2(bb_sin(psi_hi), rho * bb_cos(psi_hi));
-    real th = th_lo + (th_hi - th_lo) * x;
-    real c = bb_cos(th), s = bb_sin(th);
+    bb_real j = bb_floor((phi_o + BB_R(0.5) * (lo + hi)) / q);
+    bb_real rho = bb_select(d.ax / d.ay, d.ay / d.ax, bb_floor(BB_R(0.5) * j) == BB_R(0.5) * j); /* j even */
+    bb_real psi_lo = bb_clamp(phi_o + lo - j * q, BB_R(0.0), q), psi_hi = bb_clamp(phi_o + hi - j * q, BB_R(0.0), q);
+    bb_real th_lo = bb_atan2(bb_sin(psi_lo), rho * bb_cos(psi_lo));
+    bb_real th_hi = bb_atan2(bb_sin(psi_hi), rho * bb_cos(psi_hi));
+    bb_real th = th_lo + (th_hi - th_lo) * x;
+    bb_real c = bb_cos(th), s = bb_sin(th);
     a.delta = j * q + bb_atan2(rho * s, c) - phi_o;
     a.ddelta = (th_hi - th_lo) * rho / (c * c + rho * rho * s * s);
     return a;
@@ -163,17 +163,17 @@ BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, real phi_o, unsigned 
 
 /* The roughness of an anisotropic distribution along azimuth phi, squared:
  * a^2 = ax^2 ay^2 / (ay^2 cos^2 phi + ax^2 sin^2 phi). */
-BB_FN real bb_quad_alpha2(bb_quad_dist d, real cos_phi, real sin_phi) {
-    real ax2 = d.ax * d.ax, ay2 = d.ay * d.ay;
+BB_FN bb_real bb_quad_alpha2(bb_quad_dist d, bb_real cos_phi, bb_real sin_phi) {
+    bb_real ax2 = d.ax * d.ax, ay2 = d.ay * d.ay;
     return ax2 * ay2 / (ay2 * cos_phi * cos_phi + ax2 * sin_phi * sin_phi);
 }
 
 /* D(h) cos^4(theta_h) at slope radius r = tan(theta_h) along an azimuth of roughness^2 a2. */
-BB_FN real bb_quad_slope_density(bb_quad_dist d, real a2, real r) {
-    real r2 = r * r;
+BB_FN bb_real bb_quad_slope_density(bb_quad_dist d, bb_real a2, bb_real r) {
+    bb_real r2 = r * r;
     switch (d.kind) {
     case BB_QUAD_GGX: {
-        real q = BB_R(1.0) + r2 / a2;
+        bb_real q = BB_R(1.0) + r2 / a2;
         return BB_R(1.0) / (BB_PI * d.ax * d.ay * q * q);
     }
     case BB_QUAD_BECKMANN:
@@ -185,9 +185,9 @@ BB_FN real bb_quad_slope_density(bb_quad_dist d, real a2, real r) {
 
 /* tan of the largest theta_h at azimuth offset delta whose mirror direction is above the
  * horizon (see the head of this file): (R + B)/A, or A/(R - B) for B < 0. */
-BB_FN real bb_quad_tan_max(real mu_o, real sin_o, real cos_delta) {
-    real a = mu_o, b = sin_o * cos_delta;
-    real r = bb_sqrt(a * a + b * b);
+BB_FN bb_real bb_quad_tan_max(bb_real mu_o, bb_real sin_o, bb_real cos_delta) {
+    bb_real a = mu_o, b = sin_o * cos_delta;
+    bb_real r = bb_sqrt(a * a + b * b);
     return bb_select((r + b) / a, a / (r - b), b < BB_R(0.0));
 }
 
@@ -200,25 +200,25 @@ BB_FN real bb_quad_tan_max(real mu_o, real sin_o, real cos_delta) {
  * a r cosh(t) cos^4 meets D cos^4, the slope density, and the visible-normal factor
  * (wo.h)/cos(theta_h) grows only linearly in r = a sinh(t). */
 typedef struct {
-    real cos_phi, sin_phi; /* of phi_h */
-    real a2, a;            /* the azimuth's roughness, squared and not */
-    real t_max;
+    bb_real cos_phi, sin_phi; /* of phi_h */
+    bb_real a2, a;            /* the azimuth's roughness, squared and not */
+    bb_real t_max;
 } bb_quad_row;
 
-BB_FN bb_quad_row bb_make_quad_row(bb_quad_dist d, bb_vec3 wo, real phi_o, real delta) {
+BB_FN bb_quad_row bb_make_quad_row(bb_quad_dist d, bb_vec3 wo, bb_real phi_o, bb_real delta) {
     bb_quad_row r;
-    real phi = phi_o + delta;
+    bb_real phi = phi_o + delta;
     r.cos_phi = bb_cos(phi);
     r.sin_phi = bb_sin(phi);
     r.a2 = bb_select(bb_quad_alpha2(d, r.cos_phi, r.sin_phi), BB_R(2.0) / (d.n + BB_R(2.0)), d.kind == BB_QUAD_BLINN);
     r.a = bb_sqrt(r.a2);
-    real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
+    bb_real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
     /* Beyond r = tan(theta_h) = r_cap the Gaussian-like lobes are below 1e-18 of their peak:
      * no nodes are spent there. */
-    real r_cap = bb_select(BB_R(6.5) * r.a, bb_sqrt(bb_expm1(BB_R(84.0) / (d.n + BB_R(4.0)))), d.kind == BB_QUAD_BLINN);
-    real r_max = bb_quad_tan_max(wo.z, sin_o, bb_cos(delta));
+    bb_real r_cap = bb_select(BB_R(6.5) * r.a, bb_sqrt(bb_expm1(BB_R(84.0) / (d.n + BB_R(4.0)))), d.kind == BB_QUAD_BLINN);
+    bb_real r_max = bb_quad_tan_max(wo.z, sin_o, bb_cos(delta));
     r_max = bb_select(r_max, bb_min(r_max, r_cap), d.kind != BB_QUAD_GGX);
-    real x = r_max / r.a;
+    bb_real x = r_max / r.a;
     r.t_max = bb_log(x + bb_sqrt(x * x + BB_R(1.0))); /* asinh */
     return r;
 }
@@ -234,24 +234,24 @@ BB_FN bb_quad_row bb_make_quad_row(bb_quad_dist d, bb_vec3 wo, real phi_o, real 
 #define BB_HALFVECTOR_CASE(NAME, name, SPEC, ARGS, QUAD, ...) \
     BB_IF_COMPILED(NAME)(BB_PP_CAT(BB_HALFVECTOR_CASE_, QUAD)(NAME, name))
 
-BB_FN real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_quad_dist d,
-                                    bb_quad_row row, real t) {
-    real em1 = bb_expm1(t);
-    real sinh_t = BB_R(0.5) * em1 * (em1 + BB_R(2.0)) / (em1 + BB_R(1.0));
-    real cosh_t = sinh_t + BB_R(1.0) / (em1 + BB_R(1.0));
-    real r = row.a * sinh_t;
-    real ch = BB_R(1.0) / bb_sqrt(BB_R(1.0) + r * r);
-    real sh = r * ch;
+BB_FN bb_real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_quad_dist d,
+                                    bb_quad_row row, bb_real t) {
+    bb_real em1 = bb_expm1(t);
+    bb_real sinh_t = BB_R(0.5) * em1 * (em1 + BB_R(2.0)) / (em1 + BB_R(1.0));
+    bb_real cosh_t = sinh_t + BB_R(1.0) / (em1 + BB_R(1.0));
+    bb_real r = row.a * sinh_t;
+    bb_real ch = BB_R(1.0) / bb_sqrt(BB_R(1.0) + r * r);
+    bb_real sh = r * ch;
     bb_vec3 h = bb_v3(sh * row.cos_phi, sh * row.sin_phi, ch);
     /* D J cos(theta_h) */
-    real djc = row.a * r * cosh_t * bb_quad_slope_density(d, row.a2, r);
+    bb_real djc = row.a * r * cosh_t * bb_quad_slope_density(d, row.a2, r);
 
-    real oh = bb_clamp_cos(bb_dot(wo, h));
+    bb_real oh = bb_clamp_cos(bb_dot(wo, h));
     bb_vec3 wi = bb_reflect(wo, h);
     bb_mask ok = wi.z > BB_R(0.0) && oh > BB_R(0.0) && wo.z > BB_R(0.0);
-    real co = bb_select(BB_R(1.0), wo.z, ok);
-    real f = bb_fresnel_eval(fkind, fp, oh);
-    real w = BB_R(0.0);
+    bb_real co = bb_select(BB_R(1.0), wo.z, ok);
+    bb_real f = bb_fresnel_eval(fkind, fp, oh);
+    bb_real w = BB_R(0.0);
     switch (model) {
         BB_MODEL_REGISTRY(BB_HALFVECTOR_CASE)
     default:

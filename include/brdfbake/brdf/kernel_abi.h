@@ -15,8 +15,8 @@
 /* Build options: the macros a kernel is compiled with (-D NAME=VALUE), their names as the host
  * writes them. Engine::build_options (host/engine/engine.cpp) decides every one from a
  * BuildRequest; the kernels test the bare names (#ifdef BB_QUADRATURE, BB_MODEL == ...). */
-#define BB_OPTION_REAL_DOUBLE "BB_REAL_DOUBLE"       /* real is double (else float) */
-#define BB_OPTION_VECTOR_WIDTH "BB_VECTOR_WIDTH"     /* real is a vector of that many lanes */
+#define BB_OPTION_REAL_DOUBLE "BB_REAL_DOUBLE"       /* bb_real is double (else float) */
+#define BB_OPTION_VECTOR_WIDTH "BB_VECTOR_WIDTH"     /* bb_real is a vector of that many lanes */
 #define BB_OPTION_MODEL "BB_MODEL"                   /* the model compiled in (BB_MODEL_*) */
 #define BB_OPTION_FRESNEL "BB_FRESNEL"               /* the Fresnel term compiled in (BB_FRESNEL_*) */
 #define BB_OPTION_QUADRATURE "BB_QUADRATURE"         /* the quadrature entry points */

@@ -16,7 +16,7 @@
     BB_IF_COMPILED(NAME)(case BB_MODEL_##NAME: return bb_##name##_sample BB_PP_CAT(BB_SAMPLE_ARGS_, ARGS);)
 
 /* f(wo, wi) without the cosine. */
-BB_FN real bb_model_eval(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_model_eval(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
     switch (model) {
         BB_MODEL_REGISTRY(BB_EVAL_CASE)
     default:
@@ -25,8 +25,8 @@ BB_FN real bb_model_eval(int model, bb_params p, int fkind, bb_params fp, bb_vec
 }
 
 /* The model's importance sample for wo and the uniform pair (u1, u2). */
-BB_FN bb_sample bb_model_sample(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1,
-                                real u2) {
+BB_FN bb_sample bb_model_sample(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1,
+                                bb_real u2) {
     switch (model) {
         BB_MODEL_REGISTRY(BB_SAMPLE_CASE)
     default:
@@ -54,7 +54,7 @@ BB_FN bb_disk_cell bb_model_disk_cell(int model, bb_params p, bb_vec3 wo, int is
     return bb_ggx_disk_cell_make(p, wo, isotropic);
 }
 
-BB_FN real bb_model_disk_weight(int model, bb_disk_cell c, int fkind, bb_params fp, bb_vec2 d, real h, int isotropic) {
+BB_FN bb_real bb_model_disk_weight(int model, bb_disk_cell c, int fkind, bb_params fp, bb_vec2 d, bb_real h, int isotropic) {
     (void)model;
     return bb_ggx_disk_weight(c, fkind, fp, d, h, isotropic);
 }

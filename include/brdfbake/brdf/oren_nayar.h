@@ -23,33 +23,33 @@
 #define BB_OREN_NAYAR_RHO 1
 
 /* A and B of [ON94] eq. 30. */
-BB_FN real bb_oren_nayar_a(real sigma) {
-    real s2 = sigma * sigma;
+BB_FN bb_real bb_oren_nayar_a(bb_real sigma) {
+    bb_real s2 = sigma * sigma;
     return BB_R(1.0) - BB_R(0.5) * s2 / (s2 + BB_R(0.33));
 }
-BB_FN real bb_oren_nayar_b(real sigma) {
-    real s2 = sigma * sigma;
+BB_FN bb_real bb_oren_nayar_b(bb_real sigma) {
+    bb_real s2 = sigma * sigma;
     return BB_R(0.45) * s2 / (s2 + BB_R(0.09));
 }
 
 /* pi f / rho: the bracket of [ON94] eq. 30, for wo and wi above the horizon. */
-BB_FN real bb_oren_nayar_bracket(real sigma, bb_vec3 wo, bb_vec3 wi) {
-    real t = bb_max(wo.x * wi.x + wo.y * wi.y, BB_R(0.0));
-    real m = bb_max(wo.z, wi.z);
+BB_FN bb_real bb_oren_nayar_bracket(bb_real sigma, bb_vec3 wo, bb_vec3 wi) {
+    bb_real t = bb_max(wo.x * wi.x + wo.y * wi.y, BB_R(0.0));
+    bb_real m = bb_max(wo.z, wi.z);
     return bb_oren_nayar_a(sigma) + bb_oren_nayar_b(sigma) * t / bb_select(m, BB_R(1.0), m <= BB_R(0.0));
 }
 
-BB_FN real bb_oren_nayar_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
-    real v = p.v[BB_OREN_NAYAR_RHO] * BB_INV_PI * bb_oren_nayar_bracket(p.v[BB_OREN_NAYAR_SIGMA], wo, wi);
+BB_FN bb_real bb_oren_nayar_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
+    bb_real v = p.v[BB_OREN_NAYAR_RHO] * BB_INV_PI * bb_oren_nayar_bracket(p.v[BB_OREN_NAYAR_SIGMA], wo, wi);
     return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0));
 }
 
 /* Cosine-weighted hemisphere sampling (Malley's method), pdf = cos_i/pi: the weight is
  * rho (A + B max(0, t)/max(cos_i, cos_o)), bounded by rho (A + B / cos_o); its variance grows
  * only like log(1/cos_o) towards grazing. */
-BB_FN bb_sample bb_oren_nayar_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
+BB_FN bb_sample bb_oren_nayar_sample(bb_params p, bb_vec3 wo, bb_real u1, bb_real u2) {
     bb_vec3 wi = bb_cosine_hemisphere(u1, u2);
-    real w = p.v[BB_OREN_NAYAR_RHO] * bb_oren_nayar_bracket(p.v[BB_OREN_NAYAR_SIGMA], wo, wi);
+    bb_real w = p.v[BB_OREN_NAYAR_RHO] * bb_oren_nayar_bracket(p.v[BB_OREN_NAYAR_SIGMA], wo, wi);
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wo.z > BB_R(0.0) && wi.z > BB_R(0.0)));
 }
 

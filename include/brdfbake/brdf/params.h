@@ -11,17 +11,17 @@
 #define BB_MAX_PARAMS 8
 
 typedef struct {
-    real v[BB_MAX_PARAMS];
+    bb_real v[BB_MAX_PARAMS];
 } bb_params;
 
 /* One importance sample: the incident direction and its estimator weight f*cos(theta_i)/pdf.
  * A weight of 0 means "no contribution" (below the horizon, back-facing microfacet, ...). */
 typedef struct {
     bb_vec3 wi;
-    real weight;
+    bb_real weight;
 } bb_sample;
 
-BB_FN bb_sample bb_make_sample(bb_vec3 wi, real weight) {
+BB_FN bb_sample bb_make_sample(bb_vec3 wi, bb_real weight) {
     bb_sample s = {wi, weight};
     return s;
 }

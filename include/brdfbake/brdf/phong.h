@@ -32,8 +32,8 @@
 /* The smallest cos(theta_i) phong-original divides by. */
 #define BB_PHONG_ORIGINAL_MIN_COS BB_R(1e-30)
 
-BB_FN real bb_phong_k(bb_params p) {
-    real n = p.v[BB_PHONG_N];
+BB_FN bb_real bb_phong_k(bb_params p) {
+    bb_real n = p.v[BB_PHONG_N];
     return p.v[BB_PHONG_KS] *
            bb_select(BB_R(1.0), (n + BB_R(2.0)) * (BB_R(0.5) * BB_INV_PI), p.v[BB_PHONG_NORMALIZED] > BB_R(0.5));
 }
@@ -42,43 +42,43 @@ BB_FN real bb_phong_k(bb_params p) {
 BB_FN bb_vec3 bb_mirror_dir(bb_vec3 w) { return bb_v3(-w.x, -w.y, w.z); }
 
 /* max(0, wo.R(wi))^N, with 1 - wo.R(wi) = |R(wo) - wi|^2 / 2 (unit vectors). */
-BB_FN real bb_phong_lobe(real n, bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_phong_lobe(bb_real n, bb_vec3 wo, bb_vec3 wi) {
     bb_vec3 r = bb_mirror_dir(wo);
     bb_vec3 d = bb_v3(r.x - wi.x, r.y - wi.y, r.z - wi.z);
     return bb_pow1m(BB_R(0.5) * bb_dot(d, d), n);
 }
 
-BB_FN real bb_phong_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
-    real v = bb_phong_k(p) * bb_phong_lobe(p.v[BB_PHONG_N], wo, wi);
+BB_FN bb_real bb_phong_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
+    bb_real v = bb_phong_k(p) * bb_phong_lobe(p.v[BB_PHONG_N], wo, wi);
     return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0));
 }
 
-BB_FN real bb_phong_original_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
-    real v = p.v[BB_PHONG_KS] * bb_phong_lobe(p.v[BB_PHONG_N], wo, wi) /
+BB_FN bb_real bb_phong_original_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
+    bb_real v = p.v[BB_PHONG_KS] * bb_phong_lobe(p.v[BB_PHONG_N], wo, wi) /
              bb_max(wi.z, BB_PHONG_ORIGINAL_MIN_COS);
     return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0));
 }
 
 /* wi drawn about R(wo) with density (N + 1)/(2 pi) cos^N(angle to R(wo)) [LW94]. */
-BB_FN bb_vec3 bb_phong_sample_dir(real n, bb_vec3 wo, real u1, real u2) {
+BB_FN bb_vec3 bb_phong_sample_dir(bb_real n, bb_vec3 wo, bb_real u1, bb_real u2) {
     return bb_to_frame(bb_mirror_dir(wo), bb_sample_cos_power(n, u1, u2));
 }
 
 /* Phong lobe sampling [LW94]: f cos_i / pdf = K 2 pi cos_i / (N + 1) where wi is above the
  * horizon, 0 elsewhere (samples below the horizon are the lobe's part that the surface cuts). */
-BB_FN bb_sample bb_phong_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
-    real n = p.v[BB_PHONG_N];
+BB_FN bb_sample bb_phong_sample(bb_params p, bb_vec3 wo, bb_real u1, bb_real u2) {
+    bb_real n = p.v[BB_PHONG_N];
     bb_vec3 wi = bb_phong_sample_dir(n, wo, u1, u2);
-    real w = bb_phong_k(p) * BB_2PI * wi.z / (n + BB_R(1.0));
+    bb_real w = bb_phong_k(p) * BB_2PI * wi.z / (n + BB_R(1.0));
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wo.z > BB_R(0.0) && wi.z > BB_R(0.0)));
 }
 
 /* The same lobe for phong-original: the 1/cos_i cancels the cosine, the weight is the constant
  * ks 2 pi / (N + 1) above the horizon (exactly, for cos_i >= BB_PHONG_ORIGINAL_MIN_COS). */
-BB_FN bb_sample bb_phong_original_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
-    real n = p.v[BB_PHONG_N];
+BB_FN bb_sample bb_phong_original_sample(bb_params p, bb_vec3 wo, bb_real u1, bb_real u2) {
+    bb_real n = p.v[BB_PHONG_N];
     bb_vec3 wi = bb_phong_sample_dir(n, wo, u1, u2);
-    real w = p.v[BB_PHONG_KS] * BB_2PI * wi.z / (bb_max(wi.z, BB_PHONG_ORIGINAL_MIN_COS) * (n + BB_R(1.0)));
+    bb_real w = p.v[BB_PHONG_KS] * BB_2PI * wi.z / (bb_max(wi.z, BB_PHONG_ORIGINAL_MIN_COS) * (n + BB_R(1.0)));
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wo.z > BB_R(0.0) && wi.z > BB_R(0.0)));
 }
 

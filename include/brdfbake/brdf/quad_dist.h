@@ -15,10 +15,10 @@
 /* The coordinate system of the quadrature for a model, and its distribution's parameters. */
 typedef struct {
     int kind;
-    real ax, ay, n;
+    bb_real ax, ay, n;
 } bb_quad_dist;
 
-BB_FN bb_quad_dist bb_make_quad_dist(int kind, real ax, real ay, real n) {
+BB_FN bb_quad_dist bb_make_quad_dist(int kind, bb_real ax, bb_real ay, bb_real n) {
     bb_quad_dist d;
     d.kind = kind;
     d.ax = ax;

@@ -41,17 +41,17 @@ BB_FN int bb_dielectric_beta_transmission(int shadowing, int transmission_shadow
 }
 
 typedef struct {
-    real r; /* reflected energy fraction of this sample */
-    real t; /* transmitted energy fraction of this sample */
+    bb_real r; /* reflected energy fraction of this sample */
+    bb_real t; /* transmitted energy fraction of this sample */
 } bb_rt;
 
 /* Refraction of wo through the microfacet wh (wo.wh = c > 0) into the far side; the direction
  * points away from the surface on the far side. cos_t from sin^2_t = (1 - c^2)/eta^2. Returns
  * the zero vector under total internal reflection. */
-BB_FN bb_vec3 bb_refract(bb_vec3 wo, bb_vec3 wh, real c, real eta) {
-    real inv_eta = BB_R(1.0) / eta; /* the same for every sample of a cell: computed once */
-    real sin2_t = bb_sin2_from_cos(c) * (inv_eta * inv_eta);
-    real cos_t = bb_safe_sqrt(BB_R(1.0) - sin2_t);
+BB_FN bb_vec3 bb_refract(bb_vec3 wo, bb_vec3 wh, bb_real c, bb_real eta) {
+    bb_real inv_eta = BB_R(1.0) / eta; /* the same for every sample of a cell: computed once */
+    bb_real sin2_t = bb_sin2_from_cos(c) * (inv_eta * inv_eta);
+    bb_real cos_t = bb_safe_sqrt(BB_R(1.0) - sin2_t);
     bb_vec3 wt = bb_add(bb_scale(wo, -inv_eta), bb_scale(wh, c * inv_eta - cos_t));
     return bb_scale(wt, bb_select(BB_R(1.0), BB_R(0.0), sin2_t >= BB_R(1.0)));
 }
@@ -59,9 +59,9 @@ BB_FN bb_vec3 bb_refract(bb_vec3 wo, bb_vec3 wh, real c, real eta) {
 /* The Stirling series of log Gamma(z) without its (z - 1/2) log z - z + log(2 pi)/2 part, for
  * z >= 8: 1/(12 z) - 1/(360 z^3) + 1/(1260 z^5) - 1/(1680 z^7) + 1/(1188 z^9), truncation
  * below 691/(360360 z^11) < 2.2e-13. */
-BB_FN real bb_stirling_tail_inv(real r) { /* given r = 1/z (the caller has it) */
-    real r2 = r * r;
-    real s = BB_R(1.0) / BB_R(1680.0) - r2 * (BB_R(1.0) / BB_R(1188.0));
+BB_FN bb_real bb_stirling_tail_inv(bb_real r) { /* given r = 1/z (the caller has it) */
+    bb_real r2 = r * r;
+    bb_real s = BB_R(1.0) / BB_R(1680.0) - r2 * (BB_R(1.0) / BB_R(1188.0));
     s = BB_R(1.0) / BB_R(1260.0) - r2 * s;
     s = BB_R(1.0) / BB_R(360.0) - r2 * s;
     return r * (BB_R(1.0) / BB_R(12.0) - r2 * s);
@@ -74,7 +74,7 @@ BB_FN real bb_stirling_tail_inv(real r) { /* given r = 1/z (the caller has it) *
  * difference, so that no two large logarithms cancel (at b = 1e6 each is about 1.3e7):
  *   D = -(b' - 1/2) log1p(d/b') - d log c' + d + tail(b') - tail(c') - log(P_b / P_c),
  * d = c' - b', P the shift's product (1 without a shift). Branch-free: the vector kernels use it. */
-BB_FN real bb_lgamma(real a) {
+BB_FN bb_real bb_lgamma(bb_real a) {
 #ifdef __OPENCL_C_VERSION__
     return lgamma(a);
 #else
@@ -83,29 +83,29 @@ BB_FN real bb_lgamma(real a) {
 }
 
 /* B(a, b) given lga = log Gamma(a) (a cell's constant: the quadrature computes it once). */
-BB_FN real bb_beta_lga(real a, real b, real lga) {
-    real c = a + b;
+BB_FN bb_real bb_beta_lga(bb_real a, bb_real b, bb_real lga) {
+    bb_real c = a + b;
     bb_mask sb = b < BB_R(8.0), sc = c < BB_R(8.0);
-    real pb = BB_R(1.0), pc = BB_R(1.0);
+    bb_real pb = BB_R(1.0), pc = BB_R(1.0);
     for (int k = 0; k < 8; ++k) {
-        pb = pb * (b + (real)k);
-        pc = pc * (c + (real)k);
+        pb = pb * (b + (bb_real)k);
+        pc = pc * (c + (bb_real)k);
     }
-    real bs = bb_select(b, b + BB_R(8.0), sb), cs = bb_select(c, c + BB_R(8.0), sc);
+    bb_real bs = bb_select(b, b + BB_R(8.0), sb), cs = bb_select(c, c + BB_R(8.0), sc);
     pb = bb_select(BB_R(1.0), pb, sb);
     pc = bb_select(BB_R(1.0), pc, sc);
     /* d = c' - b' from a and the shifts, not by subtracting c' (rounded) from b' */
-    real d = a + bb_select(BB_R(0.0), BB_R(8.0), sc) - bb_select(BB_R(0.0), BB_R(8.0), sb);
+    bb_real d = a + bb_select(BB_R(0.0), BB_R(8.0), sc) - bb_select(BB_R(0.0), BB_R(8.0), sb);
     /* two divisions for 1/b', 1/c' and P_c / P_b: q = 1/(c' P_b) gives the last two (c' P_b
      * stays below 1e31 where b' does: P_b = 1 from b' = 8 on) */
-    real inv_bs = BB_R(1.0) / bs, q = BB_R(1.0) / (cs * pb);
-    real diff = -(bs - BB_R(0.5)) * bb_log1p(d * inv_bs) - d * bb_log(cs) + d + bb_stirling_tail_inv(inv_bs) -
+    bb_real inv_bs = BB_R(1.0) / bs, q = BB_R(1.0) / (cs * pb);
+    bb_real diff = -(bs - BB_R(0.5)) * bb_log1p(d * inv_bs) - d * bb_log(cs) + d + bb_stirling_tail_inv(inv_bs) -
                 bb_stirling_tail_inv(q * pb);
     /* exp(-log(P_b / P_c)) as the quotient itself: P_c / P_b lies within 1e-8 and 1e9 */
     return bb_exp(lga + diff) * (pc * cs * q);
 }
 
-BB_FN real bb_beta(real a, real b) { return bb_beta_lga(a, b, bb_lgamma(a)); }
+BB_FN bb_real bb_beta(bb_real a, bb_real b) { return bb_beta_lga(a, b, bb_lgamma(a)); }
 
 /* The split of the energy arriving from wo at one microfacet wh (wo.wh > 0) [WMLT07 eq. 22]:
  * F G2_R(wo, wr) reflected into wr = reflect(wo, wh) where wr.z > 0, and (1 - F) G2_T(wo, wt)
@@ -115,16 +115,16 @@ BB_FN real bb_beta(real a, real b) { return bb_beta_lga(a, b, bb_lgamma(a)); }
  * importance sampler (below) divides both by G1(wo), the visible-normal density having taken
  * G1(wo) D(wh) (wo.wh) / wo.z; the quadrature (dielectric_quadrature.h) multiplies them by
  * D(wh) (wo.wh) / wo.z. Branch-free: the vector kernels evaluate it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, real eta, int shadowing,
-                                      int transmission_shadowing, real g1o, real lo, real lga_o) {
+BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, bb_real ax, bb_real ay, bb_real eta, int shadowing,
+                                      int transmission_shadowing, bb_real g1o, bb_real lo, bb_real lga_o) {
     bb_rt out;
-    real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
-    real f = bb_fresnel_dielectric(c, eta);
+    bb_real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
+    bb_real f = bb_fresnel_dielectric(c, eta);
 
     bb_vec3 wr = bb_reflect(wo, wh);
     /* each G2 from its own G1 calls, merged by the compiler (as bb_smith_g2) */
-    real g1r = bb_ggx_g1(wr, ax, ay);
-    real g2r = bb_select(bb_g2_separable_from_g1(g1o, g1r), bb_g2_correlated_from_g1(g1o, g1r),
+    bb_real g1r = bb_ggx_g1(wr, ax, ay);
+    bb_real g2r = bb_select(bb_g2_separable_from_g1(g1o, g1r), bb_g2_correlated_from_g1(g1o, g1r),
                          shadowing == BB_SHADOWING_CORRELATED);
     out.r = bb_select(BB_R(0.0), f * g2r, wr.z > BB_R(0.0));
 
@@ -132,15 +132,15 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, 
     bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
     /* the shadowing arguments are the same for every sample (and every lane): only their branch
      * is computed (the Beta function's log-gammas are the costliest part of a sample) */
-    real g2t;
+    bb_real g2t;
     if (bb_dielectric_beta_transmission(shadowing, transmission_shadowing)) {
         /* G1(wt) = 1 / (1 + lt) > 0 where wt_up.z > 0 and lt is finite (it is not where
          * 2z(s + z) underflows, as G1's closed form then gives 0) */
-        real lt = bb_ggx_lambda(wt_up, ax, ay);
+        bb_real lt = bb_ggx_lambda(wt_up, ax, ay);
         g2t = bb_select(BB_R(0.0), bb_beta_lga(BB_R(1.0) + lo, BB_R(1.0) + lt, lga_o),
                         g1o > BB_R(0.0) && wt_up.z > BB_R(0.0) && lt < BB_R(1e30));
     } else {
-        real g1t = bb_ggx_g1(wt_up, ax, ay);
+        bb_real g1t = bb_ggx_g1(wt_up, ax, ay);
         g2t = g1o * g1t;
         if (shadowing == BB_SHADOWING_CORRELATED) /* and BB_TRANSMISSION_SHADOWING_CYCLES */
             g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
@@ -152,12 +152,12 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, real ax, real ay, 
 /* One sample of the reflected and transmitted fractions from the disk point d of the visible-
  * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
  * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real eta, int shadowing,
+BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, bb_real ax, bb_real ay, bb_real eta, int shadowing,
                                             int transmission_shadowing, bb_vec2 d) {
     bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
-    real g1o = bb_ggx_g1(wo, ax, ay);
-    real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
-    real lo = bb_ggx_lambda(wo, ax, ay);
+    bb_real g1o = bb_ggx_g1(wo, ax, ay);
+    bb_real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
+    bb_real lo = bb_ggx_lambda(wo, ax, ay);
     bb_rt out = bb_rough_dielectric_split(wo, wh, ax, ay, eta, shadowing, transmission_shadowing, g1o, lo,
                                           bb_dielectric_beta_transmission(shadowing, transmission_shadowing)
                                               ? bb_lgamma(BB_R(1.0) + lo)
@@ -168,8 +168,8 @@ BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, real ax, real ay, real e
 }
 
 /* One sample of the reflected and transmitted fractions; u1, u2 in [0, 1). */
-BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, real ax, real ay, real eta, int shadowing,
-                                       int transmission_shadowing, real u1, real u2) {
+BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, bb_real ax, bb_real ay, bb_real eta, int shadowing,
+                                       int transmission_shadowing, bb_real u1, bb_real u2) {
     return bb_rough_dielectric_sample_disk(wo, ax, ay, eta, shadowing, transmission_shadowing, bb_disk_polar(u1, u2));
 }
 

@@ -15,30 +15,30 @@ BB_FN unsigned int bb_reverse_bits(unsigned int v) {
 
 /* A 32-bit fraction as a real in [0, 1): float keeps the top 24 bits so that the result can
  * never round up to 1. */
-BB_FN real bb_unit_from_bits(unsigned int v) {
+BB_FN bb_real bb_unit_from_bits(unsigned int v) {
 #ifdef BB_REAL_IS_FLOAT
-    return (real)(v >> 8) * BB_R(5.9604644775390625e-8); /* 2^-24 */
+    return (bb_real)(v >> 8) * BB_R(5.9604644775390625e-8); /* 2^-24 */
 #else
-    return (real)v * BB_R(2.3283064365386963e-10); /* 2^-32 */
+    return (bb_real)v * BB_R(2.3283064365386963e-10); /* 2^-32 */
 #endif
 }
 
 /* Cranley-Patterson rotation: (x + shift) mod 1, for x and shift in [0, 1). */
-BB_FN real bb_rotate(real x, real shift) {
-    real u = x + shift;
+BB_FN bb_real bb_rotate(bb_real x, bb_real shift) {
+    bb_real u = x + shift;
     return bb_select(u, u - BB_R(1.0), u >= BB_R(1.0));
 }
 
 /* Point i of the n-point Hammersley set: ((i + 1/2)/n, radical_inverse_2(i)). */
-BB_FN real bb_hammersley_u1(unsigned int i, unsigned int n) { return ((real)i + BB_R(0.5)) / (real)n; }
-BB_FN real bb_hammersley_u2(unsigned int i) { return bb_unit_from_bits(bb_reverse_bits(i)); }
+BB_FN bb_real bb_hammersley_u1(unsigned int i, unsigned int n) { return ((bb_real)i + BB_R(0.5)) / (bb_real)n; }
+BB_FN bb_real bb_hammersley_u2(unsigned int i) { return bb_unit_from_bits(bb_reverse_bits(i)); }
 
 /* The polar map of the unit square onto the unit disk: radius sqrt(u1), angle 2 pi u2 (uniform
  * density; the warp of Malley's method and of the visible-normal sampling [H18 sec. 4.2]).
  * It does not depend on the cell of a table, so the fast kernels take it from a table. */
-BB_FN bb_vec2 bb_disk_polar(real u1, real u2) {
-    real r = bb_sqrt(u1);
-    real phi = BB_2PI * u2;
+BB_FN bb_vec2 bb_disk_polar(bb_real u1, bb_real u2) {
+    bb_real r = bb_sqrt(u1);
+    bb_real phi = BB_2PI * u2;
     return bb_v2(r * bb_cos(phi), r * bb_sin(phi));
 }
 
@@ -48,9 +48,9 @@ BB_FN bb_vec2 bb_disk_polar(real u1, real u2) {
  * precision; with cos(theta) = sqrt(1 - u1) they would come from u1 near 1, where float
  * resolves cos(theta) only in steps of about 2.4e-4 and integrands that grow like 1/cos(theta)
  * near the horizon (Oren-Nayar) are biased by ~1e-4. */
-BB_FN bb_vec3 bb_cosine_hemisphere(real u1, real u2) {
-    real s = bb_safe_sqrt(BB_R(1.0) - u1);
-    real phi = BB_2PI * u2;
+BB_FN bb_vec3 bb_cosine_hemisphere(bb_real u1, bb_real u2) {
+    bb_real s = bb_safe_sqrt(BB_R(1.0) - u1);
+    bb_real phi = BB_2PI * u2;
     return bb_v3(s * bb_cos(phi), s * bb_sin(phi), bb_sqrt(u1));
 }
 

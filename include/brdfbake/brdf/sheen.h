@@ -64,57 +64,57 @@
 #define BB_SHEEN_V_ASHIKHMIN 1
 
 /* The Charlie distribution [EK17 eq. 2] from sin^2(theta_h). */
-BB_FN real bb_sheen_d(real alpha, real sin2_h) {
-    real inv = BB_R(1.0) / alpha;
+BB_FN bb_real bb_sheen_d(bb_real alpha, bb_real sin2_h) {
+    bb_real inv = BB_R(1.0) / alpha;
     return (BB_R(2.0) + inv) * (BB_R(0.5) * BB_INV_PI) * bb_pow(sin2_h, BB_R(0.5) * inv);
 }
 
 /* [EK17]'s fit L(x) of log Lambda, its coefficients interpolated in t = (1 - alpha)^2. */
-BB_FN real bb_sheen_l(real x, real alpha) {
-    real t = bb_sqr(BB_R(1.0) - alpha);
-    real a = BB_R(21.5473) + t * (BB_R(25.3245) - BB_R(21.5473));
-    real b = BB_R(3.82987) + t * (BB_R(3.32435) - BB_R(3.82987));
-    real c = BB_R(0.19823) + t * (BB_R(0.16801) - BB_R(0.19823));
-    real d = BB_R(-1.97760) + t * (BB_R(-1.27393) - BB_R(-1.97760));
-    real e = BB_R(-4.32054) + t * (BB_R(-4.85967) - BB_R(-4.32054));
+BB_FN bb_real bb_sheen_l(bb_real x, bb_real alpha) {
+    bb_real t = bb_sqr(BB_R(1.0) - alpha);
+    bb_real a = BB_R(21.5473) + t * (BB_R(25.3245) - BB_R(21.5473));
+    bb_real b = BB_R(3.82987) + t * (BB_R(3.32435) - BB_R(3.82987));
+    bb_real c = BB_R(0.19823) + t * (BB_R(0.16801) - BB_R(0.19823));
+    bb_real d = BB_R(-1.97760) + t * (BB_R(-1.27393) - BB_R(-1.97760));
+    bb_real e = BB_R(-4.32054) + t * (BB_R(-4.85967) - BB_R(-4.32054));
     return a / (BB_R(1.0) + b * bb_pow(x, c)) + d * x + e;
 }
 
 /* [EK17]'s Lambda(mu) for mu in [0, 1], branch-free (both halves computed, one selected). */
-BB_FN real bb_sheen_lambda(real mu, real alpha) {
-    real lo = bb_sheen_l(mu, alpha);
-    real hi = BB_R(2.0) * bb_sheen_l(BB_R(0.5), alpha) - bb_sheen_l(BB_R(1.0) - mu, alpha);
+BB_FN bb_real bb_sheen_lambda(bb_real mu, bb_real alpha) {
+    bb_real lo = bb_sheen_l(mu, alpha);
+    bb_real hi = BB_R(2.0) * bb_sheen_l(BB_R(0.5), alpha) - bb_sheen_l(BB_R(1.0) - mu, alpha);
     return bb_exp(bb_select(hi, lo, mu < BB_R(0.5)));
 }
 
 /* The visibility V = G / (4 cos_o cos_i) of the slot's kind, for cos_o, cos_i > 0. */
-BB_FN real bb_sheen_visibility(real visibility, real alpha, real co, real ci) {
-    real charlie = BB_R(1.0) / ((BB_R(1.0) + bb_sheen_lambda(co, alpha) + bb_sheen_lambda(ci, alpha)) *
+BB_FN bb_real bb_sheen_visibility(bb_real visibility, bb_real alpha, bb_real co, bb_real ci) {
+    bb_real charlie = BB_R(1.0) / ((BB_R(1.0) + bb_sheen_lambda(co, alpha) + bb_sheen_lambda(ci, alpha)) *
                                 (BB_R(4.0) * co * ci));
-    real ashikhmin = BB_R(1.0) / (BB_R(4.0) * (co + ci - co * ci));
+    bb_real ashikhmin = BB_R(1.0) / (BB_R(4.0) * (co + ci - co * ci));
     return bb_select(charlie, ashikhmin, visibility == BB_R(BB_SHEEN_V_ASHIKHMIN));
 }
 
-BB_FN real bb_sheen_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_sheen_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
     bb_mask above = wo.z > BB_R(0.0) && wi.z > BB_R(0.0);
-    real co = bb_select(BB_R(1.0), wo.z, above), ci = bb_select(BB_R(1.0), wi.z, above);
+    bb_real co = bb_select(BB_R(1.0), wo.z, above), ci = bb_select(BB_R(1.0), wi.z, above);
     /* sin^2(theta_h) of h = (wo + wi)/|wo + wi|: the tangential part over the whole */
-    real sx = wo.x + wi.x, sy = wo.y + wi.y, sz = co + ci;
-    real t2 = sx * sx + sy * sy;
-    real sin2_h = t2 / (t2 + sz * sz);
-    real alpha = p.v[BB_SHEEN_ALPHA];
-    real f = bb_sheen_d(alpha, sin2_h) * bb_sheen_visibility(p.v[BB_SHEEN_VISIBILITY], alpha, co, ci);
+    bb_real sx = wo.x + wi.x, sy = wo.y + wi.y, sz = co + ci;
+    bb_real t2 = sx * sx + sy * sy;
+    bb_real sin2_h = t2 / (t2 + sz * sz);
+    bb_real alpha = p.v[BB_SHEEN_ALPHA];
+    bb_real f = bb_sheen_d(alpha, sin2_h) * bb_sheen_visibility(p.v[BB_SHEEN_VISIBILITY], alpha, co, ci);
     return bb_select(BB_R(0.0), f, above);
 }
 
 /* cos(theta_i) = u1^2 (3 - 2 u1), phi_i = 2 pi u2 (the head of this file): weight
  * 12 pi u1 (1 - u1) cos(theta_i) f. */
-BB_FN bb_sample bb_sheen_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
-    real v = BB_R(1.0) - u1;
-    real ci = u1 * u1 * (BB_R(3.0) - BB_R(2.0) * u1);
-    real one_minus = v * v * (BB_R(1.0) + BB_R(2.0) * u1); /* 1 - cos(theta_i) */
-    real s = bb_safe_sqrt(one_minus * (BB_R(1.0) + ci));
-    real phi = BB_2PI * u2;
+BB_FN bb_sample bb_sheen_sample(bb_params p, bb_vec3 wo, bb_real u1, bb_real u2) {
+    bb_real v = BB_R(1.0) - u1;
+    bb_real ci = u1 * u1 * (BB_R(3.0) - BB_R(2.0) * u1);
+    bb_real one_minus = v * v * (BB_R(1.0) + BB_R(2.0) * u1); /* 1 - cos(theta_i) */
+    bb_real s = bb_safe_sqrt(one_minus * (BB_R(1.0) + ci));
+    bb_real phi = BB_2PI * u2;
     bb_vec3 wi = bb_v3(s * bb_cos(phi), s * bb_sin(phi), ci);
     return bb_make_sample(wi, BB_R(6.0) * BB_2PI * u1 * v * ci * bb_sheen_eval(p, wo, wi));
 }

@@ -45,19 +45,19 @@
  * of its own, in a slot of its own (ggx.h's BB_GGX_TRANSMISSION_SHADOWING). */
 
 /* D(m) of the distribution. */
-BB_FN real bb_smith_d(int dist, bb_vec3 m, real ax, real ay) {
+BB_FN bb_real bb_smith_d(int dist, bb_vec3 m, bb_real ax, bb_real ay) {
     if (dist == BB_SMITH_BECKMANN) return bb_beckmann_d(m, ax, ay);
     return bb_ggx_d(m, ax, ay);
 }
 
 /* Smith G1 = 1 / (1 + Lambda) of the distribution. */
-BB_FN real bb_smith_g1(int dist, bb_vec3 w, real ax, real ay) {
+BB_FN bb_real bb_smith_g1(int dist, bb_vec3 w, bb_real ax, bb_real ay) {
     if (dist == BB_SMITH_BECKMANN) return bb_beckmann_g1(w, ax, ay);
     return bb_ggx_g1(w, ax, ay);
 }
 
 /* A visible normal of the distribution seen from wo (wo.z > 0). */
-BB_FN bb_vec3 bb_smith_sample_vndf(int dist, bb_vec3 wo, real ax, real ay, real u1, real u2) {
+BB_FN bb_vec3 bb_smith_sample_vndf(int dist, bb_vec3 wo, bb_real ax, bb_real ay, bb_real u1, bb_real u2) {
     if (dist == BB_SMITH_BECKMANN) return bb_beckmann_sample_vndf(wo, ax, ay, u1, u2);
     return bb_ggx_sample_vndf(wo, ax, ay, u1, u2);
 }
@@ -65,9 +65,9 @@ BB_FN bb_vec3 bb_smith_sample_vndf(int dist, bb_vec3 wo, real ax, real ay, real 
 /* G2 as the shadowing slot chooses, from the distribution's G1 (microfacet.h). Each form takes
  * its own pair of G1 calls, which the compiler merges: the form the kernels were tuned with
  * (one named pair, or a call through bb_smith_g1, changes the code the compiler lays out). */
-BB_FN real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
-    real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
-    real separable, correlated, masking;
+BB_FN bb_real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
+    bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
+    bb_real separable, correlated, masking;
     if (dist == BB_SMITH_BECKMANN) {
         separable = bb_g2_separable_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
         correlated = bb_g2_correlated_from_g1(bb_beckmann_g1(wo, ax, ay), bb_beckmann_g1(wi, ax, ay));
@@ -77,28 +77,28 @@ BB_FN real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
         correlated = bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
         masking = bb_ggx_g1(wo, ax, ay);
     }
-    real g2 = bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] == BB_R(BB_SHADOWING_CORRELATED));
+    bb_real g2 = bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] == BB_R(BB_SHADOWING_CORRELATED));
     return bb_select(g2, masking, p.v[BB_SMITH_SHADOWING] == BB_R(BB_SHADOWING_MASKING));
 }
 
 /* f(wo, wi) without the cosine; 0 unless wo, wi and wh are above the horizon. */
-BB_FN real bb_smith_eval(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_smith_eval(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
     bb_vec3 wh = bb_normalize(bb_add(wo, wi));
-    real d = bb_smith_d(dist, wh, p.v[BB_SMITH_ALPHA_X], p.v[BB_SMITH_ALPHA_Y]);
-    real f = bb_fresnel_eval(fkind, fp, bb_clamp_cos(bb_dot(wo, wh)));
-    real den = BB_R(4.0) * wo.z * wi.z;
-    real v = d * bb_smith_g2(dist, p, wo, wi) * f / bb_select(BB_R(1.0), den, den > BB_R(0.0));
+    bb_real d = bb_smith_d(dist, wh, p.v[BB_SMITH_ALPHA_X], p.v[BB_SMITH_ALPHA_Y]);
+    bb_real f = bb_fresnel_eval(fkind, fp, bb_clamp_cos(bb_dot(wo, wh)));
+    bb_real den = BB_R(4.0) * wo.z * wi.z;
+    bb_real v = d * bb_smith_g2(dist, p, wo, wi) * f / bb_select(BB_R(1.0), den, den > BB_R(0.0));
     return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0));
 }
 
 /* The visible-normal importance sample and its weight F(wo.wh) G2(wo, wi) / G1(wo). */
-BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
-    real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
+BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
+    bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
     bb_vec3 wh = bb_smith_sample_vndf(dist, wo, ax, ay, u1, u2);
-    real cos_oh = bb_clamp_cos(bb_dot(wo, wh));
+    bb_real cos_oh = bb_clamp_cos(bb_dot(wo, wh));
     bb_vec3 wi = bb_reflect(wo, wh);
-    real g1o = bb_smith_g1(dist, wo, ax, ay);
-    real w = bb_fresnel_eval(fkind, fp, cos_oh) * bb_smith_g2(dist, p, wo, wi) /
+    bb_real g1o = bb_smith_g1(dist, wo, ax, ay);
+    bb_real w = bb_fresnel_eval(fkind, fp, cos_oh) * bb_smith_g2(dist, p, wo, wi) /
              bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wi.z > BB_R(0.0) && g1o > BB_R(0.0)));
 }
@@ -112,8 +112,8 @@ BB_FN bb_quad_dist bb_smith_quad_dist(int dist, bb_params p) {
 /* The half-vector quadrature's integrand f cos_theta_i 4 (wo.h) / (D cos_theta_h) times
  * djc = D J cos(theta_h) (integrands.h, bb_quad_halfvector_point): with f = D G2 F / (4 co ci)
  * it is F G2 oh / (co ch) djc. f_oh = F(wo.h), oh = wo.h, co = cos_theta_o, ch = cos_theta_h. */
-BB_FN real bb_smith_halfvector_weight(int dist, bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co,
-                                      real ch, real djc) {
+BB_FN bb_real bb_smith_halfvector_weight(int dist, bb_params p, bb_real f_oh, bb_vec3 wo, bb_vec3 wi, bb_real oh, bb_real co,
+                                      bb_real ch, bb_real djc) {
     return f_oh * bb_smith_g2(dist, p, wo, wi) * oh / (co * ch) * djc;
 }
 
@@ -122,15 +122,15 @@ BB_FN real bb_smith_halfvector_weight(int dist, bb_params p, real f_oh, bb_vec3 
  * BB_SMITH_LOBE(ggx, BB_SMITH_GGX) in ggx.h, BB_SMITH_LOBE(beckmann, BB_SMITH_BECKMANN) in
  * beckmann.h. */
 #define BB_SMITH_LOBE(name, dist)                                                                                \
-    BB_FN real bb_##name##_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {                 \
+    BB_FN bb_real bb_##name##_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {                 \
         return bb_smith_eval(dist, p, fkind, fp, wo, wi);                                                        \
     }                                                                                                            \
-    BB_FN bb_sample bb_##name##_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {     \
+    BB_FN bb_sample bb_##name##_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {     \
         return bb_smith_sample(dist, p, fkind, fp, wo, u1, u2);                                                  \
     }                                                                                                            \
     BB_FN bb_quad_dist bb_##name##_quad_dist(bb_params p) { return bb_smith_quad_dist(dist, p); }                \
-    BB_FN real bb_##name##_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co,   \
-                                             real ch, real djc) {                                                \
+    BB_FN bb_real bb_##name##_halfvector_weight(bb_params p, bb_real f_oh, bb_vec3 wo, bb_vec3 wi, bb_real oh, bb_real co,   \
+                                             bb_real ch, bb_real djc) {                                                \
         return bb_smith_halfvector_weight(dist, p, f_oh, wo, wi, oh, co, ch, djc);                               \
     }
 

@@ -24,39 +24,39 @@
 #define BB_DIELECTRIC_SPECULAR_ETA 0
 
 /* Reflection albedo of the mirror, F(mu). */
-BB_FN real bb_mirror_albedo(int fkind, bb_params fp, real mu) {
+BB_FN bb_real bb_mirror_albedo(int fkind, bb_params fp, bb_real mu) {
     return bb_select(BB_R(0.0), bb_fresnel_eval(fkind, fp, bb_clamp_cos(mu)), mu > BB_R(0.0));
 }
 
 /* Reflection albedo of the smooth dielectric, F_dielectric(mu, eta). */
-BB_FN real bb_dielectric_specular_reflectance(bb_params p, real mu) {
+BB_FN bb_real bb_dielectric_specular_reflectance(bb_params p, bb_real mu) {
     return bb_select(BB_R(0.0), bb_fresnel_dielectric(bb_clamp_cos(mu), p.v[BB_DIELECTRIC_SPECULAR_ETA]),
                      mu > BB_R(0.0));
 }
 
 /* Transmitted energy fraction 1 - F_dielectric(mu, eta) (0 under total internal reflection). */
-BB_FN real bb_dielectric_specular_transmittance(bb_params p, real mu) {
+BB_FN bb_real bb_dielectric_specular_transmittance(bb_params p, bb_real mu) {
     return bb_select(BB_R(0.0), BB_R(1.0) - bb_fresnel_dielectric(bb_clamp_cos(mu), p.v[BB_DIELECTRIC_SPECULAR_ETA]),
                      mu > BB_R(0.0));
 }
 
 /* The unused arguments keep the signatures of every other model (models.h dispatch). */
-BB_FN real bb_mirror_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_mirror_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
     (void)p, (void)fkind, (void)fp, (void)wo, (void)wi;
     return BB_R(0.0); /* a delta lobe: no finite value */
 }
 
-BB_FN bb_sample bb_mirror_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
+BB_FN bb_sample bb_mirror_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
     (void)p, (void)u1, (void)u2;
     return bb_make_sample(bb_v3(-wo.x, -wo.y, wo.z), bb_mirror_albedo(fkind, fp, wo.z));
 }
 
-BB_FN real bb_dielectric_specular_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_dielectric_specular_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
     (void)p, (void)wo, (void)wi;
     return BB_R(0.0);
 }
 
-BB_FN bb_sample bb_dielectric_specular_sample(bb_params p, bb_vec3 wo, real u1, real u2) {
+BB_FN bb_sample bb_dielectric_specular_sample(bb_params p, bb_vec3 wo, bb_real u1, bb_real u2) {
     (void)u1, (void)u2;
     return bb_make_sample(bb_v3(-wo.x, -wo.y, wo.z), bb_dielectric_specular_reflectance(p, wo.z));
 }

@@ -33,8 +33,8 @@
 #define BB_TS_D_BECKMANN 1
 #define BB_TS_D_GGX 2
 
-BB_FN real bb_torrance_sparrow_d(bb_params p, bb_vec3 m) {
-    real ax = p.v[BB_TORRANCE_SPARROW_ALPHA_X], ay = p.v[BB_TORRANCE_SPARROW_ALPHA_Y];
+BB_FN bb_real bb_torrance_sparrow_d(bb_params p, bb_vec3 m) {
+    bb_real ax = p.v[BB_TORRANCE_SPARROW_ALPHA_X], ay = p.v[BB_TORRANCE_SPARROW_ALPHA_Y];
     /* The distribution is the same for every work-item: a uniform branch. */
     switch ((int)bb_first(p.v[BB_TORRANCE_SPARROW_DIST])) {
     case BB_TS_D_BECKMANN:
@@ -47,8 +47,8 @@ BB_FN real bb_torrance_sparrow_d(bb_params p, bb_vec3 m) {
 }
 
 /* A microfacet normal with density D(m) cos(theta_m). */
-BB_FN bb_vec3 bb_torrance_sparrow_sample_dcos(bb_params p, real u1, real u2) {
-    real ax = p.v[BB_TORRANCE_SPARROW_ALPHA_X], ay = p.v[BB_TORRANCE_SPARROW_ALPHA_Y];
+BB_FN bb_vec3 bb_torrance_sparrow_sample_dcos(bb_params p, bb_real u1, bb_real u2) {
+    bb_real ax = p.v[BB_TORRANCE_SPARROW_ALPHA_X], ay = p.v[BB_TORRANCE_SPARROW_ALPHA_Y];
     switch ((int)bb_first(p.v[BB_TORRANCE_SPARROW_DIST])) {
     case BB_TS_D_BECKMANN:
         return bb_beckmann_sample_dcos(ax, ay, u1, u2);
@@ -60,34 +60,34 @@ BB_FN bb_vec3 bb_torrance_sparrow_sample_dcos(bb_params p, real u1, real u2) {
 }
 
 /* The V-groove G(wo, wi) of [CT82] eq. 7 (for tests and plots; the BRDF uses the form above). */
-BB_FN real bb_vgroove_g(bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_vgroove_g(bb_vec3 wo, bb_vec3 wi) {
     bb_vec3 h = bb_normalize(bb_add(wo, wi));
-    real oh = bb_dot(wo, h);
-    real inv = BB_R(1.0) / bb_select(oh, BB_R(1.0), oh <= BB_R(0.0));
-    real g = bb_min(BB_R(1.0), BB_R(2.0) * h.z * bb_min(wo.z, wi.z) * inv);
+    bb_real oh = bb_dot(wo, h);
+    bb_real inv = BB_R(1.0) / bb_select(oh, BB_R(1.0), oh <= BB_R(0.0));
+    bb_real g = bb_min(BB_R(1.0), BB_R(2.0) * h.z * bb_min(wo.z, wi.z) * inv);
     return bb_select(BB_R(0.0), g, wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && oh > BB_R(0.0));
 }
 
-BB_FN real bb_torrance_sparrow_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
+BB_FN bb_real bb_torrance_sparrow_eval(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
     bb_vec3 wh = bb_normalize(bb_add(wo, wi));
-    real oh = bb_clamp_cos(bb_dot(wo, wh));
+    bb_real oh = bb_clamp_cos(bb_dot(wo, wh));
     bb_mask ok = wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0) && oh > BB_R(0.0);
-    real co = bb_select(BB_R(1.0), wo.z, ok), ci = bb_select(BB_R(1.0), wi.z, ok);
-    real ohs = bb_select(BB_R(1.0), oh, ok);
+    bb_real co = bb_select(BB_R(1.0), wo.z, ok), ci = bb_select(BB_R(1.0), wi.z, ok);
+    bb_real ohs = bb_select(BB_R(1.0), oh, ok);
     /* G / (cos_o cos_i); 1/(co ci) may overflow to inf in float, which min() discards. */
-    real g_over = bb_min(BB_R(1.0) / (co * ci), BB_R(2.0) * wh.z / (ohs * bb_max(co, ci)));
-    real v = BB_R(0.25) * bb_torrance_sparrow_d(p, wh) * g_over * bb_fresnel_eval(fkind, fp, oh);
+    bb_real g_over = bb_min(BB_R(1.0) / (co * ci), BB_R(2.0) * wh.z / (ohs * bb_max(co, ci)));
+    bb_real v = BB_R(0.25) * bb_torrance_sparrow_d(p, wh) * g_over * bb_fresnel_eval(fkind, fp, oh);
     return bb_select(BB_R(0.0), v, ok);
 }
 
-BB_FN bb_sample bb_torrance_sparrow_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, real u1, real u2) {
+BB_FN bb_sample bb_torrance_sparrow_sample(bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
     bb_vec3 wh = bb_torrance_sparrow_sample_dcos(p, u1, u2);
-    real oh = bb_clamp_cos(bb_dot(wo, wh));
+    bb_real oh = bb_clamp_cos(bb_dot(wo, wh));
     bb_vec3 wi = bb_reflect(wo, wh);
     bb_mask ok = wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0) && oh > BB_R(0.0);
-    real co = bb_select(BB_R(1.0), wo.z, ok), hz = bb_select(BB_R(1.0), wh.z, ok);
-    real g = bb_min(bb_min(oh / (co * hz), BB_R(2.0)), BB_R(2.0) * wi.z / co);
-    real w = g * bb_fresnel_eval(fkind, fp, oh);
+    bb_real co = bb_select(BB_R(1.0), wo.z, ok), hz = bb_select(BB_R(1.0), wh.z, ok);
+    bb_real g = bb_min(bb_min(oh / (co * hz), BB_R(2.0)), BB_R(2.0) * wi.z / co);
+    bb_real w = g * bb_fresnel_eval(fkind, fp, oh);
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, ok));
 }
 
@@ -102,8 +102,8 @@ BB_FN bb_quad_dist bb_torrance_sparrow_quad_dist(bb_params p) {
 /* Its integrand f cos_theta_i 4 (wo.h) / (D cos_theta_h) times djc = D J cos(theta_h)
  * (bb_quad_halfvector_point): with f = D G F / (4 co ci) and
  * G = min(1, 2 hz co/oh, 2 hz ci/oh) it is F djc min(oh/(co ch), 2, 2 ci/co). */
-BB_FN real bb_torrance_sparrow_halfvector_weight(bb_params p, real f_oh, bb_vec3 wo, bb_vec3 wi, real oh, real co,
-                                                 real ch, real djc) {
+BB_FN bb_real bb_torrance_sparrow_halfvector_weight(bb_params p, bb_real f_oh, bb_vec3 wo, bb_vec3 wi, bb_real oh, bb_real co,
+                                                 bb_real ch, bb_real djc) {
     (void)p, (void)wo;
     return f_oh * djc * bb_min(bb_min(oh / (co * ch), BB_R(2.0)), BB_R(2.0) * wi.z / co);
 }
