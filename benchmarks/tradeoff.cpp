@@ -378,7 +378,8 @@ DielectricRequest dielectric_request(const std::vector<const DielectricStudyCell
     r.method = m;
     r.precision = p;
     r.samples = samples;
-    r.correlated = true;  // Beta-form transmission shadowing (cycles_transmission false)
+    r.shadowing = Shadowing::Correlated;  // with Beta-form transmission shadowing
+    r.transmission_shadowing = TransmissionShadowing::Beta;
     return r;
 }
 

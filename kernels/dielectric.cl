@@ -25,8 +25,8 @@
     __global const bb_scalar *cell_mu, __global const bb_scalar *cell_alpha,                           \
         __global const bb_scalar *cell_eta, __global const bb_scalar *nodes, const unsigned int n_fine, \
         const unsigned int n_coarse, const unsigned int n_coarsest, const unsigned int n_cells,         \
-        const unsigned int embedded, const int shadowing, __global bb_scalar *piece_r,                  \
-        __global bb_scalar *piece_t, __global unsigned int *bad_count
+        const unsigned int embedded, const int shadowing, const int transmission_shadowing,             \
+        __global bb_scalar *piece_r, __global bb_scalar *piece_t, __global unsigned int *bad_count
 
 
 /* The prologue of both: work-item gid is (cell, rule, piece) (returns beyond the last, and for
@@ -49,7 +49,9 @@
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], BB_R(0.0));                            \
     const bb_real a = (bb_real)cell_alpha[cell], eta = (bb_real)cell_eta[cell];                                 \
     const bb_real g1o = bb_ggx_g1(wo, a, a), lo = bb_ggx_lambda(wo, a, a);                                \
-    const bb_real lga_o = shadowing == BB_DIELECTRIC_SHADOWING_BETA ? bb_lgamma(BB_R(1.0) + lo) : BB_R(0.0); \
+    const bb_real lga_o =                                                                                 \
+        bb_dielectric_beta_transmission(shadowing, transmission_shadowing) ? bb_lgamma(BB_R(1.0) + lo) \
+                                                                           : BB_R(0.0);                \
     const bb_real r_cap = bb_dielectric_r_cap(wo, a);                                                     \
     const bb_interval az = bb_dielectric_piece(wo, eta, piece)
 
@@ -78,7 +80,7 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE(BB_DIELECTRIC_QUADRATURE_ARGS) {
                 for (unsigned int k = 0; k < n; ++k) {
                     const bb_segment_node node = bb_dielectric_segment_node(t0, len, tail, x[k]);
                     const bb_real jac = node.dt;
-                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, shadowing, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
+                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, shadowing, transmission_shadowing, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              node.t);
                     const int ok = isfinite(p.r) && isfinite(p.t);
                     bad += ok ? 0u : 1u;
@@ -140,7 +142,7 @@ __kernel void BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS(BB_DIELECTRIC_QUADRATURE_ARGS)
                 for (unsigned int k = 0; k < n; ++k) {
                     const bb_segment_node node = bb_dielectric_segment_node(t0, len, tail, (bb_real)x[k]);
                     const bb_real jac = node.dt;
-                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, shadowing, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
+                    const bb_rt p = bb_dielectric_quad_point(wo, a, eta, shadowing, transmission_shadowing, g1o, lo, lga_o, row.cos_phi, row.sin_phi,
                                                              node.t);
                     const bb_mask ok = isfinite(p.r) & isfinite(p.t);
                     bad += bb_select((bb_mask)0, (bb_mask)1, on & ~ok);
@@ -183,7 +185,8 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const bb_real* cell_mu, __gl
                                   __global const bb_real* cell_eta, __global const bb_real* shifts,
                                   const unsigned int n_points, const unsigned int n_replicas,
                                   const unsigned int n_cells, const int shadowing,
-                                  __global bb_real* replica_r, __global bb_real* replica_t,
+                                  const int transmission_shadowing, __global bb_real* replica_r,
+                                  __global bb_real* replica_t,
                                   __global unsigned int* bad_count) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     if (gid >= n_cells * n_replicas)
@@ -198,7 +201,7 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS(__global const bb_real* cell_mu, __gl
     for (unsigned int i = 0; i < n_points; ++i) {
         const bb_real u1 = bb_rotate(bb_hammersley_u1(i, n_points), s1);
         const bb_real u2 = bb_rotate(bb_hammersley_u2(i), s2);
-        const bb_rt s = bb_rough_dielectric_sample(wo, alpha, alpha, eta, shadowing, u1, u2);
+        const bb_rt s = bb_rough_dielectric_sample(wo, alpha, alpha, eta, shadowing, transmission_shadowing, u1, u2);
         const int ok = isfinite(s.r) && isfinite(s.t);
         bad += ok ? 0u : 1u;
         /* Kahan-compensated sums */
@@ -228,7 +231,8 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS_DISK(__global const bb_scalar* cell_m
                                                                           of W x, W y, W h */
                                        const unsigned int n_points,    /* a multiple of W */
                                        const unsigned int n_replicas, const unsigned int n_cells,
-                                       const int shadowing, __global bb_scalar* replica_r,
+                                       const int shadowing, const int transmission_shadowing,
+                                       __global bb_scalar* replica_r,
                                        __global bb_scalar* replica_t, __global unsigned int* bad_count) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     if (gid >= n_cells * n_replicas)
@@ -248,7 +252,7 @@ __kernel void BB_ENTRY_DIELECTRIC_REPLICAS_DISK(__global const bb_scalar* cell_m
         __attribute__((opencl_unroll_hint(2)))
         for (unsigned int c = c0; c < c1; ++c, d += BB_DISK_VALUES * BB_VECTOR_WIDTH) {
             const bb_vec2 pt = bb_v2(bb_vload(d), bb_vload(d + BB_VECTOR_WIDTH));
-            const bb_rt s = bb_rough_dielectric_sample_disk(wo, alpha, alpha, eta, shadowing, pt);
+            const bb_rt s = bb_rough_dielectric_sample_disk(wo, alpha, alpha, eta, shadowing, transmission_shadowing, pt);
             const bb_mask ok = isfinite(s.r) && isfinite(s.t);
             bad += bb_select((bb_mask)1, (bb_mask)0, ok);
             br += bb_select(BB_R(0.0), s.r, ok);

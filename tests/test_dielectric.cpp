@@ -109,7 +109,7 @@ TEST_CASE("rough dielectric: the vector kernel gives the scalar kernel's answer"
             r.cells = cells;
             r.samples = 1 << 14;
             r.precision = p;
-            r.correlated = correlated;
+            r.shadowing = correlated ? Shadowing::Correlated : Shadowing::Separable;
             r.vector_width = 1;
             const DielectricResult s = compute_dielectric(testing::engine(), r);
             r.vector_width = 0;

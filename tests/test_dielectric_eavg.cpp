@@ -25,10 +25,12 @@
 using namespace brdfbake;
 
 TEST_CASE("ggx transmission_shadowing: spec, canonical spelling and refusals", "[dielectric][cycles][quick]") {
-    CHECK(resolve_model("ggx:alpha=0.5").params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_BETA);
+    CHECK(resolve_model("ggx:alpha=0.5").params[BB_GGX_SHADOWING] == BB_SHADOWING_CORRELATED);
+    CHECK(resolve_model("ggx:alpha=0.5").params[BB_GGX_TRANSMISSION_SHADOWING] == BB_TRANSMISSION_SHADOWING_BETA);
     CHECK(resolve_model("ggx:alpha=0.5,transmission_shadowing=beta").canonical == "ggx:alpha=0.5,shadowing=correlated");
     const ModelConfig c = resolve_model("ggx:alpha=0.5,transmission_shadowing=cycles");
-    CHECK(c.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES);
+    CHECK(c.params[BB_GGX_SHADOWING] == BB_SHADOWING_CORRELATED);
+    CHECK(c.params[BB_GGX_TRANSMISSION_SHADOWING] == BB_TRANSMISSION_SHADOWING_CYCLES);
     CHECK(c.canonical == "ggx:alpha=0.5,shadowing=correlated,transmission_shadowing=cycles");
     CHECK(resolve_model(c.canonical).params == c.params);
     // the reflection of a ggx lobe is height-correlated either way
@@ -44,6 +46,14 @@ TEST_CASE("ggx transmission_shadowing: spec, canonical spelling and refusals", "
     }
 }
 
+TEST_CASE("compute_dielectric refuses masking-only shadowing", "[dielectric][masking][device]") {
+    // the transmitted lobe has no masking-only form (brdf/rough_dielectric.h)
+    DielectricRequest req;
+    req.cells = {{0.5, 0.3, 1.5}};
+    req.shadowing = Shadowing::Masking;
+    CHECK_THROWS_WITH(compute_dielectric(testing::engine(), req), Catch::Contains("no masking-only form"));
+}
+
 TEST_CASE("rough dielectric with Cycles' transmission shadowing against independent quadrature",
           "[dielectric][cycles][device]") {
     // R is the same under both forms; T follows 1/(1 + L_o + L_t), and differs from the Beta form
@@ -52,9 +62,9 @@ TEST_CASE("rough dielectric with Cycles' transmission shadowing against independ
     DielectricRequest req;
     req.cells = cells;
     req.samples = 1 << 18;
-    req.cycles_transmission = true;
+    req.transmission_shadowing = TransmissionShadowing::Cycles;
     const DielectricResult cyc = compute_dielectric(testing::engine(), req);
-    req.cycles_transmission = false;
+    req.transmission_shadowing = TransmissionShadowing::Beta;
     const DielectricResult beta = compute_dielectric(testing::engine(), req);
     for (size_t k = 0; k < cells.size(); ++k) {
         double r, t;

@@ -21,14 +21,16 @@ using namespace brdfbake;
 namespace {
 
 struct Form {
-    bool correlated, cycles;
+    Shadowing shadowing;
+    TransmissionShadowing transmission_shadowing;
     ref::DielectricShadowing reference;
     const char* name;
 };
 
-const Form kForms[] = {{true, false, ref::DielectricShadowing::Beta, "beta"},
-                       {false, false, ref::DielectricShadowing::Separable, "separable"},
-                       {true, true, ref::DielectricShadowing::Cycles, "cycles"}};
+const Form kForms[] = {
+    {Shadowing::Correlated, TransmissionShadowing::Beta, ref::DielectricShadowing::Beta, "beta"},
+    {Shadowing::Separable, TransmissionShadowing::Beta, ref::DielectricShadowing::Separable, "separable"},
+    {Shadowing::Correlated, TransmissionShadowing::Cycles, ref::DielectricShadowing::Cycles, "cycles"}};
 
 DielectricRequest quadrature_request(const std::vector<DielectricCell>& cells, const Form& form, unsigned n,
                                      Precision precision) {
@@ -37,8 +39,8 @@ DielectricRequest quadrature_request(const std::vector<DielectricCell>& cells, c
     r.method = Method::Quadrature;
     r.samples = 4ull * n * n;
     r.precision = precision;
-    r.correlated = form.correlated;
-    r.cycles_transmission = form.cycles;
+    r.shadowing = form.shadowing;
+    r.transmission_shadowing = form.transmission_shadowing;
     return r;
 }
 

@@ -45,12 +45,12 @@ double masking_albedo(bool beckmann, double mu, double alpha) {
 
 TEST_CASE("shadowing=masking: the spec key and its refusals", "[masking][quick]") {
     const ModelConfig g = resolve_model("ggx:alpha=0.25,shadowing=masking");
-    CHECK(g.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING);
+    CHECK(g.params[BB_GGX_SHADOWING] == BB_SHADOWING_MASKING);
     CHECK(g.canonical == "ggx:alpha=0.25,shadowing=masking");
     const ModelConfig b = resolve_model("beckmann:roughness=0.5,shadowing=masking");
-    CHECK(b.params[BB_BECKMANN_SHADOWING] == BB_SMITH_MASKING);
-    CHECK(resolve_model("ggx:alpha=0.25").params[BB_GGX_SHADOWING] == BB_SMITH_CORRELATED);
-    CHECK(resolve_model("ggx:alpha=0.25,shadowing=separable").params[BB_GGX_SHADOWING] == BB_SMITH_SEPARABLE);
+    CHECK(b.params[BB_BECKMANN_SHADOWING] == BB_SHADOWING_MASKING);
+    CHECK(resolve_model("ggx:alpha=0.25").params[BB_GGX_SHADOWING] == BB_SHADOWING_CORRELATED);
+    CHECK(resolve_model("ggx:alpha=0.25,shadowing=separable").params[BB_GGX_SHADOWING] == BB_SHADOWING_SEPARABLE);
     // Cycles' transmission shadowing is a height-correlated form
     CHECK_THROWS_WITH(resolve_model("ggx:alpha=0.25,shadowing=masking,transmission_shadowing=cycles"),
                       Catch::Contains("needs shadowing=correlated, not shadowing=masking"));
@@ -75,7 +75,7 @@ TEST_CASE("shadowing=masking: G2 = G1(wo), the sample weight F(wo.wh), on every 
                     bb_params p{};
                     p.v[BB_SMITH_ALPHA_X] = ax;
                     p.v[BB_SMITH_ALPHA_Y] = ay;
-                    p.v[BB_SMITH_SHADOWING] = BB_SMITH_MASKING;
+                    p.v[BB_SMITH_SHADOWING] = BB_SHADOWING_MASKING;
                     const ref::Dir wo_ref = ref::dir_mu(mu, 0.3);
                     const bb_vec3 wo = v3(wo_ref);
                     const bb_ggx_disk_cell cell = bb_ggx_disk_cell_make(p, wo, 0);

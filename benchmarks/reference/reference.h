@@ -399,7 +399,8 @@ inline double albedo_sheen_ashikhmin_normal(double alpha) {
 // The rough GGX dielectric interface (Walter et al. 2007) with either height-correlated
 // transmission shadowing (issue 18).
 
-/// The shadowing of transmission (brdf/rough_dielectric.h's BB_DIELECTRIC_SHADOWING_*): G1 G1;
+/// The shadowing of transmission (brdf/rough_dielectric.h's shadowing and
+/// transmission_shadowing arguments): G1 G1;
 /// the Beta function B(1 + L_o, 1 + L_t) (Heitz 2014 eq. 100); 1/(1 + L_o + L_t) as Blender Cycles.
 enum class DielectricShadowing { Separable, Beta, Cycles };
 

@@ -33,11 +33,12 @@ std::string dielectric_nonfinite_where(const DielectricRequest& req, size_t c) {
     return m.str();
 }
 
-int dielectric_shadowing(const DielectricRequest& req) {
-    return !req.correlated            ? BB_DIELECTRIC_SHADOWING_SEPARABLE
-           : req.cycles_transmission ? BB_DIELECTRIC_SHADOWING_CYCLES
-                                     : BB_DIELECTRIC_SHADOWING_BETA;
-}
+// The kernels' `shadowing` and `transmission_shadowing` arguments are the request's enums by value.
+static_assert(int(Shadowing::Separable) == BB_SHADOWING_SEPARABLE && int(Shadowing::Correlated) == BB_SHADOWING_CORRELATED &&
+              int(Shadowing::Masking) == BB_SHADOWING_MASKING);
+static_assert(int(TransmissionShadowing::Beta) == BB_TRANSMISSION_SHADOWING_BETA &&
+              int(TransmissionShadowing::Cycles) == BB_TRANSMISSION_SHADOWING_CYCLES);
+
 
 // The rule of the dielectric's quadrature for a budget of `samples`, read as the albedo's is:
 // n = sqrt(samples / 4) nodes per axis of the finer rule (quadrature_order). Up to n = 32, the
@@ -110,8 +111,8 @@ DielectricResult compute_dielectric_quadrature(Engine& engine, const DielectricR
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_QUADRATURE_ROWS)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_QUADRATURE));
     set_args(kernel, 0, b_mu, b_alpha, b_eta, b_nodes, cl_uint(rule.n), cl_uint(rule.m), cl_uint(rule.l),
-             cl_uint(n_cells), cl_uint(rule.kronrod ? 1 : 0), cl_int(dielectric_shadowing(req)), b_r, b_t,
-             bad_counts.buffer);
+             cl_uint(n_cells), cl_uint(rule.kronrod ? 1 : 0), cl_int(req.shadowing),
+             cl_int(req.transmission_shadowing), b_r, b_t, bad_counts.buffer);
     const std::uint64_t per_piece = rule.kronrod ? std::uint64_t(rule.n) * rule.n
                                                  : std::uint64_t(rule.n) * rule.n + std::uint64_t(rule.m) * rule.m +
                                                        std::uint64_t(rule.l) * rule.l;
@@ -204,8 +205,7 @@ DielectricResult compute_dielectric_sampled(Engine& engine, const DielectricRequ
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS_DISK)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
     set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(points), cl_uint(req.replicas), cl_uint(n_cells),
-             cl_int(dielectric_shadowing(req)),
-             b_r, b_t, bad_counts.buffer);
+             cl_int(req.shadowing), cl_int(req.transmission_shadowing), b_r, b_t, bad_counts.buffer);
     const double kernel_seconds =
         run_items(engine, kernel, n_items, kDielectricNodeCost * double(points),
                   "rough dielectric of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +
@@ -237,6 +237,8 @@ DielectricResult compute_dielectric(Engine& engine, const DielectricRequest& req
     for (const auto& c : req.cells)
         if (!(c.mu > 0.0 && c.mu <= 1.0) || !(c.alpha >= BB_ALPHA_MIN) || !(c.eta > 0.0) || !std::isfinite(c.eta))
             throw Error("dielectric cell out of range (mu in (0, 1], alpha >= 1e-4, eta > 0)");
+    if (req.shadowing == Shadowing::Masking)
+        throw Error("the rough dielectric has no masking-only form: its transmitted lobe needs shadowing");
     if (req.method != Method::Importance && req.method != Method::Quadrature)
         throw Error(std::string("the rough dielectric is integrated by importance sampling or quadrature, not ") +
                     method_name(req.method));

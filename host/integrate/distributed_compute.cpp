@@ -129,10 +129,11 @@ std::uint64_t settings_key(const AlbedoRequest& q) {
 }
 
 std::uint64_t settings_key(const DielectricRequest& q) {
-    const auto& [cells, correlated, cycles_transmission, method, samples, replicas, precision, seed, vector_width] = q;
+    const auto& [cells, shadowing, transmission_shadowing, method, samples, replicas, precision, seed, vector_width] =
+        q;
     (void)cells;
-    return hash_settings('D', int(method), correlated, cycles_transmission, samples, replicas, int(precision), seed,
-                         vector_width);
+    return hash_settings('D', int(method), int(shadowing), int(transmission_shadowing), samples, replicas,
+                         int(precision), seed, vector_width);
 }
 
 std::string record_key(std::uint64_t settings, std::uint64_t cell) {

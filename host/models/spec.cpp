@@ -90,7 +90,7 @@ double read_normalized(KeyReader& keys, std::string& canonical) {
 double read_shadowing(KeyReader& keys, std::string& canonical) {
     const std::string s = keys.choice("shadowing", "correlated", {"correlated", "separable", "masking"});
     canonical += ",shadowing=" + s;
-    return s == "correlated" ? BB_SMITH_CORRELATED : s == "masking" ? BB_SMITH_MASKING : BB_SMITH_SEPARABLE;
+    return s == "correlated" ? BB_SHADOWING_CORRELATED : s == "masking" ? BB_SHADOWING_MASKING : BB_SHADOWING_SEPARABLE;
 }
 
 /// Reads alpha (isotropic: alpha or roughness; anisotropic: alpha_x and alpha_y).
@@ -142,18 +142,19 @@ ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, i
 
 // ggx also names how the rough dielectric (the dielectric table, brdf/rough_dielectric.h) shadows
 // its transmitted lobe under height-correlated shadowing: transmission_shadowing=beta (Heitz 2014
-// eq. 100, the default) or cycles (1/(1 + L_o + L_t), Blender Cycles' form). The choice rides in
-// the shadowing slot as BB_DIELECTRIC_SHADOWING_CYCLES (2), which every reflection reads as
-// height-correlated (> 0.5); the canonical spec names it only when it is not the default.
+// eq. 100, the default) or cycles (1/(1 + L_o + L_t), Blender Cycles' form), in a slot of its own
+// (BB_GGX_TRANSMISSION_SHADOWING) that no reflection reads; the canonical spec names it only when
+// it is not the default.
 ModelConfig resolve_ggx(KeyReader& keys) {
     ModelConfig m = resolve_smith_microfacet(keys, "ggx", BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, BB_GGX_SHADOWING);
     const std::string t = keys.choice("transmission_shadowing", "beta", {"beta", "cycles"});
+    m.params[BB_GGX_TRANSMISSION_SHADOWING] = BB_TRANSMISSION_SHADOWING_BETA;
     if (t == "cycles") {
-        if (m.params[BB_GGX_SHADOWING] != BB_DIELECTRIC_SHADOWING_BETA)
+        if (m.params[BB_GGX_SHADOWING] != BB_SHADOWING_CORRELATED)
             throw Error("model 'ggx': transmission_shadowing=cycles is a height-correlated form; it needs "
                         "shadowing=correlated, not shadowing=" +
-                        std::string(m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING ? "masking" : "separable"));
-        m.params[BB_GGX_SHADOWING] = BB_DIELECTRIC_SHADOWING_CYCLES;
+                        std::string(m.params[BB_GGX_SHADOWING] == BB_SHADOWING_MASKING ? "masking" : "separable"));
+        m.params[BB_GGX_TRANSMISSION_SHADOWING] = BB_TRANSMISSION_SHADOWING_CYCLES;
         m.canonical += ",transmission_shadowing=cycles";
     }
     return m;

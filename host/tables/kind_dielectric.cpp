@@ -13,8 +13,8 @@ namespace tables {
 
 DielectricRequest dielectric_request(const LutRequest& r, const ModelConfig& m) {
     DielectricRequest dr;
-    dr.correlated = m.params[BB_GGX_SHADOWING] > 0.5;
-    dr.cycles_transmission = m.params[BB_GGX_SHADOWING] == BB_DIELECTRIC_SHADOWING_CYCLES;
+    dr.shadowing = Shadowing(int(m.params[BB_GGX_SHADOWING]));
+    dr.transmission_shadowing = TransmissionShadowing(int(m.params[BB_GGX_TRANSMISSION_SHADOWING]));
     dr.method = r.method;
     dr.samples = r.samples;
     dr.precision = r.precision;
@@ -27,7 +27,7 @@ void validate_rough_dielectric(const LutRequest& r, const ModelConfig& m, const 
         throw Error(table + " is computed by importance sampling or quadrature; use --method auto, importance or "
                     "quadrature");
     if (m.id != BB_MODEL_GGX) throw Error(table + " is computed for GGX microfacets; use --model ggx");
-    if (m.params[BB_GGX_SHADOWING] == BB_SMITH_MASKING)
+    if (m.params[BB_GGX_SHADOWING] == BB_SHADOWING_MASKING)
         throw Error(table + " has no masking-only form: its transmitted lobe needs shadowing; use "
                     "shadowing=correlated or separable");
     if (f.kind != BB_FRESNEL_NONE) throw Error(table + " uses the exact dielectric Fresnel term; drop --fresnel");

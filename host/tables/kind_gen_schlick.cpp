@@ -216,7 +216,7 @@ void validate_gen_schlick(const LutRequest& r, const ModelConfig& m, const Fresn
         throw Error("the " + r.kind + " table weights the lobe's Fresnel term; model '" + m.name + "' has none");
     if (r.estimator != "ratio" && r.estimator != "cycles")
         throw Error("--estimator '" + r.estimator + "': give ratio (E_w / E) or cycles (Cycles' estimator)");
-    const bool masking = m.smith_shadowing_slot >= 0 && m.params[m.smith_shadowing_slot] == BB_SMITH_MASKING;
+    const bool masking = m.smith_shadowing_slot >= 0 && m.params[m.smith_shadowing_slot] == BB_SHADOWING_MASKING;
     if (cycles_estimator(r) && !masking)
         throw Error("--estimator cycles is the albedo of the masking-only lobe (Cycles' estimator): the model must be "
                     "ggx or beckmann with shadowing=masking, not '" + m.canonical + "' (--preset cycles sets it)");

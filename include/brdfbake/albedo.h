@@ -135,12 +135,22 @@ struct DielectricCell {
     double eta = 1.5;
 };
 
+/// The Smith G2 a model's `shadowing` names (brdf/microfacet.h's BB_SHADOWING_*, the same values):
+/// separable G1(wo) G1(wi), height-correlated 1/(1 + L_o + L_i) (Heitz 2014 eq. 98, 99), or the
+/// masking term G1(wo) alone.
+enum class Shadowing { Separable = 0, Correlated = 1, Masking = 2 };
+
+/// The rough dielectric's transmitted G2 under correlated shadowing (the ggx key
+/// `transmission_shadowing`; brdf/rough_dielectric.h's BB_TRANSMISSION_SHADOWING_*, the same
+/// values): the Beta function of Heitz 2014 eq. 100, or 1/(1 + L_o + L_t) as Blender Cycles does.
+enum class TransmissionShadowing { Beta = 0, Cycles = 1 };
+
 struct DielectricRequest {
     std::vector<DielectricCell> cells;
-    bool correlated = true;  // height-correlated G2 (reflection and transmission); else separable
-    /// With correlated: T shadowed by 1/(1 + L_o + L_t) as Blender Cycles does, instead of the
-    /// Beta-function form of Heitz 2014 eq. 100 (brdf/rough_dielectric.h).
-    bool cycles_transmission = false;
+    /// Both lobes' G2: Separable or Correlated (there is no masking-only dielectric).
+    Shadowing shadowing = Shadowing::Correlated;
+    /// The transmitted lobe's G2 with Shadowing::Correlated (separable shadowing has one form).
+    TransmissionShadowing transmission_shadowing = TransmissionShadowing::Beta;
     /// Importance (visible-normal sampling, replicas) or Quadrature (the half-vector rule of
     /// brdf/dielectric_quadrature.h, n = sqrt(samples / 4) as for the albedo, per azimuth piece
     /// and row segment: up to n = 32, a Gauss-Kronrod rule of 15 to 61 (at most 2n - 1) points,

@@ -12,7 +12,7 @@
 /* Parameter slots: those of every Smith lobe (smith.h). */
 #define BB_BECKMANN_ALPHA_X BB_SMITH_ALPHA_X
 #define BB_BECKMANN_ALPHA_Y BB_SMITH_ALPHA_Y
-#define BB_BECKMANN_SHADOWING BB_SMITH_SHADOWING /* BB_SMITH_SEPARABLE, _CORRELATED or _MASKING */
+#define BB_BECKMANN_SHADOWING BB_SMITH_SHADOWING /* BB_SHADOWING_SEPARABLE, _CORRELATED or _MASKING */
 
 /* The Smith lobe (smith.h) with the Beckmann distribution; visible normals [HD14, J14]. */
 BB_SMITH_LOBE(beckmann, BB_SMITH_BECKMANN)

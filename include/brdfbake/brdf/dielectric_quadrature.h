@@ -226,12 +226,12 @@ BB_FN bb_dielectric_row bb_make_dielectric_row(bb_vec3 wo, bb_real a, bb_real et
 
 /* The integrand at row coordinate t: D J (wo.m)/wo.z times the microfacet's split, so that
  * R = sum over pieces, rows and segments of (weights) x .r, and T likewise with .t. */
-BB_FN bb_rt bb_dielectric_quad_point(bb_vec3 wo, bb_real a, bb_real eta, int shadowing, bb_real g1o, bb_real lo, bb_real lga_o,
-                                     bb_real cos_phi, bb_real sin_phi, bb_real t) {
+BB_FN bb_rt bb_dielectric_quad_point(bb_vec3 wo, bb_real a, bb_real eta, int shadowing, int transmission_shadowing,
+                                     bb_real g1o, bb_real lo, bb_real lga_o, bb_real cos_phi, bb_real sin_phi, bb_real t) {
     bb_dielectric_node n = bb_dielectric_node_at(cos_phi, sin_phi, a, t);
     bb_real c = bb_dot(wo, n.h);
     bb_real w = n.dj * c * (BB_R(1.0) / wo.z); /* 1/wo.z: the same for every node of a cell */
-    bb_rt s = bb_rough_dielectric_split(wo, n.h, a, a, eta, shadowing, g1o, lo, lga_o);
+    bb_rt s = bb_rough_dielectric_split(wo, n.h, a, a, eta, shadowing, transmission_shadowing, g1o, lo, lga_o);
     bb_mask ok = c > BB_R(0.0);
     s.r = bb_select(BB_R(0.0), w * s.r, ok);
     s.t = bb_select(BB_R(0.0), w * s.t, ok);

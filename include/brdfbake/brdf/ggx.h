@@ -9,7 +9,11 @@
 /* Parameter slots: those of every Smith lobe (smith.h). */
 #define BB_GGX_ALPHA_X BB_SMITH_ALPHA_X
 #define BB_GGX_ALPHA_Y BB_SMITH_ALPHA_Y
-#define BB_GGX_SHADOWING BB_SMITH_SHADOWING /* BB_SMITH_SEPARABLE, _CORRELATED or _MASKING */
+#define BB_GGX_SHADOWING BB_SMITH_SHADOWING /* BB_SHADOWING_SEPARABLE, _CORRELATED or _MASKING */
+/* The rough dielectric's transmitted G2 under shadowing=correlated (the spec's
+ * transmission_shadowing=beta|cycles): BB_TRANSMISSION_SHADOWING_* of rough_dielectric.h. No
+ * reflection reads it. */
+#define BB_GGX_TRANSMISSION_SHADOWING 3
 
 /* The Smith lobe (smith.h) with the GGX distribution. Its importance sample takes the visible
  * normal [H18] of the disk point bb_disk_polar(u1, u2), which the fast kernels tabulate
@@ -66,8 +70,8 @@ BB_FN bb_ggx_disk_cell bb_ggx_disk_cell_make(bb_params p, bb_vec3 wo, int isotro
     c.b2 = BB_R(1.0) - c.ax2;
     bb_real g1o = bb_ggx_g1(c.wo, c.ax, c.ay);
     bb_real c0 = bb_select(BB_R(1.0), BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0)),
-                        p.v[BB_GGX_SHADOWING] > BB_R(0.5));
-    c.kq = bb_select(BB_R(1.0), BB_R(0.0), p.v[BB_GGX_SHADOWING] > BB_R(2.5)); /* 0: masking only */
+                        p.v[BB_GGX_SHADOWING] == BB_R(BB_SHADOWING_CORRELATED));
+    c.kq = bb_select(BB_R(1.0), BB_R(0.0), p.v[BB_GGX_SHADOWING] == BB_R(BB_SHADOWING_MASKING)); /* 0: masking only */
     c.k2 = bb_select(BB_R(1.0), BB_R(2.0) * c0, c.kq > BB_R(0.5));
     c.k1 = bb_select(BB_R(1.0), c.k2 - BB_R(1.0), c.kq > BB_R(0.5));
     c.live = bb_select(BB_R(0.0), BB_R(1.0), g1o > BB_R(0.0));

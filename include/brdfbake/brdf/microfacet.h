@@ -110,6 +110,13 @@ BB_FN bb_vec3 bb_to_frame(bb_vec3 n, bb_vec3 d) {
     return bb_add(bb_add(bb_scale(t1, d.x), bb_scale(t2, d.y)), bb_scale(n, d.z));
 }
 
+/* The forms of G2 a model's shadowing choice names (the spec's shadowing=separable|correlated|
+ * masking; smith.h's shadowing slot, the rough dielectric's `shadowing` argument), compared by
+ * equality. */
+#define BB_SHADOWING_SEPARABLE 0  /* G1(wo) G1(wi) [H14 eq. 98] */
+#define BB_SHADOWING_CORRELATED 1 /* 1 / (1 + Lambda(wo) + Lambda(wi)) [H14 eq. 99] */
+#define BB_SHADOWING_MASKING 2    /* G1(wo): the masking term alone (smith.h) */
+
 /* Smith masking-shadowing G2 from the two G1 = 1 / (1 + Lambda) [H14 eq. 43] of any
  * distribution (bb_ggx_g1, bb_beckmann_g1 below): G1o = G1(wo), G1i = G1(wi).
  * Separable G2 = G1(wo) G1(wi) [H14 eq. 98]. */

@@ -14,9 +14,11 @@
  * on top of T [WMLT07 eq. 21 and Veach 1997 ch. 5]. G2 is separable G1(wo) G1(wi), or
  * height-correlated: 1/(1 + L(wo) + L(wi)) for reflection [H14 eq. 99] and the Beta function
  * B(1 + L(wo), 1 + L(wt)) for transmission [H14 eq. 100], which follows from integrating
- * u^L(wo) (1 - u)^L(wt) over the height CDF u. The shadowing argument picks the forms
- * (BB_DIELECTRIC_SHADOWING_*): separable; height-correlated with the Beta function for T (the
- * default); or height-correlated with 1/(1 + L(wo) + L(wt)) for T as for R, the form Blender
+ * u^L(wo) (1 - u)^L(wt) over the height CDF u. Two arguments pick the forms: `shadowing`
+ * (microfacet.h's BB_SHADOWING_SEPARABLE or _CORRELATED; masking alone has no transmitted form)
+ * for both lobes, and under BB_SHADOWING_CORRELATED `transmission_shadowing`
+ * (BB_TRANSMISSION_SHADOWING_*) for T: the Beta function (the default), or
+ * 1/(1 + L(wo) + L(wt)) as for R, the form Blender
  * Cycles evaluates for both lobes (intern/cycles/kernel/closure/bsdf_microfacet.h), which
  * treats the transmitted direction as if it were reflected and so ignores that a microsurface
  * point seen from above and below at once must lie at a height both can reach; the two forms
@@ -28,10 +30,15 @@
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/brdf/sampling.h"
 
-/* The shadowing argument of the samplers below. */
-#define BB_DIELECTRIC_SHADOWING_SEPARABLE 0 /* G1(wo) G1(wi) for both lobes [H14 eq. 98] */
-#define BB_DIELECTRIC_SHADOWING_BETA 1      /* 1/(1 + L_o + L_r); B(1 + L_o, 1 + L_t) [H14 eq. 99, 100] */
-#define BB_DIELECTRIC_SHADOWING_CYCLES 2    /* 1/(1 + L_o + L_r); 1/(1 + L_o + L_t) (Cycles) */
+/* The transmission_shadowing argument of the functions below (and the value of ggx.h's
+ * BB_GGX_TRANSMISSION_SHADOWING slot): T's G2 when `shadowing` is BB_SHADOWING_CORRELATED. */
+#define BB_TRANSMISSION_SHADOWING_BETA 0   /* B(1 + L_o, 1 + L_t) [H14 eq. 100] */
+#define BB_TRANSMISSION_SHADOWING_CYCLES 1 /* 1/(1 + L_o + L_t) (Cycles) */
+
+/* Whether T takes the Beta function, whose log Gamma(1 + L_o) the cell computes once. */
+BB_FN int bb_dielectric_beta_transmission(int shadowing, int transmission_shadowing) {
+    return shadowing == BB_SHADOWING_CORRELATED && transmission_shadowing == BB_TRANSMISSION_SHADOWING_BETA;
+}
 
 typedef struct {
     bb_real r; /* reflected energy fraction of this sample */
@@ -108,8 +115,8 @@ BB_FN bb_real bb_beta(bb_real a, bb_real b) { return bb_beta_lga(a, b, bb_lgamma
  * importance sampler (below) divides both by G1(wo), the visible-normal density having taken
  * G1(wo) D(wh) (wo.wh) / wo.z; the quadrature (dielectric_quadrature.h) multiplies them by
  * D(wh) (wo.wh) / wo.z. Branch-free: the vector kernels evaluate it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, bb_real ax, bb_real ay, bb_real eta, int shadowing, bb_real g1o,
-                                      bb_real lo, bb_real lga_o) {
+BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, bb_real ax, bb_real ay, bb_real eta, int shadowing,
+                                      int transmission_shadowing, bb_real g1o, bb_real lo, bb_real lga_o) {
     bb_rt out;
     bb_real c = bb_clamp(bb_dot(wo, wh), BB_R(0.0), BB_R(1.0));
     bb_real f = bb_fresnel_dielectric(c, eta);
@@ -118,15 +125,15 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, bb_real ax, bb_rea
     /* each G2 from its own G1 calls, merged by the compiler (as bb_smith_g2) */
     bb_real g1r = bb_ggx_g1(wr, ax, ay);
     bb_real g2r = bb_select(bb_g2_separable_from_g1(g1o, g1r), bb_g2_correlated_from_g1(g1o, g1r),
-                         shadowing != BB_DIELECTRIC_SHADOWING_SEPARABLE);
+                         shadowing == BB_SHADOWING_CORRELATED);
     out.r = bb_select(BB_R(0.0), f * g2r, wr.z > BB_R(0.0));
 
     bb_vec3 wt = bb_refract(wo, wh, c, eta);
     bb_vec3 wt_up = bb_v3(wt.x, wt.y, -wt.z); /* masking from below mirrors the direction */
-    /* shadowing is the same for every sample (and every lane): only its branch is computed
-     * (the Beta function's log-gammas are the costliest part of a sample) */
+    /* the shadowing arguments are the same for every sample (and every lane): only their branch
+     * is computed (the Beta function's log-gammas are the costliest part of a sample) */
     bb_real g2t;
-    if (shadowing == BB_DIELECTRIC_SHADOWING_BETA) {
+    if (bb_dielectric_beta_transmission(shadowing, transmission_shadowing)) {
         /* G1(wt) = 1 / (1 + lt) > 0 where wt_up.z > 0 and lt is finite (it is not where
          * 2z(s + z) underflows, as G1's closed form then gives 0) */
         bb_real lt = bb_ggx_lambda(wt_up, ax, ay);
@@ -135,7 +142,7 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, bb_real ax, bb_rea
     } else {
         bb_real g1t = bb_ggx_g1(wt_up, ax, ay);
         g2t = g1o * g1t;
-        if (shadowing == BB_DIELECTRIC_SHADOWING_CYCLES)
+        if (shadowing == BB_SHADOWING_CORRELATED) /* and BB_TRANSMISSION_SHADOWING_CYCLES */
             g2t = bb_select(BB_R(0.0), bb_g2_correlated_from_g1(g1o, g1t), g1o > BB_R(0.0) && g1t > BB_R(0.0));
     }
     out.t = bb_select(BB_R(0.0), (BB_R(1.0) - f) * g2t, wt.z < BB_R(0.0));
@@ -145,21 +152,25 @@ BB_FN bb_rt bb_rough_dielectric_split(bb_vec3 wo, bb_vec3 wh, bb_real ax, bb_rea
 /* One sample of the reflected and transmitted fractions from the disk point d of the visible-
  * normal warp (bb_disk_polar(u1, u2); cell-independent: the vector kernel tabulates it).
  * Branch-free: the vector kernel evaluates it on float16/double8 lanes. */
-BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, bb_real ax, bb_real ay, bb_real eta, int shadowing, bb_vec2 d) {
+BB_FN bb_rt bb_rough_dielectric_sample_disk(bb_vec3 wo, bb_real ax, bb_real ay, bb_real eta, int shadowing,
+                                            int transmission_shadowing, bb_vec2 d) {
     bb_vec3 wh = bb_ggx_sample_vndf_disk(wo, ax, ay, d);
     bb_real g1o = bb_ggx_g1(wo, ax, ay);
     bb_real inv_g1o = BB_R(1.0) / bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
     bb_real lo = bb_ggx_lambda(wo, ax, ay);
-    bb_rt out = bb_rough_dielectric_split(wo, wh, ax, ay, eta, shadowing, g1o, lo,
-                                          shadowing == BB_DIELECTRIC_SHADOWING_BETA ? bb_lgamma(BB_R(1.0) + lo) : BB_R(0.0));
+    bb_rt out = bb_rough_dielectric_split(wo, wh, ax, ay, eta, shadowing, transmission_shadowing, g1o, lo,
+                                          bb_dielectric_beta_transmission(shadowing, transmission_shadowing)
+                                              ? bb_lgamma(BB_R(1.0) + lo)
+                                              : BB_R(0.0));
     out.r = bb_select(BB_R(0.0), out.r * inv_g1o, g1o > BB_R(0.0));
     out.t = bb_select(BB_R(0.0), out.t * inv_g1o, g1o > BB_R(0.0));
     return out;
 }
 
 /* One sample of the reflected and transmitted fractions; u1, u2 in [0, 1). */
-BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, bb_real ax, bb_real ay, bb_real eta, int shadowing, bb_real u1, bb_real u2) {
-    return bb_rough_dielectric_sample_disk(wo, ax, ay, eta, shadowing, bb_disk_polar(u1, u2));
+BB_FN bb_rt bb_rough_dielectric_sample(bb_vec3 wo, bb_real ax, bb_real ay, bb_real eta, int shadowing,
+                                       int transmission_shadowing, bb_real u1, bb_real u2) {
+    return bb_rough_dielectric_sample_disk(wo, ax, ay, eta, shadowing, transmission_shadowing, bb_disk_polar(u1, u2));
 }
 
 #endif /* BRDFBAKE_BRDF_ROUGH_DIELECTRIC_H */

@@ -38,14 +38,11 @@
 /* Parameter slots of every Smith lobe. */
 #define BB_SMITH_ALPHA_X 0
 #define BB_SMITH_ALPHA_Y 1
-#define BB_SMITH_SHADOWING 2 /* BB_SMITH_SEPARABLE, _CORRELATED or _MASKING */
+#define BB_SMITH_SHADOWING 2 /* the reflection's G2: one of BB_SHADOWING_* */
 
-/* The values of the shadowing slot. 2 is the rough dielectric's height-correlated form with
- * Cycles' transmission shadowing (rough_dielectric.h), which every reflection reads as
- * height-correlated (> 0.5). */
-#define BB_SMITH_SEPARABLE 0
-#define BB_SMITH_CORRELATED 1
-#define BB_SMITH_MASKING 3 /* G2 = G1(wo) */
+/* The shadowing slot holds one of microfacet.h's BB_SHADOWING_* (the spec's
+ * shadowing=separable|correlated|masking). The rough dielectric's transmitted lobe has a choice
+ * of its own, in a slot of its own (ggx.h's BB_GGX_TRANSMISSION_SHADOWING). */
 
 /* D(m) of the distribution. */
 BB_FN bb_real bb_smith_d(int dist, bb_vec3 m, bb_real ax, bb_real ay) {
@@ -80,8 +77,8 @@ BB_FN bb_real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
         correlated = bb_g2_correlated_from_g1(bb_ggx_g1(wo, ax, ay), bb_ggx_g1(wi, ax, ay));
         masking = bb_ggx_g1(wo, ax, ay);
     }
-    bb_real g2 = bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] > BB_R(0.5));
-    return bb_select(g2, masking, p.v[BB_SMITH_SHADOWING] > BB_R(2.5));
+    bb_real g2 = bb_select(separable, correlated, p.v[BB_SMITH_SHADOWING] == BB_R(BB_SHADOWING_CORRELATED));
+    return bb_select(g2, masking, p.v[BB_SMITH_SHADOWING] == BB_R(BB_SHADOWING_MASKING));
 }
 
 /* f(wo, wi) without the cosine; 0 unless wo, wi and wh are above the horizon. */
