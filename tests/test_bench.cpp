@@ -72,44 +72,59 @@ TEST_CASE("bench: POCL_CACHE_DIR is set only for the build times, then restored"
     ::unsetenv(name);
 }
 
-TEST_CASE("bench: a run with build times gives POCL_CACHE_DIR back and removes its cache", "[bench][device]") {
+namespace {
+
+std::set<std::string> bench_caches() {
+    std::set<std::string> names;
+    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
+        if (entry.path().filename().string().rfind("brdfbake-bench-cache-", 0) == 0) names.insert(entry.path().string());
+    return names;
+}
+
+/// One bench run with build times under POCL_CACHE_DIR = `value` (unset without one): the value
+/// comes back and the run's fresh cache directory is removed. PoCL reads its cache directory once
+/// per process, at its first use, so each value is a test case of its own (ctest runs every case
+/// in a process of its own): a second run in one process would build into the first run's
+/// removed directory.
+void check_bench_gives_cache_dir_back(const std::optional<std::string>& value) {
     BenchOptions o = BenchOptions::quick_options();
-    o.build_times = true;  // PoCL read its cache directory when the tests began: the builds here are warm
+    o.build_times = true;
     o.scaling_sizes = {};
     o.scaling_samples = {};
     o.kind_texels = 0;
     const char* old = std::getenv("POCL_CACHE_DIR");
     const std::optional<std::string> before = old ? std::optional<std::string>(old) : std::nullopt;
-    auto bench_caches = [] {
-        std::set<std::string> names;
-        for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
-            if (entry.path().filename().string().rfind("brdfbake-bench-cache-", 0) == 0)
-                names.insert(entry.path().string());
-        return names;
-    };
     const std::set<std::string> caches_before = bench_caches();
-    for (const std::optional<std::string>& value : {std::optional<std::string>("/nonexistent/brdfbake-sentinel"),
-                                                    std::optional<std::string>()}) {
-        if (value)
-            ::setenv("POCL_CACHE_DIR", value->c_str(), 1);
-        else
-            ::unsetenv("POCL_CACHE_DIR");
-        std::ostringstream log;
-        const BenchReport r = run_bench(o, log);
-        REQUIRE(r.agreed);
-        CHECK(r.json.at("build").size() >= 1);
-        const char* after = std::getenv("POCL_CACHE_DIR");
-        if (value) {
-            REQUIRE(after != nullptr);
-            CHECK(std::string(after) == *value);
-        } else {
-            CHECK(after == nullptr);
-        }
+    if (value)
+        ::setenv("POCL_CACHE_DIR", value->c_str(), 1);
+    else
+        ::unsetenv("POCL_CACHE_DIR");
+    std::ostringstream log;
+    const BenchReport r = run_bench(o, log);
+    REQUIRE(r.agreed);
+    CHECK(r.json.at("build").size() >= 1);
+    const char* after = std::getenv("POCL_CACHE_DIR");
+    if (value) {
+        REQUIRE(after != nullptr);
+        CHECK(std::string(after) == *value);
+    } else {
+        CHECK(after == nullptr);
     }
-    // No temporary cache left behind by these runs.
-    for (const std::string& dir : bench_caches()) CHECK(caches_before.count(dir) == 1);
+    for (const std::string& dir : bench_caches()) CHECK(caches_before.count(dir) == 1);  // none left behind
     if (before)
         ::setenv("POCL_CACHE_DIR", before->c_str(), 1);
     else
         ::unsetenv("POCL_CACHE_DIR");
+}
+
+}  // namespace
+
+TEST_CASE("bench: a run with build times gives a set POCL_CACHE_DIR back and removes its cache", "[bench][device]") {
+    const std::string sentinel = (std::filesystem::temp_directory_path() / "brdfbake-test-sentinel-cache").string();
+    std::filesystem::create_directories(sentinel);
+    check_bench_gives_cache_dir_back(sentinel);
+}
+
+TEST_CASE("bench: a run with build times leaves an unset POCL_CACHE_DIR unset and removes its cache", "[bench][device]") {
+    check_bench_gives_cache_dir_back(std::nullopt);
 }

@@ -167,7 +167,7 @@ TEST_CASE("EXR through Imf::RgbaInputFile: every table kind shows non-zero, docu
         r.depth = 2;
         r.samples = 1024;
         if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
-        if (k->id == TableKindId::SheenAlbedo) r.model = "sheen";  // the kind of the sheen model only
+        if (!k->required_model.empty()) r.model = k->required_model;  // a kind of one model only (sheen)
         INFO(k->name);
         const Table t = compute_lut(testing::engine(), r);
         for (bool half : {false, true}) {
