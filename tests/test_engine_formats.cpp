@@ -172,7 +172,7 @@ TEST_CASE("DFGLUTData.js: node imports it as three.js does; half floats within r
     }
 }
 
-TEST_CASE("dfg.inc compiles where Filament includes it (const uint16_t DFG_LUT[] = {...}); cmgen's layout, "
+TEST_CASE("dfg.inc compiles where Filament includes it (const uint16_t DFG_LUT[] = {...}) cmgen's layout, "
           "GL order from a table stored roughest first",
           "[formats][engine][quick]") {
     // Filament's preset layout: x = NoV, y = perceptual roughness from the roughest (flipped).

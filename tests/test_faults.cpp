@@ -366,7 +366,7 @@ TEST_CASE("readers refuse NaN, Inf and descriptions that disagree with the data,
     std::system(("rm -rf '" + d + "'").c_str());
 }
 
-TEST_CASE("--help and --version to a full stdout, and a closed pipe, exit 2 with the message", "[faults][cli]") {
+TEST_CASE("help and version to a full stdout, and a closed pipe, exit 2 with the message", "[faults][cli]") {
     for (const char* args : {"--help", "--version", "lut --help"}) {
         const auto r = testing::run_shell("(" + std::string(BRDFBAKE_EXE) + " " + args + " >/dev/full)");
         INFO(args << ": " << r.err);
