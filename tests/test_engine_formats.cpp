@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "brdfbake/table.h"
+#include "brdfbake/table_kinds.h"
 #include "checks.h"
 #include "support.h"
 
@@ -125,7 +126,7 @@ std::vector<std::string> png_chunks(const std::string& bytes) {
 
 }  // namespace
 
-TEST_CASE("DFGLUTData.js: node imports it as three.js does; half floats within rounding, x = roughness, y = NoV, "
+TEST_CASE("DFGLUTData.js: node imports it as three.js does, half floats within rounding, x = roughness, y = NoV, "
           "row 0 at NoV 0",
           "[formats][engine][quick]") {
     const Table t = coordinate_table(16, 16);
@@ -237,7 +238,7 @@ TEST_CASE("shader.tables syntax compiles where Cycles includes it (CCL_NAMESPACE
     CHECK(text.find(" 1.0f\n};") != std::string::npos);
 }
 
-TEST_CASE("PNG tables: no colour-space chunk; read_table and `brdfbake show` read them back exactly",
+TEST_CASE("PNG tables: no colour-space chunk, and read_table and `brdfbake show` read them back exactly",
           "[formats][engine][quick]") {
     Table t = coordinate_table(16, 8);
     t.values[1][5] = 211.0 / 65535;  // the texels a browser's gamma conversion changed

@@ -9,6 +9,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/output.h"
 #include "brdfbake/table.h"
+#include "brdfbake/table_kinds.h"
 #include "cli/cli.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"

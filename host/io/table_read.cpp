@@ -24,7 +24,6 @@
 
 #include "brdfbake/error.h"
 #include "brdfbake/table.h"
-#include "brdfbake/table_kinds.h"
 #include "io/png_memory.h"
 #include "models/input_file.h"
 
@@ -64,10 +63,6 @@ double number_of(const std::string& text, const std::string& path, const std::st
 // The largest axis a reader takes: beyond every table brdfbake writes (a 4 GiB file holds fewer texels).
 constexpr int kMaxAxisSize = 1 << 20;
 
-/// The table kinds a file may name: the registry's (brdfbake/table_kinds.h) and the map that
-/// `brdfbake reciprocity` writes.
-bool known_kind(const std::string& kind) { return find_table_kind(kind) != nullptr || kind == "reciprocity"; }
-
 /// Every value and error read is a finite number, every error non-negative: a file that holds
 /// NaN or Inf was not written by brdfbake (check_finite refuses them) and is refused by name.
 void check_read_values(const Table& t, const std::string& path) {
@@ -100,9 +95,6 @@ Table table_from_description(const Description& d, const std::string& path) {
     };
     Table t;
     t.kind = get("kind");
-    if (!known_kind(t.kind))
-        throw Error("'" + path + "': its kind '" + t.kind + "' is not a table brdfbake writes (known: " +
-                    table_kind_names() + ", reciprocity)");
     t.quantity = get("quantity");
     std::set<std::string> structural = {"kind",          "quantity", "layout",    "texel_convention", "channels",
                                         "rgba_view",     "error_meaning", "max_error", "tool", "exr_channels",
@@ -486,7 +478,7 @@ Table read_png(const std::string& path) {
 
 }  // namespace
 
-Table read_table(const std::string& path) {
+Table read_table_file(const std::string& path) {
     const std::string e = lower_extension(path);
     Table t;
     if (e == "exr")

@@ -14,6 +14,7 @@
 #include "brdfbake/spec.h"
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/table.h"
+#include "brdfbake/table_kinds.h"
 #include "scene/bake_index.h"
 #include "scene/scene.h"
 #include "plot/plot.h"

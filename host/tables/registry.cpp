@@ -41,6 +41,14 @@ const TableKind& table_kind(const std::string& name) {
     throw Error(unknown_name_message("table kind", name, names, "known", table_kind_names()));
 }
 
+Table read_table(const std::string& path) {
+    Table t = read_table_file(path);
+    if (find_table_kind(t.kind) == nullptr && t.kind != "reciprocity")
+        throw Error("'" + path + "': its kind '" + t.kind + "' is not a table brdfbake writes (known: " +
+                    table_kind_names() + ", reciprocity)");
+    return t;
+}
+
 const TableKind& table_kind(TableKindId id) {
     for (const TableKind* k : table_kinds())
         if (k->id == id) return *k;

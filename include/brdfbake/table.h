@@ -140,9 +140,11 @@ std::vector<size_t> npy_shape(const Table& table);
 /// parameter column, and equals the coordinate where the file has none. Throws Error for any
 /// other file (only regular files are opened: a FIFO or device is refused before it is read),
 /// one that is not a brdfbake table, and one whose parts disagree or hold what no table holds,
-/// naming the field: an unknown kind, a non-finite range, a size that is not a whole number, a
+/// naming the field: a non-finite range, a size that is not a whole number, a
 /// value or error that is NaN or infinite (or a negative error), a .npy whose header shape,
 /// sidecar shape, dtype, axes or channels disagree with its description.
-Table read_table(const std::string& path);
+/// The kind is not checked here (the io layer knows no kinds): brdfbake::read_table
+/// (brdfbake/table_kinds.h) reads through this and refuses a kind brdfbake does not write.
+Table read_table_file(const std::string& path);
 
 }  // namespace brdfbake

@@ -93,6 +93,10 @@ const TableKind& table_kind(const std::string& name);
 const TableKind& table_kind(TableKindId id);
 /// "albedo, eavg, ...": the kinds' names for messages.
 std::string table_kind_names();
+/// A table file read back (read_table_file, brdfbake/table.h: every format check) whose kind is
+/// one brdfbake writes: a registry kind or the map of `brdfbake reciprocity`. Throws Error
+/// "'PATH': its kind 'X' is not a table brdfbake writes (known: ...)" for any other.
+Table read_table(const std::string& path);
 /// The names of the axes a request of this kind gets, in the kind's order (mu or sqrt_mu unless
 /// 1D, alpha or roughness, then the z axis: the kind's own or eta, f0, cycles_z by --eta-map):
 /// what --axes and --flip take.
