@@ -1,0 +1,174 @@
+#!/usr/bin/python3
+"""Compare LTC fits by the L1 distance integral of |p - D| over the upper hemisphere (issue 33),
+computed independently by tests/ltc_reference.py (numpy, VNDF/LTC multiple-importance midpoint
+rule, its own convergence estimate), never by the fitter's own estimate.
+
+  ltc_compare.py PUBLISHED                 the published fit's distance at its texels
+  ltc_compare.py PUBLISHED BRDFBAKE.csv    both, per brdfbake texel, and their ratio
+
+PUBLISHED is ltc_code's fit/results/ltc.inc (the `tabM` block; the user's own copy: this project
+ships none of its data) or a hand subset with lines `t a M00 M20 M11 M02 M22` (M row-major).
+Its texel (t, a): alpha = max((a/63)^2, 1e-4), theta = min(1.57, t/63 * 1.57079) (the linear-theta
+ltc.inc; --parametrisation sqrt for x = sqrt(1 - cos theta), the later fit three.js ships).
+BRDFBAKE.csv is `brdfbake lut ltc --model ggx -o FILE.csv` (GGX with the height-correlated Smith
+G2, as ltc_code's brdf_ggx.h). Where a brdfbake texel's (mu, alpha) is not a published texel, the
+published matrix is interpolated linearly in ltc_code's (t, a) index space, as a renderer sampling
+the published texture with bilinear filtering would (column `pub_at`: node or interp).
+
+Options: --n N (quadrature nodes per axis, default 256; error = |L(N) - L(2N)|), --every K (every
+K-th texel of each published row), --rows T1,T2,... (published rows), --limit K (first K brdfbake
+texels).
+"""
+import argparse
+import math
+import os
+import sys
+
+import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+import ltc_reference as ref  # noqa: E402
+
+
+def read_published(path):
+    """{(t, a): M} and the table size, from ltc.inc or from the `t a M00 M20 M11 M02 M22` subset."""
+    text = open(path).read()
+    if "tabM" in text:
+        size, mats, _ = ref.read_ltc_inc(path)
+        return {(t, a): mats[t, a] for t in range(size) for a in range(size)}, size
+    table = {}
+    for line in text.splitlines():
+        if line.strip() and not line.startswith("#"):
+            t, a, m00, m20, m11, m02, m22 = line.split()[:7]
+            table[(int(t), int(a))] = ref.matrix_from_channels(float(m00), float(m02), float(m11),
+                                                               float(m20), float(m22))
+    return table, 64
+
+
+def read_brdfbake_csv(path):
+    """rows of a brdfbake ltc CSV as dicts with mu and alpha (from sqrt_mu, roughness if so named)."""
+    header, rows = None, []
+    for line in open(path):
+        if line.startswith("#") or not line.strip():
+            continue
+        cells = line.strip().split(",")
+        if header is None:
+            header = cells
+            continue
+        row = dict(zip(header, (float(c) for c in cells)))
+        if "mu" not in row and "sqrt_mu" in row:
+            row["mu"] = row["sqrt_mu"] ** 2
+        if "alpha" not in row and "roughness" in row:
+            row["alpha"] = row["roughness"] ** 2
+        rows.append(row)
+    missing = {"mu", "alpha", "m00", "m02", "m11", "m20", "m22"} - set(header or []) - {"mu", "alpha"}
+    if missing:
+        sys.exit("ltc_compare: error: %s lacks the columns %s" % (path, ", ".join(sorted(missing))))
+    return rows
+
+
+def published_coordinates(t, a, size, parametrisation):
+    return math.cos(ref.ltc_code_view_angle(t, size, parametrisation)), ref.ltc_code_alpha(a, size)
+
+
+def published_index(mu, alpha, size, parametrisation):
+    """fractional (t, a) of a (mu, alpha) in ltc_code's axes."""
+    theta = math.acos(max(-1.0, min(1.0, mu)))
+    if parametrisation == "sqrt":
+        t = math.sqrt(max(0.0, 1.0 - mu)) * (size - 1)
+    else:
+        t = theta / 1.57079 * (size - 1)
+    a = math.sqrt(max(alpha, 0.0)) * (size - 1)
+    return min(max(t, 0.0), size - 1.0), min(max(a, 0.0), size - 1.0)
+
+
+def published_matrix_at(table, size, t, a):
+    """M at fractional (t, a): the node if both are integers within 1e-6, else bilinear in the
+    nodes present (None when a needed node is not in the table)."""
+    rt, ra = round(t), round(a)
+    if abs(t - rt) < 1e-6 and abs(a - ra) < 1e-6:
+        return table.get((rt, ra)), "node"
+    t0, a0 = int(math.floor(t)), int(math.floor(a))
+    t1, a1 = min(t0 + 1, size - 1), min(a0 + 1, size - 1)
+    ft, fa = t - t0, a - a0
+    corners = [(t0, a0, (1 - ft) * (1 - fa)), (t1, a0, ft * (1 - fa)), (t0, a1, (1 - ft) * fa), (t1, a1, ft * fa)]
+    m = np.zeros((3, 3))
+    for ti, ai, w in corners:
+        if w == 0.0:
+            continue
+        if (ti, ai) not in table:
+            return None, "missing"
+        m += w * table[(ti, ai)]
+    return m, "interp"
+
+
+def distance(mu, alpha, m, n):
+    """(L1 distance, its quadrature error) or (nan, nan) for a singular M (an entry printed as
+    0.000000 in the published file: alpha = 1e-4 at grazing)."""
+    if abs(np.linalg.det(m)) < 1e-14:
+        return float("nan"), float("nan")
+    d, err, _ = ref.l1_distance_converged(max(mu, 1e-6), alpha, m, n)
+    return d, err
+
+
+def summary(name, values):
+    v = np.array([x for x in values if np.isfinite(x)])
+    if len(v) == 0:
+        return "%s: none" % name
+    return "%s over %d texels: min %.5f, median %.5f, max %.5f" % (name, len(v), v.min(), np.median(v), v.max())
+
+
+def main():
+    ap = argparse.ArgumentParser(description=__doc__, formatter_class=argparse.RawDescriptionHelpFormatter)
+    ap.add_argument("published")
+    ap.add_argument("brdfbake_csv", nargs="?")
+    ap.add_argument("--n", type=int, default=256)
+    ap.add_argument("--every", type=int, default=1)
+    ap.add_argument("--rows", default=None)
+    ap.add_argument("--limit", type=int, default=0)
+    ap.add_argument("--parametrisation", choices=("theta", "sqrt"), default="theta")
+    args = ap.parse_args()
+    table, size = read_published(args.published)
+
+    if args.brdfbake_csv is None:
+        rows = sorted(table)
+        if args.rows:
+            keep = {int(r) for r in args.rows.split(",")}
+            rows = [k for k in rows if k[0] in keep]
+        rows = [k for k in rows if k[1] % args.every == 0 or k[1] == size - 1]
+        print("t a mu alpha d_published err")
+        dists = []
+        for t, a in rows:
+            mu, alpha = published_coordinates(t, a, size, args.parametrisation)
+            d, err = distance(mu, alpha, table[(t, a)], args.n)
+            dists.append(d)
+            print("%d %d %.6f %.6f %.5f %.1e" % (t, a, mu, alpha, d, err), flush=True)
+        print("# " + summary("published distance", dists))
+        return
+
+    rows = read_brdfbake_csv(args.brdfbake_csv)
+    if args.limit:
+        rows = rows[: args.limit]
+    print("mu alpha d_brdfbake err d_published err pub_at ratio d_file")
+    ours, theirs, ratios = [], [], []
+    for row in rows:
+        mu, alpha = row["mu"], row["alpha"]
+        m = ref.matrix_from_channels(row["m00"], row["m02"], row["m11"], row["m20"], row["m22"])
+        d, err = distance(mu, alpha, m, args.n)
+        t, a = published_index(mu, alpha, size, args.parametrisation)
+        mp, where = published_matrix_at(table, size, t, a)
+        dp, errp = distance(mu, alpha, mp, args.n) if mp is not None else (float("nan"), float("nan"))
+        ratio = d / dp if dp > 0 else float("nan")
+        ours.append(d)
+        theirs.append(dp)
+        ratios.append(ratio)
+        print("%.6f %.6f %.5f %.1e %.5f %.1e %s %.3f %s" % (mu, alpha, d, err, dp, errp, where, ratio,
+                                                          "%.5f" % row["distance"] if "distance" in row else "-"),
+              flush=True)
+    print("# " + summary("brdfbake distance", ours))
+    print("# " + summary("published distance", theirs))
+    print("# " + summary("ratio brdfbake/published", ratios))
+
+
+if __name__ == "__main__":
+    main()
