@@ -202,12 +202,16 @@ def l1_distance(mu, alpha, m, n=256, e=None):
     return ltc_upper_mass(m) - 1.0 + 2.0 * total, e
 
 
-def l1_distance_converged(mu, alpha, m, n=256):
+def l1_distance_converged(mu, alpha, m, n=256, tol=1e-3, n_max=1024):
     """l1_distance with its quadrature error estimate |L(n) - L(2n)| (second order: the error of
-    L(2n) is about a third of that). Returns (L(2n), |L(n) - L(2n)|, E)."""
+    L(2n) is about a third of that), n doubled while that exceeds tol and 2n <= n_max (grazing,
+    mirror-like lobes). Returns (L(2n), |L(n) - L(2n)|, E)."""
     e = lobe_terms(mu, alpha, max(2 * n, 1024))[0]
     a, _ = l1_distance(mu, alpha, m, n, e)
     b, _ = l1_distance(mu, alpha, m, 2 * n, e)
+    while abs(a - b) > tol and 4 * n <= n_max:
+        n *= 2
+        a, b = b, l1_distance(mu, alpha, m, 2 * n, e)[0]
     return b, abs(a - b), e
 
 
