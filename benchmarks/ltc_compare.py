@@ -17,7 +17,9 @@ the published texture with bilinear filtering would (column `pub_at`: node or in
 
 Options: --n N (quadrature nodes per axis, default 256; error = |L(N) - L(2N)|), --every K (every
 K-th texel of each published row), --rows T1,T2,... (published rows), --limit K (first K brdfbake
-texels).
+texels), --quads K (published mode: K random quad lights per texel with alpha >= 0.02, the
+irradiance E x (LTC polygon integral) against the brute-force integral of f cos over the quad; E
+is the reference's albedo, so the figure isolates the matrix's error).
 """
 import argparse
 import math
@@ -111,6 +113,40 @@ def distance(mu, alpha, m, n):
     return d, err
 
 
+def random_quad(rng):
+    """a parallelogram light wholly above the horizon, facing the shading point: centre at
+    elevation 15-75 degrees, distance 1-3, sides 0.3-1.5 (the same draw as the CI test)."""
+    while True:
+        el, az = math.radians(rng.uniform(15, 75)), rng.uniform(0, 2 * math.pi)
+        c = rng.uniform(1, 3) * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+        n = -c / np.linalg.norm(c)
+        t = np.cross(n, [0.0, 0.0, 1.0])
+        t /= np.linalg.norm(t)
+        b = np.cross(n, t)
+        e1, e2 = rng.uniform(0.3, 1.5) * t, rng.uniform(0.3, 1.5) * b
+        corner = c - 0.5 * e1 - 0.5 * e2
+        if min(corner[2], (corner + e1)[2], (corner + e2)[2], (corner + e1 + e2)[2]) > 0:
+            return corner, e1, e2
+
+
+def quad_errors(mu, alpha, m, count, rng):
+    """[(relative error, error / E, within the total-variation bound, carries >= 1% of E)] of E x LTC polygon integral
+    against the brute-force integral, for quads whose brute force has converged to 0.1%."""
+    e = ref.lobe_terms(mu, alpha, 1024)[0]
+    d, _, _ = ref.l1_distance_converged(mu, alpha, m, 128)
+    bound = e * (d + 1 - ref.ltc_upper_mass(m)) / 2
+    out = []
+    for _ in range(count):
+        corner, e1, e2 = random_quad(rng)
+        true, qerr = ref.quad_fcos_integral(mu, alpha, corner, e1, e2)
+        if true <= 0 or qerr > 1e-3 * true:
+            continue
+        approx = e * ref.ltc_polygon_integral(m, np.array([corner, corner + e1, corner + e1 + e2, corner + e2]))
+        out.append((abs(approx - true) / true, abs(approx - true) / e, abs(approx - true) <= bound + qerr,
+                    true >= 0.01 * e))
+    return out
+
+
 def summary(name, values):
     v = np.array([x for x in values if np.isfinite(x)])
     if len(v) == 0:
@@ -127,6 +163,7 @@ def main():
     ap.add_argument("--rows", default=None)
     ap.add_argument("--limit", type=int, default=0)
     ap.add_argument("--parametrisation", choices=("theta", "sqrt"), default="theta")
+    ap.add_argument("--quads", type=int, default=0)
     args = ap.parse_args()
     table, size = read_published(args.published)
 
@@ -136,14 +173,30 @@ def main():
             keep = {int(r) for r in args.rows.split(",")}
             rows = [k for k in rows if k[0] in keep]
         rows = [k for k in rows if k[1] % args.every == 0 or k[1] == size - 1]
-        print("t a mu alpha d_published err")
-        dists = []
+        print("t a mu alpha d_published err" + (" quads rel_median rel_max err/E_max in_bound" if args.quads else ""))
+        dists, rel, rel_e, inside = [], [], [], []
+        rng = np.random.default_rng(33)
         for t, a in rows:
             mu, alpha = published_coordinates(t, a, size, args.parametrisation)
             d, err = distance(mu, alpha, table[(t, a)], args.n)
             dists.append(d)
-            print("%d %d %.6f %.6f %.5f %.1e" % (t, a, mu, alpha, d, err), flush=True)
+            line = "%d %d %.6f %.6f %.5f %.1e" % (t, a, mu, alpha, d, err)
+            if args.quads and alpha >= 0.02:
+                q = quad_errors(max(mu, 1e-6), alpha, table[(t, a)], args.quads, rng)
+                if q:
+                    rel += [x[0] for x in q if x[3]]
+                    rel_e += [x[1] for x in q]
+                    inside += [x[2] for x in q]
+                    line += " %d %.4f %.4f %.4f %d" % (len(q), np.median([x[0] for x in q]), max(x[0] for x in q),
+                                                     max(x[1] for x in q), sum(x[2] for x in q))
+            print(line, flush=True)
         print("# " + summary("published distance", dists))
+        if rel:
+            r, re_ = np.array(rel), np.array(rel_e)
+            print("# quad lights: %d; error / E median %.5f, 90th percentile %.5f, max %.5f; relative error of the "
+                  "%d carrying >= 1%% of E: median %.4f, 90th percentile %.4f, max %.4f; within the bound "
+                  "E (L1 + 1 - c)/2: %d of %d" % (len(re_), np.median(re_), np.percentile(re_, 90), re_.max(), len(r),
+                                                  np.median(r), np.percentile(r, 90), r.max(), sum(inside), len(inside)))
         return
 
     rows = read_brdfbake_csv(args.brdfbake_csv)
