@@ -6,10 +6,12 @@ rule, its own convergence estimate), never by the fitter's own estimate.
   ltc_compare.py PUBLISHED                 the published fit's distance at its texels
   ltc_compare.py PUBLISHED BRDFBAKE.csv    both, per brdfbake texel, and their ratio
 
-PUBLISHED is ltc_code's fit/results/ltc.inc (the `tabM` block; the user's own copy: this project
-ships none of its data) or a hand subset with lines `t a M00 M20 M11 M02 M22` (M row-major).
+PUBLISHED is ltc_code's fit/results/ltc.inc (the `tabM` block), three.js's
+examples/jsm/lights/RectAreaLightTexturesLib.js (`LTC_MAT_1`, the later fit), the user's own copy
+either way (this project ships none of their data), or a hand subset with lines
+`t a M00 M20 M11 M02 M22` (M row-major) or, when a comment names LTC_MAT_1, `t a R G B A`.
 Its texel (t, a): alpha = max((a/63)^2, 1e-4), theta = min(1.57, t/63 * 1.57079) (the linear-theta
-ltc.inc; --parametrisation sqrt for x = sqrt(1 - cos theta), the later fit three.js ships).
+ltc.inc; x = sqrt(1 - cos theta), theta = min(1.57, acos(1 - x^2)) for the later fit three.js ships).
 BRDFBAKE.csv is `brdfbake lut ltc --model ggx -o FILE.csv` (GGX with the height-correlated Smith
 G2, as ltc_code's brdf_ggx.h). Where a brdfbake texel's (mu, alpha) is not a published texel, the
 published matrix is interpolated linearly in ltc_code's (t, a) index space, as a renderer sampling
@@ -32,19 +34,36 @@ sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), ".."
 import ltc_reference as ref  # noqa: E402
 
 
+def matrix_from_ltc_1(r, g, b, a):
+    """M from three.js's LTC_MAT_1 texel (docs/ltc_presets.md): M^-1 / Minv[1][1] with
+    Minv[0][0] = R, Minv[2][0] = G, Minv[0][2] = B, Minv[2][2] = A; D ignores M's scale."""
+    return np.linalg.inv(ref.matrix_from_channels(r, b, 1.0, g, a))
+
+
 def read_published(path):
-    """{(t, a): M} and the table size, from ltc.inc or from the `t a M00 M20 M11 M02 M22` subset."""
+    """({(t, a): M}, size, parametrisation) from ltc_code's ltc.inc (linear theta), three.js's
+    RectAreaLightTexturesLib.js (LTC_MAT_1; sqrt(1 - cos theta)), or a hand subset: lines
+    `t a M00 M20 M11 M02 M22`, or `t a R G B A` of LTC_MAT_1 when a comment names LTC_MAT_1."""
     text = open(path).read()
     if "tabM" in text:
         size, mats, _ = ref.read_ltc_inc(path)
-        return {(t, a): mats[t, a] for t in range(size) for a in range(size)}, size
+        return {(t, a): mats[t, a] for t in range(size) for a in range(size)}, size, "theta"
+    if "const LTC_MAT_1" in text:
+        body = text.split("const LTC_MAT_1")[1].split("[", 1)[1].split("]")[0]
+        v = np.array([float(x.replace(" ", "")) for x in body.split(",") if x.strip()]).reshape(64, 64, 4)
+        return {(t, a): matrix_from_ltc_1(*v[t, a]) for t in range(64) for a in range(64)}, 64, "sqrt"
+    three = "LTC_MAT_1" in text
     table = {}
     for line in text.splitlines():
         if line.strip() and not line.startswith("#"):
-            t, a, m00, m20, m11, m02, m22 = line.split()[:7]
-            table[(int(t), int(a))] = ref.matrix_from_channels(float(m00), float(m02), float(m11),
-                                                               float(m20), float(m22))
-    return table, 64
+            f = line.split()
+            t, a, v = int(f[0]), int(f[1]), [float(x) for x in f[2:7]]
+            if three:
+                table[(t, a)] = matrix_from_ltc_1(*v[:4])
+            else:
+                m00, m20, m11, m02, m22 = v
+                table[(t, a)] = ref.matrix_from_channels(m00, m02, m11, m20, m22)
+    return table, 64, "sqrt" if three else "theta"
 
 
 def read_brdfbake_csv(path):
@@ -162,10 +181,13 @@ def main():
     ap.add_argument("--every", type=int, default=1)
     ap.add_argument("--rows", default=None)
     ap.add_argument("--limit", type=int, default=0)
-    ap.add_argument("--parametrisation", choices=("theta", "sqrt"), default="theta")
+    ap.add_argument("--parametrisation", choices=("theta", "sqrt"), default=None,
+                    help="the published file's view axis (default: theta for ltc.inc, sqrt for three.js)")
     ap.add_argument("--quads", type=int, default=0)
     args = ap.parse_args()
-    table, size = read_published(args.published)
+    table, size, parametrisation = read_published(args.published)
+    if args.parametrisation is None:
+        args.parametrisation = parametrisation
 
     if args.brdfbake_csv is None:
         rows = sorted(table)
