@@ -11,7 +11,8 @@ examples/jsm/lights/RectAreaLightTexturesLib.js (`LTC_MAT_1`, the later fit), th
 either way (this project ships none of their data), or a hand subset with lines
 `t a M00 M20 M11 M02 M22` (M row-major) or, when a comment names LTC_MAT_1, `t a R G B A`.
 Its texel (t, a): alpha = max((a/63)^2, 1e-4), theta = min(1.57, t/63 * 1.57079) (the linear-theta
-ltc.inc; x = sqrt(1 - cos theta), theta = min(1.57, acos(1 - x^2)) for the later fit three.js ships).
+ltc.inc; x = sqrt(1 - cos theta), theta = min(1.57, acos(1 - x^2)) and alpha floored at 1e-5 for the
+later fit three.js ships).
 BRDFBAKE.csv is `brdfbake lut ltc --model ggx -o FILE.csv` (GGX with the height-correlated Smith
 G2, as ltc_code's brdf_ggx.h). Where a brdfbake texel's (mu, alpha) is not a published texel, the
 published matrix is interpolated linearly in ltc_code's (t, a) index space, as a renderer sampling
@@ -89,7 +90,8 @@ def read_brdfbake_csv(path):
 
 
 def published_coordinates(t, a, size, parametrisation):
-    return math.cos(ref.ltc_code_view_angle(t, size, parametrisation)), ref.ltc_code_alpha(a, size)
+    return (math.cos(ref.ltc_code_view_angle(t, size, parametrisation)),
+            ref.ltc_code_alpha(a, size, parametrisation))
 
 
 def published_index(mu, alpha, size, parametrisation):

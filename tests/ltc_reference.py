@@ -336,9 +336,12 @@ def ltc_code_view_angle(t, size, parametrisation="theta"):
     return min(1.57, x * 1.57079)
 
 
-def ltc_code_alpha(a, size):
+def ltc_code_alpha(a, size, parametrisation="theta"):
+    """alpha of ltc_code's column a: roughness a/(N-1) squared, floored at MIN_ALPHA: 1e-4 in the
+    linear-theta ltc.inc versions, 1e-5 in the later sqrt(1 - cos theta) fit (its data start at
+    m11/m22 = 2e-05 where ltc.inc's start at 2e-4, twice the floor either way)."""
     r = a / float(size - 1)
-    return max(r * r, 1e-4)
+    return max(r * r, 1e-5 if parametrisation == "sqrt" else 1e-4)
 
 
 # ------------------------------------------------------------------------------ self-checks
