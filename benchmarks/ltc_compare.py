@@ -20,7 +20,7 @@ the published texture with bilinear filtering would (column `pub_at`: node or in
 
 Options: --n N (quadrature nodes per axis, default 256; error = |L(N) - L(2N)|), --every K (every
 K-th texel of each published row), --rows T1,T2,... (published rows), --limit K (first K brdfbake
-texels), --quads K (published mode: K random quad lights per texel with alpha >= 0.02, the
+texels), --nodes-only (only brdfbake texels on published texels), --quads K (published mode: K random quad lights per texel with alpha >= 0.02, the
 irradiance E x (LTC polygon integral) against the brute-force integral of f cos over the quad; E
 is the reference's albedo, so the figure isolates the matrix's error).
 """
@@ -97,11 +97,15 @@ def published_coordinates(t, a, size, parametrisation):
 def published_index(mu, alpha, size, parametrisation):
     """fractional (t, a) of a (mu, alpha) in ltc_code's axes."""
     theta = math.acos(max(-1.0, min(1.0, mu)))
-    if parametrisation == "sqrt":
+    if theta >= 1.57 - 1e-7:  # the last row: theta clamped at 1.57 in both parametrisations
+        t = size - 1.0
+    elif parametrisation == "sqrt":
         t = math.sqrt(max(0.0, 1.0 - mu)) * (size - 1)
     else:
         t = theta / 1.57079 * (size - 1)
     a = math.sqrt(max(alpha, 0.0)) * (size - 1)
+    if alpha <= ref.ltc_code_alpha(0, size, parametrisation):  # the first column: alpha floored
+        a = 0.0
     return min(max(t, 0.0), size - 1.0), min(max(a, 0.0), size - 1.0)
 
 
@@ -134,22 +138,6 @@ def distance(mu, alpha, m, n):
     return d, err
 
 
-def random_quad(rng):
-    """a parallelogram light wholly above the horizon, facing the shading point: centre at
-    elevation 15-75 degrees, distance 1-3, sides 0.3-1.5 (the same draw as the CI test)."""
-    while True:
-        el, az = math.radians(rng.uniform(15, 75)), rng.uniform(0, 2 * math.pi)
-        c = rng.uniform(1, 3) * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
-        n = -c / np.linalg.norm(c)
-        t = np.cross(n, [0.0, 0.0, 1.0])
-        t /= np.linalg.norm(t)
-        b = np.cross(n, t)
-        e1, e2 = rng.uniform(0.3, 1.5) * t, rng.uniform(0.3, 1.5) * b
-        corner = c - 0.5 * e1 - 0.5 * e2
-        if min(corner[2], (corner + e1)[2], (corner + e2)[2], (corner + e1 + e2)[2]) > 0:
-            return corner, e1, e2
-
-
 def quad_errors(mu, alpha, m, count, rng):
     """[(relative error, error / E, within the total-variation bound, carries >= 1% of E)] of E x LTC polygon integral
     against the brute-force integral, for quads whose brute force has converged to 0.1%."""
@@ -158,7 +146,7 @@ def quad_errors(mu, alpha, m, count, rng):
     bound = e * (d + 1 - ref.ltc_upper_mass(m)) / 2
     out = []
     for _ in range(count):
-        corner, e1, e2 = random_quad(rng)
+        corner, e1, e2 = ref.random_quad_light(rng)
         true, qerr = ref.quad_fcos_integral(mu, alpha, corner, e1, e2)
         if true <= 0 or qerr > 1e-3 * true:
             continue
@@ -186,6 +174,8 @@ def main():
     ap.add_argument("--parametrisation", choices=("theta", "sqrt"), default=None,
                     help="the published file's view axis (default: theta for ltc.inc, sqrt for three.js)")
     ap.add_argument("--quads", type=int, default=0)
+    ap.add_argument("--nodes-only", action="store_true",
+                    help="compare only brdfbake texels that sit on a published texel (no interpolation)")
     args = ap.parse_args()
     table, size, parametrisation = read_published(args.published)
     if args.parametrisation is None:
@@ -234,6 +224,8 @@ def main():
         d, err = distance(mu, alpha, m, args.n)
         t, a = published_index(mu, alpha, size, args.parametrisation)
         mp, where = published_matrix_at(table, size, t, a)
+        if args.nodes_only and (where != "node" or mp is None):
+            continue
         dp, errp = distance(mu, alpha, mp, args.n) if mp is not None else (float("nan"), float("nan"))
         ratio = d / dp if dp > 0 else float("nan")
         ours.append(d)

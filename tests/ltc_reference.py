@@ -305,6 +305,23 @@ def quad_fcos_integral(mu, alpha, corner, e1, e2, panels=None):
     return fine, abs(fine - coarse)
 
 
+def random_quad_light(rng):
+    """(corner, e1, e2) of a parallelogram light wholly above the horizon, facing the shading
+    point: centre at elevation 15-75 degrees, distance 1-3, sides 0.3-1.5 (the quad-light study of
+    docs/accuracy.md and its CI test draw the same way)."""
+    while True:
+        el, az = math.radians(rng.uniform(15, 75)), rng.uniform(0, 2 * math.pi)
+        c = rng.uniform(1, 3) * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
+        n = -c / np.linalg.norm(c)
+        t = np.cross(n, [0.0, 0.0, 1.0])
+        t /= np.linalg.norm(t)
+        b = np.cross(n, t)
+        e1, e2 = rng.uniform(0.3, 1.5) * t, rng.uniform(0.3, 1.5) * b
+        corner = c - 0.5 * e1 - 0.5 * e2
+        if min(corner[2], (corner + e1)[2], (corner + e2)[2], (corner + e1 + e2)[2]) > 0:
+            return corner, e1, e2
+
+
 # ------------------------------------------------------------------ the published fit's file
 
 

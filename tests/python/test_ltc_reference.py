@@ -132,22 +132,6 @@ def test_magnitude_and_fresnel_match_the_reference(ggx_table):
         assert abs(r["fresnel"] - fres) <= r["error"] + 1e-5, (r["mu"], r["alpha"], r["fresnel"], fres)
 
 
-def random_quad(rng):
-    """a parallelogram light above the horizon, facing the shading point: centre at elevation
-    15-75 degrees, distance 1-3, sides 0.3-1.5."""
-    el, az = math.radians(rng.uniform(15, 75)), rng.uniform(0, 2 * math.pi)
-    c = rng.uniform(1, 3) * np.array([math.cos(el) * math.cos(az), math.cos(el) * math.sin(az), math.sin(el)])
-    n = -c / np.linalg.norm(c)
-    t = np.cross(n, [0.0, 0.0, 1.0])
-    t /= np.linalg.norm(t)
-    b = np.cross(n, t)
-    e1, e2 = rng.uniform(0.3, 1.5) * t, rng.uniform(0.3, 1.5) * b
-    corner = c - 0.5 * e1 - 0.5 * e2
-    if (corner + e1 + e2)[2] <= 0 or corner[2] <= 0 or (corner + e1)[2] <= 0 or (corner + e2)[2] <= 0:
-        return random_quad(rng)
-    return corner, e1, e2
-
-
 def test_quad_light_irradiance_within_the_total_variation_bound(ggx_table):
     # |E int_P D - int_P f cos| = E |int_P (D - p)| <= E (L1 + 1 - c) / 2 for any P in the upper
     # hemisphere (total variation of two unit-mass densities on the sphere, D's mass 1 - c below
@@ -159,7 +143,7 @@ def test_quad_light_irradiance_within_the_total_variation_bound(ggx_table):
         m = ref.matrix_from_channels(r["m00"], r["m02"], r["m11"], r["m20"], r["m22"])
         c = ref.ltc_upper_mass(m)
         for _ in range(3):
-            corner, e1, e2 = random_quad(rng)
+            corner, e1, e2 = ref.random_quad_light(rng)
             quad = np.array([corner, corner + e1, corner + e1 + e2, corner + e2])
             true, qerr = ref.quad_fcos_integral(r["mu"], r["alpha"], corner, e1, e2)
             approx = r["magnitude"] * ref.ltc_polygon_integral(m, quad)
