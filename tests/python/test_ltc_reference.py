@@ -3,7 +3,8 @@
 (a) The reference's own checks, each against a closed form or a second quadrature: D of random M
     integrates to 1, the identity LTC over a rectangle is Howell's view factor, the polygon
     integral with horizon clipping matches brute force, L1(p, p) = 0 and disjoint lobes give 2.
-(b) `brdfbake lut ltc --model ggx` (docs/ltc_presets.md, the LTC contract): each texel's distance
+(b) `brdfbake lut ltc --model ggx`, an 8x8 table and a 4x4 one at alpha 0.004-0.1 (docs/ltc_presets.md,
+    the LTC contract): each texel's distance
     channel recomputed independently agrees within the file's error plus the reference's; its
     magnitude and fresnel channels match the reference's E and Schlick term; and the quad-light
     irradiance magnitude x (LTC polygon integral) is within the total-variation bound
@@ -83,15 +84,21 @@ def read_csv(path):
     return header, rows, comments
 
 
-@pytest.fixture(scope="module")
-def ggx_table(tmp_path_factory):
+# The default axes (alpha 1/16 .. 15/16), and a small-alpha corner where narrow lobes test the
+# fitter's own distance estimate (the ltc branch's was biased low there, benchmarks/results/
+# ltc_published.md).
+TABLES = {"8x8": ["--size", "8x8"], "small-alpha": ["--size", "4x4", "--alpha-range", "0.004,0.1"]}
+
+
+@pytest.fixture(scope="module", params=sorted(TABLES))
+def ggx_table(request, tmp_path_factory):
     exe = brdfbake_exe()
     if not os.path.exists(exe):
         pytest.fail("no brdfbake executable at %s (set BRDFBAKE_EXE)" % exe)
     if not lut_lists_ltc(exe):
         pytest.skip("brdfbake lut lists no ltc kind yet (issue 33): nothing to check")
     out = str(tmp_path_factory.mktemp("ltc") / "ggx.csv")
-    run = subprocess.run([exe, "lut", "ltc", "--model", "ggx", "--size", "8x8", "-o", out, "--no-preview"],
+    run = subprocess.run([exe, "lut", "ltc", "--model", "ggx"] + TABLES[request.param] + ["-o", out, "--no-preview"],
                          capture_output=True, text=True, timeout=600)
     assert run.returncode == 0, run.stderr
     return read_csv(out)
@@ -101,15 +108,18 @@ def test_table_has_the_contract_columns(ggx_table):
     header, rows, comments = ggx_table
     for name in ("mu", "alpha", "m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance", "error"):
         assert name in header, name
-    assert len(rows) == 64
+    assert len(rows) in (16, 64)
     values = np.array([r[c] for r in rows for c in header])
     assert np.all(np.isfinite(values))
     # The description states min / median / max of the distance over the table.
     d = np.array([r["distance"] for r in rows])
     stated = [float(x) for line in comments if "distance" in line
               for x in re.findall(r"\d+(?:\.\d*)?(?:[eE][-+]?\d+)?", line)]
-    for stat in (d.min(), np.median(d), d.max()):
-        assert any(abs(x - stat) <= 1e-4 + 1e-3 * stat for x in stated), (stat, comments)
+    ds = np.sort(d)
+    middle = (ds[(len(ds) - 1) // 2], ds[len(ds) // 2])  # either middle value (even counts) or between
+    for lo, hi in ((ds[0], ds[0]), middle, (ds[-1], ds[-1])):
+        tol = 1e-4 + 1e-3 * hi
+        assert any(lo - tol <= x <= hi + tol for x in stated), ((lo, hi), comments)
 
 
 def test_distance_channel_matches_the_independent_reference(ggx_table):
@@ -139,7 +149,7 @@ def test_quad_light_irradiance_within_the_total_variation_bound(ggx_table):
     # fails it. docs/accuracy.md states the bound and the errors measured for random quads.
     _, rows, _ = ggx_table
     rng = np.random.default_rng(7)
-    for r in rows[::9]:
+    for r in rows[:: max(1, len(rows) // 7)]:
         m = ref.matrix_from_channels(r["m00"], r["m02"], r["m11"], r["m20"], r["m22"])
         c = ref.ltc_upper_mass(m)
         for _ in range(3):
