@@ -238,12 +238,14 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
         fits[c].evaluations = minima[c].evaluations;
         ms.push_back(fits[c].m);
     }
+    // The reported values on the fine points; their error: the difference from the fit's own
+    // points (coarser, and the fit's minimum on them is biased low: the error errs large).
     const LobePoints fine = lobe_points(engine, model, o.precision, cells, o.fine_side);
-    const LobePoints coarse = lobe_points(engine, model, o.precision, cells, o.coarse_side);
-    std::vector<CellSummary> fine_sums, coarse_sums;
-    const cl::Buffer fine_inv = inverse_albedos(fine, fine_sums), coarse_inv = inverse_albedos(coarse, coarse_sums);
+    std::vector<CellSummary> fine_sums;
+    const cl::Buffer fine_inv = inverse_albedos(fine, fine_sums);
     const std::vector<double> d_fine = distances(engine, kernel, o.precision, fine, fine_inv, all, ms);
-    const std::vector<double> d_coarse = distances(engine, kernel, o.precision, coarse, coarse_inv, all, ms);
+    const std::vector<double> d_coarse = distances(engine, kernel, o.precision, fit_pts, fit_inv_e, all, ms);
+    const std::vector<CellSummary>& coarse_sums = fit_sums;
     // A floor for the rounding of the kernel's sums (float: ~1e-6 relative per term).
     const double rounding = o.precision == Precision::Float ? 1e-5 : 1e-12;
     for (size_t c = 0; c < cells.size(); ++c) {

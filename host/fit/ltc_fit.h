@@ -44,9 +44,9 @@ struct LtcCell {
 struct LtcFitOptions {
     Precision precision = Precision::Float;
     int fit_side = 24;      // the objective's points per cell: fit_side^2 (the lobe's sampler)
-    int fine_side = 64;     // the reported distance and fresnel: fine_side^2 points ...
-    int coarse_side = 32;   // ... and their error, the difference from coarse_side^2 points
-    int max_evaluations = 400;       // per cell
+    int fine_side = 48;     // the reported distance and fresnel: fine_side^2 points, and their
+                            // error: the difference from the fit's fit_side^2 points
+    int max_evaluations = 300;       // per cell
     double value_tolerance = 2e-5;   // Nelder-Mead's convergence (nelder_mead.h)
     double size_tolerance = 1e-3;
 };

@@ -100,7 +100,9 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
         }
     describe(t, r, m, f.canonical, albedo.method, albedo.samples_per_cell, g.clamped);
     t.attributes["distance"] = "integral over the upper hemisphere of |f cos / E - D|: " + stats_text(distance);
-    t.attributes["distance_error"] = "|distance on 64x64 - on 32x32 sampler points| + rounding: " + stats_text(distance_error);
+    t.attributes["distance_error"] = "|distance on " + std::to_string(options.fine_side) + "^2 - on the fit's " +
+                                     std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
+                                     stats_text(distance_error);
     t.attributes["error_channel"] = "the largest of the magnitude's integration error, the fresnel channel's and the distance's";
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
                               std::to_string(options.fit_side) + "x" + std::to_string(options.fit_side) +
