@@ -86,7 +86,7 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
     t.channels = {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance"};
     t.values.assign(t.channels.size(), std::vector<double>(n));
     t.error.assign(n, 0.0);
-    std::vector<double> distance, distance_error;
+    std::vector<double> distance, distance_error, fresnel_error;
     for (size_t k = 0; k < rows.size(); ++k)
         for (size_t i = 0; i < w; ++i) {
             const size_t c = order[k] * w + i;
@@ -94,16 +94,22 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
             const double v[] = {ft.m.m00, ft.m.m02, ft.m.m11, ft.m.m20, ft.m.m22, albedo.values[c].value, ft.fresnel,
                                 ft.distance};
             for (size_t ch = 0; ch < t.channels.size(); ++ch) t.values[ch][c] = v[ch];
-            t.error[c] = std::max({albedo.values[c].error, ft.fresnel_error, ft.distance_error});
+            t.error[c] = albedo.values[c].error;
             distance.push_back(ft.distance);
             distance_error.push_back(ft.distance_error);
+            fresnel_error.push_back(ft.fresnel_error);
         }
     describe(t, r, m, f.canonical, albedo.method, albedo.samples_per_cell, g.clamped);
     t.attributes["distance"] = "integral over the upper hemisphere of |f cos / E - D|: " + stats_text(distance);
     t.attributes["distance_error"] = "|distance on " + std::to_string(options.fine_side) + "^2 - on the fit's " +
                                      std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
                                      stats_text(distance_error);
-    t.attributes["error_channel"] = "the largest of the magnitude's integration error, the fresnel channel's and the distance's";
+    t.attributes["fresnel_error"] = "|fresnel on " + std::to_string(options.fine_side) + "^2 - on " +
+                                    std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
+                                    stats_text(fresnel_error);
+    t.attributes["error_channel"] = "the magnitude's integration error (--samples, --method, --tolerance); the "
+                                    "distance's and the fresnel channel's errors: the distance_error and "
+                                    "fresnel_error attributes";
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
                               std::to_string(options.fit_side) + "x" + std::to_string(options.fit_side) +
                               " sampler points per texel, rows from rough to smooth, each started from the row before";
@@ -125,6 +131,7 @@ TableKind ltc_kind() {
     k.plan_fresnel = "none (F = 1; the fresnel channel is the Schlick split's term)";
     k.validate = validate_ltc;
     k.sample_cost = 4.0;
+    k.value_channels = [](const LutRequest&) { return 8; };
     return k;
 }
 
