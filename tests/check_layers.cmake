@@ -4,7 +4,7 @@
 # Prints every offending include and fails if there is one.
 
 # Layers from the bottom up; a file's layer is that of the first prefix of its path that matches.
-set(layers brdf engine models io integrate tables scene plot bench cli python tests)
+set(layers brdf engine models io integrate fit tables scene plot bench cli python tests)
 set(prefixes
   "include/brdfbake/brdf/=brdf" "kernels/=brdf"
   "include/brdfbake/error.h=engine" "include/brdfbake/engine.h=engine" "include/brdfbake/version.h=engine" "include/brdfbake/memory_limit.h=engine" "include/brdfbake/cancel.h=engine" "include/brdfbake/progress.h=engine"
@@ -13,6 +13,7 @@ set(prefixes
   "include/brdfbake/spec.h=models" "include/brdfbake/fresnel_terms.h=models" "host/models/=models"
   "include/brdfbake/albedo.h=integrate" "include/brdfbake/analytic.h=integrate" "include/brdfbake/evaluate.h=integrate" "include/brdfbake/check.h=integrate" "include/brdfbake/fresnel_curve.h=integrate"
   "host/integrate/=integrate"
+  "host/fit/=fit"
   "include/brdfbake/lut.h=tables" "include/brdfbake/table_kinds.h=tables" "include/brdfbake/api.h=tables" "host/tables/=tables"
   "host/scene/=scene"
   "host/plot/=plot"
@@ -20,7 +21,7 @@ set(prefixes
   "host/cli/=cli"
   "python/=python"
   "tests/=tests")
-set(core_layers brdf engine models io integrate tables scene)
+set(core_layers brdf engine models io integrate fit tables scene)
 
 function(layer_of path out)
   foreach(entry IN LISTS prefixes)

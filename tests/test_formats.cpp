@@ -170,6 +170,10 @@ TEST_CASE("EXR through Imf::RgbaInputFile: every table kind shows non-zero, docu
         if (!k->required_model.empty()) r.model = k->required_model;  // a kind of one model only (sheen)
         INFO(k->name);
         const Table t = compute_lut(testing::engine(), r);
+        if (t.channels.size() > 4) {  // no RGBA view (ltc's 8 channels): read by name in tests/test_ltc.cpp
+            CHECK(rgba_view(t).empty());
+            continue;
+        }
         for (bool half : {false, true}) {
             const std::string path = tmp_path(k->name + ".exr");
             write_table(t, path, half);

@@ -94,6 +94,7 @@ TableKind dielectric_eavg_kind();
 TableKind gen_schlick_kind();
 TableKind gen_schlick_ior_kind();
 TableKind dfg_f82_kind();
+TableKind ltc_kind();
 
 }  // namespace tables
 }  // namespace brdfbake

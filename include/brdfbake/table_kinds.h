@@ -15,7 +15,7 @@
 
 namespace brdfbake {
 
-enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs, SheenAlbedo, DielectricEavg, GenSchlick, GenSchlickIor, DfgF82, SheenViewer };
+enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs, SheenAlbedo, DielectricEavg, GenSchlick, GenSchlickIor, DfgF82, SheenViewer, Ltc };
 
 /// 1 whatever the request: the value channels and integrations per cell of most kinds.
 int one_per_request(const LutRequest&);

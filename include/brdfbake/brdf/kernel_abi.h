@@ -87,4 +87,11 @@
 
 #define BB_ENTRY_FRESNEL_CURVE fresnel_curve
 
+/* ------------------------------------------------------------------- kernels/ltc.cl */
+
+#define BB_ENTRY_LTC_LOBE_POINTS ltc_lobe_points /* the lobe's fixed sample points per texel */
+#define BB_ENTRY_LTC_OBJECTIVE ltc_objective     /* integral of min(p, D) per candidate matrix */
+#define BB_LTC_POINT_VALUES 6                    /* per point: wi.xyz, weight, 1/pdf, (1 - wo.h)^5 */
+#define BB_LTC_CANDIDATE_VALUES 10               /* per candidate: M^-1 row-major, |det M^-1| */
+
 #endif /* BRDFBAKE_BRDF_KERNEL_ABI_H */

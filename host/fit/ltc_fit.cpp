@@ -1,0 +1,305 @@
+#include "fit/ltc_fit.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "brdfbake/brdf/kernel_abi.h"
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/cancel.h"
+#include "brdfbake/error.h"
+#include "engine/device_buffer.h"
+#include "integrate/launch.h"
+
+namespace brdfbake {
+namespace fit {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+
+using Mat3 = std::array<double, 9>;  // row-major
+
+
+/// M^-1 of the isotropic form (the y row decouples) and |det M^-1|.
+Mat3 inverse(const LtcMatrix& m, double& abs_det_inverse) {
+    const double det_xz = m.m00 * m.m22 - m.m02 * m.m20;
+    abs_det_inverse = 1.0 / std::abs(det_xz * m.m11);
+    return {m.m22 / det_xz, 0, -m.m02 / det_xz, 0, 1.0 / m.m11, 0, -m.m20 / det_xz, 0, m.m00 / det_xz};
+}
+
+/// A row's fixed lobe points on the device (kernels/ltc.cl, ltc_lobe_points) and on the host.
+struct LobePoints {
+    int side = 0;
+    cl::Buffer buffer;
+    std::vector<double> host;  // BB_LTC_POINT_VALUES per point, side^2 points per cell
+};
+
+struct CellSummary {
+    double albedo = 0;         // mean weight: E on these points
+    double fresnel = 0;        // mean weight (1 - wo.h)^5
+    double average_theta = 0;  // the lobe's average direction (sin t, 0, cos t)
+};
+
+cl::Program& ltc_program(Engine& engine, const ModelConfig& model, Precision precision) {
+    BuildRequest build;
+    build.kernel_file = "ltc.cl";
+    build.precision = precision;
+    build.model = model.id;
+    build.fresnel = BB_FRESNEL_NONE;
+    return engine.program(build);
+}
+
+void run_range(Engine& engine, cl::Kernel& kernel, size_t n) {
+    engine.queue().enqueueNDRangeKernel(kernel, cl::NullRange, cl::NDRange((n + kLocalSize - 1) / kLocalSize * kLocalSize),
+                                        cl::NDRange(kLocalSize));
+}
+
+LobePoints lobe_points(Engine& engine, const ModelConfig& model, Precision precision, const std::vector<LtcCell>& cells,
+                       int side) {
+    RealBuffers bufs(engine, precision);
+    std::vector<double> mu, params;
+    for (const LtcCell& c : cells) {
+        mu.push_back(c.mu);
+        params.insert(params.end(), c.params.begin(), c.params.end());
+    }
+    const FresnelConfig none = resolve_fresnel("none");
+    cl::Buffer b_mu = bufs.input(mu), b_p = bufs.input(params);
+    cl::Buffer b_fp = bufs.input({none.params.begin(), none.params.end()});
+    cl::Buffer b_data = model_data_buffer(bufs, model.id);
+    const size_t n = cells.size() * size_t(side) * size_t(side);
+    LobePoints out;
+    out.side = side;
+    out.buffer = bufs.output(n * BB_LTC_POINT_VALUES);
+    cl::Kernel k(ltc_program(engine, model, precision), BB_ENTRY_NAME(BB_ENTRY_LTC_LOBE_POINTS));
+    set_args(k, 0, b_mu, b_p, b_fp, b_data, cl_uint(cells.size()), cl_uint(side), out.buffer);
+    run_range(engine, k, n);
+    out.host = bufs.read(out.buffer, n * BB_LTC_POINT_VALUES);
+    for (double v : out.host)
+        if (!std::isfinite(v)) throw Error("the lobe's sample points hold a non-finite value: the LTC fit stops");
+    return out;
+}
+
+CellSummary summarise(const LobePoints& pts, size_t cell) {
+    const size_t per = size_t(pts.side) * size_t(pts.side);
+    const double* p = pts.host.data() + cell * per * BB_LTC_POINT_VALUES;
+    double w = 0, fr = 0, ax = 0, az = 0;
+    for (size_t k = 0; k < per; ++k, p += BB_LTC_POINT_VALUES) {
+        w += p[3];
+        fr += p[3] * p[5];
+        ax += p[3] * p[0];
+        az += p[3] * p[2];
+    }
+    CellSummary s;
+    s.albedo = w / double(per);
+    s.fresnel = fr / double(per);
+    s.average_theta = (ax == 0 && az == 0) ? 0.0 : std::atan2(ax, az);
+    return s;
+}
+
+/// The L1 distances of candidate matrices, candidate i fitted to cell cell_of[i] of `pts`:
+/// 1 + integral_H D - 2 S with S of ltc_objective (kernels/ltc.cl).
+std::vector<double> distances(Engine& engine, cl::Kernel& kernel, Precision precision, const LobePoints& pts,
+                              const cl::Buffer& inv_e, const std::vector<size_t>& cell_of,
+                              const std::vector<LtcMatrix>& ms) {
+    throw_if_cancelled();
+    RealBuffers bufs(engine, precision);
+    std::vector<double> cand;
+    std::vector<cl_uint> cells;
+    for (size_t i = 0; i < ms.size(); ++i) {
+        double det = 0;
+        const Mat3 inv = inverse(ms[i], det);
+        cand.insert(cand.end(), inv.begin(), inv.end());
+        cand.push_back(det);
+        cells.push_back(cl_uint(cell_of[i]));
+    }
+    cl::Buffer b_cand = bufs.input(cand);
+    cl::Buffer b_cells(engine.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, cells.size() * sizeof(cl_uint),
+                       cells.data());
+    cl::Buffer b_out = bufs.output(ms.size());
+    set_args(kernel, 0, pts.buffer, cl_uint(pts.side * pts.side), b_cells, b_cand, inv_e, cl_uint(ms.size()), b_out);
+    run_range(engine, kernel, ms.size());
+    std::vector<double> s = bufs.read(b_out, ms.size());
+    for (size_t i = 0; i < s.size(); ++i) s[i] = 1.0 + ltc_upper_mass(ms[i]) - 2.0 * s[i];
+    return s;
+}
+
+std::array<double, 4> as_q(const std::vector<double>& x) { return {x[0], x[1], x[2], x[3]}; }
+
+/// The start of each cell's minimisation, in the row's parameters x = (theta - theta_avg, ln a,
+/// b, ln c) (the angle relative to the lobe's average direction): the best of a few candidates
+/// evaluated in one launch: the clamped cosine turned to the average direction (x = 0), and the
+/// previous row's fit at the same cell with its widths (ln a, ln c) moved by s in -1.5 ... 0.5 (a
+/// smoother row's lobe is narrower; the moved candidates bridge a coarse roughness axis).
+std::vector<std::vector<double>> best_starts(size_t n_cells, const std::vector<std::array<double, 4>>* previous,
+                                             const BatchObjective& objective) {
+    std::vector<size_t> cell_of;
+    std::vector<std::vector<double>> xs;
+    for (size_t c = 0; c < n_cells; ++c) {
+        cell_of.push_back(c);
+        xs.push_back({0.0, 0.0, 0.0, 0.0});
+        if (!previous) continue;
+        for (double s : {-1.5, -1.0, -0.5, -0.25, 0.0, 0.5}) {
+            const std::array<double, 4>& x = (*previous)[c];
+            cell_of.push_back(c);
+            xs.push_back({x[0], x[1] + s, x[2], x[3] + s});
+        }
+    }
+    const std::vector<double> f = objective(cell_of, xs);
+    std::vector<std::vector<double>> best(n_cells, std::vector<double>(4, 0.0));
+    std::vector<double> best_f(n_cells, HUGE_VAL);
+    for (size_t i = 0; i < xs.size(); ++i)
+        if (std::isfinite(f[i]) && f[i] < best_f[cell_of[i]]) {
+            best[cell_of[i]] = xs[i];
+            best_f[cell_of[i]] = f[i];
+        }
+    return best;
+}
+
+/// Cells whose neighbour's fit (the next or previous mu of the row) is better than their own
+/// minimise again from it, as [HDHN16]'s fits start from the neighbouring texel; twice at most.
+void polish_from_neighbours(std::vector<Minimum>& minima, const NelderMeadOptions& nm, const BatchObjective& objective) {
+    const size_t n = minima.size();
+    for (int pass = 0; pass < 2 && n > 1; ++pass) {
+        std::vector<size_t> cell_of;
+        std::vector<std::vector<double>> xs;
+        for (size_t c = 0; c < n; ++c)
+            for (size_t nb : {c - 1, c + 1})
+                if (nb < n) {
+                    cell_of.push_back(c);
+                    xs.push_back(minima[nb].x);
+                }
+        const std::vector<double> f = objective(cell_of, xs);
+        std::vector<size_t> redo;
+        std::vector<std::vector<double>> starts;
+        for (size_t i = 0; i < xs.size(); ++i) {
+            const size_t c = cell_of[i];
+            if (!(f[i] < minima[c].value - 1e-4)) continue;
+            if (!redo.empty() && redo.back() == c) {
+                if (f[i] < f[i - 1]) starts.back() = xs[i];
+                continue;
+            }
+            redo.push_back(c);
+            starts.push_back(xs[i]);
+        }
+        if (redo.empty()) return;
+        const std::vector<Minimum> again = minimize_batch(starts, nm, [&](const std::vector<size_t>& sub, const std::vector<std::vector<double>>& ys) {
+            std::vector<size_t> cells;
+            for (size_t k : sub) cells.push_back(redo[k]);
+            return objective(cells, ys);
+        });
+        for (size_t k = 0; k < redo.size(); ++k)
+            if (again[k].value < minima[redo[k]].value) {
+                const int evals = minima[redo[k]].evaluations;
+                minima[redo[k]] = again[k];
+                minima[redo[k]].evaluations += evals;
+            }
+    }
+}
+
+/// One row: the fit points and their summaries, the batched minimisation from `starts` (theta
+/// taken from each cell's average direction), then the distance on the fine and coarse points.
+std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std::vector<LtcCell>& cells,
+                            const std::vector<std::array<double, 4>>* previous, const LtcFitOptions& o) {
+    cl::Kernel kernel(ltc_program(engine, model, o.precision), BB_ENTRY_NAME(BB_ENTRY_LTC_OBJECTIVE));
+    RealBuffers bufs(engine, o.precision);
+    auto inverse_albedos = [&](const LobePoints& pts, std::vector<CellSummary>& sums) {
+        std::vector<double> inv;
+        for (size_t c = 0; c < cells.size(); ++c) {
+            sums.push_back(summarise(pts, c));
+            inv.push_back(sums.back().albedo > 0 ? 1.0 / sums.back().albedo : 0.0);
+        }
+        return bufs.input(inv);
+    };
+    const LobePoints fit_pts = lobe_points(engine, model, o.precision, cells, o.fit_side);
+    std::vector<CellSummary> fit_sums;
+    const cl::Buffer fit_inv_e = inverse_albedos(fit_pts, fit_sums);
+    auto absolute = [&](size_t c, const std::vector<double>& x) {
+        return std::array<double, 4>{fit_sums[c].average_theta + x[0], x[1], x[2], x[3]};
+    };
+    const BatchObjective objective = [&](const std::vector<size_t>& cell_of, const std::vector<std::vector<double>>& xs) {
+        std::vector<LtcMatrix> ms;
+        for (size_t i = 0; i < xs.size(); ++i) ms.push_back(ltc_matrix(absolute(cell_of[i], xs[i])));
+        return distances(engine, kernel, o.precision, fit_pts, fit_inv_e, cell_of, ms);
+    };
+    NelderMeadOptions nm;
+    nm.steps = {0.1, 0.2, 0.1, 0.2};
+    nm.max_evaluations = o.max_evaluations;
+    nm.value_tolerance = o.value_tolerance;
+    nm.size_tolerance = o.size_tolerance;
+    std::vector<Minimum> minima = minimize_batch(best_starts(cells.size(), previous, objective), nm, objective);
+    polish_from_neighbours(minima, nm, objective);
+    std::vector<LtcFit> fits(cells.size());
+    std::vector<size_t> all(cells.size());
+    std::vector<LtcMatrix> ms;
+    for (size_t c = 0; c < cells.size(); ++c) {
+        all[c] = c;
+        fits[c].x = as_q(minima[c].x);
+        fits[c].q = absolute(c, minima[c].x);
+        fits[c].m = ltc_matrix(fits[c].q);
+        fits[c].evaluations = minima[c].evaluations;
+        ms.push_back(fits[c].m);
+    }
+    // The reported values on the fine points; their error: the difference from the fit's own
+    // points (coarser, and the fit's minimum on them is biased low: the error errs large).
+    const LobePoints fine = lobe_points(engine, model, o.precision, cells, o.fine_side);
+    std::vector<CellSummary> fine_sums;
+    const cl::Buffer fine_inv = inverse_albedos(fine, fine_sums);
+    const std::vector<double> d_fine = distances(engine, kernel, o.precision, fine, fine_inv, all, ms);
+    const std::vector<double> d_coarse = distances(engine, kernel, o.precision, fit_pts, fit_inv_e, all, ms);
+    const std::vector<CellSummary>& coarse_sums = fit_sums;
+    // A floor for the rounding of the kernel's sums (float: ~1e-6 relative per term).
+    const double rounding = o.precision == Precision::Float ? 1e-5 : 1e-12;
+    for (size_t c = 0; c < cells.size(); ++c) {
+        fits[c].distance = std::max(0.0, d_fine[c]);
+        fits[c].distance_error = std::abs(d_fine[c] - d_coarse[c]) + rounding;
+        fits[c].fresnel = fine_sums[c].fresnel;
+        fits[c].fresnel_error = std::abs(fine_sums[c].fresnel - coarse_sums[c].fresnel) + rounding;
+        fits[c].albedo = fine_sums[c].albedo;
+    }
+    return fits;
+}
+
+}  // namespace
+
+LtcMatrix ltc_matrix(const std::array<double, 4>& q) {
+    const double ct = std::cos(q[0]), st = std::sin(q[0]), a = std::exp(q[1]), b = q[2], c = std::exp(q[3]);
+    // R_y(theta) = [[ct, 0, st], [0, 1, 0], [-st, 0, ct]] times [[a, 0, b], [0, c, 0], [0, 0, 1]].
+    LtcMatrix m;
+    m.m00 = ct * a;
+    m.m02 = ct * b + st;
+    m.m11 = c;
+    m.m20 = -st * a;
+    m.m22 = -st * b + ct;
+    return m;
+}
+
+double ltc_density(const LtcMatrix& m, const std::array<double, 3>& w) {
+    double det = 0;
+    const Mat3 inv = inverse(m, det);
+    const double x = inv[0] * w[0] + inv[2] * w[2], y = inv[4] * w[1], z = inv[6] * w[0] + inv[8] * w[2];
+    const double l2 = x * x + y * y + z * z;
+    return std::max(z, 0.0) * det / (kPi * l2 * l2);
+}
+
+double ltc_upper_mass(const LtcMatrix& m) {
+    const double n = std::hypot(m.m20, m.m22);
+    return n > 0 ? 0.5 * (1.0 + m.m22 / n) : 0.5;
+}
+
+std::vector<std::vector<LtcFit>> fit_ltc_rows(Engine& engine, const ModelConfig& model,
+                                              const std::vector<std::vector<LtcCell>>& rows,
+                                              const LtcFitOptions& options,
+                                              const std::function<void(size_t)>& row_done) {
+    std::vector<std::vector<LtcFit>> out;
+    std::vector<std::array<double, 4>> previous;
+    for (size_t r = 0; r < rows.size(); ++r) {
+        const bool seeded = r > 0 && rows[r].size() == rows[r - 1].size();
+        out.push_back(fit_row(engine, model, rows[r], seeded ? &previous : nullptr, options));
+        previous.clear();
+        for (const LtcFit& f : out.back()) previous.push_back(f.x);
+        if (row_done) row_done(r);
+    }
+    return out;
+}
+
+}  // namespace fit
+}  // namespace brdfbake

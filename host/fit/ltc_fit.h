@@ -1,0 +1,77 @@
+// Linearly transformed cosines (Heitz, Dupuy, Hill and Neubelt 2016, "Real-Time Polygonal-Light
+// Shading with Linearly Transformed Cosines", [HDHN16]) fitted to a model's lobe per cell
+// (mu, parameters): the fitting layer's LTC objective, evaluated on the device (kernels/ltc.cl),
+// minimised by the batched Nelder-Mead of nelder_mead.h. The frame: normal +z, viewer at
+// wo = (sin theta_o, 0, cos theta_o); an isotropic lobe is symmetric in y, so that
+// M = [[m00, 0, m02], [0, m11, 0], [m20, 0, m22]].
+#pragma once
+
+#include <array>
+#include <vector>
+
+#include "brdfbake/engine.h"
+#include "brdfbake/spec.h"
+#include "fit/nelder_mead.h"
+
+namespace brdfbake {
+namespace fit {
+
+/// M of an isotropic LTC (row-major entries; the others are 0).
+struct LtcMatrix {
+    double m00 = 1, m02 = 0, m11 = 1, m20 = 0, m22 = 1;
+};
+
+/// The fit's free parameters q = (theta, ln a, b, ln c):
+/// M = R_y(theta) [[a, 0, b], [0, c, 0], [0, 0, 1]], R_y(theta) taking +z to (sin theta, 0, cos theta).
+/// D does not change with the scale of M, so four parameters span every such M of positive
+/// determinant; a, c > 0 by construction. q = 0 is the identity (the clamped cosine).
+LtcMatrix ltc_matrix(const std::array<double, 4>& q);
+
+/// The LTC distribution at a unit direction w: D(w) = D_o(w_o) |det M^-1| / |M^-1 w|^3 with
+/// w_o = M^-1 w / |M^-1 w| and D_o = max(0, z)/pi ([HDHN16] eq. 1 and the Jacobian of section 3.1).
+double ltc_density(const LtcMatrix& m, const std::array<double, 3>& w);
+
+/// integral of D over the upper hemisphere, in closed form: w lies above the horizon iff
+/// (m20, 0, m22).w_o > 0, a hemisphere of w_o whose axis n = (m20, 0, m22)/|.| makes an angle
+/// gamma with +z; the clamped cosine's mass in it is (1 + cos gamma)/2.
+double ltc_upper_mass(const LtcMatrix& m);
+
+struct LtcCell {
+    double mu = 1.0;
+    ParamBlock params{};
+};
+
+struct LtcFitOptions {
+    Precision precision = Precision::Float;
+    int fit_side = 24;      // the objective's points per cell: fit_side^2 (the lobe's sampler)
+    int fine_side = 48;     // the reported distance and fresnel: fine_side^2 points, and their
+                            // error: the difference from the fit's fit_side^2 points
+    int max_evaluations = 300;       // per cell
+    double value_tolerance = 2e-5;   // Nelder-Mead's convergence (nelder_mead.h)
+    double size_tolerance = 1e-3;
+};
+
+struct LtcFit {
+    LtcMatrix m;
+    std::array<double, 4> q{};  // the fitted parameters (ltc_matrix)
+    std::array<double, 4> x{};  // the same with theta relative to the lobe's average direction
+    double distance = 0;        // integral over the upper hemisphere of |p - D|, p = f cos / E
+    double distance_error = 0;
+    double fresnel = 0;         // integral of f cos (1 - wo.h)^5
+    double fresnel_error = 0;
+    double albedo = 0;          // E of the fine points (the mean sample weight)
+    int evaluations = 0;
+};
+
+/// Fits the rows in order. A row's cells are fitted together (one launch per Nelder-Mead round
+/// for all of them), each started from the fit of the cell at the same index of the previous row
+/// (as [HDHN16]'s fits start from the neighbouring texel; order the rows from rough to smooth),
+/// the first row from the cosine turned to the lobe's average direction. `row_done(i)` is called
+/// after each row (progress). The model must have an importance sampler whose weights are bounded.
+std::vector<std::vector<LtcFit>> fit_ltc_rows(Engine& engine, const ModelConfig& model,
+                                              const std::vector<std::vector<LtcCell>>& rows,
+                                              const LtcFitOptions& options,
+                                              const std::function<void(size_t)>& row_done = {});
+
+}  // namespace fit
+}  // namespace brdfbake

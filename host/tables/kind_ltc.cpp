@@ -1,0 +1,142 @@
+// Linearly transformed cosines per texel (Heitz, Dupuy, Hill and Neubelt 2016, "Real-Time
+// Polygonal-Light Shading with Linearly Transformed Cosines", [HDHN16]): the tables real-time
+// renderers light polygonal area lights with. Per texel (mu, alpha): the matrix M whose
+// transformed clamped cosine D best matches the normalised lobe p = f cos(theta_i) / E (fitted by
+// host/fit/ltc_fit.h on the device), the magnitude E (the engine's albedo integration, F = 1, with
+// its error), the fresnel channel (integral of f cos (1 - wo.h)^5, the Schlick split's second
+// term as Heitz and Hill's fitLTC tabulates it) and the distance integral over the upper
+// hemisphere of |p - D| with its own error. docs/architecture.md, "The fitting layer".
+#include <algorithm>
+#include <cmath>
+#include <numeric>
+#include <sstream>
+
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/error.h"
+#include "brdfbake/progress.h"
+#include "fit/ltc_fit.h"
+#include "tables/lut_common.h"
+#include "tables/sweep.h"
+
+namespace brdfbake {
+namespace tables {
+namespace {
+
+/// The alpha at which a texel at alpha = 0 of a model with a mirror limit is fitted (the mirror's
+/// LTC is a delta, which no finite M reaches).
+constexpr double kLtcAlphaFloor = 1e-3;
+
+std::vector<std::string> ltc_programs(const LutRequest& r) { return {"albedo|" + r.model + "|none", "ltc|" + r.model}; }
+
+void validate_ltc(const LutRequest&, const ModelConfig& m, const FresnelConfig& f) {
+    if (m.traits().delta)
+        throw Error("the ltc table fits a lobe; '" + m.name + "' is a delta lobe, which no linearly transformed cosine fits");
+    if (m.anisotropic)
+        throw Error("the ltc table fits isotropic lobes (M symmetric in y); '" + m.canonical + "' is anisotropic");
+    if (f.kind != BB_FRESNEL_NONE)
+        throw Error("the ltc table holds the lobe with F = 1 (its fresnel channel is the Schlick split's term); drop --fresnel");
+}
+
+std::string stats_text(std::vector<double> v) {
+    std::sort(v.begin(), v.end());
+    std::ostringstream s;
+    s.precision(4);
+    s << "min " << v.front() << ", median " << v[v.size() / 2] << ", max " << v.back();
+    return s.str();
+}
+
+/// The fit's rows, rough to smooth, with the cells of each; `order[k]` is the table row of fit row k.
+std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const ModelConfig& m, std::vector<size_t>& order) {
+    const size_t w = g.table.x.parameter.size(), h = g.table.y.parameter.size();
+    order.resize(h);
+    std::iota(order.begin(), order.end(), 0);
+    const std::vector<double>& alpha = g.table.y.parameter;
+    std::stable_sort(order.begin(), order.end(), [&](size_t a, size_t b) { return alpha[a] > alpha[b]; });
+    const std::vector<int> slots = roughness_slots(m);
+    std::vector<std::vector<fit::LtcCell>> rows;
+    for (size_t j : order) {
+        rows.emplace_back();
+        for (size_t i = 0; i < w; ++i) {
+            const AlbedoCell& c = g.cells[j * w + i];
+            ParamBlock p = c.params;
+            if (has_mirror_limit(m))
+                for (int s : slots) p[s] = std::max(p[s], kLtcAlphaFloor);
+            rows.back().push_back({c.mu, p});
+        }
+    }
+    return rows;
+}
+
+Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    t.quantity = "linearly transformed cosine fits (Heitz et al. 2016) of the lobe f cos(theta_i) / E, "
+                 "viewer at (sin theta_o, 0, cos theta_o): M = [[m00, 0, m02], [0, m11, 0], [m20, 0, m22]]";
+    const AlbedoResult albedo = integrate(engine, r, m, f, g.cells);
+    std::vector<size_t> order;
+    const std::vector<std::vector<fit::LtcCell>> rows = fit_rows(g, m, order);
+    fit::LtcFitOptions options;
+    options.precision = r.precision;
+    std::vector<std::vector<fit::LtcFit>> fits;
+    {
+        ProgressStage stage("LTC fit of " + m.canonical, rows.size(), "rows", "fitted");
+        fits = fit::fit_ltc_rows(engine, m, rows, options, [&](size_t k) { stage.update(k + 1); });
+    }
+    const size_t w = t.x.parameter.size(), n = g.cells.size();
+    t.channels = {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance"};
+    t.values.assign(t.channels.size(), std::vector<double>(n));
+    t.error.assign(n, 0.0);
+    std::vector<double> distance, distance_error, fresnel_error;
+    for (size_t k = 0; k < rows.size(); ++k)
+        for (size_t i = 0; i < w; ++i) {
+            const size_t c = order[k] * w + i;
+            const fit::LtcFit& ft = fits[k][i];
+            const double v[] = {ft.m.m00, ft.m.m02, ft.m.m11, ft.m.m20, ft.m.m22, albedo.values[c].value, ft.fresnel,
+                                ft.distance};
+            for (size_t ch = 0; ch < t.channels.size(); ++ch) t.values[ch][c] = v[ch];
+            t.error[c] = albedo.values[c].error;
+            distance.push_back(ft.distance);
+            distance_error.push_back(ft.distance_error);
+            fresnel_error.push_back(ft.fresnel_error);
+        }
+    describe(t, r, m, f.canonical, albedo.method, albedo.samples_per_cell, g.clamped);
+    t.attributes["distance"] = "integral over the upper hemisphere of |f cos / E - D|: " + stats_text(distance);
+    t.attributes["distance_error"] = "|distance on " + std::to_string(options.fine_side) + "^2 - on the fit's " +
+                                     std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
+                                     stats_text(distance_error);
+    t.attributes["fresnel_error"] = "|fresnel on " + std::to_string(options.fine_side) + "^2 - on " +
+                                    std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
+                                    stats_text(fresnel_error);
+    t.attributes["error_channel"] = "the magnitude's integration error (--samples, --method, --tolerance); the "
+                                    "distance's and the fresnel channel's errors: the distance_error and "
+                                    "fresnel_error attributes";
+    t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
+                              std::to_string(options.fit_side) + "x" + std::to_string(options.fit_side) +
+                              " sampler points per texel, rows from rough to smooth, each started from the row before";
+    if (has_mirror_limit(m)) {
+        std::ostringstream s;
+        s << "texels below alpha = " << kLtcAlphaFloor << " are fitted at " << kLtcAlphaFloor;
+        t.attributes["ltc_alpha_floor"] = s.str();
+    }
+    return std::move(g.table);
+}
+
+}  // namespace
+
+TableKind ltc_kind() {
+    TableKind k(TableKindId::Ltc, "ltc",
+                "linearly transformed cosines (Heitz et al. 2016) per (mu, alpha): m00 m02 m11 m20 m22, magnitude E, "
+                "fresnel, the fit's L1 distance (2D)",
+                ltc_programs, compute_ltc);
+    k.plan_fresnel = "none (F = 1; the fresnel channel is the Schlick split's term)";
+    k.validate = validate_ltc;
+    // Measured: the 64x64 GGX table takes 5.4 s of CPU against the albedo table's 0.6 s at the
+    // default 2^18 samples (benchmarks/results/ltc-table-amd-epyc-2c.md): about 9 albedo samples'
+    // cost per sample of its magnitude (the fit's cost does not scale with --samples).
+    k.sample_cost = 9.0;
+    k.value_channels = [](const LutRequest&) { return 8; };
+    return k;
+}
+
+}  // namespace tables
+}  // namespace brdfbake
