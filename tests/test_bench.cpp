@@ -3,6 +3,8 @@
 // estimate with its phases. Speed itself is measured by the benchmark, never asserted here.
 #include <catch2/catch.hpp>
 
+#include <unistd.h>
+
 #include <cstdlib>
 #include <filesystem>
 #include <optional>
@@ -74,9 +76,10 @@ TEST_CASE("bench: POCL_CACHE_DIR is set only for the build times, then restored"
 
 namespace {
 
-std::set<std::string> bench_caches() {
+/// The bench caches in `dir`: the bench creates its fresh PoCL cache in the temporary directory.
+std::set<std::string> bench_caches(const std::filesystem::path& dir) {
     std::set<std::string> names;
-    for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::temp_directory_path()))
+    for (const auto& entry : std::filesystem::directory_iterator(dir))
         if (entry.path().filename().string().rfind("brdfbake-bench-cache-", 0) == 0) names.insert(entry.path().string());
     return names;
 }
@@ -85,7 +88,8 @@ std::set<std::string> bench_caches() {
 /// comes back and the run's fresh cache directory is removed. PoCL reads its cache directory once
 /// per process, at its first use, so each value is a test case of its own (ctest runs every case
 /// in a process of its own): a second run in one process would build into the first run's
-/// removed directory.
+/// removed directory. The run gets a temporary directory of its own (TMPDIR), so that a bench
+/// running beside it (ctest -j) cannot be taken for a cache this one left behind.
 void check_bench_gives_cache_dir_back(const std::optional<std::string>& value) {
     BenchOptions o = BenchOptions::quick_options();
     o.build_times = true;
@@ -94,7 +98,13 @@ void check_bench_gives_cache_dir_back(const std::optional<std::string>& value) {
     o.kind_texels = 0;
     const char* old = std::getenv("POCL_CACHE_DIR");
     const std::optional<std::string> before = old ? std::optional<std::string>(old) : std::nullopt;
-    const std::set<std::string> caches_before = bench_caches();
+    namespace fs = std::filesystem;
+    const char* old_tmp = std::getenv("TMPDIR");
+    const std::optional<std::string> tmp_before = old_tmp ? std::optional<std::string>(old_tmp) : std::nullopt;
+    const fs::path private_tmp = fs::temp_directory_path() / ("brdfbake-bench-test-" + std::to_string(::getpid()));
+    fs::remove_all(private_tmp);
+    fs::create_directories(private_tmp);
+    ::setenv("TMPDIR", private_tmp.c_str(), 1);
     if (value)
         ::setenv("POCL_CACHE_DIR", value->c_str(), 1);
     else
@@ -110,7 +120,12 @@ void check_bench_gives_cache_dir_back(const std::optional<std::string>& value) {
     } else {
         CHECK(after == nullptr);
     }
-    for (const std::string& dir : bench_caches()) CHECK(caches_before.count(dir) == 1);  // none left behind
+    CHECK(bench_caches(private_tmp).empty());  // none left behind
+    if (tmp_before)
+        ::setenv("TMPDIR", tmp_before->c_str(), 1);
+    else
+        ::unsetenv("TMPDIR");
+    fs::remove_all(private_tmp);
     if (before)
         ::setenv("POCL_CACHE_DIR", before->c_str(), 1);
     else
