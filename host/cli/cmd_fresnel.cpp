@@ -296,7 +296,8 @@ Figure comparison_figure(const FresnelConfig& metal) {
 
 const char kAverageMethod[] =
     "adaptive Gauss-Kronrod 7-15 in double on the host (error: sum of |K15 - G7| plus rounding); "
-    "F = 1 below the critical angle integrated exactly and mu = mu_c + (1 - mu_c) t^2 above it";
+    "where total internal reflection occurs, F = 1 below the critical angle integrated exactly and "
+    "mu = mu_c + (1 - mu_c) t^2 above it";
 
 /// One line per angle: theta, cos(theta), F, Rs and Rp in the printf format `row`.
 void write_rows(std::ostream& out, const char* row, const std::vector<double>& thetas,

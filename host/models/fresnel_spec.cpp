@@ -28,6 +28,10 @@ constexpr Range kEtaAboveOne{1.0, kMaxOpticalConstant};
 // texel (exponent 5 (1 - z)/z at z = 1e-4: about 5e4).
 constexpr Range kSchlickExponent{0.0, 1e6};
 
+// A film's thickness in nanometres: 0 (the bare substrate) to 100 micrometres, far beyond the
+// coherence length of daylight (about 1 micrometre), where interference averages out.
+constexpr Range kFilmThickness{0.0, 1e5};
+
 constexpr double kRequired = std::numeric_limits<double>::quiet_NaN();
 
 /// A key of a Fresnel term: its value goes to params[slot] (-1: only the term's derive hook reads
@@ -52,6 +56,9 @@ struct FresnelEntry {
     /// Measured terms: loads the table the argument names, and says what the argument is.
     NkTable (*load)(const std::string& argument) = nullptr;
     const char* argument_needed = nullptr;  // "a metal, e.g. metal:Al"
+    /// A term with keys whose F depends on the wavelength (thin-film): the slot --wavelength NM
+    /// fills; -1: none.
+    int wavelength_slot = -1;
 };
 
 /// eta - 1 beside eta: exact here, which a float kernel could not recover from eta.
@@ -87,25 +94,35 @@ void f82_tint(FresnelConfig& f, const std::vector<double>& keys) {
                     "); F82-tint describes metals: raise f0 or tint");
 }
 
-/// A measured material at one wavelength: the exact conductor with the interpolated n, k.
-FresnelConfig measured(const NkTable& table, const std::string& what, double wavelength_nm) {
-    if (wavelength_nm == 0.0)
-        throw Error("Fresnel '" + what + "' needs --wavelength NM (its tabulated n,k cover " +
-                    format_number(table.min_nm()) + " to " + format_number(table.max_nm()) + " nm)");
+/// The wavelength a term that depends on it is evaluated at: --wavelength NM, checked.
+double checked_wavelength(double wavelength_nm, const std::string& what, const std::string& range) {
+    if (wavelength_nm == 0.0) throw Error("Fresnel '" + what + "' needs --wavelength NM" + range);
     if (!std::isfinite(wavelength_nm) || !(wavelength_nm > 0.0))
         throw Error("--wavelength must be a positive number of nanometres, got " + format_number(wavelength_nm));
+    return wavelength_nm;
+}
+
+/// " at 550 nm": the wavelength as a canonical spec names it (550, not format_number's 5.5e+02).
+std::string at_wavelength(double wavelength_nm) {
+    char nm[32];
+    std::snprintf(nm, sizeof nm, "%.10g", wavelength_nm);
+    return std::string(" at ") + nm + " nm";
+}
+
+/// A measured material at one wavelength: the exact conductor with the interpolated n, k.
+FresnelConfig measured(const NkTable& table, const std::string& what, double wavelength_nm) {
+    checked_wavelength(wavelength_nm, what,
+                       " (its tabulated n,k cover " + format_number(table.min_nm()) + " to " +
+                           format_number(table.max_nm()) + " nm)");
     const NkValue v = interpolate_nk(table, wavelength_nm);
     FresnelConfig f;
     f.kind = BB_FRESNEL_CONDUCTOR;
     f.params[BB_FRESNEL_ETA] = v.n;
     f.params[BB_FRESNEL_K] = v.k;
-    char nm[32];
-    std::snprintf(nm, sizeof nm, "%.10g", wavelength_nm);  // 550, not format_number's 5.5e+02
-    f.canonical = what + " at " + nm + " nm = conductor:eta=" + format_number(v.n) +
+    f.canonical = what + at_wavelength(wavelength_nm) + " = conductor:eta=" + format_number(v.n) +
                   ",k=" + format_number(v.k);
     return f;
 }
-
 
 std::string metal_argument() {
     std::string names;
@@ -148,6 +165,17 @@ const std::vector<FresnelEntry>& registry() {
             {{"conductor-approx", "", "the course notes' closed-form conductor approximation", false, BB_FRESNEL_CONDUCTOR_APPROX},
              {{"eta", "E", kRequired, kEta, "real part of the complex index eta + ik", BB_FRESNEL_ETA},
               {"k", "K", kRequired, kExtinction, "extinction coefficient, imaginary part of the index", BB_FRESNEL_K}}},
+            {{"thin-film", "",
+              "one film (index eta + ik, thickness in nm) on a substrate (base_eta + i base_k) at --wavelength NM: "
+              "the Airy sum of wave optics (Born & Wolf 1.6.4; Belcour & Barla 2017)",
+              true, BB_FRESNEL_THIN_FILM},
+             {{"eta", "E", kRequired, kEta, "the film's index, e.g. 1.33 for a soap film", BB_THIN_FILM_ETA},
+              {"k", "K", 0.0, kExtinction, "", BB_THIN_FILM_K},
+              {"thickness", "NM", kRequired, kFilmThickness, "the film's thickness in nanometres, e.g. 300",
+               BB_THIN_FILM_THICKNESS},
+              {"base_eta", "E", kRequired, kEta, "the substrate's index, real part (1.5: glass)", BB_THIN_FILM_BASE_ETA},
+              {"base_k", "K", 0.0, kExtinction, "", BB_THIN_FILM_BASE_K}},
+             nullptr, nullptr, nullptr, BB_THIN_FILM_WAVELENGTH},
             {{"metal", "metal:" + metal_argument(), "measured n, k of an embedded metal at --wavelength NM", true, BB_FRESNEL_CONDUCTOR},
              {}, nullptr, load_nk_preset,
              "a metal, e.g. metal:Al (known: Al, Au, Ag, Cu)"},
@@ -249,7 +277,12 @@ FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
         for (const FresnelEntry& entry : registry()) names.push_back(entry.term.name);
         throw Error(unknown_name_message("Fresnel term", spec.name, names, "known", fresnel_spec_forms()));
     }
-    return resolve_keys(*e, spec);
+    FresnelConfig f = resolve_keys(*e, spec);
+    if (e->wavelength_slot >= 0) {
+        f.params[e->wavelength_slot] = checked_wavelength(wavelength_nm, e->term.name, "");
+        f.canonical += at_wavelength(wavelength_nm);
+    }
+    return f;
 }
 
 }  // namespace brdfbake

@@ -34,6 +34,8 @@
  *          with a free F90 and exponent, and the F82 edge term that fits metals' dip near 82 deg.
  *   [K21]  Kutz, Hasan, Edmondson 2021, "Novel aspects of the Adobe Standard Material" (Adobe
  *          technical report): F82-tint, which the OpenPBR Surface specification adopts for metals.
+ *   Thin-film interference (the Airy sum over one film) is in thin_film.h [BW 1.6.4; Belcour &
+ *   Barla 2017].
  */
 #ifndef BRDFBAKE_BRDF_FRESNEL_H
 #define BRDFBAKE_BRDF_FRESNEL_H
@@ -47,6 +49,7 @@
 #define BB_FRESNEL_CONDUCTOR_APPROX 4
 #define BB_FRESNEL_GEN_SCHLICK 5
 #define BB_FRESNEL_GEN_SCHLICK_IOR 6
+#define BB_FRESNEL_THIN_FILM 7 /* one film on a substrate at one wavelength: thin_film.h */
 
 /* Parameter slots. */
 #define BB_SCHLICK_F0 0
@@ -237,6 +240,8 @@ BB_FN bb_real bb_fresnel_conductor(bb_real cos_theta, bb_real eta, bb_real k) {
     return BB_R(0.5) * (r.rs + r.rp);
 }
 
+#include "brdfbake/brdf/thin_film.h"
+
 /* ---------------------------------------------------- approximate conductor */
 
 /* The closed form of the course notes [PBR2 eq. 8.3, FrCond], which drops the sin^2 terms
@@ -295,6 +300,10 @@ BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, bb_real cos_theta
                                             fp.v[BB_GEN_SCHLICK_IOR_ETA], fp.v[BB_GEN_SCHLICK_IOR_ETA_M1]);
         return bb_make_fresnel_sp(f, f);
     }
+    case BB_FRESNEL_THIN_FILM:
+        return bb_fresnel_thin_film_sp(cos_theta, fp.v[BB_THIN_FILM_ETA], fp.v[BB_THIN_FILM_K],
+                                       fp.v[BB_THIN_FILM_THICKNESS], fp.v[BB_THIN_FILM_BASE_ETA],
+                                       fp.v[BB_THIN_FILM_BASE_K], fp.v[BB_THIN_FILM_WAVELENGTH]);
     default:
         return bb_make_fresnel_sp(BB_R(1.0), BB_R(1.0));
     }
