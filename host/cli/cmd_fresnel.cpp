@@ -37,6 +37,7 @@ struct FresnelOptions {
     std::string output;
     std::string plot;
     bool compare = false;
+    bool rgb = false;
 };
 
 constexpr double kDeg = M_PI / 180.0;
@@ -379,7 +380,77 @@ std::string render(const FresnelOptions& o, const FresnelConfig& f, Precision pr
     return out.str();
 }
 
+/// The angles of --theta, each in [0, 90] degrees.
+std::vector<double> parse_thetas(const std::string& text) {
+    const std::vector<double> thetas = parse_number_list(text, "--theta");
+    for (double t : thetas)
+        if (!(t >= 0.0 && t <= 90.0))
+            throw Error("--theta: " + format_number(t) + " is out of range; angles of incidence lie in [0, 90] degrees");
+    return thetas;
+}
+
+/// `fresnel --rgb`: the reflectance's colour in linear sRGB per angle (fresnel_rgb_on_device).
+std::string render_rgb(const FresnelOptions& o, Precision precision, const std::vector<double>& thetas,
+                       const std::vector<double>& cosines, const FresnelColour& c, const Engine& engine) {
+    const char* space = "linear sRGB (D65 white = 1, 1, 1), CIE 1931 2-degree observer, illuminant D65, "
+                        "380-780 nm summed at 1 nm";
+    std::ostringstream out;
+    char line[240];
+    const Format format = parse_format(o.format);
+    if (format == Format::Json) {
+        nlohmann::json j;
+        j["command"] = "fresnel";
+        j["fresnel"] = o.fresnel;
+        j["colour_space"] = space;
+        j["precision"] = precision_name(precision);
+        j["device"] = engine.device().name;
+        j["results"] = nlohmann::json::array();
+        for (size_t i = 0; i < thetas.size(); ++i)
+            j["results"].push_back({{"theta_deg", thetas[i]}, {"cos_theta", cosines[i]}, {"rgb", c.rgb[i]},
+                                    {"rgb_error", c.error[i]}});
+        out << j.dump(2) << "\n";
+    } else if (format == Format::Csv) {
+        out << "theta_deg,cos_theta,R,G,B,error_R,error_G,error_B\n";
+        for (size_t i = 0; i < thetas.size(); ++i) {
+            std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.3g,%.3g,%.3g\n", thetas[i], cosines[i],
+                          c.rgb[i][0], c.rgb[i][1], c.rgb[i][2], c.error[i][0], c.error[i][1], c.error[i][2]);
+            out << line;
+        }
+    } else {
+        out << "# Fresnel " << o.fresnel << " in " << space << "\n# kernel fresnel_curve, "
+            << precision_name(precision) << ", " << engine.device().name << ", " << c.wavelengths
+            << " wavelengths; error: |1 nm sum - 2 nm sum|\n";
+        out << " theta_deg      cos_theta            R            G            B      error\n";
+        for (size_t i = 0; i < thetas.size(); ++i) {
+            const double e = std::max({c.error[i][0], c.error[i][1], c.error[i][2]});
+            std::snprintf(line, sizeof line, "%10.4f %14.8g %12.8f %12.8f %12.8f %10.1e\n", thetas[i], cosines[i],
+                          c.rgb[i][0], c.rgb[i][1], c.rgb[i][2], e);
+            out << line;
+        }
+    }
+    return out.str();
+}
+
+int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
+    if (o.wavelength_nm != 0.0)
+        throw Error("--rgb sums the visible spectrum (380 to 780 nm); drop --wavelength, which picks one");
+    if (o.compare || !o.plot.empty()) throw Error("--rgb prints colours; --plot and --compare draw one wavelength: drop one");
+    if (o.fresnel.empty()) throw Error("--rgb needs --fresnel SPEC");
+    resolve_fresnel(o.fresnel, 550.0);  // a bad spec is refused before any work
+    parse_format(o.format);
+    check_text_output(o.output);
+    const std::vector<double> thetas = parse_thetas(o.theta);
+    const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
+    std::vector<double> cosines;
+    for (double t : thetas) cosines.push_back(cos_deg(t));
+    Engine engine(g.device, g.verbose);
+    const FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, cosines);
+    emit(o.output, render_rgb(o, precision, thetas, cosines, c, engine));
+    return kExitOk;
+}
+
 int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
+    if (o.rgb) return run_fresnel_rgb(o, g);
     const auto t0 = std::chrono::steady_clock::now();
     // Check every input before touching the device.
     if (o.compare) {
@@ -398,10 +469,7 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
         throw Error("--plot '" + o.plot + "': expected a file name ending in .png or .svg");
     check_plot_output(o.plot, "--plot");
     check_text_output(o.output);
-    const std::vector<double> thetas = parse_number_list(o.theta, "--theta");
-    for (double t : thetas)
-        if (!(t >= 0.0 && t <= 90.0))
-            throw Error("--theta: " + format_number(t) + " is out of range; angles of incidence lie in [0, 90] degrees");
+    const std::vector<double> thetas = parse_thetas(o.theta);
     const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
 
     std::vector<double> cosines;
@@ -438,11 +506,14 @@ void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& act
     cmd->add_option("--fresnel", o->fresnel, fresnel_spec_help());
     cmd->add_option("--theta", o->theta, "comma-separated angles of incidence in degrees, in [0, 90]")
         ->capture_default_str();
-    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured data (metal:, nk:)");
+    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for the terms that depend on it (metal:, nk:, thin-film:)");
     add_precision_option(cmd, o->precision);
     add_format_option(cmd, o->format, {"table", "json", "csv"});
     cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
     cmd->add_option("--plot", o->plot, "draw the curves into FILE.png or FILE.svg");
+    cmd->add_flag("--rgb", o->rgb,
+                  "the reflectance's colour in linear sRGB: F over 380-780 nm (each wavelength's n, k or film) "
+                  "weighed by the CIE 1931 observer under D65");
     cmd->add_flag("--compare", o->compare,
                   "draw the comparison figure: exact vs approximate vs Schlick for a metal (default metal:Al at "
                   "550 nm) beside eta = 1.5 seen from outside and inside; needs --plot");

@@ -6,6 +6,7 @@
 #include "brdfbake/error.h"
 #include "engine/device_buffer.h"
 #include "models/key_reader.h"
+#include "models/spectrum.h"
 
 namespace brdfbake {
 
@@ -42,6 +43,31 @@ FresnelCurves fresnel_on_device(Engine& engine, const FresnelConfig& f, Precisio
         curves.rp.push_back(out[3 * i + 2]);
     }
     return curves;
+}
+
+FresnelColour fresnel_rgb_on_device(Engine& engine, const std::string& fresnel_spec, Precision precision,
+                                    const std::vector<double>& cosines) {
+    const SpectralWeights& fine = srgb_weights(1);
+    const SpectralWeights& coarse = srgb_weights(2);
+    FresnelColour c;
+    c.rgb.assign(cosines.size(), {0.0, 0.0, 0.0});
+    std::vector<std::array<double, 3>> coarse_rgb(cosines.size(), {0.0, 0.0, 0.0});
+    size_t k = 0;  // the coarse grid's index: every second wavelength of the fine one
+    for (size_t i = 0; i < fine.nm.size(); ++i) {
+        const FresnelCurves f = fresnel_on_device(engine, resolve_fresnel(fresnel_spec, fine.nm[i]), precision, cosines);
+        ++c.wavelengths;
+        const bool on_coarse = k < coarse.nm.size() && coarse.nm[k] == fine.nm[i];
+        for (size_t j = 0; j < cosines.size(); ++j)
+            for (int ch = 0; ch < 3; ++ch) {
+                c.rgb[j][ch] += fine.rgb[i][ch] * f.f[j];
+                if (on_coarse) coarse_rgb[j][ch] += coarse.rgb[k][ch] * f.f[j];
+            }
+        k += on_coarse;
+    }
+    c.error.assign(cosines.size(), {0.0, 0.0, 0.0});
+    for (size_t j = 0; j < cosines.size(); ++j)
+        for (int ch = 0; ch < 3; ++ch) c.error[j][ch] = std::fabs(c.rgb[j][ch] - coarse_rgb[j][ch]);
+    return c;
 }
 
 }  // namespace brdfbake

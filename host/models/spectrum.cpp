@@ -1,0 +1,126 @@
+#include "models/spectrum.h"
+
+#include <cmath>
+#include <cstdlib>
+#include <map>
+#include <sstream>
+#include <string>
+
+#include "brdfbake/error.h"
+#include "engine/embedded_sources.h"
+
+namespace brdfbake {
+
+namespace {
+
+/// The rows of an embedded CSV (comment lines start with '#', one header line): its columns.
+std::vector<std::vector<double>> read_embedded_csv(const std::string& key) {
+    const char* text = embedded_source(key);
+    if (!text) throw Error("the embedded table '" + key + "' is missing from this build");
+    std::istringstream in(text);
+    std::string line;
+    std::vector<std::vector<double>> rows;
+    bool header = true;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        if (header) {
+            header = false;
+            continue;
+        }
+        std::vector<double> row;
+        std::istringstream cells(line);
+        std::string cell;
+        while (std::getline(cells, cell, ',')) row.push_back(std::strtod(cell.c_str(), nullptr));
+        rows.push_back(row);
+    }
+    return rows;
+}
+
+/// D65 (5 nm steps) linearly interpolated at `nm`.
+double d65_at(const std::vector<std::vector<double>>& d65, double nm) {
+    const double first = d65.front()[0], step = d65[1][0] - d65[0][0];
+    const double t = (nm - first) / step;
+    const size_t i = std::min(size_t(t), d65.size() - 2);
+    const double f = t - double(i);
+    return d65[i][1] * (1.0 - f) + d65[i + 1][1] * f;
+}
+
+using Matrix = std::array<std::array<double, 3>, 3>;
+
+Matrix inverse(const Matrix& m) {
+    const double det = m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1]) -
+                       m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0]) +
+                       m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0]);
+    Matrix r;
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j) {
+            // The cofactor of m[j][i] over det (the adjugate's transpose).
+            const int a = (j + 1) % 3, b = (j + 2) % 3, c = (i + 1) % 3, d = (i + 2) % 3;
+            r[i][j] = (m[a][c] * m[b][d] - m[a][d] * m[b][c]) / det;
+        }
+    return r;
+}
+
+SpectralWeights make_weights(int step_nm) {
+    const auto cmf = read_embedded_csv("cie/cie1931_2deg_1nm.csv");
+    const auto d65 = read_embedded_csv("cie/cie_d65.csv");
+    std::map<int, std::array<double, 3>> xyz_bar;
+    for (const auto& r : cmf) xyz_bar[int(std::lround(r[0]))] = {r[1], r[2], r[3]};
+    SpectralWeights w;
+    std::vector<std::array<double, 3>> xyz;
+    double y_sum = 0.0;
+    for (int nm = 380; nm <= 780; nm += step_nm) {
+        const double e = d65_at(d65, nm);
+        const auto& b = xyz_bar.at(nm);
+        xyz.push_back({b[0] * e, b[1] * e, b[2] * e});
+        y_sum += b[1] * e;
+        w.nm.push_back(nm);
+    }
+    for (auto& v : xyz)
+        for (int c = 0; c < 3; ++c) {
+            v[c] /= y_sum;
+            w.white_xyz[c] += v[c];
+        }
+    const Matrix m = xyz_to_linear_srgb(w.white_xyz);
+    for (const auto& v : xyz) {
+        std::array<double, 3> rgb{};
+        for (int i = 0; i < 3; ++i) rgb[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
+        w.rgb.push_back(rgb);
+    }
+    return w;
+}
+
+}  // namespace
+
+std::array<std::array<double, 3>, 3> xyz_to_linear_srgb(const std::array<double, 3>& white_xyz) {
+    // The primaries' XYZ (x/y, 1, z/y) as columns, scaled so that they sum to the white point
+    // (SMPTE RP 177 / IEC 61966-2-1's construction); the inverse maps XYZ to RGB.
+    const double prim[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};
+    Matrix p;
+    for (int c = 0; c < 3; ++c) {
+        const double x = prim[c][0], y = prim[c][1];
+        p[0][c] = x / y;
+        p[1][c] = 1.0;
+        p[2][c] = (1.0 - x - y) / y;
+    }
+    const Matrix pi = inverse(p);
+    std::array<double, 3> s{};
+    for (int i = 0; i < 3; ++i) s[i] = pi[i][0] * white_xyz[0] + pi[i][1] * white_xyz[1] + pi[i][2] * white_xyz[2];
+    Matrix rgb_to_xyz;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) rgb_to_xyz[r][c] = p[r][c] * s[c];
+    return inverse(rgb_to_xyz);
+}
+
+const SpectralWeights& srgb_weights(int step_nm) {
+    static const std::map<int, SpectralWeights> all = [] {
+        std::map<int, SpectralWeights> m;
+        for (int s : {1, 2, 4, 5}) m[s] = make_weights(s);
+        return m;
+    }();
+    const auto it = all.find(step_nm);
+    if (it == all.end()) throw Error("spectral weights exist at 1, 2, 4 and 5 nm steps, not " + std::to_string(step_nm));
+    return it->second;
+}
+
+}  // namespace brdfbake
