@@ -22,6 +22,7 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
+#include "fit/f82_tint.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"
 
@@ -38,6 +39,7 @@ struct FresnelOptions {
     std::string plot;
     bool compare = false;
     bool rgb = false;
+    std::string fit;
 };
 
 constexpr double kDeg = M_PI / 180.0;
@@ -449,7 +451,54 @@ int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     return kExitOk;
 }
 
+/// `fresnel --fit f82-tint`: the F82-tint f0 and tint of each linear-sRGB channel.
+std::string render_f82_fit(const FresnelOptions& o, const fit::F82TintFit& r) {
+    const Format format = parse_format(o.format);
+    const char* names[3] = {"R", "G", "B"};
+    std::ostringstream out;
+    if (format == Format::Json) {
+        nlohmann::json j;
+        j["command"] = "fresnel";
+        j["fit"] = "f82-tint";
+        j["fresnel"] = o.fresnel;
+        j["colour_space"] = "linear sRGB (D65), CIE 1931 2-degree observer, 380-780 nm at 1 nm";
+        j["f0"] = r.f0;
+        j["tint"] = r.tint;
+        j["max_error"] = r.max_error;
+        j["max_error_theta_deg"] = r.max_error_theta_deg;
+        j["colour_error"] = r.colour_error;
+        out << j.dump(2) << "\n";
+        return out.str();
+    }
+    if (format == Format::Csv) throw Error("--fit prints a table or JSON; --format csv is for curves");
+    out << "# F82-tint of " << o.fresnel << " in linear sRGB (CIE 1931 observer, D65): f0 = F(0 deg), tint = "
+        << "F(82.2 deg) / Schlick's; max |F82-tint - F| over theta on a 0.25 deg grid\n";
+    out << "# channel           f0         tint    max |dF|   at theta  colour error\n";
+    char line[200];
+    for (int c = 0; c < 3; ++c) {
+        std::snprintf(line, sizeof line, "  %-7s %12.6f %12.6f %11.2e %8.2f deg %10.1e\n", names[c], r.f0[c], r.tint[c],
+                      r.max_error[c], r.max_error_theta_deg[c], r.colour_error[c]);
+        out << line;
+    }
+    return out.str();
+}
+
+int run_fresnel_fit(const FresnelOptions& o, const GlobalOptions& g) {
+    if (o.fit != "f82-tint") throw Error("--fit '" + o.fit + "': the fit known is f82-tint");
+    if (o.wavelength_nm != 0.0 || o.rgb || o.compare || !o.plot.empty())
+        throw Error("--fit f82-tint fits the spectral colour of --fresnel alone; drop --wavelength, --rgb, --plot and --compare");
+    if (o.fresnel.empty()) throw Error("--fit needs --fresnel SPEC, e.g. --fresnel metal:Au");
+    resolve_fresnel(o.fresnel, 550.0);  // a bad spec is refused before any work
+    parse_format(o.format);
+    check_text_output(o.output);
+    const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
+    Engine engine(g.device, g.verbose);
+    emit(o.output, render_f82_fit(o, fit::fit_f82_tint(engine, o.fresnel, precision)));
+    return kExitOk;
+}
+
 int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
+    if (!o.fit.empty()) return run_fresnel_fit(o, g);
     if (o.rgb) return run_fresnel_rgb(o, g);
     const auto t0 = std::chrono::steady_clock::now();
     // Check every input before touching the device.
@@ -514,6 +563,9 @@ void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& act
     cmd->add_flag("--rgb", o->rgb,
                   "the reflectance's colour in linear sRGB: F over 380-780 nm (each wavelength's n, k or film) "
                   "weighed by the CIE 1931 observer under D65");
+    cmd->add_option("--fit", o->fit,
+                    "f82-tint: the F82-tint f0 and tint per linear-sRGB channel of --fresnel's spectral colour "
+                    "(OpenPBR's metal), with the largest deviation over angle");
     cmd->add_flag("--compare", o->compare,
                   "draw the comparison figure: exact vs approximate vs Schlick for a metal (default metal:Al at "
                   "550 nm) beside eta = 1.5 seen from outside and inside; needs --plot");

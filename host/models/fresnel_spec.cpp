@@ -77,8 +77,7 @@ void gen_schlick_ior_eta_m1(FresnelConfig& f, const std::vector<double>& keys) {
 /// is rejected (small f0 with a dark tint: F82-tint is a metal's Fresnel).
 void f82_tint(FresnelConfig& f, const std::vector<double>& keys) {
     const double f0 = keys[0], tint = keys[1];
-    const double mu_bar = 1.0 / 7.0;
-    const double b = (1.0 - tint) * bb_fresnel_schlick(mu_bar, f0) / (mu_bar * std::pow(1.0 - mu_bar, 6));
+    const double b = bb_f82_tint_b(f0, tint);
     f.params[BB_GEN_SCHLICK_F0] = f0;
     f.params[BB_GEN_SCHLICK_F90] = 1.0;
     f.params[BB_GEN_SCHLICK_EXPONENT] = 5.0;

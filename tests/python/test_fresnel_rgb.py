@@ -100,3 +100,44 @@ def test_gold_is_yellow_and_silver_near_white():
     ag = run_rgb("metal:Ag", [0])[0]["rgb"]
     assert au[0] > au[1] > au[2]
     assert max(ag) - min(ag) < 0.1
+
+
+def run_fit(spec):
+    out = subprocess.run([EXE, "fresnel", "--fresnel", spec, "--fit", "f82-tint", "--precision", "double",
+                          "--format", "json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    return json.loads(out.stdout)
+
+
+def f82_tint(mu, f0, tint):
+    """F82-tint (Kutz et al. 2021): Schlick less b mu (1 - mu)^6 with F(1/7) = tint * Schlick(1/7)."""
+    schlick = lambda m: f0 + (1 - f0) * (1 - m) ** 5
+    mb = 1.0 / 7.0
+    b = (1 - tint) * schlick(mb) / (mb * (1 - mb) ** 6)
+    return schlick(mu) - b * mu * (1 - mu) ** 6
+
+
+def test_f82_fit_recovers_an_f82_tint_term():
+    r = run_fit("f82-tint:f0=0.8,tint=0.9")
+    assert np.allclose(r["f0"], 0.8, atol=1e-12) and np.allclose(r["tint"], 0.9, atol=1e-12)
+    assert max(r["max_error"]) < 1e-12
+
+
+@pytest.mark.parametrize("metal", ["Au", "Cu"])
+def test_f82_fit_of_metals_matches_numpy(metal):
+    files = {"Au": "Au-Johnson.yml", "Cu": "Cu-Johnson.yml"}
+    nk = read_nk(files[metal])
+    nm, w = colour_weights()
+    n = np.interp(nm * 1e-3, nk[:, 0], nk[:, 1]) + 1j * np.interp(nm * 1e-3, nk[:, 0], nk[:, 2])
+    thetas = np.linspace(0, 90, 361)
+    mus = np.sin(np.radians(90 - thetas))
+    rgb = np.array([IEC_SRGB @ (w @ fresnel_exact(m, n)) for m in mus])
+    mb = 1.0 / 7.0
+    rgb_mb = IEC_SRGB @ (w @ fresnel_exact(mb, n))
+    r = run_fit("metal:" + metal)
+    for c in range(3):
+        f0 = rgb[0, c]
+        tint = rgb_mb[c] / (f0 + (1 - f0) * (1 - mb) ** 5)
+        err = np.max(np.abs(f82_tint(mus, f0, tint) - rgb[:, c]))
+        assert abs(r["f0"][c] - f0) < 2e-3 and abs(r["tint"][c] - tint) < 3e-3, (metal, c, r, f0, tint)
+        assert abs(r["max_error"][c] - err) < 3e-3, (metal, c, r["max_error"][c], err)

@@ -110,6 +110,15 @@ BB_FN bb_real bb_fresnel_gen_schlick(bb_real cos_theta, bb_real f0, bb_real f90,
     return f0 + (f90 - f0) * bb_pow(m, exponent) - b * (BB_R(1.0) - m) * (m3 * m3);
 }
 
+/* F82-tint [K21; H19]: the b of bb_fresnel_gen_schlick (f90 = 1, exponent 5) that makes F at
+ * mu_bar = 1/7 (about 82 deg) tint times Schlick's value there:
+ *   b = (1 - tint) F_schlick(mu_bar) / (mu_bar (1 - mu_bar)^6). */
+BB_FN bb_real bb_f82_tint_b(bb_real f0, bb_real tint) {
+    bb_real mu_bar = BB_R(1.0) / BB_R(7.0), m = BB_R(1.0) - mu_bar;
+    bb_real m3 = m * m * m;
+    return (BB_R(1.0) - tint) * bb_fresnel_schlick(mu_bar, f0) / (mu_bar * m3 * m3);
+}
+
 /* --------------------------------------------------------- exact dielectric */
 
 /* Rs and Rp of a dielectric interface with relative index eta > 0 [BW eq. 21; PBR4 9.3.5]:
