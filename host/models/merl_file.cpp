@@ -2,11 +2,13 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <cstring>
 #include <deque>
 #include <fstream>
 #include <mutex>
 
+#include "brdfbake/brdf/model_registry.h"
 #include "brdfbake/error.h"
 #include "models/input_file.h"
 
@@ -189,6 +191,33 @@ double merl_unmeasured_share(int index, int interp, double mu, int n) {
             hits += v < 0.0;
         }
     return double(hits) / (double(n) * n);
+}
+
+bool merl_unmeasured(const ModelConfig& model, const std::vector<double>& mus, MerlUnmeasured& out) {
+    if (model.id != BB_MODEL_MERL) return false;
+    const int index = int(model.params[BB_MERL_TABLE]);
+    out.bins = merl_table_info(index).unmeasured;
+    out.share.clear();
+    for (double mu : mus)
+        out.share.push_back(out.bins == 0 ? 0.0 : merl_unmeasured_share(index, int(model.params[BB_MERL_INTERP]), mu));
+    return true;
+}
+
+std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<double>& mus) {
+    MerlUnmeasured u;
+    if (!merl_unmeasured(model, mus, u)) return "";
+    size_t worst = 0;
+    for (size_t i = 1; i < u.share.size(); ++i)
+        if (u.share[i] > u.share[worst]) worst = i;
+    char line[256];
+    std::snprintf(line, sizeof line, "# unmeasured: %zu of %d bins, read as 0", u.bins, BB_MERL_BINS);
+    std::string text = line;
+    if (!u.share.empty()) {
+        std::snprintf(line, sizeof line, "; they take up to %.3g%% of the cosine-weighted hemisphere of wi (mu = %g)",
+                      100.0 * u.share[worst], mus[worst]);
+        text += line;
+    }
+    return text + "\n";
 }
 
 }  // namespace brdfbake

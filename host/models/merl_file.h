@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "brdfbake/brdf/merl.h"
+#include "brdfbake/spec.h"
 
 namespace brdfbake {
 
@@ -67,5 +68,19 @@ std::vector<double> merl_model_data();
 /// `interp`) reads an unmeasured value in table `index`: 0 where every bin the integrand reads
 /// is measured. A midpoint rule of n x n cells in (cos^2 theta_i, phi_i).
 double merl_unmeasured_share(int index, int interp, double mu, int n = 128);
+
+/// The unmeasured bins a merl model reads: the table's count, and per direction mu the share of
+/// the cosine-weighted hemisphere of wi that reads one (merl_unmeasured_share); the albedo reads
+/// them as 0, so a share s means that the albedo leaves out that part of the hemisphere.
+struct MerlUnmeasured {
+    std::size_t bins = 0;
+    std::vector<double> share;  // per mu
+};
+
+/// For a merl model, its unmeasured bins at the directions `mus` (true); false for other models.
+bool merl_unmeasured(const ModelConfig& model, const std::vector<double>& mus, MerlUnmeasured& out);
+
+/// The table header line of merl_unmeasured ("# unmeasured: ..."), empty for other models.
+std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<double>& mus);
 
 }  // namespace brdfbake
