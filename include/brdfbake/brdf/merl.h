@@ -78,9 +78,14 @@ BB_FN bb_vec3 bb_merl_coords(bb_vec3 wo, bb_vec3 wi) {
         cp = hx / sin_h;
         sp = hy / sin_h;
     }
-    bb_real a = wi.x * cp + wi.y * sp, b = -wi.x * sp + wi.y * cp;
+    /* d of either vector: wo's and wi's differ by pi in phi_d, the same bin after the fold; the
+     * one taken is chosen by an order that does not depend on the order of the arguments (the
+     * lower z, then x, then y), so that rounding at the fold cannot break f(wo, wi) = f(wi, wo). */
+    bb_vec3 v = wi;
+    if (wo.z < wi.z || (wo.z == wi.z && (wo.x < wi.x || (wo.x == wi.x && wo.y < wi.y)))) v = wo;
+    bb_real a = v.x * cp + v.y * sp, b = -v.x * sp + v.y * cp;
     /* R_y(-theta_h): (a cos theta_h - z sin theta_h, b, a sin theta_h + z cos theta_h) */
-    bb_real dx = a * hz - wi.z * sin_h, dz = a * sin_h + wi.z * hz;
+    bb_real dx = a * hz - v.z * sin_h, dz = a * sin_h + v.z * hz;
     bb_real theta_d = bb_atan2(bb_sqrt(dx * dx + b * b), dz);
     bb_real phi_d = bb_atan2(b, dx);
     if (phi_d < BB_R(0.0)) phi_d += BB_PI; /* reciprocity: phi_d and phi_d + pi are one bin */
