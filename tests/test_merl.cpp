@@ -284,3 +284,34 @@ TEST_CASE("merl: hostile files are one error line, exit status 2, nothing writte
     for (const char* f : {"dims", "nan", "inf", "short", "empty", "zero", "huge"}) std::remove(tmp(std::string(f) + ".binary").c_str());
     ::rmdir(dir.c_str());
 }
+
+TEST_CASE("merl: lobe's numbers are the file's bins, read by the test's own lookup", "[merl][cli]") {
+    const std::string path = tmp("lobe.binary");
+    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
+        if (o[2] <= 0 || i[2] <= 0) return std::array<double, 3>{-1, -1, -1};
+        const double f = double(ref::ggx_f({o[0], o[1], o[2]}, {i[0], i[1], i[2]}, 0.3, 0.3, true));
+        return std::array<double, 3>{f, f, f};
+    });
+    const std::vector<double> table = read_red(path);
+    // 200 angles: steps of 180/199 degrees keep the half angles off the bins' edges
+    const auto r = testing::run_cli("lobe --model merl:file=" + path + ",channel=r --theta-i 60 --resolution 200 --data -");
+    REQUIRE(r.status == 0);
+    std::istringstream in(r.out);
+    int rows = 0;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] != '"') continue;
+        double ti, to, f, fc;
+        REQUIRE(std::sscanf(line.c_str() + line.find('"', 1) + 2, "%lf,%lf,%lf,%lf", &ti, &to, &f, &fc) == 4);
+        if (std::fabs(to) >= 89.0) continue;
+        const double a = ti * kPi / 180, b = to * kPi / 180;
+        // theta_o > 0 on the mirror side
+        const std::array<double, 3> wo{-std::sin(b), 0.0, std::cos(b)}, wi{std::sin(a), 0.0, std::cos(a)};
+        // in the plane of incidence phi_d sits on the fold (0 or pi): d of wi or of wo, either bin
+        const double one = std::max(0.0, lookup_nearest(table, wo, wi)), other = std::max(0.0, lookup_nearest(table, wi, wo));
+        INFO("theta_o = " << to << ": " << f << " against " << one << " or " << other);
+        CHECK((f == Approx(one).epsilon(1e-12) || f == Approx(other).epsilon(1e-12)));
+        ++rows;
+    }
+    CHECK(rows > 150);
+    std::remove(path.c_str());
+}
