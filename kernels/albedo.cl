@@ -79,6 +79,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     const unsigned int rep = gid - cell * n_replicas;                                             \
     bb_params p, fp;                                                                              \
     const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
+    p.data = model_data;                                                                          \
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], (bb_real)cell_phi[cell])
 
 #ifdef BB_QUADRATURE
@@ -112,6 +113,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     __global const bb_scalar* wt = x + BB_QUAD_PADDED(n);                                         \
     bb_params p, fp;                                                                              \
     const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
+    p.data = model_data;                                                                          \
     const bb_real phi_o = (bb_real)cell_phi[cell];                                                      \
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], phi_o);                            \
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \

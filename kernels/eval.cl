@@ -22,7 +22,9 @@ __kernel void BB_ENTRY_MODEL_EVAL(__global const bb_real* wo, __global const bb_
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)
         return;
-    out[i] = bb_model_eval(BB_MODEL, load_params(model_p), BB_FRESNEL, load_params(fresnel_p),
+    bb_params p = load_params(model_p);
+    p.data = model_data;
+    out[i] = bb_model_eval(BB_MODEL, p, BB_FRESNEL, load_params(fresnel_p),
                            load_vec3(wo, i), load_vec3(wi, i));
 }
 
@@ -33,7 +35,9 @@ __kernel void BB_ENTRY_MODEL_SAMPLE(__global const bb_real* wo, __global const b
     const unsigned int i = (unsigned int)get_global_id(0);
     if (i >= n)
         return;
-    const bb_sample s = bb_model_sample(BB_MODEL, load_params(model_p), BB_FRESNEL, load_params(fresnel_p),
+    bb_params p = load_params(model_p);
+    p.data = model_data;
+    const bb_sample s = bb_model_sample(BB_MODEL, p, BB_FRESNEL, load_params(fresnel_p),
                                         load_vec3(wo, i), u[2 * i], u[2 * i + 1]);
     out_wi[3 * i] = s.wi.x;
     out_wi[3 * i + 1] = s.wi.y;

@@ -39,6 +39,7 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
         p.v[i] = model_p[cell * BB_MAX_PARAMS + i];
         fp.v[i] = fresnel_p[i];
     }
+    p.data = model_data;
     const bb_real mu = cell_mu[cell];
     const bb_vec3 wo = bb_v3(sqrt(fmax(BB_R(0.0), BB_R(1.0) - mu * mu)), BB_R(0.0), mu);
     const bb_real u1 = ((bb_real)(k % n_side) + BB_R(0.5)) / (bb_real)n_side;

@@ -27,6 +27,7 @@ __kernel void BB_ENTRY_RECIPROCITY_SCAN(__global const bb_real* theta, const uns
         p.v[k] = model_p[k];
         fp.v[k] = fresnel_p[k];
     }
+    p.data = model_data;
     const bb_real mu_i = cos(theta[i]), mu_o = cos(theta[o]);
     bb_real worst = BB_R(0.0), worst_phi = BB_R(0.0), lowest = BB_REAL_MAX;
     unsigned int bad = 0;

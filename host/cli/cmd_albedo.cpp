@@ -16,6 +16,7 @@
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
 #include "models/key_reader.h"
+#include "models/merl_file.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -85,6 +86,11 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
                     e["method"] = method_name(r.result.values[i].method);
                     e["samples"] = r.result.values[i].samples;
                 }
+                MerlUnmeasured u;
+                if (merl_unmeasured(r.model, {r.request.cells[i].mu}, u)) {
+                    e["unmeasured_bins"] = u.bins;
+                    e["unmeasured_share"] = u.share.front();
+                }
                 SpecularTransmission t;
                 if (analytic_transmission(r.model, r.request.cells[i].mu, t)) {
                     e["transmission"] = t.energy;
@@ -116,6 +122,9 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
                 << (r.result.tolerance > 0.0 ? "at most " : "") << r.result.samples_per_cell
                 << " samples per direction, " << engine.device().name << "\n"
                 << "# error: " << kErrorMeaning << "\n";
+        std::vector<double> mus;
+        for (const auto& c : r.request.cells) mus.push_back(c.mu);
+        out << merl_unmeasured_line(r.model, mus);
         out << "        mu   phi_deg       albedo      error\n";
         for (size_t i = 0; i < r.request.cells.size(); ++i) {
             std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e\n", r.request.cells[i].mu,

@@ -3,10 +3,12 @@
 #include <algorithm>
 
 #include "brdfbake/brdf/kernel_abi.h"
+#include "brdfbake/brdf/model_registry.h"
 #include "brdfbake/brdf/params.h"
 #include "brdfbake/cancel.h"
 #include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
+#include "models/merl_file.h"
 
 namespace brdfbake {
 
@@ -46,7 +48,8 @@ std::vector<cl_uint> NonFiniteCounts::read(Engine& engine) const {
     return counts;
 }
 
-cl::Buffer model_data_buffer(RealBuffers& buffers, int /*model: every registered model is a closed form*/) {
+cl::Buffer model_data_buffer(RealBuffers& buffers, int model) {
+    if (model == BB_MODEL_MERL) return buffers.input(merl_model_data());  // the tables of brdf/merl.h
     return buffers.input(std::vector<double>(BB_MODEL_DATA_DUMMY_SIZE, 0.0));
 }
 

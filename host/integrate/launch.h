@@ -61,7 +61,8 @@ struct NonFiniteCounts {
 };
 
 /// The model data buffer of an entry point that evaluates a model (BB_MODEL_DATA_ARG in
-/// kernel_abi.h): a closed-form model reads none and gets BB_MODEL_DATA_DUMMY_SIZE zeros.
+/// kernel_abi.h): a closed-form model reads none and gets BB_MODEL_DATA_DUMMY_SIZE zeros; merl
+/// gets the process's MERL tables (models/merl_file.h).
 cl::Buffer model_data_buffer(RealBuffers& buffers, int model);
 
 /// Memory a sampling or quadrature launch takes, for check_memory before anything is allocated:

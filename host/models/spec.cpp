@@ -12,6 +12,7 @@
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
+#include "models/merl_file.h"
 
 namespace brdfbake {
 
@@ -254,6 +255,24 @@ ModelConfig resolve_sheen(KeyReader& keys) {
     m.params[BB_SHEEN_ALPHA] = alpha;
     m.params[BB_SHEEN_VISIBILITY] = v == "charlie" ? BB_SHEEN_V_CHARLIE : BB_SHEEN_V_ASHIKHMIN;
     m.canonical = "sheen:alpha=" + format_number(alpha) + ",visibility=" + v;
+    return m;
+}
+
+// merl: a measured file (Matusik et al. 2003, brdf/merl.h), one channel of it (r, g, b or
+// Rec. 709 luminance y, the default) and its lookup (nearest, MERL's reader, the default; or
+// linear). The file is read and validated here, once per process (models/merl_file.h).
+ModelConfig resolve_merl(KeyReader& keys) {
+    ModelConfig m;
+    const auto file = keys.optional_string("file");
+    const std::string channel = keys.choice("channel", "y", {"r", "g", "b", "y"});
+    const std::string interp = keys.choice("interp", "nearest", {"nearest", "linear"});
+    if (!file) keys.finish();  // an unknown key (a misspelt file) is named first
+    if (!file) throw Error("model 'merl' needs file=PATH, a MERL binary file (e.g. merl:file=gold-metallic-paint.binary)");
+    const MerlChannel c = channel == "r" ? MerlChannel::R : channel == "g" ? MerlChannel::G
+                          : channel == "b" ? MerlChannel::B : MerlChannel::Y;
+    m.params[BB_MERL_TABLE] = merl_table_index(*file, c);
+    m.params[BB_MERL_INTERP] = interp == "linear" ? BB_MERL_LINEAR : BB_MERL_NEAREST;
+    m.canonical = "merl:file=" + *file + ",channel=" + channel + ",interp=" + interp;
     return m;
 }
 

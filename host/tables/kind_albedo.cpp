@@ -14,7 +14,33 @@ namespace {
 
 std::vector<std::string> albedo_program(const LutRequest& r) { return {"albedo|" + r.model + "|none"}; }
 
+/// Whether the model has no roughness axis (a measured material, lambert): its tables are E(mu_o)
+/// alone, 1D, and Eavg one number.
+bool without_roughness(const ModelConfig& m) { return m.traits().alpha_x_slot < 0; }
+
+/// E(mu_o) of a model without a roughness axis: a 1D table along mu (height 1).
+Table albedo_table_1d(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    Table t;
+    t.kind = r.kind;
+    t.quantity = "directional albedo E(mu_o) = integral of f(wo, wi) cos(theta_i) dwi";
+    t.x = mu_axis(r, r.width);
+    t.y = make_axis("-", "-", 0.0, 1.0, 1);
+    t.y.parameter = {0.5};
+    std::vector<AlbedoCell> cells;
+    for (double mu : t.x.parameter) cells.push_back({mu, 0.0, m.params});
+    const AlbedoResult res = integrate(engine, r, m, f, cells);
+    t.channels = {"E"};
+    t.values.assign(1, {});
+    for (const auto& v : res.values) {
+        t.values[0].push_back(v.value);
+        t.error.push_back(v.error);
+    }
+    describe(t, r, m, f.canonical, res.method, res.samples_per_cell, false);
+    return t;
+}
+
 Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    if (without_roughness(m)) return albedo_table_1d(engine, r, m, f);
     return directional_albedo_table(engine, r, m, f,
                                     "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi");
 }
@@ -25,7 +51,14 @@ Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfi
 Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     bool clamped = false;
     Table t = roughness_table(r, "average albedo Eavg(alpha) = 2 integral_0^1 E(mu) mu dmu", clamped);
-    const std::vector<int> slots = roughness_slots(m);
+    std::vector<int> slots;
+    if (without_roughness(m)) {  // one texel: Eavg of the model as it is
+        t.quantity = "average albedo Eavg = 2 integral_0^1 E(mu) mu dmu";
+        t.x = make_axis("-", "-", 0.0, 1.0, 1);
+        t.x.parameter = {0.5};
+    } else {
+        slots = roughness_slots(m);
+    }
     const size_t n_alpha = t.x.parameter.size();
     const double tolerance = r.tolerance.tolerance;
     const MuAverage avg = average_over_mu(n_alpha, tolerance, [&](const std::vector<double>& mus) {

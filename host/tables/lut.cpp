@@ -131,7 +131,7 @@ AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m
                        std::vector<AlbedoCell> cells, double share) {
     // Cells at alpha = 0 of a model with a mirror limit hold that limit, F(mu); the others are
     // integrated on the device.
-    const std::vector<int> slots = roughness_slots(m);
+    const std::vector<int> slots = m.traits().alpha_x_slot < 0 ? std::vector<int>{} : roughness_slots(m);
     std::vector<size_t> limit, rest;
     for (size_t c = 0; c < cells.size(); ++c) {
         bool zero = has_mirror_limit(m) && !slots.empty();
@@ -239,8 +239,18 @@ std::vector<std::string> table_axis_names(const TableKind& kind, const LutReques
 
 namespace {
 
-/// The request's model with a placeholder alpha that the table sweeps.
+/// Whether the request's model has a roughness axis; one without (merl, lambert) makes the 1D
+/// E(mu_o) table and the one-texel Eavg (kind_albedo.cpp), and every other kind refuses it.
+bool sweeps_roughness(const LutRequest& r) {
+    const std::string name = parse_spec(r.model).name;
+    for (const ModelTraits& t : model_registry())
+        if (name == t.name) return t.alpha_x_slot >= 0;
+    return true;  // an unknown name: sweep_model names the mistake
+}
+
+/// The request's model with a placeholder alpha that the table sweeps (as it is without one).
 ModelConfig swept_model(const LutRequest& r) {
+    if (!sweeps_roughness(r)) return resolve_model(r.model);
     const Spec spec = parse_spec(r.model);
     for (const auto& kv : spec.keys)
         if (kv.first == "alpha" || kv.first == "roughness" || kv.first == "alpha_x" || kv.first == "alpha_y")
@@ -269,7 +279,7 @@ void validate_lut(const LutRequest& r) {
     if (r.alpha_map != "alpha" && r.alpha_map != "roughness") throw Error("--alpha-map must be alpha or roughness");
     if (!(r.alpha_lo >= 0.0 && r.alpha_hi > r.alpha_lo && r.alpha_hi <= 3.0))
         throw Error("--alpha-range must satisfy 0 <= lo < hi <= 3");
-    {
+    if (sweeps_roughness(r)) {
         // The largest alpha the table sweeps must be one the model takes (sheen's fit ends at 1).
         const double top = r.alpha_map == "roughness" ? r.alpha_hi * r.alpha_hi : r.alpha_hi;
         try {

@@ -53,8 +53,9 @@
  * BB_MODEL_DATA_ARG: every entry point that evaluates a model (albedo.cl, scan.cl, eval.cl) takes,
  * right after the Fresnel parameters, `__global const bb_scalar* model_data`: the model's data
  * (a measured model's table, a fitted model's coefficients), uploaded once per launch in the
- * kernel's precision. Every model registered today is a closed form and reads none: the host
- * passes BB_MODEL_DATA_DUMMY_SIZE numbers (docs/architecture.md, "The seam for new models"). */
+ * kernel's precision; the entry point puts it in bb_params.data. The closed forms read none: the
+ * host passes BB_MODEL_DATA_DUMMY_SIZE numbers (docs/architecture.md, "The seam for new models");
+ * merl reads its tables (brdf/merl.h). */
 #define BB_MODEL_DATA_DUMMY_SIZE 1
 
 /* The vector paths' point tables, values per step of W points: the disk points' x, y and

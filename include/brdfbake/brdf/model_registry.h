@@ -90,6 +90,12 @@
 #define BB_COMPILED_SHEEN ~, 1
 #endif
 
+#define BB_MODEL_MERL 12
+#if BB_HAS_MODEL(BB_MODEL_MERL)
+#include "brdfbake/brdf/merl.h"
+#define BB_COMPILED_MERL ~, 1
+#endif
+
 /* ---------------------------------------------------------------------------- the table
  * X(NAME, name, SPEC, ARGS, QUAD, TRAITS, ALPHA_X, ALPHA_Y, EXPONENT, EXAMPLE), one row per model:
  *   NAME, name  its id is BB_MODEL_<NAME>; its functions are bb_<name>_eval and
@@ -162,7 +168,10 @@
       -1, -1, -1, "dielectric-specular:eta=1.5")                                                                  \
     X(SHEEN,                sheen,               "sheen",               PLAIN,   SAMPLER,                         \
       BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
-      BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, "sheen:roughness=0.5")
+      BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, "sheen:roughness=0.5")                                                 \
+    X(MERL,                 merl,                "merl",                PLAIN,   SAMPLER,                         \
+      BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_RECIPROCAL | BB_TRAIT_KINKED | BB_TRAIT_FURNACE,                         \
+      -1, -1, -1, "merl:file=builtin:lambert")
 
 /* The values of the QUAD column. */
 #define BB_QUAD_SPACE_SAMPLER 0

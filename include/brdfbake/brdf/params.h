@@ -12,6 +12,9 @@
 
 typedef struct {
     bb_real v[BB_MAX_PARAMS];
+#ifdef __OPENCL_C_VERSION__
+    __global const bb_scalar* data; /* the model data (BB_MODEL_DATA_ARG), set by the entry point */
+#endif
 } bb_params;
 
 /* One importance sample: the incident direction and its estimator weight f*cos(theta_i)/pdf.

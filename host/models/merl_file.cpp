@@ -1,0 +1,230 @@
+#include "models/merl_file.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <deque>
+#include <fstream>
+#include <mutex>
+
+#include "brdfbake/brdf/model_registry.h"
+#include "brdfbake/error.h"
+#include "models/input_file.h"
+
+namespace brdfbake {
+
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+const char* const kBuiltinLambert = "builtin:lambert";
+
+bool little_endian() {
+    const std::uint16_t one = 1;
+    unsigned char b;
+    std::memcpy(&b, &one, 1);
+    return b == 1;
+}
+
+template <typename T>
+T read_le(const char* p) {
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, p, sizeof(T));
+    if (!little_endian())
+        for (size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(bytes[k], bytes[sizeof(T) - 1 - k]);
+    T v;
+    std::memcpy(&v, bytes, sizeof(T));
+    return v;
+}
+
+template <typename T>
+void append_le(std::string& out, T v) {
+    unsigned char bytes[sizeof(T)];
+    std::memcpy(bytes, &v, sizeof(T));
+    if (!little_endian())
+        for (size_t k = 0; k < sizeof(T) / 2; ++k) std::swap(bytes[k], bytes[sizeof(T) - 1 - k]);
+    out.append(reinterpret_cast<const char*>(bytes), sizeof(T));
+}
+
+MerlData builtin_lambert() {
+    MerlData d;
+    for (auto& c : d.rgb) c.assign(BB_MERL_BINS, 1.0 / kPi);
+    return d;
+}
+
+const char* channel_name(MerlChannel c) {
+    static const char* names[] = {"r", "g", "b", "y"};
+    return names[int(c)];
+}
+
+struct Store {
+    std::mutex mutex;
+    std::deque<std::vector<double>> tables;  // a deque: a table never moves once stored
+    std::vector<MerlTableInfo> info;
+};
+
+Store& store() {
+    static Store s;
+    return s;
+}
+
+}  // namespace
+
+MerlData read_merl_file(const std::string& path) {
+    if (path == kBuiltinLambert) return builtin_lambert();
+    const std::string what = "MERL file";
+    // The size is judged before a byte is read (read_input_file refuses a larger file, a
+    // directory or a device); a smaller one is refused after the read, with its size.
+    const std::string bytes = read_input_file(path, what, kMerlFileBytes);
+    if (bytes.size() < 12)
+        throw Error(what + " '" + path + "' is " + std::to_string(bytes.size()) +
+                    " bytes: too short for the three int32 dimensions of a MERL file");
+    const std::int32_t dims[3] = {read_le<std::int32_t>(bytes.data()), read_le<std::int32_t>(bytes.data() + 4),
+                                  read_le<std::int32_t>(bytes.data() + 8)};
+    if (dims[0] != BB_MERL_THETA_H || dims[1] != BB_MERL_THETA_D || dims[2] != BB_MERL_PHI_D)
+        throw Error(what + " '" + path + "' has dimensions " + std::to_string(dims[0]) + " x " +
+                    std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + "; a MERL file has 90 x 90 x 180");
+    if (bytes.size() != kMerlFileBytes)
+        throw Error(what + " '" + path + "' is " + std::to_string(bytes.size()) + " bytes; a MERL file of 90 x 90 x 180 "
+                    "bins has " + std::to_string(kMerlFileBytes) + " (truncated?)");
+    MerlData d;
+    for (int c = 0; c < 3; ++c) {
+        d.rgb[c].resize(BB_MERL_BINS);
+        const char* plane = bytes.data() + 12 + size_t(c) * BB_MERL_BINS * 8;
+        for (size_t i = 0; i < BB_MERL_BINS; ++i) {
+            const double v = read_le<double>(plane + 8 * i);
+            if (!std::isfinite(v))
+                throw Error(what + " '" + path + "' holds a non-finite value (" + std::string(std::isnan(v) ? "NaN" : "Inf") +
+                            ") in the " + channel_name(MerlChannel(c)) + " plane at bin " + std::to_string(i));
+            d.rgb[c][i] = v < 0.0 ? -1.0 : v * kMerlScale[c];
+        }
+    }
+    return d;
+}
+
+void merl_node_dirs(int ih, int id, int ip, std::array<double, 3>& wo, std::array<double, 3>& wi) {
+    // The nodes (brdf/merl.h): theta_h = (ih/90)^2 pi/2, theta_d = id pi/180, phi_d = ip pi/180.
+    const double th = double(ih) * ih / (double(BB_MERL_THETA_H) * BB_MERL_THETA_H) * kPi / 2;
+    const double td = double(id) / BB_MERL_THETA_D * kPi / 2, pd = double(ip) / BB_MERL_PHI_D * kPi;
+    const double d[3] = {std::sin(td) * std::cos(pd), std::sin(td) * std::sin(pd), std::cos(td)};
+    // wi = R_z(phi_h) R_y(theta_h) d with phi_h = 0 [R98]; wo the reflection of wi about h.
+    const double h[3] = {std::sin(th), 0.0, std::cos(th)};
+    wi = {d[0] * std::cos(th) + d[2] * std::sin(th), d[1], -d[0] * std::sin(th) + d[2] * std::cos(th)};
+    const double c = wi[0] * h[0] + wi[1] * h[1] + wi[2] * h[2];
+    for (int k = 0; k < 3; ++k) wo[k] = 2 * c * h[k] - wi[k];
+}
+
+void write_merl_file(const std::string& path,
+                     const std::function<std::array<double, 3>(const std::array<double, 3>& wo,
+                                                               const std::array<double, 3>& wi)>& f) {
+    std::vector<std::array<double, 3>> values(BB_MERL_BINS);
+    for (int ih = 0; ih < BB_MERL_THETA_H; ++ih)
+        for (int id = 0; id < BB_MERL_THETA_D; ++id)
+            for (int ip = 0; ip < BB_MERL_PHI_D; ++ip) {
+                std::array<double, 3> wo, wi;
+                merl_node_dirs(ih, id, ip, wo, wi);
+                values[bb_merl_index(ih, id, ip)] = f(wo, wi);
+            }
+    std::string out;
+    out.reserve(kMerlFileBytes);
+    for (std::int32_t dim : {BB_MERL_THETA_H, BB_MERL_THETA_D, BB_MERL_PHI_D}) append_le<std::int32_t>(out, dim);
+    for (int c = 0; c < 3; ++c)
+        for (const auto& v : values) append_le<double>(out, v[c] < 0.0 ? -1.0 : v[c] / kMerlScale[c]);
+    std::ofstream file(path, std::ios::binary | std::ios::trunc);
+    file.write(out.data(), std::streamsize(out.size()));
+    if (!file) throw Error("cannot write MERL file '" + path + "'");
+}
+
+int merl_table_index(const std::string& path, MerlChannel channel) {
+    Store& s = store();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    for (size_t k = 0; k < s.info.size(); ++k)
+        if (s.info[k].path == path && s.info[k].channel == channel) return int(k);
+    // Read once per path and channel: a second channel of a file reads it again (rarely asked).
+    const MerlData d = read_merl_file(path);
+    std::vector<double> t(BB_MERL_BINS);
+    MerlTableInfo info{path, channel, 0};
+    for (size_t i = 0; i < t.size(); ++i) {
+        const double r = d.rgb[0][i], g = d.rgb[1][i], b = d.rgb[2][i];
+        double v;
+        if (channel == MerlChannel::Y)  // Rec. 709 luminance (ITU-R BT.709-6, item 3.2)
+            v = r < 0 || g < 0 || b < 0 ? -1.0 : 0.2126 * r + 0.7152 * g + 0.0722 * b;
+        else
+            v = d.rgb[int(channel)][i];
+        t[i] = v;
+        info.unmeasured += v < 0.0;
+    }
+    s.tables.push_back(std::move(t));
+    s.info.push_back(info);
+    return int(s.info.size() - 1);
+}
+
+MerlTableInfo merl_table_info(int index) {
+    Store& s = store();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    if (index < 0 || size_t(index) >= s.info.size())
+        throw Error("internal error: no MERL table " + std::to_string(index));
+    return s.info[size_t(index)];
+}
+
+std::vector<double> merl_model_data() {
+    Store& s = store();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    std::vector<double> all;
+    all.reserve(s.tables.size() * BB_MERL_BINS);
+    for (const auto& t : s.tables) all.insert(all.end(), t.begin(), t.end());
+    if (all.empty()) all.push_back(0.0);
+    return all;
+}
+
+double merl_unmeasured_share(int index, int interp, double mu, int n) {
+    const double* t = bb_merl_host_table(index);
+    const double so = std::sqrt(std::max(0.0, 1 - mu * mu));
+    const bb_vec3 wo = bb_v3(so, 0.0, mu);
+    long hits = 0;
+    for (int a = 0; a < n; ++a)
+        for (int b = 0; b < n; ++b) {
+            const bb_vec3 wi = bb_cosine_hemisphere((a + 0.5) / n, (b + 0.5) / n);
+            if (!(wi.z > 0.0 && wo.z > 0.0)) continue;
+            const bb_vec3 x = bb_merl_coords(wo, wi);
+            const double v = interp == BB_MERL_LINEAR ? bb_merl_linear(t, x) : bb_merl_nearest(t, x);
+            hits += v < 0.0;
+        }
+    return double(hits) / (double(n) * n);
+}
+
+bool merl_unmeasured(const ModelConfig& model, const std::vector<double>& mus, MerlUnmeasured& out) {
+    if (model.id != BB_MODEL_MERL) return false;
+    const int index = int(model.params[BB_MERL_TABLE]);
+    out.bins = merl_table_info(index).unmeasured;
+    out.share.clear();
+    for (double mu : mus)
+        out.share.push_back(out.bins == 0 ? 0.0 : merl_unmeasured_share(index, int(model.params[BB_MERL_INTERP]), mu));
+    return true;
+}
+
+std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<double>& mus) {
+    MerlUnmeasured u;
+    if (!merl_unmeasured(model, mus, u)) return "";
+    size_t worst = 0;
+    for (size_t i = 1; i < u.share.size(); ++i)
+        if (u.share[i] > u.share[worst]) worst = i;
+    char line[256];
+    std::snprintf(line, sizeof line, "# unmeasured: %zu of %d bins, read as 0", u.bins, BB_MERL_BINS);
+    std::string text = line;
+    if (!u.share.empty()) {
+        std::snprintf(line, sizeof line, "; they take up to %.3g%% of the cosine-weighted hemisphere of wi (mu = %g)",
+                      100.0 * u.share[worst], mus[worst]);
+        text += line;
+    }
+    return text + "\n";
+}
+
+}  // namespace brdfbake
+
+const double* bb_merl_host_table(int index) {
+    brdfbake::Store& s = brdfbake::store();
+    std::lock_guard<std::mutex> lock(s.mutex);
+    if (index < 0 || size_t(index) >= s.tables.size()) return nullptr;
+    return s.tables[size_t(index)].data();
+}
