@@ -127,6 +127,21 @@ TEST_CASE("walk: the first order is the height-correlated lobe's albedo (quadrat
         }
 }
 
+TEST_CASE("walk: bounces=1 cuts off exactly what single scattering loses", "[random-walk]") {
+    // E = E_single and cutoff = 1 - E_single, E_single by quadrature of the correlated lobe.
+    const double a = 1.0;
+    const modelref::Case ref = modelref::beckmann(a, true);
+    const std::vector<double> mus = {0.3, 1.0};
+    const WalkResult r =
+        walk_albedo(testing::engine(), walk_request(ref.spec + ",scattering=multiple,bounces=1", mus, "none", 1 << 16));
+    for (size_t c = 0; c < mus.size(); ++c) {
+        const WalkAlbedo& w = r.values[c];
+        INFO("mu " << mus[c] << ": E " << w.energy.value << " cutoff " << w.cutoff.value);
+        CHECK(w.energy.value == w.single.value);
+        CHECK(std::fabs(w.cutoff.value - (1 - ref.albedo(mus[c]))) <= w.cutoff.error);
+    }
+}
+
 TEST_CASE("walk: with a conductor Fresnel term single scattering <= E < 1", "[random-walk]") {
     // Schlick f0 = 0.5 at every bounce; the first order against the quadrature of the textbook
     // correlated GGX times Schlick's F(wo.h) [S94].
@@ -149,7 +164,7 @@ TEST_CASE("walk: with a conductor Fresnel term single scattering <= E < 1", "[ra
     }
 }
 
-TEST_CASE("walk: the command prints E, its single-scattering part and the cut-off; other uses refuse", "[random-walk]") {
+TEST_CASE("walk: the command prints E, its single-scattering part and the cut-off, other uses refuse", "[random-walk]") {
     const auto r = testing::run_cli("albedo --model ggx:alpha=0.5,scattering=multiple --mu 0.5 --samples 16384");
     REQUIRE(r.status == 0);
     CHECK(r.out.find("scattering=multiple,bounces=100") != std::string::npos);

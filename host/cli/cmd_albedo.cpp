@@ -254,9 +254,9 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
             r.result.samples_per_cell = r.walk.walks_per_cell;
             r.result.kernel_seconds = r.walk.kernel_seconds;
             for (const WalkAlbedo& w : r.walk.values) r.result.values.push_back(w.energy);
-            continue;
+        } else {
+            r.result = albedo_of_model(engine, r.model, fresnel, r.request, choice.tolerance);
         }
-        r.result = albedo_of_model(engine, r.model, fresnel, r.request, choice.tolerance);
         if (g.verbose)
             std::cerr << "brdfbake: " << r.model.canonical << ": kernel " << r.result.kernel_seconds * 1e3 << " ms\n";
     }

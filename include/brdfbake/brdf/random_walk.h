@@ -73,15 +73,8 @@ BB_FN bb_vec3 bb_walk_sample_vndf(int dist, bb_vec3 v, bb_real ax, bb_real ay, b
         bb_vec3 s11 = bb_normalize(bb_v3(ax * v.x, ay * v.y, v.z));
         /* exactly horizontal (a reflection can round to it): the sampler's tan = sin/cos needs
          * cos != 0; 1e-6 off the horizon changes the visible normals by O(1e-6) */
-        s11.z = bb_select(s11.z, bb_select(BB_R(-1e-6), BB_R(1e-6), s11.z >= BB_R(0.0)), bb_fabs(s11.z) < BB_R(1e-6));
-        bb_real sin_t = bb_sqrt(s11.x * s11.x + s11.y * s11.y);
-        bb_vec3 s = bb_beckmann_sample_slope11(s11.z, sin_t, u1, u2);
-        bb_real inv = BB_R(1.0) / bb_select(sin_t, BB_R(1.0), sin_t <= BB_R(0.0));
-        bb_real cphi = bb_select(s11.x * inv, BB_R(1.0), sin_t <= BB_R(0.0));
-        bb_real sphi = bb_select(s11.y * inv, BB_R(0.0), sin_t <= BB_R(0.0));
-        bb_real x = (cphi * s.x - sphi * s.y) * ax;
-        bb_real y = (sphi * s.x + cphi * s.y) * ay;
-        return bb_normalize(bb_v3(-x, -y, BB_R(1.0)));
+        bb_real c = bb_select(s11.z, bb_select(BB_R(-1e-6), BB_R(1e-6), s11.z >= BB_R(0.0)), bb_fabs(s11.z) < BB_R(1e-6));
+        return bb_beckmann_sample_vndf_stretched(s11, c, ax, ay, u1, u2);
     }
     return bb_ggx_sample_vndf(v, ax, ay, u1, u2);
 }
