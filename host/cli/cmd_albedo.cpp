@@ -15,6 +15,7 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
+#include "integrate/random_walk.h"
 #include "models/key_reader.h"
 #include "models/merl_file.h"
 #include "plot/plot.h"
@@ -43,7 +44,35 @@ struct Run {
     ModelConfig model;
     AlbedoRequest request;
     AlbedoResult result;
+    WalkResult walk;  // scattering=multiple: the walks' three estimates (result holds the albedo)
 };
+
+const char* kWalkMeaning =
+    "single: the first scattering order (the height-correlated Smith lobe's albedo); cutoff: the energy still "
+    "inside the microsurface at the bounce limit, not in the albedo";
+
+/// A walk run's extra columns of cell i (single scattering and cut-off energy, with errors).
+void walk_columns(const Run& r, size_t i, Format format, std::ostream& out) {
+    if (!r.model.simulated) {
+        if (format == Format::Csv) out << ",,,,";
+        return;
+    }
+    const WalkAlbedo& w = r.walk.values[i];
+    char line[128];
+    std::snprintf(line, sizeof line, format == Format::Csv ? ",%.17g,%.3e,%.17g,%.3e" : " %12.8f %10.2e %12.8f %10.2e",
+                  w.single.value, w.single.error, w.cutoff.value, w.cutoff.error);
+    out << line;
+}
+
+/// A walk run's JSON fields of cell i.
+void walk_json(const Run& r, size_t i, nlohmann::json& e) {
+    if (!r.model.simulated) return;
+    const WalkAlbedo& w = r.walk.values[i];
+    e["single_scattering"] = w.single.value;
+    e["single_scattering_error"] = w.single.error;
+    e["cutoff"] = w.cutoff.value;
+    e["cutoff_error"] = w.cutoff.error;
+}
 
 const char* kErrorMeaning =
     "3 standard errors of the replicas plus 3 |E| / N for what N samples cannot see (sampling), or the "
@@ -82,6 +111,7 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
                                     {"phi_deg", r.request.cells[i].phi * kDeg},
                                     {"albedo", r.result.values[i].value},
                                     {"error", r.result.values[i].error}};
+                walk_json(r, i, e);
                 if (r.result.tolerance > 0.0) {
                     e["method"] = method_name(r.result.values[i].method);
                     e["samples"] = r.result.values[i].samples;
@@ -103,12 +133,17 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
     }
     char line[256];
     if (format == Format::Csv) {
-        out << (runs.size() > 1 ? "model," : "") << "mu,phi_deg,albedo,error\n";
+        bool walks = false;
+        for (const Run& r : runs) walks = walks || r.model.simulated;
+        out << (runs.size() > 1 ? "model," : "") << "mu,phi_deg,albedo,error"
+            << (walks ? ",single,single_error,cutoff,cutoff_error" : "") << "\n";
         for (const Run& r : runs)
             for (size_t i = 0; i < r.request.cells.size(); ++i) {
-                std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.3e\n", r.request.cells[i].mu,
+                std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.3e", r.request.cells[i].mu,
                               r.request.cells[i].phi * kDeg, r.result.values[i].value, r.result.values[i].error);
                 out << (runs.size() > 1 ? "\"" + r.model.canonical + "\"," : "") << line;
+                if (walks) walk_columns(r, i, Format::Csv, out);
+                out << "\n";
             }
         return out.str();
     }
@@ -120,16 +155,20 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         else
             out << "# " << r.result.method << ", " << precision_name(r.request.precision) << ", "
                 << (r.result.tolerance > 0.0 ? "at most " : "") << r.result.samples_per_cell
-                << " samples per direction, " << engine.device().name << "\n"
+                << (r.model.simulated ? " walks" : " samples") << " per direction, " << engine.device().name << "\n"
                 << "# error: " << kErrorMeaning << "\n";
         std::vector<double> mus;
         for (const auto& c : r.request.cells) mus.push_back(c.mu);
         out << merl_unmeasured_line(r.model, mus);
-        out << "        mu   phi_deg       albedo      error\n";
+        if (r.model.simulated) out << "# " << kWalkMeaning << "\n";
+        out << "        mu   phi_deg       albedo      error"
+            << (r.model.simulated ? "       single      error       cutoff      error" : "") << "\n";
         for (size_t i = 0; i < r.request.cells.size(); ++i) {
-            std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e\n", r.request.cells[i].mu,
+            std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e", r.request.cells[i].mu,
                           r.request.cells[i].phi * kDeg, r.result.values[i].value, r.result.values[i].error);
             out << line;
+            walk_columns(r, i, Format::Table, out);
+            out << "\n";
         }
         if (&r != &runs.back()) out << "\n";
     }
@@ -172,6 +211,16 @@ void plot_runs(const std::string& path, const FresnelConfig& fresnel, const std:
     write_plot(path, p, 1300, 640);  // room for the legend right of the curves
 }
 
+/// What the random walk (scattering=multiple) does not support yet: one line naming it.
+void check_walk_options(const ModelConfig& model, const AlbedoOptions& o) {
+    const std::string what = "model '" + model.canonical + "': ";
+    if (o.integration.method != "auto" && o.integration.method != "mc")
+        throw Error(what + "scattering=multiple is integrated by random walks (Philox, as --method mc); --method " +
+                    o.integration.method + " is not supported for it");
+    if (o.integration.tolerance != 0.0)
+        throw Error(what + "--tolerance is not supported yet with scattering=multiple; give --samples (walks)");
+}
+
 int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
     // Check every input before touching the device.
@@ -190,7 +239,8 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     std::vector<Run> runs;
     for (const std::string& spec : o.models) {
         Run r;
-        r.model = resolve_model(spec);
+        r.model = resolve_model_simulated(spec);
+        if (r.model.simulated) check_walk_options(r.model, o);
         if (fresnel.kind != 0 && !r.model.uses_fresnel)
             throw Error("model '" + r.model.name + "' has no Fresnel term; drop --fresnel");
         r.request.model = r.model.id;
@@ -207,7 +257,15 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
 
     Engine engine(g.device, g.verbose);
     for (Run& r : runs) {
-        r.result = albedo_of_model(engine, r.model, fresnel, r.request, choice.tolerance);
+        if (r.model.simulated) {
+            r.walk = walk_albedo(engine, r.request);
+            r.result.method = r.walk.method;
+            r.result.samples_per_cell = r.walk.walks_per_cell;
+            r.result.kernel_seconds = r.walk.kernel_seconds;
+            for (const WalkAlbedo& w : r.walk.values) r.result.values.push_back(w.energy);
+        } else {
+            r.result = albedo_of_model(engine, r.model, fresnel, r.request, choice.tolerance);
+        }
         if (g.verbose)
             std::cerr << "brdfbake: " << r.model.canonical << ": kernel " << r.result.kernel_seconds * 1e3 << " ms\n";
     }

@@ -9,6 +9,7 @@
 #include <cstdlib>
 
 #include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/random_walk.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
@@ -129,6 +130,26 @@ ModelConfig resolve_lambert(KeyReader& keys) {
     return m;
 }
 
+/// Reads scattering=single|multiple and bounces=N of the Smith lobes: multiple is the random walk on
+/// the Smith microsurface (brdf/random_walk.h), whose first order is the height-correlated lobe,
+/// so it takes shadowing=correlated only; bounces (default BB_WALK_DEFAULT_BOUNCES) is its limit.
+void read_scattering(KeyReader& keys, ModelConfig& m) {
+    const std::string s = keys.choice("scattering", "single", {"single", "multiple"});
+    if (s == "single") {
+        if (keys.has("bounces")) throw Error("model '" + keys.name() + "': bounces=N needs scattering=multiple");
+        return;
+    }
+    if (m.params[m.smith_shadowing_slot] != BB_SHADOWING_CORRELATED)
+        throw Error("model '" + keys.name() + "': scattering=multiple is the height-correlated Smith microsurface; "
+                    "it takes shadowing=correlated only");
+    const double n = keys.number("bounces", BB_WALK_DEFAULT_BOUNCES, {1.0, double(BB_WALK_MAX_BOUNCES)});
+    if (n != std::floor(n)) throw Error("model '" + keys.name() + "': bounces=" + format_number(n) + " is not an integer");
+    m.params[BB_SMITH_SCATTERING] = BB_SCATTERING_MULTIPLE;
+    m.params[BB_SMITH_BOUNCES] = n;
+    m.simulated = true;
+    m.canonical += ",scattering=multiple,bounces=" + fmt(n);
+}
+
 // The microfacet lobes with a Smith shadowing choice: alpha in (slot_x, slot_y), the shadowing
 // in shadowing_slot.
 ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, int slot_x, int slot_y,
@@ -138,6 +159,7 @@ ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, i
     read_alpha(keys, m, slot_x, slot_y);
     m.params[shadowing_slot] = read_shadowing(keys, m.canonical);
     m.smith_shadowing_slot = shadowing_slot;
+    read_scattering(keys, m);
     return m;
 }
 
@@ -343,6 +365,15 @@ std::vector<std::string> model_names() {
 }
 
 ModelConfig resolve_model(const std::string& text) {
+    ModelConfig m = resolve_model_simulated(text);
+    if (m.simulated)
+        throw Error("model '" + m.name +
+                    "': scattering=multiple (a random-walk estimate) is supported only by `brdfbake albedo` so far; "
+                    "tables, check, lobe, furnace, scenes and the library API do not support it yet");
+    return m;
+}
+
+ModelConfig resolve_model_simulated(const std::string& text) {
     const Spec spec = parse_spec(text);
     for (const auto& e : registry()) {
         if (spec.name != e.traits.name) continue;

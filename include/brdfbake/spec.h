@@ -62,6 +62,9 @@ struct ModelConfig {
     /// The slot of the Smith shadowing choice (BB_SMITH_* of brdf/smith.h) of the Smith microfacet
     /// lobes (ggx, beckmann), which their resolver sets; -1: the model has none.
     int smith_shadowing_slot = -1;
+    /// Its value is a random-walk estimate (ggx and beckmann with scattering=multiple,
+    /// brdf/random_walk.h): only resolve_model_simulated returns such a configuration.
+    bool simulated = false;
 
     /// The model's registry entry.
     const ModelTraits& traits() const { return model_traits(id); }
@@ -80,7 +83,12 @@ struct FresnelConfig {
 
 /// Resolves a model spec; throws Error naming the problem (unknown model or key, value out of
 /// range, not a finite number).
+/// A simulated configuration (ModelConfig::simulated: scattering=multiple) is refused with one
+/// line naming it: only `brdfbake albedo` computes one so far, through resolve_model_simulated.
 ModelConfig resolve_model(const std::string& text);
+
+/// Resolves as resolve_model, simulated configurations included.
+ModelConfig resolve_model_simulated(const std::string& text);
 
 /// Resolves a Fresnel spec; throws Error as resolve_model does. `wavelength_nm` is the
 /// --wavelength option (0 when not given), needed by measured metals (metal:Al, nk:FILE).

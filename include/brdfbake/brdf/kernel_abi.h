@@ -88,6 +88,11 @@
 
 #define BB_ENTRY_FRESNEL_CURVE fresnel_curve
 
+/* ----------------------------------------------------------- kernels/random_walk.cl */
+
+#define BB_ENTRY_WALK_ALBEDO walk_albedo /* one replica of walks per work-item (brdf/random_walk.h) */
+#define BB_WALK_SUMS 3                    /* per item: escaped, first-order and cut-off means */
+
 /* ------------------------------------------------------------------- kernels/ltc.cl */
 
 #define BB_ENTRY_LTC_LOBE_POINTS ltc_lobe_points /* the lobe's fixed sample points per texel */

@@ -336,19 +336,28 @@ BB_FN bb_vec3 bb_beckmann_sample_slope11(bb_real cos_t, bb_real sin_t, bb_real u
     return bb_v3(bb_erfinv(b), bb_erfinv(BB_R(2.0) * v - BB_R(1.0)), BB_R(0.0));
 }
 
-/* Sample a visible normal of Beckmann seen from wo (wo.z > 0) [HD14 sec. 4]: stretch wo to the
- * unit configuration, sample its slopes, rotate them to wo's azimuth, unstretch, and turn the
- * slope into a normal. The density of the result is D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo.z. */
-BB_FN bb_vec3 bb_beckmann_sample_vndf(bb_vec3 wo, bb_real ax, bb_real ay, bb_real u1, bb_real u2) {
-    bb_vec3 v = bb_normalize(bb_v3(ax * wo.x, ay * wo.y, wo.z));
+/* A visible normal of Beckmann [HD14 sec. 4] from the view stretched to the unit configuration,
+ * v = normalize(ax wo.x, ay wo.y, wo.z): sample its slopes, rotate them to v's azimuth, unstretch,
+ * and turn the slope into a normal. cos_t is the cosine the slope sampler takes: v.z clamped to
+ * >= 0 (bb_beckmann_sample_vndf), or signed, theta up to pi, for the random walk's directions
+ * below the horizon (random_walk.h). */
+BB_FN bb_vec3 bb_beckmann_sample_vndf_stretched(bb_vec3 v, bb_real cos_t, bb_real ax, bb_real ay, bb_real u1,
+                                                bb_real u2) {
     bb_real sin_t = bb_sqrt(v.x * v.x + v.y * v.y);
-    bb_vec3 s = bb_beckmann_sample_slope11(bb_max(v.z, BB_R(0.0)), sin_t, u1, u2);
+    bb_vec3 s = bb_beckmann_sample_slope11(cos_t, sin_t, u1, u2);
     bb_real inv = BB_R(1.0) / bb_select(sin_t, BB_R(1.0), sin_t <= BB_R(0.0));
     bb_real cphi = bb_select(v.x * inv, BB_R(1.0), sin_t <= BB_R(0.0));
     bb_real sphi = bb_select(v.y * inv, BB_R(0.0), sin_t <= BB_R(0.0));
     bb_real x = (cphi * s.x - sphi * s.y) * ax;
     bb_real y = (sphi * s.x + cphi * s.y) * ay;
     return bb_normalize(bb_v3(-x, -y, BB_R(1.0)));
+}
+
+/* Sample a visible normal of Beckmann seen from wo (wo.z > 0) [HD14 sec. 4]. The density of the
+ * result is D_wo(m) = G1(wo) max(0, wo.m) D(m) / wo.z. */
+BB_FN bb_vec3 bb_beckmann_sample_vndf(bb_vec3 wo, bb_real ax, bb_real ay, bb_real u1, bb_real u2) {
+    bb_vec3 v = bb_normalize(bb_v3(ax * wo.x, ay * wo.y, wo.z));
+    return bb_beckmann_sample_vndf_stretched(v, bb_max(v.z, BB_R(0.0)), ax, ay, u1, u2);
 }
 
 /* ---------------------------------------------------------- normalised Blinn */

@@ -1,0 +1,136 @@
+/* Multiple scattering on the Smith microsurface by random walk, conductor case:
+ * [HHdD16] Heitz, Hanika, d'Eon, Dachsbacher, "Multiple-Scattering Microfacet BSDFs with the
+ * Smith Model", ACM TOG 35(4) (SIGGRAPH 2016).
+ *
+ * The Smith microsurface is a volume-like medium of microfacets: heights h with the uniform
+ * height distribution P1(h) = 1/2 on [-1, 1] (CDF C1(h) = (h + 1)/2, the paper's choice; the
+ * BSDF does not depend on it), normals with the distribution D of the model (GGX or Beckmann,
+ * isotropic or anisotropic), and Smith's uncorrelated heights and normals. A ray leaves a point at
+ * height h in direction w; then
+ *   - (height sampling) the probability that it crosses height h' > h unoccluded (w upward) is
+ *     (C1(h)/C1(h'))^Lambda(w), so that it escapes with probability G1(w, h) = C1(h)^Lambda(w)
+ *     [HHdD16, the height-dependent masking of the microsurface; H14 sec. 5.3], and the next
+ *     intersection height inverts that CDF:  C1(h') = C1(h) (1 - U)^(-1/Lambda(w)).
+ *     A downward ray (w.z < 0) uses the same inversion with Lambda(-w) = -1 - Lambda(w) [HHdD16,
+ *     the Smith Lambda of a downward direction]: C1(h') = C1(h) (1 - U)^(1/(1 + Lambda(|w|))) < C1(h),
+ *     and never escapes.
+ *   - (direction sampling) at the intersection the microfacet normal m is one visible from -w:
+ *     density D_{-w}(m) = <-w, m> D(m) / integral of <-w, m'> D(m') dm' (the distribution of
+ *     visible normals of a direction of either hemisphere [HHdD16, the microflake-like phase
+ *     function of a conductor]); the ray reflects, w' = reflect(-w, m), and the walk's weight is
+ *     multiplied by F(<-w, m>) (the Fresnel term of --fresnel, fresnel.h).
+ * The walk enters from above the surface (C1 = 1) along -wo; the weight it carries out after k
+ * scatterings is its order-k contribution to the directional albedo E(wo) = integral of
+ * f cos(theta_i) over the hemisphere; k = 1 is the height-correlated Smith microfacet BRDF's
+ * albedo (G2 of [H14 eq. 99]). After `bounces` scatterings a walk still inside is cut off: its
+ * weight is returned as `cutoff`, never dropped.
+ *
+ * The heights are tracked as lc = log C1(h) <= 0 (no underflow of C1 however deep a walk goes):
+ * escape iff log(1 - U) <= Lambda(w) lc, else lc' = lc - log(1 - U)/Lambda(w).
+ *
+ * Visible normals of a direction below the horizon: GGX's sampler [H18] covers the whole sphere
+ * of view directions (its projected-area parameterisation with s = (1 + vh.z)/2 < 1/2 keeps the
+ * lifted normal at or above the horizon); Beckmann's slope sampler [HD14 sec. 4, J14] is written
+ * for theta in [0, pi], and is called here with the signed cosine.
+ *
+ * The random numbers: Philox4x32-10 (Random123, Salmon et al. 2011), one call per scattering,
+ * counter (walk, replica, cell stream, BB_WALK_TAG | scattering), so that a walk's numbers depend
+ * on its cell's identity and its index only, never on which cells share a launch.
+ *
+ * [H14], [HD14], [J14], [H18]: see microfacet.h. */
+#ifndef BRDFBAKE_BRDF_RANDOM_WALK_H
+#define BRDFBAKE_BRDF_RANDOM_WALK_H
+
+#include "brdfbake/brdf/smith.h"
+
+/* Random123's Philox (a kernel that includes this header is built with -D BB_PHILOX and its -I). */
+#include <Random123/philox.h>
+
+/* Parameter slots of a Smith lobe used by the walk (beside smith.h's 0-2 and ggx.h's 3). */
+#define BB_SMITH_SCATTERING 4 /* BB_SCATTERING_SINGLE or BB_SCATTERING_MULTIPLE */
+#define BB_SMITH_BOUNCES 5    /* the walk's bounce limit (scatterings per walk) */
+#define BB_SCATTERING_SINGLE 0
+#define BB_SCATTERING_MULTIPLE 1
+#define BB_WALK_DEFAULT_BOUNCES 100
+#define BB_WALK_MAX_BOUNCES 100000
+
+/* The fourth counter word of a walk's Philox stream: "w" in the top byte, the scattering below. */
+#define BB_WALK_TAG 0x77000000u
+
+/* Signed Smith Lambda of a ray direction w (either hemisphere): Lambda(w) for w.z > 0 [H14 eq. 86
+ * (GGX), eq. 72 (Beckmann), with eq. 80 for the anisotropic projected roughness], and
+ * Lambda(w) = -1 - Lambda(-w) for w.z <= 0 [HHdD16]. +-inf at the horizon, 0 and -1 at the poles. */
+BB_FN bb_real bb_walk_lambda(int dist, bb_vec3 w, bb_real ax, bb_real ay) {
+    bb_real l = dist == BB_SMITH_BECKMANN ? bb_beckmann_lambda(w, ax, ay) : bb_ggx_lambda(w, ax, ay);
+    return bb_select(BB_R(-1.0) - l, l, w.z > BB_R(0.0));
+}
+
+/* A visible normal of the direction v of either hemisphere (v points away from the surface, to
+ * where the ray came from): density <v, m> D(m) / (its integral) over m with <v, m> > 0, m.z >= 0. */
+BB_FN bb_vec3 bb_walk_sample_vndf(int dist, bb_vec3 v, bb_real ax, bb_real ay, bb_real u1, bb_real u2) {
+    if (dist == BB_SMITH_BECKMANN) {
+        /* [HD14 sec. 4] as bb_beckmann_sample_vndf, with the signed cosine of the stretched v */
+        bb_vec3 s11 = bb_normalize(bb_v3(ax * v.x, ay * v.y, v.z));
+        /* exactly horizontal (a reflection can round to it): the sampler's tan = sin/cos needs
+         * cos != 0; 1e-6 off the horizon changes the visible normals by O(1e-6) */
+        bb_real c = bb_select(s11.z, bb_select(BB_R(-1e-6), BB_R(1e-6), s11.z >= BB_R(0.0)), bb_fabs(s11.z) < BB_R(1e-6));
+        return bb_beckmann_sample_vndf_stretched(s11, c, ax, ay, u1, u2);
+    }
+    return bb_ggx_sample_vndf(v, ax, ay, u1, u2);
+}
+
+/* What one walk carries out of the microsurface. */
+typedef struct {
+    bb_real energy; /* the weight that escaped (every order up to the limit) */
+    bb_real single; /* the part of it that escaped after one scattering */
+    bb_real cutoff; /* the weight still inside after `bounces` scatterings */
+    int bad;        /* 1 if the walk met a non-finite number (its weights are then 0) */
+} bb_walk_result;
+
+/* One random walk from the view wo (wo.z > 0) on the microsurface of the Smith lobe `dist` with
+ * parameters p (alpha in BB_SMITH_ALPHA_X/Y), the Fresnel term (fkind, fp) at every scattering and
+ * at most `bounces` scatterings; its random numbers from Philox with `key` and the counter words
+ * (walk, rep, stream). */
+BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, int bounces,
+                                       philox4x32_key_t key, unsigned int walk, unsigned int rep,
+                                       unsigned int stream) {
+    bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
+    bb_walk_result r;
+    r.energy = BB_R(0.0);
+    r.single = BB_R(0.0);
+    r.cutoff = BB_R(0.0);
+    r.bad = 0;
+    bb_vec3 w = bb_scale(wo, BB_R(-1.0)); /* the ray's direction */
+    bb_real lc = BB_R(0.0);               /* log C1(h): above the surface */
+    bb_real weight = BB_R(1.0);
+    for (int k = 0;; ++k) {
+        philox4x32_ctr_t ctr = {{walk, rep, stream, BB_WALK_TAG | (unsigned int)k}};
+        philox4x32_ctr_t u = philox4x32(ctr, key);
+        /* height sampling: escape, or the next intersection */
+        bb_real l = bb_log1p(-bb_unit_from_bits(u.v[0])); /* log(1 - U) <= 0 */
+        bb_real lambda = bb_walk_lambda(dist, w, ax, ay);
+        if (w.z > BB_R(0.0) && l <= lambda * lc) {
+            r.energy = weight;
+            r.single = k == 1 ? weight : BB_R(0.0);
+            break;
+        }
+        if (k == bounces) {
+            r.cutoff = weight;
+            break;
+        }
+        lc = lc - l / lambda;
+        /* direction sampling: a visible normal of -w, reflection, the Fresnel term */
+        bb_vec3 v = bb_scale(w, BB_R(-1.0));
+        bb_vec3 m = bb_walk_sample_vndf(dist, v, ax, ay, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
+        bb_real c = bb_dot(v, m);
+        weight = weight * bb_fresnel_eval(fkind, fp, bb_clamp_cos(c));
+        w = bb_reflect(v, m);
+        if (!(bb_isfinite(lc) || lc < BB_R(0.0)) || !bb_isfinite(w.z) || !bb_isfinite(weight)) {
+            r.bad = 1;
+            break;
+        }
+    }
+    return r;
+}
+
+#endif /* BRDFBAKE_BRDF_RANDOM_WALK_H */

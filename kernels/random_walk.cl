@@ -1,0 +1,59 @@
+/* Directional albedo of the multiple-scattering Smith microsurface (brdf/random_walk.h, [HHdD16]),
+ * conductor case, by random walks: each work-item runs one replica of one cell, `n_walks` walks
+ * from the cell's view wo, and writes three replica means, BB_WALK_SUMS per item:
+ *   0  the escaped weight (the albedo E(wo), every order up to the bounce limit),
+ *   1  its first order (the single-scattering albedo, the height-correlated Smith lobe's),
+ *   2  the weight cut off by the bounce limit (BB_SMITH_BOUNCES of the cell's parameters).
+ * The host (host/integrate/random_walk.cpp) turns the replicas into means and error estimates.
+ * A walk that meets a non-finite number is counted in bad_count and adds nothing.
+ *
+ * Build options: -D BB_MODEL=<BB_MODEL_GGX or BB_MODEL_BECKMANN> -D BB_FRESNEL=<kind>
+ * [-D BB_REAL_DOUBLE] -D BB_PHILOX -I <Random123's include directory>. */
+#include "brdfbake/brdf/kernel_abi.h"
+#include "brdfbake/brdf/model_registry.h"
+#include "brdfbake/brdf/random_walk.h"
+
+#if BB_MODEL == BB_MODEL_BECKMANN
+#define BB_WALK_DIST BB_SMITH_BECKMANN
+#else
+#define BB_WALK_DIST BB_SMITH_GGX
+#endif
+
+__kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global const bb_scalar* cell_phi,
+                                   __global const bb_scalar* model_p, __global const bb_scalar* fresnel_p,
+                                   const unsigned int n_walks,    /* walks per replica */
+                                   const unsigned int n_replicas, const unsigned int n_cells,
+                                   const unsigned int seed_lo, /* Philox key */
+                                   const unsigned int seed_hi,
+                                   __global const unsigned int* cell_stream, /* each cell's stream */
+                                   __global bb_scalar* sums,                 /* BB_WALK_SUMS per item */
+                                   __global unsigned int* bad_count) {
+    const unsigned int gid = (unsigned int)get_global_id(0);
+    if (gid >= n_cells * n_replicas) return;
+    const unsigned int cell = gid / n_replicas, rep = gid - cell * n_replicas;
+    bb_params p, fp;
+    unsigned int ok = 1;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
+        p.v[k] = (bb_real)model_p[cell * BB_MAX_PARAMS + k];
+        fp.v[k] = (bb_real)fresnel_p[k];
+        ok &= (unsigned int)(isfinite(p.v[k]) && isfinite(fp.v[k]));
+    }
+    const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], (bb_real)cell_phi[cell]);
+    const int bounces = (int)p.v[BB_SMITH_BOUNCES];
+    philox4x32_key_t key = {{seed_lo, seed_hi}};
+    bb_real e = BB_R(0.0), ec = BB_R(0.0), s = BB_R(0.0), sc = BB_R(0.0), c = BB_R(0.0), cc = BB_R(0.0);
+    unsigned int bad = 0;
+    for (unsigned int i = 0; i < n_walks && ok; ++i) {
+        const bb_walk_result r =
+            bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, bounces, key, i, rep, cell_stream[cell]);
+        bad += (unsigned int)r.bad;
+        BB_KAHAN_ADD(e, ec, r.energy);
+        BB_KAHAN_ADD(s, sc, r.single);
+        BB_KAHAN_ADD(c, cc, r.cutoff);
+    }
+    const bb_real n = (bb_real)n_walks;
+    sums[BB_WALK_SUMS * gid] = e / n;
+    sums[BB_WALK_SUMS * gid + 1] = s / n;
+    sums[BB_WALK_SUMS * gid + 2] = c / n;
+    bad_count[gid] = ok ? bad : n_walks;
+}
