@@ -47,17 +47,16 @@ std::string scratch_dir(const std::string& name) {
     return dir;
 }
 
-/// A calibration of this machine: GGX albedo at `rate` samples/s, fixed `fixed` s a table,
-/// `preview` s a preview.
+/// A calibration of this machine: GGX albedo tables at `rate` samples/s after `fixed` s, previews
+/// of `preview` s plus 1e-6 s a texel (two runs on each line, so that the lines are exact).
 std::string calibration_text(double rate, double fixed, double preview, const std::string& host = host_name()) {
     json j = {{"format", "brdfbake-calibration"},
               {"version", 1},
               {"host", host},
               {"hardware_threads", std::max(1u, std::thread::hardware_concurrency())},
               {"bakes", 3},
-              {"tables", {{"albedo ggx float", {{"samples_per_second", {{"value", rate}, {"measurements", 3}}},
-                                                {"fixed_seconds", {{"value", fixed}, {"measurements", 3}}}}}}},
-              {"preview_seconds", {{"value", preview}, {"measurements", 3}}}};
+              {"tables", {{"albedo ggx float", {{"runs", {{1e8, fixed + 1e8 / rate}, {4e8, fixed + 4e8 / rate}}}}}}},
+              {"previews", {{"runs", {{0.0, preview}, {1e6, preview + 1.0}}}}}};
     return j.dump();
 }
 
@@ -71,12 +70,17 @@ json plan_with(const std::string& calibration) {
     return json::parse(r.out);
 }
 
-/// The albedo table's estimate and samples.
-std::pair<double, double> albedo_table(const json& plan) {
+/// The albedo table's estimate, samples and texels.
+struct Estimate {
+    double seconds = 0, samples = 0, texels = 0;
+};
+
+Estimate albedo_table(const json& plan) {
     for (const auto& t : plan["tables"])
-        if (t["kind"] == "albedo") return {t["estimated_seconds"].get<double>(), t["samples_total"].get<double>()};
+        if (t["kind"] == "albedo")
+            return {t["estimated_seconds"].get<double>(), t["samples_total"].get<double>(), t["cells"].get<double>()};
     FAIL("no albedo table in the plan");
-    return {0, 0};
+    return {};
 }
 
 }  // namespace
@@ -84,21 +88,21 @@ std::pair<double, double> albedo_table(const json& plan) {
 TEST_CASE("plan: a calibration file's figures give the estimate, proportionally", "[scene][calibration][cli]") {
     const std::string dir = scratch_dir("calibration");
     const std::string fast = dir + "/fast.json", slow = dir + "/slow.json";
-    write_file(fast, calibration_text(4e8, 0.25, 0.125));
-    write_file(slow, calibration_text(1e8, 0.25, 0.125));
+    write_file(fast, calibration_text(8e8, 0.25, 0.125));
+    write_file(slow, calibration_text(2e8, 0.25, 0.125));
     const json p_fast = plan_with(fast), p_slow = plan_with(slow);
-    const auto [est_fast, samples] = albedo_table(p_fast);
-    const auto [est_slow, samples_slow] = albedo_table(p_slow);
-    REQUIRE(samples > 0);
-    REQUIRE(samples_slow == samples);
-    // samples / rate + fixed + preview, from the figures written above.
-    CHECK(est_fast == Approx(samples / 4e8 + 0.25 + 0.125).epsilon(1e-9));
-    CHECK(est_slow == Approx(samples / 1e8 + 0.25 + 0.125).epsilon(1e-9));
-    CHECK((est_slow - 0.375) / (est_fast - 0.375) == Approx(4.0).epsilon(1e-9));
+    const Estimate e_fast = albedo_table(p_fast), e_slow = albedo_table(p_slow);
+    REQUIRE(e_fast.samples > 0);
+    REQUIRE(e_slow.samples == e_fast.samples);
+    // samples / rate + fixed + the preview's line at the table's texels, from the figures above.
+    const double preview = 0.125 + 1e-6 * e_fast.texels;
+    CHECK(e_fast.seconds == Approx(e_fast.samples / 8e8 + 0.25 + preview).epsilon(1e-9));
+    CHECK(e_slow.seconds == Approx(e_fast.samples / 2e8 + 0.25 + preview).epsilon(1e-9));
+    CHECK((e_slow.seconds - 0.25 - preview) / (e_fast.seconds - 0.25 - preview) == Approx(4.0).epsilon(1e-6));
     CHECK(p_fast["estimate"]["basis"].get<std::string>().find("calibrated on this machine") != std::string::npos);
     CHECK(p_fast["warnings"].empty());
     // The file is read, never written, by plan.
-    CHECK(slurp_file(fast) == calibration_text(4e8, 0.25, 0.125));
+    CHECK(slurp_file(fast) == calibration_text(8e8, 0.25, 0.125));
 }
 
 TEST_CASE("plan: another machine's calibration and none give the built-in figures", "[scene][calibration][cli]") {
@@ -106,8 +110,8 @@ TEST_CASE("plan: another machine's calibration and none give the built-in figure
     const std::string other = dir + "/other.json";
     write_file(other, calibration_text(1e3, 100.0, 100.0, host_name() + "-elsewhere"));
     const json builtin = plan_with("off"), elsewhere = plan_with(other), missing = plan_with(dir + "/none.json");
-    CHECK(albedo_table(elsewhere).first == albedo_table(builtin).first);
-    CHECK(albedo_table(missing).first == albedo_table(builtin).first);
+    CHECK(albedo_table(elsewhere).seconds == albedo_table(builtin).seconds);
+    CHECK(albedo_table(missing).seconds == albedo_table(builtin).seconds);
     CHECK(builtin["estimate"]["basis"].get<std::string>().find("built-in") != std::string::npos);
     CHECK(elsewhere["warnings"].empty());
 }
@@ -115,7 +119,7 @@ TEST_CASE("plan: another machine's calibration and none give the built-in figure
 TEST_CASE("plan: a file that is not a calibration is ignored with one warning and left as it is",
           "[scene][calibration][cli]") {
     const std::string dir = scratch_dir("calibration-corrupt");
-    const double builtin = albedo_table(plan_with("off")).first;
+    const double builtin = albedo_table(plan_with("off")).seconds;
     const std::string cases[] = {
         "",
         "not json at all",
@@ -129,8 +133,12 @@ TEST_CASE("plan: a file that is not a calibration is ignored with one warning an
         calibration_text(1e8, -1, 0.1),    // negative fixed seconds
         "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"host\": 5, \"tables\": []}",
         "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"tables\": {\"albedo ggx float\": "
-        "{\"samples_per_second\": {\"value\": \"fast\", \"measurements\": 1}}}}",
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"preview_seconds\": {\"value\": 1e999, "
+        "{\"runs\": [[1e8, \"fast\"]]}}}",
+        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"tables\": {\"albedo ggx float\": "
+        "{\"samples_per_second\": 1e8}}}",
+        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"previews\": {\"runs\": [[64, 1e999]]}}",
+        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"previews\": {\"runs\": [[64]]}}",
+        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"kernel_build_seconds\": {\"value\": 0, "
         "\"measurements\": 1}}",
     };
     int k = 0;
@@ -139,7 +147,7 @@ TEST_CASE("plan: a file that is not a calibration is ignored with one warning an
         write_file(path, text);
         INFO("calibration file: " << text);
         const json p = plan_with(path);
-        CHECK(albedo_table(p).first == builtin);
+        CHECK(albedo_table(p).seconds == builtin);
         int warnings = 0;
         for (const auto& w : p["warnings"])
             if (w.get<std::string>().find("calibration file '" + path + "' ignored") != std::string::npos) ++warnings;
@@ -172,8 +180,10 @@ TEST_CASE("bake records its stages into the calibration file, which plan then us
     CHECK(c["bakes"] == 1);
     CHECK(c["host"] == host_name());
     REQUIRE(c["tables"].contains("albedo ggx float"));
-    CHECK(c["preview_seconds"]["measurements"].get<int>() >= 1);
-    CHECK(c["preview_seconds"]["value"].get<double>() > 0);
+    CHECK(c["tables"]["albedo ggx float"]["runs"].size() == 1);
+    REQUIRE(c["previews"]["runs"].size() == 1);
+    CHECK(c["previews"]["runs"][0][0].get<double>() == albedo_table(plan_with("off")).texels);  // its texels
+    CHECK(c["previews"]["runs"][0][1].get<double>() > 0);
     CHECK(!c.contains("report_check_seconds"));  // --no-report: no check was timed
     // plan now says where its figures come from.
     CHECK(plan_with(cal)["estimate"]["basis"].get<std::string>().find("from 1 bake") != std::string::npos);

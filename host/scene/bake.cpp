@@ -191,7 +191,8 @@ double commit_table(Baking& b, const PlannedTable& t, const LutRequest& r, const
         show("drawing its preview " + preview);
         const auto p0 = Clock::now();
         b.o.write_preview(table, join_path(b.o.output, preview));
-        if (b.timings) b.timings->previews.push_back(since(p0));
+        if (b.timings)
+            b.timings->previews.emplace_back(double(table.width()) * table.height() * table.depth(), since(p0));
         show("writing it");
         b.folder.commit();
     }

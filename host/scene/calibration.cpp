@@ -27,8 +27,10 @@ using json = nlohmann::json;
 
 constexpr const char* kFormat = "brdfbake-calibration";
 constexpr int kVersion = 1;
-/// Measurements a running mean keeps (older ones fade out).
+/// Measurements a running mean (or a line's runs) keeps: older ones fade out.
 constexpr int kMeanOf = 8;
+/// Runs of one size a line keeps.
+constexpr int kRunsPerSize = 2;
 
 std::string this_host() {
     char name[256] = {0};
@@ -54,6 +56,30 @@ CalibratedFigure figure_of(const json& j, const std::string& name) {
     return f;
 }
 
+/// A line from its JSON object {"runs": [[size, seconds], ...]}; throws a line saying what is wrong.
+CalibratedLine line_of(const json& j, const std::string& name) {
+    if (!j.is_object() || !j.contains("runs") || !j["runs"].is_array())
+        throw std::runtime_error("'" + name + "' is not {\"runs\": [[size, seconds], ...]}");
+    CalibratedLine line;
+    for (const auto& r : j["runs"]) {
+        if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
+            throw std::runtime_error("'" + name + "': a run " + r.dump() + " is not [size, seconds]");
+        const double size = r[0].get<double>(), seconds = r[1].get<double>();
+        if (!(std::isfinite(size) && size >= 0) || !positive_finite(seconds))
+            throw std::runtime_error("'" + name + "': the run " + r.dump() +
+                                     " is not a size of at least 0 and a positive time");
+        line.runs.emplace_back(size, seconds);
+    }
+    if (line.runs.size() > size_t(kMeanOf)) line.runs.erase(line.runs.begin(), line.runs.end() - kMeanOf);
+    return line;
+}
+
+json json_of(const CalibratedLine& l) {
+    json runs = json::array();
+    for (const auto& [size, seconds] : l.runs) runs.push_back({size, seconds});
+    return {{"runs", runs}};
+}
+
 json json_of(const CalibratedFigure& f) { return {{"value", f.value}, {"measurements", f.measurements}}; }
 
 /// Fills `c` from the file's JSON; throws std::runtime_error with the reason.
@@ -67,15 +93,10 @@ void parse(const json& j, Calibration& c) {
     c.bakes = j.value("bakes", 0);
     if (j.contains("tables")) {
         if (!j["tables"].is_object()) throw std::runtime_error("'tables' is not an object");
-        for (const auto& [key, f] : j["tables"].items()) {
-            if (!f.is_object()) throw std::runtime_error("'tables': '" + key + "' is not an object");
-            TableFigures& t = c.tables[key];
-            if (f.contains("samples_per_second")) t.samples_per_second = figure_of(f["samples_per_second"], key);
-            if (f.contains("fixed_seconds")) t.fixed_seconds = figure_of(f["fixed_seconds"], key);
-        }
+        for (const auto& [key, f] : j["tables"].items()) c.tables[key] = line_of(f, "tables: " + key);
     }
-    const std::pair<const char*, CalibratedFigure*> singles[] = {{"preview_seconds", &c.preview_seconds},
-                                                                 {"kernel_build_seconds", &c.build_seconds_per_program},
+    if (j.contains("previews")) c.previews = line_of(j["previews"], "previews");
+    const std::pair<const char*, CalibratedFigure*> singles[] = {{"kernel_build_seconds", &c.build_seconds_per_program},
                                                                  {"report_check_seconds", &c.report_check_seconds}};
     for (const auto& [name, f] : singles)
         if (j.contains(name)) *f = figure_of(j[name], name);
@@ -117,33 +138,95 @@ double model_sample_cost(const std::string& model_name) {
     return it == costs.end() ? 1.0 : it->second;
 }
 
-TableCost table_cost(const Calibration* c, const std::string& kind, const std::string& model_name,
-                     const std::string& precision) {
+double builtin_rate(const std::string& kind, const std::string& model_name) {
     const TableKind* k = find_table_kind(kind);
-    const double cost = (k ? k->sample_cost : 1.0) * model_sample_cost(model_name);
-    TableCost out;
-    out.samples_per_second = builtin_figures::kSamplesPerSecondPerCore * this_threads() / cost;
-    out.fixed_seconds = builtin_figures::kSecondsPerTable;
-    if (!c || !c->applies()) return out;
-    // This machine's GGX albedo rate from every measured rate of the precision.
+    return builtin_figures::kSamplesPerSecondPerCore * this_threads() / ((k ? k->sample_cost : 1.0) * model_sample_cost(model_name));
+}
+
+void CalibratedLine::add(double size, double seconds) {
+    if (!(std::isfinite(size) && size >= 0) || !positive_finite(seconds)) return;
+    auto same = [&](const std::pair<double, double>& r) { return std::fabs(r.first - size) <= 0.01 * size; };
+    // At most kRunsPerSize of one size (the latest), so that repeated small bakes do not push out
+    // the one large run that says what the rate is; beyond kMeanOf runs the oldest goes, never
+    // the largest size's.
+    if (std::count_if(runs.begin(), runs.end(), same) >= kRunsPerSize) runs.erase(std::find_if(runs.begin(), runs.end(), same));
+    runs.emplace_back(size, seconds);
+    if (runs.size() > size_t(kMeanOf)) {
+        double largest = 0;
+        for (const auto& r : runs) largest = std::max(largest, r.first);
+        for (auto it = runs.begin(); it != runs.end(); ++it)
+            if (it->first < largest) {
+                runs.erase(it);
+                break;
+            }
+    }
+}
+
+double CalibratedLine::slope(double b0) const {
+    // Least squares of seconds = a + b size over the runs (Gauss's normal equations).
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, x_max = 0, x_min = 1e300;
+    for (const auto& [x, y] : runs) {
+        n += 1;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+        x_max = std::max(x_max, x);
+        x_min = std::min(x_min, x);
+    }
+    if (n < 2 || !(x_max > 1.5 * x_min)) return -1;  // one size: no slope
+    const double det = n * sxx - sx * sx;
+    double b = det > 0 ? (n * sxy - sx * sy) / det : -1;
+    double a = (sy - b * sx) / n;
+    if (a < 0) b = sxy / sxx;  // through the origin
+    if (!(b > b0 / 20 && b < b0 * 20)) return -1;  // noise, not a slope
+    return b;
+}
+
+double CalibratedLine::seconds(double size, double a0, double b0) const {
+    if (runs.empty()) return a0 + b0 * size;
+    const double b = slope(b0);
+    double n = 0, sx = 0, sy = 0;
+    for (const auto& [x, y] : runs) {
+        n += 1;
+        sx += x;
+        sy += y;
+    }
+    if (b > 0) return std::max(0.0, (sy - b * sx) / n) + b * size;
+    // The default line, scaled to pass through the runs' mean.
+    const double at_mean = a0 + b0 * sx / n;
+    return at_mean > 0 ? (a0 + b0 * size) * (sy / n) / at_mean : a0 + b0 * size;
+}
+
+double table_seconds(const Calibration* c, const std::string& kind, const std::string& model_name,
+                     const std::string& precision, double samples) {
+    const double a0 = builtin_figures::kSecondsPerTable;
+    double b0 = 1.0 / builtin_rate(kind, model_name);
+    if (!c || !c->applies()) return a0 + b0 * samples;
+    const auto it = c->tables.find(calibration_rate_key(kind, model_name, precision));
+    if (it != c->tables.end() && !it->second.runs.empty()) return it->second.seconds(samples, a0, b0);
+    // This machine's speed against the built-in rates, from every kind with a fitted slope.
     double logs = 0;
     int n = 0;
-    for (const auto& [key, f] : c->tables) {
+    for (const auto& [key, line] : c->tables) {
         std::istringstream words(key);
         std::string k_name, m_name, p_name;
         words >> k_name >> m_name >> p_name;
-        const TableKind* kk = find_table_kind(k_name);
-        if (!kk || p_name != precision || !f.samples_per_second.known()) continue;
-        logs += std::log(f.samples_per_second.value * kk->sample_cost * model_sample_cost(m_name));
-        ++n;
+        if (p_name != precision || !find_table_kind(k_name)) continue;
+        const double k_b0 = 1.0 / builtin_rate(k_name, m_name), b = line.slope(k_b0);
+        if (b > 0) {
+            logs += std::log(k_b0 / b);
+            ++n;
+        }
     }
-    if (n > 0) out.samples_per_second = std::exp(logs / n) / cost;
-    const auto it = c->tables.find(calibration_rate_key(kind, model_name, precision));
-    if (it == c->tables.end()) return out;
-    if (it->second.samples_per_second.known()) out.samples_per_second = it->second.samples_per_second.value;
-    if (it->second.fixed_seconds.known()) out.fixed_seconds = it->second.fixed_seconds.value;
-    out.calibrated = true;
-    return out;
+    if (n > 0) b0 /= std::exp(logs / n);
+    return a0 + b0 * samples;
+}
+
+double preview_seconds(const Calibration* c, double texels) {
+    const double a0 = builtin_figures::kSecondsPerPreview, b0 = builtin_figures::kSecondsPerPreviewTexel;
+    if (!c || !c->applies()) return a0 + b0 * texels;
+    return c->previews.seconds(texels, a0, b0);
 }
 
 std::string calibration_rate_key(const std::string& kind, const std::string& model_name, const std::string& precision) {
@@ -198,19 +281,9 @@ void add_bake_timings(Calibration& c, const BakeTimings& t) {
     c.host = this_host();
     c.hardware_threads = this_threads();
     ++c.bakes;
-    for (const auto& r : t.tables) {
-        if (!(r.compute_seconds > 0) || r.samples == 0) continue;
-        const TableCost now = table_cost(&c, r.kind, r.model_name, r.precision);
-        TableFigures& f = c.tables[calibration_rate_key(r.kind, r.model_name, r.precision)];
-        const double integrating = double(r.samples) / now.samples_per_second;
-        if (integrating >= now.fixed_seconds) {
-            // The samples dominate: the rate of what the fixed part leaves (a tenth at least).
-            f.samples_per_second.add(double(r.samples) / std::max(r.compute_seconds - now.fixed_seconds, 0.1 * r.compute_seconds));
-        } else {
-            f.fixed_seconds.add(std::max(r.compute_seconds - integrating, 1e-3));
-        }
-    }
-    for (double p : t.previews) c.preview_seconds.add(p);
+    for (const auto& r : t.tables)
+        if (r.samples > 0) c.tables[calibration_rate_key(r.kind, r.model_name, r.precision)].add(double(r.samples), r.compute_seconds);
+    for (const auto& [texels, seconds] : t.previews) c.previews.add(texels, seconds);
     if (t.programs > 0 && t.build_seconds > 0) c.build_seconds_per_program.add(t.build_seconds / t.programs);
     if (t.report_checks > 0 && t.report_seconds > 0) c.report_check_seconds.add(t.report_seconds / t.report_checks);
 }
@@ -225,13 +298,9 @@ std::string write_calibration(const Calibration& c) {
     j["bakes"] = c.bakes;
     j["updated"] = utc_now();
     j["tables"] = json::object();
-    for (const auto& [key, f] : c.tables) {
-        json t = json::object();
-        if (f.samples_per_second.known()) t["samples_per_second"] = json_of(f.samples_per_second);
-        if (f.fixed_seconds.known()) t["fixed_seconds"] = json_of(f.fixed_seconds);
-        if (!t.empty()) j["tables"][key] = t;
-    }
-    if (c.preview_seconds.known()) j["preview_seconds"] = json_of(c.preview_seconds);
+    for (const auto& [key, line] : c.tables)
+        if (!line.runs.empty()) j["tables"][key] = json_of(line);
+    if (!c.previews.runs.empty()) j["previews"] = json_of(c.previews);
     if (c.build_seconds_per_program.known()) j["kernel_build_seconds"] = json_of(c.build_seconds_per_program);
     if (c.report_check_seconds.known()) j["report_check_seconds"] = json_of(c.report_check_seconds);
     make_parent(c.path);

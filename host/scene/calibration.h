@@ -30,8 +30,10 @@ constexpr double kSamplesPerSecondPerCore = 1.1e8;
 constexpr double kSecondsPerProgram = 0.3;
 /// Per table: launches, assembling and writing the file (measured: 0.01 to 0.1 s).
 constexpr double kSecondsPerTable = 0.05;
-/// The preview picture bake writes beside a table (MathGL, single-threaded: 0.2 to 0.6 s).
-constexpr double kSecondsPerPreview = 0.5;
+/// The preview picture bake writes beside a table (MathGL, single-threaded: 0.2 to 0.3 s for a
+/// 64x64 table), and per texel drawn.
+constexpr double kSecondsPerPreview = 0.3;
+constexpr double kSecondsPerPreviewTexel = 5e-7;
 /// Starting the process, the device and the bake folder (measured: about 0.3 s).
 constexpr double kStartupSeconds = 0.3;
 /// One lobe check of the bake report (24 directions x 2^14 samples and 16^3 reciprocity pairs:
@@ -48,10 +50,18 @@ struct CalibratedFigure {
     void add(double x);
 };
 
-/// What a table of one (kind, model, precision) costs on this machine: a fixed part (launches,
-/// the first launch's work-group compilation, writing the file) and its samples at a rate.
-struct TableFigures {
-    CalibratedFigure samples_per_second, fixed_seconds;
+/// A cost that grows with a size (a table's samples, a preview's texels): seconds = a + b size,
+/// fitted to recent measurements (up to 8, 2 of a size, the largest size kept).
+struct CalibratedLine {
+    std::vector<std::pair<double, double>> runs;  // (size, seconds), oldest first
+    void add(double size, double seconds);
+    /// The seconds at `size`: by least squares (a, b >= 0) over runs of at least two sizes whose
+    /// slope lies within 20x of b0's; from one size (or a slope beyond that), the default line
+    /// a0 + b0 size scaled through the runs' mean; the default itself without runs.
+    double seconds(double size, double a0, double b0) const;
+    /// The fitted slope where the runs determine one (two sizes at least, the larger's samples
+    /// costing at least as much as its fixed part), else -1.
+    double slope(double b0) const;
 };
 
 struct Calibration {
@@ -61,9 +71,10 @@ struct Calibration {
     std::string host;     // the machine it was measured on
     unsigned hardware_threads = 0;
     int bakes = 0;        // bakes that recorded into it
-    /// By calibration_rate_key(kind, model, precision).
-    std::map<std::string, TableFigures> tables;
-    CalibratedFigure preview_seconds, build_seconds_per_program, report_check_seconds;
+    /// Integration seconds over samples, by calibration_rate_key(kind, model, precision).
+    std::map<std::string, CalibratedLine> tables;
+    CalibratedLine previews;  // seconds over texels
+    CalibratedFigure build_seconds_per_program, report_check_seconds;
 
     /// The file has figures for this machine (same host and hardware threads, a bake recorded).
     bool applies() const;
@@ -72,19 +83,20 @@ struct Calibration {
 /// The cost of one sample of a model relative to GGX's where it differs by more than 1.5x.
 double model_sample_cost(const std::string& model_name);
 
-/// What a table's estimate uses: samples per second and fixed seconds.
-struct TableCost {
-    double samples_per_second = 0, fixed_seconds = 0;
-    bool calibrated = false;  // from measurements of this (kind, model, precision)
-};
+/// The built-in samples per second of a table of `kind` and `model_name`: GGX albedo's over the
+/// kind's cost per sample (TableKind::sample_cost) and the model's.
+double builtin_rate(const std::string& kind, const std::string& model_name);
 
-/// The cost of a table of `kind`, `model_name` and `precision` ("float", "double"): the
-/// calibration's figures for it where it has them; else the built-in rate of GGX albedo, or this
-/// machine's (from every rate the calibration has, each times its kind's and model's cost: their
-/// geometric mean), over the kind's cost per sample (TableKind::sample_cost) and the model's.
-/// `calibration` may be nullptr (built-in figures).
-TableCost table_cost(const Calibration* calibration, const std::string& kind, const std::string& model_name,
-                     const std::string& precision);
+/// The seconds a table of `samples` of `kind`, `model_name` and `precision` ("float", "double")
+/// integrates for: the calibration's line for it where it has runs; else the built-in rate, scaled
+/// by this machine's speed (the geometric mean, over the kinds with a fitted slope, of how much
+/// faster than their built-in rate they ran), plus the built-in fixed seconds. `calibration` may
+/// be nullptr (built-in figures).
+double table_seconds(const Calibration* calibration, const std::string& kind, const std::string& model_name,
+                     const std::string& precision, double samples);
+
+/// The seconds a preview of `texels` takes (the built-in line without runs).
+double preview_seconds(const Calibration* calibration, double texels);
 
 /// "albedo ggx float": the key of a table's measured rate.
 std::string calibration_rate_key(const std::string& kind, const std::string& model_name, const std::string& precision);
@@ -104,15 +116,14 @@ struct BakeTimings {
         double compute_seconds = 0;  // integrating, kernel builds excluded
     };
     std::vector<TableRun> tables;
-    std::vector<double> previews;    // seconds per preview
+    std::vector<std::pair<double, double>> previews;  // (texels, seconds) per preview
     int programs = 0;                // kernel programs built
     double build_seconds = 0;        // their total
     int report_checks = 0;           // lobe checks of the report (0: no report)
     double report_seconds = 0;
 };
 
-/// Adds a bake's measurements to `c`. A table's time goes to the term of its estimate that
-/// dominates: its rate where its samples take longer than its fixed part, else its fixed part.
+/// Adds a bake's measurements to `c`.
 void add_bake_timings(Calibration& c, const BakeTimings& t);
 
 /// Writes `c` to c.path atomically (a temporary file in the same folder, renamed over it);

@@ -161,14 +161,12 @@ std::string g17(double v) {
 /// The fixed figures the estimates use: the calibration's where it has them, else the built-in ones.
 struct Figures {
     const Calibration* calibration = nullptr;  // nullptr: built-in figures only
-    double preview = builtin_figures::kSecondsPerPreview;
     double program = builtin_figures::kSecondsPerProgram;
     double check = builtin_figures::kSecondsPerReportCheck;
 
     explicit Figures(const Calibration* c) {
         if (!c || !c->applies()) return;
         calibration = c;
-        if (c->preview_seconds.known()) preview = c->preview_seconds.value;
         if (c->build_seconds_per_program.known()) program = c->build_seconds_per_program.value;
         if (c->report_check_seconds.known()) check = c->report_check_seconds.value;
     }
@@ -366,8 +364,9 @@ void finish_table(Plan& plan, const Figures& figures, PlannedTable t, const std:
     const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
     t.cells = texels * std::uint64_t(kind.cells_per_texel);
     t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
-    const TableCost cost = table_cost(figures.calibration, kind.name, model_name, precision_name(r.precision));
-    t.est_seconds = double(t.samples_total) / cost.samples_per_second + cost.fixed_seconds + figures.preview;
+    t.est_seconds = table_seconds(figures.calibration, kind.name, model_name, precision_name(r.precision),
+                                  double(t.samples_total)) +
+                    preview_seconds(figures.calibration, double(texels));
     const int channels = kind.value_channels(r) + 1;  // values + error
     // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while the
     // kernel runs; the finished table holds doubles.
@@ -500,9 +499,10 @@ Plan make_plan(const Scene& scene, const Calibration* calibration) {
     plan.warnings = scene.warnings;
     plan.settings = s;
     const Figures figures(calibration);
-    plan.samples_per_second =
-        table_cost(figures.calibration, table_kind(TableKindId::Albedo).name, "ggx", precision_name(s.precision))
-            .samples_per_second;
+    // GGX albedo's rate: the seconds of a large table's samples, its fixed part aside.
+    const std::string albedo = table_kind(TableKindId::Albedo).name, precision = precision_name(s.precision);
+    plan.samples_per_second = 1e9 / (table_seconds(figures.calibration, albedo, "ggx", precision, 2e9) -
+                                     table_seconds(figures.calibration, albedo, "ggx", precision, 1e9));
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
     if (figures.calibration)
         plan.throughput_basis = "calibrated on this machine from " + std::to_string(calibration->bakes) + " bake" +
