@@ -13,7 +13,7 @@
 #include "plot/plot.h"
 #include "support.h"
 
-TEST_CASE("previews: a deep 3D table's lut preview is a summary; show --plot draws its slices", "[pictures][cli]") {
+TEST_CASE("previews: a deep 3D table's lut preview is a summary, show --plot draws its slices", "[pictures][cli]") {
     const std::string base = "/tmp/brdfbake-preview-layout-" + std::to_string(::getpid());
     const std::string table = base + ".exr", preview = base + ".exr.png", full = base + "-full.png";
     // 12 eta slices, deeper than a summary shows.
