@@ -51,7 +51,7 @@ std::string scratch_dir(const std::string& name) {
 /// of `preview` s plus 1e-6 s a texel (two runs on each line, so that the lines are exact).
 std::string calibration_text(double rate, double fixed, double preview, const std::string& host = host_name()) {
     json j = {{"format", "brdfbake-calibration"},
-              {"version", 1},
+              {"version", 2},
               {"host", host},
               {"hardware_threads", std::max(1u, std::thread::hardware_concurrency())},
               {"bakes", 3},
@@ -123,7 +123,7 @@ TEST_CASE("plan: a file that is not a calibration is ignored with one warning an
     const std::string cases[] = {
         "",
         "not json at all",
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"tables\": {",  // cut short
+        "{\"format\": \"brdfbake-calibration\", \"version\": 2, \"tables\": {",  // cut short
         "[]",
         "{}",
         "{\"format\": \"something-else\"}",
@@ -131,14 +131,14 @@ TEST_CASE("plan: a file that is not a calibration is ignored with one warning an
         calibration_text(-5, 0.1, 0.1),    // a negative rate
         calibration_text(0, 0.1, 0.1),     // a zero rate
         calibration_text(1e8, -1, 0.1),    // negative fixed seconds
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"host\": 5, \"tables\": []}",
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"tables\": {\"albedo ggx float\": "
+        "{\"format\": \"brdfbake-calibration\", \"version\": 2, \"host\": 5, \"tables\": []}",
+        "{\"format\": \"brdfbake-calibration\", \"version\": 2, \"tables\": {\"albedo ggx float\": "
         "{\"runs\": [[1e8, \"fast\"]]}}}",
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"tables\": {\"albedo ggx float\": "
+        "{\"format\": \"brdfbake-calibration\", \"version\": 2, \"tables\": {\"albedo ggx float\": "
         "{\"samples_per_second\": 1e8}}}",
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"previews\": {\"runs\": [[64, 1e999]]}}",
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"previews\": {\"runs\": [[64]]}}",
-        "{\"format\": \"brdfbake-calibration\", \"version\": 1, \"kernel_build_seconds\": {\"value\": 0, "
+        "{\"format\": \"brdfbake-calibration\", \"version\": 2, \"previews\": {\"runs\": [[64, 1e999]]}}",
+        "{\"format\": \"brdfbake-calibration\", \"version\": 2, \"previews\": {\"runs\": [[64]]}}",
+        "{\"format\": \"brdfbake-calibration\", \"version\": 2, \"kernel_build_seconds\": {\"value\": 0, "
         "\"measurements\": 1}}",
     };
     int k = 0;
@@ -166,6 +166,16 @@ TEST_CASE("plan: a file that is not a calibration is ignored with one warning an
         ++said;
     CHECK(said == 1);
     CHECK(slurp_file(bad) == "not json at all");
+    // A file of this format that cannot be used (another version) is this program's: the next
+    // bake replaces it with its measurements.
+    const std::string old_version = dir + "/bad6.json";
+    const auto replaced = testing::run_shell("BRDFBAKE_CALIBRATION='" + old_version + "' " + std::string(BRDFBAKE_EXE) +
+                                             " bake " + testing::scene::data("small_bake.json") +
+                                             " --tables albedo --no-report --no-previews --force -o " + out);
+    INFO(replaced.err);
+    CHECK(replaced.status == 0);
+    CHECK(replaced.err.find("the next bake replaces it") != std::string::npos);
+    CHECK(json::parse(slurp_file(old_version))["bakes"] == 1);
 }
 
 TEST_CASE("bake records its stages into the calibration file, which plan then uses", "[scene][calibration][cli]") {

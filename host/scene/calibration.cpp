@@ -26,7 +26,7 @@ namespace {
 using json = nlohmann::json;
 
 constexpr const char* kFormat = "brdfbake-calibration";
-constexpr int kVersion = 1;
+constexpr int kVersion = 2;  // 1: a rate and a fixed time per kind (replaced)
 /// Measurements a running mean (or a line's runs) keeps: older ones fade out.
 constexpr int kMeanOf = 8;
 /// Runs of one size a line keeps.
@@ -252,18 +252,26 @@ Calibration read_calibration(const std::string& path) {
     }
     std::stringstream text;
     text << in.rdbuf();
+    json j;
     try {
-        parse(json::parse(text.str()), c);
+        j = json::parse(text.str());
+        parse(j, c);
     } catch (const std::exception& e) {
+        // A file of this format (another version, a bad value) is this program's: the next bake
+        // replaces it. Any other file is left alone (the variable may name it by mistake).
+        const bool ours = j.is_object() && j.value("format", json()) == kFormat;
         Calibration ignored;
         ignored.path = path;
-        ignored.writable = false;
+        ignored.writable = ours;
+        ignored.host = this_host();
+        ignored.hardware_threads = this_threads();
         std::string why = e.what();
         if (dynamic_cast<const json::parse_error*>(&e)) why = "it is not valid JSON";
         else if (dynamic_cast<const json::exception*>(&e)) why = "a value of the wrong type";
-        ignored.warning = "calibration file '" + path + "' ignored: " + why +
-                          "; the estimates use the built-in figures, and bakes do not record into it (remove it, or "
-                          "set BRDFBAKE_CALIBRATION to another path or to off)";
+        ignored.warning = "calibration file '" + path + "' ignored: " + why + "; the estimates use the built-in figures" +
+                          (ours ? " and the next bake replaces it"
+                                : ", and bakes do not record into it (remove it, or set BRDFBAKE_CALIBRATION to "
+                                  "another path or to off)");
         return ignored;
     }
     if (c.host != this_host() || c.hardware_threads != this_threads()) {

@@ -7,10 +7,10 @@
 //
 // The file: $BRDFBAKE_CALIBRATION (a path; "off": none is read or written), else
 // $XDG_CACHE_HOME/brdfbake/calibration.json, else ~/.cache/brdfbake/calibration.json. It is
-// replaced atomically (a temporary file renamed over it). A file that cannot be read as a
-// calibration (not JSON, another format, values out of range) is ignored with one warning and
-// never overwritten (it may be someone's file the variable names by mistake); docs/scenes.md,
-// "Estimates".
+// replaced atomically (a temporary file renamed over it). A file that cannot be used is ignored
+// with one warning: one of this format (another version, a value out of range) is replaced by the
+// next bake; any other (not JSON, no "format": "brdfbake-calibration") is never written to (it
+// may be someone's file the variable names by mistake); docs/scenes.md, "Estimates".
 #pragma once
 
 #include <cstdint>
