@@ -6,8 +6,10 @@
 # Each bake runs with --force into a fresh folder (previews and report on, as `bake` does by
 # default), under `nice -n -20` when run as root so that other jobs on a shared machine do not
 # inflate the wall time (record the machine and its load beside the numbers: benchmarks/results/).
-# Not a test: timings depend on the machine; the planner's constants are calibrated from it
-# (docs/scenes.md, "Estimates").
+# Not a test: timings depend on the machine. The estimates use the calibration file
+# (BRDFBAKE_CALIBRATION, docs/scenes.md "Estimates"), into which these bakes record too; the
+# column "basis" says whether the plan was calibrated. CALIBRATE=1 first bakes every scene once
+# (recording into the file) before measuring; BRDFBAKE_CALIBRATION=off measures the built-in figures.
 set -euo pipefail
 exe=$(realpath "${1:?usage: plan_estimates.sh BRDFBAKE [SCENE...]}")
 shift
@@ -22,12 +24,20 @@ nice=()
 [ "$(id -u)" -eq 0 ] && nice=(nice -n -20)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
-echo "| scene | plan estimate (s) | bake wall (s) | bake CPU (s) | wall / estimate | load average |"
-echo "| --- | --- | --- | --- | --- | --- |"
+if [ "${CALIBRATE:-0}" = 1 ]; then
+  for s in "${scenes[@]}"; do
+    extra=()
+    case "$s" in *@*) extra=(${s#*@}); s=${s%%@*} ;; esac
+    "$exe" bake "$s" "${extra[@]}" --force -o "$work/out" 2>/dev/null >/dev/null || { echo "bake of $s failed"; exit 1; }
+    rm -rf "$work/out"
+  done
+fi
+echo "| scene | plan estimate (s) | bake wall (s) | bake CPU (s) | wall / estimate | estimate / wall | basis | load average |"
+echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
 for s in "${scenes[@]}"; do
   extra=()
   case "$s" in *@*) extra=(${s#*@}); s=${s%%@*} ;; esac
-  est=$("$exe" plan "$s" "${extra[@]}" --format json | /usr/bin/python3 -c 'import json,sys; print("%.2f" % json.load(sys.stdin)["estimate"]["seconds"])')
+  read -r est basis < <("$exe" plan "$s" "${extra[@]}" --format json | /usr/bin/python3 -c 'import json,sys; e = json.load(sys.stdin)["estimate"]; print("%.2f" % e["seconds"], "calibrated" if e["basis"].startswith("calibrated") else "built-in")')
   load=$(cut -d' ' -f1 /proc/loadavg)
   : >"$work/times"
   for _ in $(seq "$runs"); do
@@ -40,5 +50,6 @@ for s in "${scenes[@]}"; do
   read -r wall user sys < <(sort -n "$work/times" | sed -n "$(( (runs + 1) / 2 ))p")
   cpu=$(/usr/bin/python3 -c "print('%.2f' % ($user + $sys))")
   ratio=$(/usr/bin/python3 -c "print('%.2f' % ($wall / $est))")
-  echo "| \`${s#$here/}\` ${extra[*]} | $est | $wall | $cpu | $ratio | $load |"
+  inverse=$(/usr/bin/python3 -c "print('%.2f' % ($est / $wall))")
+  echo "| \`${s#$here/}\` ${extra[*]} | $est | $wall | $cpu | $ratio | $inverse | $basis | $load |"
 done

@@ -236,3 +236,57 @@ TEST_CASE("progress stages: steps, launches and nested stages fold into the oute
     CHECK(sink.messages == std::vector<std::string>{"a line"});
     set_progress_sink(nullptr);
 }
+
+TEST_CASE("progress passes: 'pass k of n: NAME', the launch's fraction its pass's share", "[progress][quick]") {
+    using namespace brdfbake;
+    RecordingSink sink;
+    set_progress_sink(&sink);
+    {
+        // Inside a stage with a step (as bake computes a table): the step names the pass, and a
+        // launch halfway through pass 2 of 2 is 3/4 of the step.
+        ProgressStage stage("bake", 100);
+        stage.update(0, "[1/1] t.exr", 100);
+        ProgressPasses passes({"E", "B"});
+        progress_next_pass();
+        CHECK(sink.states.back().step == "[1/1] t.exr: pass 1 of 2: E");
+        report_progress("albedo of 8 cells", 4, 8);
+        CHECK(sink.states.back().step_fraction == Approx(0.25));
+        progress_next_pass();
+        report_progress("albedo of 8 cells", 4, 8);
+        CHECK(sink.states.back().step == "[1/1] t.exr: pass 2 of 2: B");
+        CHECK(sink.states.back().step_fraction == Approx(0.75));
+        CHECK(sink.states.back().fraction == Approx(0.75));
+        // A pass beyond the names counts on with the last name.
+        progress_next_pass();
+        CHECK(sink.states.back().step == "[1/1] t.exr: pass 3 of 3: B");
+    }
+    {
+        // Outside any stage (`lut`): each pass's launch is a stage of its own, named by its pass.
+        ProgressPasses passes({"R at 650 nm", "G at 550 nm"});
+        progress_next_pass();
+        report_progress("albedo of 8 cells", 8, 8);
+        CHECK(sink.states.back().what == "pass 1 of 2: R at 650 nm: albedo of 8 cells");
+        progress_next_pass();
+        report_progress("albedo of 8 cells", 2, 8);
+        CHECK(sink.states.back().what == "pass 2 of 2: G at 550 nm: albedo of 8 cells");
+        CHECK(sink.states.back().fraction == Approx(0.25));
+    }
+    // Without passes, nothing is added.
+    report_progress("albedo of 8 cells", 8, 8);
+    CHECK(sink.states.back().what == "albedo of 8 cells");
+    set_progress_sink(nullptr);
+}
+
+TEST_CASE("progress: a split-sum table names its two passes, E then B (Karis 2013)", "[cli][progress]") {
+    // dfg integrates every cell twice: E with F = 1 and B with Schlick's F at f0 = 0.
+    const std::string out = scratch("dfg.csv");
+    const auto shown = run_shown_ok("lut dfg --model ggx --size 64x64 --samples 65536 --no-preview -o " + out);
+    INFO(shown.err);
+    const size_t first = shown.err.find("pass 1 of 2: E (F = 1): albedo of 4096 cells");
+    const size_t second = shown.err.find("pass 2 of 2: B (F = Schlick, f0 = 0): albedo of 4096 cells");
+    CHECK(first != std::string::npos);
+    CHECK(second != std::string::npos);
+    CHECK(first < second);
+    CHECK(shown.err.find("pass 3") == std::string::npos);
+    std::remove(out.c_str());
+}

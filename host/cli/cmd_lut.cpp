@@ -163,11 +163,11 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
     const Table table = compute_lut(engine, r);
     OutputGroup together;  // the table and its preview land together or not at all
     write_table(table, o.output, setup.half);
-    if (!o.no_preview) write_table_preview(table, preview);
+    if (!o.no_preview) write_table_preview(table, preview, -1, PreviewLayout::Summary);
     together.commit();
-    if (!o.no_preview && table.depth() > kSummarySlices)  // the summary's full-size companion
-        std::fprintf(stderr, "brdfbake: preview %s (summary), every slice in %s\n", preview.c_str(),
-                     full_preview_path(preview).c_str());
+    if (!o.no_preview && table.depth() > kSummarySlices)  // a summary: the full picture on demand
+        std::fprintf(stderr, "brdfbake: preview %s shows %d of %d slices; brdfbake show %s --plot FILE.png draws more\n",
+                     preview.c_str(), kSummarySlices, table.depth(), o.output.c_str());
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
     std::fprintf(stderr, "brdfbake: wrote %s: %s table %dx%dx%d (%s), max error %.2e, %.2f s\n", o.output.c_str(),
                  table.kind.c_str(), table.width(), table.height(), table.depth(), table.attributes.at("model").c_str(),

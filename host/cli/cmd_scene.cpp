@@ -124,7 +124,8 @@ Plan load_plan(const SceneOptions& o) {
     s.preset = o.preset;
     s.target = o.target;
     check_settings(s);
-    return make_plan(scene);
+    const Calibration calibration = read_calibration(calibration_path());  // estimates from earlier bakes
+    return make_plan(scene, &calibration);
 }
 
 // --- kernel build measurement ------------------------------------------------------------------
@@ -241,7 +242,7 @@ int run_bake(const BakeCommandOptions& o, const GlobalOptions& g) {
     const Plan plan = load_plan(o.scene);
     const double plan_seconds = since(t0);
     BakeOptions options = o.bake;
-    if (o.previews) options.write_preview = [](const Table& t, const std::string& path) { write_table_preview(t, path); };
+    if (o.previews) options.write_preview = [](const Table& t, const std::string& path) { write_table_preview(t, path, -1, PreviewLayout::Summary); };
     // The bake report (DIR/index.html) from the index just written, with each lobe's check; when
     // every table was up to date, only if the folder has none.
     std::optional<BakeReportSummary> report;  // printed after the bake's summary
@@ -256,6 +257,14 @@ int run_bake(const BakeCommandOptions& o, const GlobalOptions& g) {
         report = write_bake_report(*engine, options.output, ro);
     };
     const BakeResult r = bake_plan(plan, options, [&] { return std::make_unique<Engine>(g.device, g.verbose); });
+    if (r.computed > 0) {  // this bake's stage times calibrate later estimates (scene/calibration.h)
+        Calibration c = read_calibration(calibration_path());
+        BakeTimings t = r.timings;
+        t.report_checks = report ? plan.report_checks : 0;
+        add_bake_timings(c, t);
+        if (const std::string why = write_calibration(c); !why.empty())
+            std::fprintf(stderr, "brdfbake: warning: calibration not recorded: %s\n", why.c_str());
+    }
     if (r.computed == 0) {
         std::fprintf(stderr,
                      "brdfbake: all %zu tables in %s are up to date (same request hash, file present with its "

@@ -204,7 +204,7 @@ int run_show(const ShowOptions& o, const GlobalOptions&) {
     OutputGroup together;  // the picture and the converted table land together or not at all
     if (!o.plot.empty()) {
         if (curves.empty())
-            write_table_preview(o.slice < 0 ? t : slice, o.plot);  // every slice, or the one asked for
+            write_table_preview(o.slice < 0 ? t : slice, o.plot, -1, PreviewLayout::Full);  // every slice, or the one asked for
         else
             o.along == "z" ? write_curves_along_z(t, curves, o.at_x, o.plot) : write_curves(slice, curves, o.plot);
     }

@@ -1,7 +1,7 @@
 // The command line's progress display (brdfbake/progress.h): on a terminal a bar on stderr that
 // redraws in place (done, rate, time left), also while a long launch reports nothing (a ticker
-// thread redraws the clock); otherwise a plain line every 5 s, or at each further tenth after at
-// least a second. A stage that ends within a second prints nothing, so short runs stay quiet
+// thread redraws the clock); otherwise a plain line at least every 5 s while a stage runs, and at
+// each further tenth after at least a second. A stage that ends within a second prints nothing, so short runs stay quiet
 // (BRDFBAKE_PROGRESS_DELAY sets that second).
 #include <sys/ioctl.h>
 #include <unistd.h>
@@ -23,6 +23,9 @@ namespace brdfbake {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+/// How long a launch reporting outside any stage is ticked after its last report.
+constexpr double kLooseTickSeconds = 60.0;
 
 double since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
 
@@ -119,9 +122,9 @@ public:
             return;
         }
         active_ = true;
-        // A stage that always reports its end may go quiet for a long launch: a ticker keeps
-        // the clock moving (on a terminal) and the lines coming (in a log).
-        if (s.closes && !ticker_.joinable()) ticker_ = std::thread([this] { tick(); });
+        // A stage may go quiet for a long launch: a ticker keeps the clock moving (on a
+        // terminal) and the lines coming (in a log, at least every 5 s).
+        if (!ticker_.joinable()) ticker_ = std::thread([this] { tick(); });
         draw(false);
     }
 
@@ -138,7 +141,9 @@ private:
         std::unique_lock<std::mutex> lock(mutex_);
         while (!stop_) {
             wake_.wait_for(lock, std::chrono::milliseconds(250));
-            if (!stop_ && active_ && state_.closes) draw(true);
+            // A launch outside any stage may stop without its last report (an error unwinds
+            // it): it is ticked for a minute after its last report, longer than a slice takes.
+            if (!stop_ && active_ && (state_.closes || since(received_) < kLooseTickSeconds)) draw(true);
         }
     }
 

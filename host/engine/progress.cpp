@@ -21,6 +21,7 @@ struct Frame {
     bool estimable = true;
     std::string step;
     std::string launch;            // the last launch reported inside the step
+    std::string pass;              // its pass, "pass 1 of 2: E" (empty: none)
     double launch_fraction = -1.0;
     Clock::time_point start, step_start;
 };
@@ -33,6 +34,41 @@ thread_local std::vector<Frame> g_frames;
 thread_local Frame g_loose;  // a launch reporting outside any stage
 thread_local bool g_loose_open = false;
 std::uint64_t g_next_id = 1;
+
+/// An open ProgressPasses: its names, the pass running (0: none yet), and how many stages were
+/// open when it began (a stage opened within a pass carries the pass's label; launches do when
+/// no such stage is open).
+struct Passes {
+    std::vector<std::string> names;
+    size_t current = 0;
+    size_t depth = 0;
+};
+thread_local std::vector<Passes> g_passes;
+
+/// "pass 2 of 3: B", or empty outside a pass.
+std::string pass_label() {
+    std::string label;
+    for (const Passes& p : g_passes) {
+        if (p.current == 0 || p.names.empty()) continue;
+        const size_t n = std::max(p.names.size(), p.current);
+        label += (label.empty() ? "" : "; ") + ("pass " + std::to_string(p.current) + " of " + std::to_string(n) + ": " +
+                                               p.names[std::min(p.current, p.names.size()) - 1]);
+    }
+    return label;
+}
+
+/// A launch's fraction `f` of its pass as the fraction of all the open passes.
+double pass_fraction(double f) {
+    for (auto p = g_passes.rbegin(); p != g_passes.rend(); ++p) {
+        if (p->current == 0 || p->names.empty()) continue;
+        const double n = double(std::max(p->names.size(), p->current));
+        f = (double(p->current - 1) + f) / n;
+    }
+    return f;
+}
+
+/// The label is the launch's while no stage was opened inside the innermost pass.
+bool launches_labelled() { return !g_passes.empty() && g_frames.size() <= g_passes.back().depth; }
 int g_silenced = 0;  // open ProgressSilence objects
 
 double seconds_between(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double>(b - a).count(); }
@@ -69,7 +105,7 @@ Step step_of(size_t i) {
     Step s;
     s.start = f.step_start;
     if (i + 1 == g_frames.size()) {
-        s.text = f.step.empty() ? f.launch : f.step;
+        s.text = f.step.empty() ? f.launch : f.pass.empty() ? f.step : f.step + ": " + f.pass;
         s.fraction = f.launch_fraction;
         return s;
     }
@@ -126,7 +162,8 @@ ProgressStage::ProgressStage(std::string what, std::uint64_t total, std::string 
     std::lock_guard<std::mutex> lock(g_mutex);
     Frame f;
     f.id = g_next_id++;
-    f.what = std::move(what);
+    const std::string label = launches_labelled() ? pass_label() : std::string();
+    f.what = label.empty() ? std::move(what) : label + ": " + what;
     f.total = total;
     f.unit = std::move(unit);
     f.done_word = std::move(done_word);
@@ -145,6 +182,7 @@ ProgressStage::~ProgressStage() {
         g_frames.pop_back();
         if (!g_frames.empty()) {
             g_frames.back().launch.clear();
+            g_frames.back().pass.clear();
             g_frames.back().launch_fraction = -1.0;
             publish(false);
         }
@@ -161,6 +199,7 @@ void ProgressStage::update(std::uint64_t done, const std::string& step, std::uin
     f.step = step;
     f.step_units = step_units;
     f.launch.clear();
+    f.pass.clear();
     f.launch_fraction = -1.0;
     publish(false);
 }
@@ -179,19 +218,22 @@ void report_progress(const std::string& what, std::uint64_t done, std::uint64_t 
     if (!g_sink.load()) return;
     std::lock_guard<std::mutex> lock(g_mutex);
     if (g_silenced > 0) return;
-    const double fraction = total ? std::min(1.0, double(done) / double(total)) : 1.0;
+    const double raw = total ? std::min(1.0, double(done) / double(total)) : 1.0;
+    const std::string label = launches_labelled() ? pass_label() : std::string();
     if (!g_frames.empty()) {
         Frame& f = g_frames.back();
-        f.launch = what;
-        f.launch_fraction = fraction;
+        f.launch = label.empty() ? what : label + ": " + what;
+        f.pass = label;
+        f.launch_fraction = label.empty() ? raw : pass_fraction(raw);
         publish(false);
         return;
     }
+    const std::string what_shown = label.empty() ? what : label + ": " + what;
     // A launch outside any stage is a stage of its own, counted in the launch's units.
-    if (!g_loose_open || what != g_loose.what || done < g_loose.done) {
+    if (!g_loose_open || what_shown != g_loose.what || done < g_loose.done) {
         g_loose = Frame();
         g_loose.id = g_next_id++;
-        g_loose.what = what;
+        g_loose.what = what_shown;
         g_loose.start = g_loose.step_start = Clock::now();
         g_loose_open = true;
     }
@@ -202,6 +244,29 @@ void report_progress(const std::string& what, std::uint64_t done, std::uint64_t 
     st.closes = false;
     if (ProgressSink* sink = g_sink.load()) sink->update(st);
     if (finished) g_loose_open = false;
+}
+
+ProgressPasses::ProgressPasses(std::vector<std::string> names) {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    g_passes.push_back({std::move(names), 0, g_frames.size()});
+}
+
+ProgressPasses::~ProgressPasses() {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (!g_passes.empty()) g_passes.pop_back();
+}
+
+void progress_next_pass() {
+    std::lock_guard<std::mutex> lock(g_mutex);
+    if (g_passes.empty()) return;
+    ++g_passes.back().current;
+    // The frame the passes run in shows the new pass at once (its launch is the last pass's).
+    if (!g_frames.empty() && launches_labelled()) {
+        Frame& f = g_frames.back();
+        f.launch = f.pass = pass_label();
+        f.launch_fraction = pass_fraction(0.0);
+        publish(false);
+    }
 }
 
 void progress_message(const std::string& line) {

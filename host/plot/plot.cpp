@@ -1,6 +1,7 @@
 #include "plot/plot.h"
 
 #include <mgl2/mgl.h>
+#include <omp.h>
 
 #include <algorithm>
 #include <cctype>
@@ -329,6 +330,10 @@ void write_figure(const std::string& path, const Figure& figure) {
     const int rows = (n + cols - 1) / cols;
 
     mglGraph::SuppressWarn(true);  // problems are checked below and reported as errors
+    // One thread: MathGL's own took every core from the integration a bake runs beside its
+    // previews, and gained little on pictures this size (measured: docs/performance.md).
+    mgl_set_num_thr(1);
+    omp_set_num_threads(1);  // this thread's OpenMP team, which MathGL's loops take
     // A shared colour bar takes a strip of its own on the right of the panels.
     const int strip = figure.colorbar_label.empty() ? 0 : 200;
     const int width = figure.panel_width * cols + strip;

@@ -125,11 +125,17 @@ struct Table;
 /// `slice`, or with slice = -1 every slice as a small multiple (at most 8, evenly spread). The
 /// caption says which of the file's rows is at the bottom.
 ///
-/// A 3D table with more slices than a summary shows (kSummarySlices per channel) gets a readable
-/// summary at `path` (at most kSummaryWidth pixels wide) and every slice, full size, beside it at
-/// full_preview_path(path). Colours are clipped at the 99.5th percentile of a channel's texels
-/// (widened to [0, 1]); the colour bar's label says how many lie above and how far.
-void write_table_preview(const Table& table, const std::string& path, int slice = -1);
+/// A 3D table with more slices than a summary shows (kSummarySlices per channel), with slice = -1:
+/// by `layout`, a readable summary at `path` (at most kSummaryWidth pixels wide) and every slice,
+/// full size, beside it at full_preview_path(path) (SummaryAndFull); the summary alone, its
+/// caption saying how to draw every slice (Summary: bake's and lut's previews, which must cost
+/// less than the integration they show); or every slice, full size, at `path` (Full: `show
+/// --plot`). Colours are clipped at the 99.5th percentile of a channel's texels (widened to
+/// [0, 1]); the colour bar's label says how many lie above and how far. Drawing is
+/// single-threaded (MathGL's threads slowed the bakes that draw beside their integration).
+enum class PreviewLayout { SummaryAndFull, Summary, Full };
+void write_table_preview(const Table& table, const std::string& path, int slice = -1,
+                         PreviewLayout layout = PreviewLayout::SummaryAndFull);
 
 /// Slices of a 3D table a summary preview shows per channel, and its width at most (pixels).
 constexpr int kSummarySlices = 4;

@@ -238,7 +238,7 @@ std::vector<int> spread(int depth, int count) {
 
 }  // namespace
 
-void write_table_preview(const Table& table, const std::string& path, int slice) {
+void write_table_preview(const Table& table, const std::string& path, int slice, PreviewLayout layout) {
     // The picture runs every axis upwards: a flipped axis (lo > hi) is drawn unflipped.
     Table t = table;
     std::vector<std::string> flipped;
@@ -285,9 +285,17 @@ void write_table_preview(const Table& table, const std::string& path, int slice)
     }
     // A 3D table: kSummarySlices slices per channel at most kSummaryWidth pixels wide; a deeper
     // table gets its full-size picture (kMaxSlices slices) beside the summary, named in its caption.
+    if (layout == PreviewLayout::Full && t.depth() > kSummarySlices) {
+        write_slices(t, table, flipped, spread(t.depth(), kMaxSlices), 520, 460, "", path);
+        return;
+    }
     const std::vector<int> summary = spread(t.depth(), kSummarySlices);
     std::string note;
-    if (t.depth() > kSummarySlices) {
+    if (t.depth() > kSummarySlices && layout == PreviewLayout::Summary) {
+        note = "; " + std::to_string(summary.size()) + " of " + std::to_string(t.depth()) +
+               " slices (brdfbake show TABLE --plot FILE.png draws " +
+               (t.depth() > kMaxSlices ? std::to_string(kMaxSlices) + " of them" : std::string("every slice")) + ")";
+    } else if (t.depth() > kSummarySlices) {
         const std::string full = full_preview_path(path);
         write_slices(t, table, flipped, spread(t.depth(), kMaxSlices), 520, 460, "", full);
         note = "; " + std::to_string(summary.size()) + " of " + std::to_string(t.depth()) + " slices, more in " +

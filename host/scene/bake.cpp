@@ -174,6 +174,7 @@ struct Baking {
     BakeFolder& folder;
     json index;
     std::string staging;  // the staging folder (writer rank only)
+    BakeTimings* timings = nullptr;  // where the stages' times go
 };
 
 /// Writes a computed table and its preview, and commits it with its index entry: the table is
@@ -188,7 +189,10 @@ double commit_table(Baking& b, const PlannedTable& t, const LutRequest& r, const
         ::mkdir(join_path(b.o.output, "previews").c_str(), 0755);
         preview = "previews/" + t.file + ".png";
         show("drawing its preview " + preview);
+        const auto p0 = Clock::now();
         b.o.write_preview(table, join_path(b.o.output, preview));
+        if (b.timings)
+            b.timings->previews.emplace_back(double(table.width()) * table.height() * table.depth(), since(p0));
         show("writing it");
         b.folder.commit();
     }
@@ -328,6 +332,8 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
             throw Error("cannot write into '" + o.output + "': " + b.staging + ": " + std::strerror(errno));
     }
     std::unique_ptr<Engine> engine = make_engine();
+    b.timings = &result.timings;
+    std::set<std::string> programs;  // the kernel programs the tables built
     try {
         ProgressStage stage("bake of " + std::to_string(to_compute) + " table" + (to_compute == 1 ? "" : "s") +
                                 " into " + o.output,
@@ -346,7 +352,12 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
                           static_cast<unsigned long long>(r.samples), t.est_seconds);
             const std::string step = "[" + std::to_string(++n) + "/" + std::to_string(to_compute) + "] " + t.file;
             log_line(step + ": computing " + detail);
+            const double built = engine->build_seconds();
             const Table table = compute_planned(*engine, t, r, stage, done, step);
+            result.timings.tables.push_back({r.kind, t.request.model.substr(0, t.request.model.find(':')),
+                                             precision_name(r.precision), t.samples_total,
+                                             since(t1) - (engine->build_seconds() - built)});
+            for (const std::string& p : t.kind->kernel_programs(r)) programs.insert(p);
             check_finite(table);
             // The table is computed: its units count as done while it is drawn and written.
             const double seconds = commit_table(b, t, r, table, t1, [&](const std::string& what) {
@@ -374,8 +385,12 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
         throw;
     }
     result.build_seconds = engine->build_seconds();
+    result.timings.programs = int(programs.size());
+    result.timings.build_seconds = result.build_seconds;
     result.seconds = since(t0);
+    const auto f0 = Clock::now();
     if (o.finish) o.finish(engine.get(), {});
+    result.timings.report_seconds = since(f0);
     return result;
 }
 

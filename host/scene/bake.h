@@ -12,6 +12,7 @@
 
 #include "brdfbake/engine.h"
 #include "brdfbake/table.h"
+#include "scene/calibration.h"
 #include "scene/scene.h"
 
 namespace brdfbake {
@@ -35,6 +36,9 @@ struct BakeResult {
     double build_seconds = 0.0;   // kernel builds
     double seconds = 0.0;         // the whole bake until `finish` was called
     std::string index_path;       // FOLDER/index.json
+    /// What the stages took (tables, previews, kernel builds, `finish` as the report with
+    /// report_checks 0): for the calibration of estimates (scene/calibration.h).
+    BakeTimings timings;
 };
 
 /// Bakes `plan` into options.output: locks the folder, skips what is up to date (the same

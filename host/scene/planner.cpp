@@ -16,6 +16,7 @@
 #include "brdfbake/spec.h"
 #include "brdfbake/version.h"
 #include "models/key_reader.h"
+#include "scene/calibration.h"
 #include "scene/scene.h"
 #include "scene/scene_text.h"
 
@@ -149,40 +150,27 @@ std::string g17(double v) {
     return b;
 }
 
-// The cost model of `plan`'s estimates, calibrated against `bake`'s wall time by
+// The cost model of `plan`'s estimates, checked against `bake`'s wall time by
 // benchmarks/plan_estimates.sh (docs/scenes.md, "Estimates"; the measurements:
-// benchmarks/results/plan-estimates-2c-shared.md). A table costs its samples times its kind's cost
-// per sample (the registry's sample_cost) times its model's (below), at the rate below, plus the
-// fixed costs of a table, its preview and the bake.
+// benchmarks/results/plan-estimates-2c-shared.md). A table costs its samples at its rate, plus the
+// fixed costs of a table, its preview and the bake. The rates and fixed costs are this machine's
+// where a calibration file has them (scene/calibration.h: what earlier bakes measured), the
+// built-in figures (builtin_figures) otherwise; there, a table's rate is GGX albedo's divided by
+// its kind's cost per sample (the registry's sample_cost) and its model's (below).
 
-/// Samples per second per hardware thread: GGX albedo on PoCL's vector path, float, which `bake`
-/// uses (measured: 1024x316 texels x 4096 samples in 5.8 s on 2 threads, 2.2e8 samples/s).
-constexpr double kSamplesPerSecondPerCore = 1.1e8;
+/// The fixed figures the estimates use: the calibration's where it has them, else the built-in ones.
+struct Figures {
+    const Calibration* calibration = nullptr;  // nullptr: built-in figures only
+    double program = builtin_figures::kSecondsPerProgram;
+    double check = builtin_figures::kSecondsPerReportCheck;
 
-/// The cost of one sample of a model relative to GGX's, where it differs by more than 1.5x
-/// (measured on the same tables: sheen's 32x27 albedo at 16384 samples, 7.0e6 samples/s against
-/// GGX's 2.2e8: the Charlie distribution's sampling is uniform and its visibility term costly).
-double model_sample_cost(const std::string& model_name) {
-    static const std::map<std::string, double> costs = {{"sheen", 32.0}};
-    const auto it = costs.find(model_name);
-    return it == costs.end() ? 1.0 : it->second;
-}
-
-/// A kernel build and first launch on PoCL: 0.5 s cold, about 0.12 s from PoCL's kernel cache.
-constexpr double kSecondsPerProgram = 0.3;
-
-/// Per table: launches, assembling and writing the file (measured: 0.01 to 0.1 s), and the preview
-/// picture bake writes beside it (MathGL: 0.5 to 1.0 s on the shared development machine).
-constexpr double kSecondsPerTable = 0.05;
-constexpr double kSecondsPerPreview = 0.8;
-
-/// Starting the process, the device and the bake folder (measured: about 0.3 s).
-constexpr double kStartupSeconds = 0.3;
-
-/// One lobe check of the bake report (host/plot/bake_report.cpp: 24 directions x 2^14 samples and
-/// 16^3 reciprocity pairs; measured: 0.05 to 0.3 s a check).
-constexpr double kSecondsPerReportCheck = 0.2;
-
+    explicit Figures(const Calibration* c) {
+        if (!c || !c->applies()) return;
+        calibration = c;
+        if (c->build_seconds_per_program.known()) program = c->build_seconds_per_program.value;
+        if (c->report_check_seconds.known()) check = c->report_check_seconds.value;
+    }
+};
 
 /// What a group of lobes needs: one table per (kind, model, Fresnel in the table).
 struct Group {
@@ -368,15 +356,17 @@ std::vector<std::string> table_names(const std::vector<Group>& groups) {
 
 /// Sizes, estimates, file name, request key and hash of a table whose request is set, and whether
 /// this build can compute it; then adds it to the plan.
-void finish_table(Plan& plan, PlannedTable t, const std::string& file, bool half, const std::string& model_name) {
+void finish_table(Plan& plan, const Figures& figures, PlannedTable t, const std::string& file, bool half,
+                  const std::string& model_name) {
     const LutRequest& r = t.request;
     const TableKind& kind = *t.kind;
     t.half = half;
     const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
     t.cells = texels * std::uint64_t(kind.cells_per_texel);
     t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
-    t.est_seconds = double(t.samples_total) * kind.sample_cost * model_sample_cost(model_name) / plan.samples_per_second +
-                    kSecondsPerTable + kSecondsPerPreview;
+    t.est_seconds = table_seconds(figures.calibration, kind.name, model_name, precision_name(r.precision),
+                                  double(t.samples_total)) +
+                    preview_seconds(figures.calibration, double(texels));
     const int channels = kind.value_channels(r) + 1;  // values + error
     // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while the
     // kernel runs; the finished table holds doubles.
@@ -471,14 +461,14 @@ PlannedTable group_table(const Group& g, const SceneSettings& s) {
 }
 
 /// The kernel programs the bake builds and the lobe checks of its report, with their estimates.
-void estimate_builds_and_report(Plan& plan) {
+void estimate_builds_and_report(Plan& plan, const Figures& figures) {
     // Programs: one albedo kernel per (model, Fresnel kind) and one dielectric kernel per model.
     std::set<std::string> programs;
     for (const auto& t : plan.tables)
         for (const std::string& p : t.kind->kernel_programs(t.request)) programs.insert(p);
     plan.programs = int(programs.size());
-    plan.build_seconds = kSecondsPerProgram * plan.programs;
-    plan.startup_seconds = kStartupSeconds;
+    plan.build_seconds = figures.program * plan.programs;
+    plan.startup_seconds = builtin_figures::kStartupSeconds;
     // The bake report checks each lobe with a table at both ends of its roughness range.
     std::set<std::string> checks;
     for (const auto& m : plan.materials)
@@ -487,7 +477,7 @@ void estimate_builds_and_report(Plan& plan) {
                 for (double a : {lobe.alpha.lo, lobe.alpha.hi})
                     checks.insert(lobe.model + "|" + lobe.fresnel + "|" + std::to_string(a));
     plan.report_checks = int(checks.size());
-    plan.report_seconds = kSecondsPerReportCheck * plan.report_checks;
+    plan.report_seconds = figures.check * plan.report_checks;
 }
 
 }  // namespace
@@ -500,7 +490,7 @@ void apply_eta_axis(const PlannedTable& t, LutRequest& request) {
     request.depth = t.depth;
 }
 
-Plan make_plan(const Scene& scene) {
+Plan make_plan(const Scene& scene, const Calibration* calibration) {
     check_settings(scene.settings);
     const SceneSettings& s = scene.settings;
     Plan plan;
@@ -508,9 +498,20 @@ Plan make_plan(const Scene& scene) {
     plan.source = scene.source;
     plan.warnings = scene.warnings;
     plan.settings = s;
+    const Figures figures(calibration);
+    // GGX albedo's rate: the seconds of a large table's samples, its fixed part aside.
+    const std::string albedo = table_kind(TableKindId::Albedo).name, precision = precision_name(s.precision);
+    plan.samples_per_second = 1e9 / (table_seconds(figures.calibration, albedo, "ggx", precision, 2e9) -
+                                     table_seconds(figures.calibration, albedo, "ggx", precision, 1e9));
     const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-    plan.samples_per_second = kSamplesPerSecondPerCore * cores;
-    plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.1e8 (PoCL, float, measured; docs/scenes.md)";
+    if (figures.calibration)
+        plan.throughput_basis = "calibrated on this machine from " + std::to_string(calibration->bakes) + " bake" +
+                                (calibration->bakes == 1 ? "" : "s") + " (" + calibration->path +
+                                "; built-in figures where it has none; docs/scenes.md)";
+    else
+        plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.1e8, built-in (PoCL, float, measured on "
+                                "the development machine; a bake calibrates them: docs/scenes.md)";
+    if (calibration && !calibration->warning.empty()) plan.warnings.push_back(calibration->warning);
 
     plan.materials = scene.materials;
     if (!s.tables.empty()) override_lobe_kinds(plan.materials, s.tables, plan.warnings);
@@ -518,14 +519,14 @@ Plan make_plan(const Scene& scene) {
     std::vector<PlannedTable> engine_tables = plan_engine_tables(s, groups, plan);
     const std::vector<std::string> names = table_names(groups);
     for (size_t i = 0; i < groups.size(); ++i)
-        finish_table(plan, group_table(groups[i], s), names[i] + "." + s.table_format, s.half, groups[i].model_name);
+        finish_table(plan, figures, group_table(groups[i], s), names[i] + "." + s.table_format, s.half, groups[i].model_name);
     for (auto& t : engine_tables) {
         const std::string file = t.file;
         const std::string model_name = t.request.model.substr(0, t.request.model.find(':'));
         const bool half = t.half;
-        finish_table(plan, std::move(t), file, half, model_name);
+        finish_table(plan, figures, std::move(t), file, half, model_name);
     }
-    estimate_builds_and_report(plan);
+    estimate_builds_and_report(plan, figures);
     return plan;
 }
 

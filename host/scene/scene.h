@@ -158,8 +158,11 @@ struct Plan {
     SceneSettings settings;
 };
 
+struct Calibration;  // scene/calibration.h
+
 /// The minimal set of tables for a scene. Throws Error for a lobe that cannot be tabulated.
-Plan make_plan(const Scene& scene);
+/// Estimates from `calibration` where it has figures for this machine, else the built-in ones.
+Plan make_plan(const Scene& scene, const Calibration* calibration = nullptr);
 
 /// The plan as text (--format table) or as one JSON object (--format json).
 std::string plan_text(const Plan& plan);

@@ -23,6 +23,11 @@ FresnelConfig conductor_fresnel(const LutRequest& r) {
     return resolve_fresnel(r.fresnel, rgb(r) ? kRgbNm[0] : r.wavelength_nm);
 }
 
+std::vector<std::string> conductor_passes(const LutRequest& r) {
+    if (!rgb(r)) return {};
+    return {"R at 650 nm", "G at 550 nm", "B at 450 nm"};
+}
+
 std::vector<std::string> conductor_program(const LutRequest& r) {
     return {"albedo|" + r.model + "|" + r.fresnel.substr(0, r.fresnel.find(':'))};
 }
@@ -72,6 +77,7 @@ TableKind conductor_kind() {
     k.integrations = channels;  // one per RGB wavelength
     k.fresnel = conductor_fresnel;
     k.validate = validate_conductor;
+    k.pass_names = conductor_passes;
     return k;
 }
 

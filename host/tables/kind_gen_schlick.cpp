@@ -239,6 +239,7 @@ TableKind make_kind(TableKindId id, const std::string& name, const std::string& 
                          "); the lobe's Fresnel must be generalized Schlick (gen-schlick" + (ior ? "-ior" : "") + ":...)";
     k.integrations = integrations;  // per texel: its slice's E_w, and E (shared by the slices, found twice with a tolerance)
     k.validate = validate_gen_schlick;
+    k.pass_names = [](const LutRequest& r) { return z_slice_pass_names(cycles_estimator(r) ? "" : "E (F = 1)", "E_w", r.depth); };
     return k;
 }
 
@@ -267,6 +268,7 @@ TableKind dfg_f82_kind() {
     k.plan_fresnel = "factored out (split sum with the F82 term)";
     k.value_channels = three;
     k.integrations = three;
+    k.pass_names = [](const LutRequest&) { return std::vector<std::string>{"E (F = 1)", "B (F = Schlick, f0 = 0)", "C (F82 edge term)"}; };
     return k;
 }
 

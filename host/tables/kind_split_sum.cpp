@@ -9,6 +9,8 @@ namespace {
 
 int two(const LutRequest&) { return 2; }
 
+std::vector<std::string> split_sum_passes(const LutRequest&) { return {"E (F = 1)", "B (F = Schlick, f0 = 0)"}; }
+
 std::vector<std::string> split_sum_programs(const LutRequest& r) {
     return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick"};
 }
@@ -62,6 +64,7 @@ TableKind dfg_kind() {
     k.tileable = true;
     k.value_channels = two;
     k.integrations = two;
+    k.pass_names = split_sum_passes;
     return k;
 }
 

@@ -10,6 +10,7 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "brdfbake/progress.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
 #include "models/key_reader.h"
@@ -129,6 +130,7 @@ MuAlphaGrid mu_alpha_grid(const LutRequest& r, const ModelConfig& m) {
 
 AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f,
                        std::vector<AlbedoCell> cells, double share) {
+    progress_next_pass();  // each integration is a pass of its table (TableKind::pass_names)
     // Cells at alpha = 0 of a model with a mirror limit hold that limit, F(mu); the others are
     // integrated on the device.
     const std::vector<int> slots = m.traits().alpha_x_slot < 0 ? std::vector<int>{} : roughness_slots(m);
@@ -334,6 +336,7 @@ void validate_lut(const LutRequest& r) {
 Table compute_lut(Engine& engine, const LutRequest& r) {
     validate_lut(r);
     const TableKind& kind = table_kind(r.kind);
+    const ProgressPasses passes(kind.pass_names ? kind.pass_names(r) : std::vector<std::string>{});  // integrate() advances
     Table t = kind.compute(engine, r, swept_model(r), kind.fresnel(r));
     arrange_axes(t, r.axes, r.flip);
     if (r.texels == Texels::Edge || !r.axes.empty() || !r.flip.empty()) {

@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <string>
+#include <vector>
 
 namespace brdfbake {
 
@@ -75,6 +76,22 @@ public:
     ProgressSilence(const ProgressSilence&) = delete;
     ProgressSilence& operator=(const ProgressSilence&) = delete;
 };
+
+/// The passes of a computation that integrates its cells several times, one after the other (a
+/// split-sum table's E and B, a conductor's R, G and B): while one lives, what runs is shown as
+/// "pass k of n: NAME", and a launch's fraction as its pass's share of the whole. next() begins
+/// the next pass (the first call the first); calls beyond `names` count on with the last name.
+/// Per thread, like the stages; a ProgressPasses inside another's pass adds to its label.
+class ProgressPasses {
+public:
+    explicit ProgressPasses(std::vector<std::string> names);
+    ~ProgressPasses();
+    ProgressPasses(const ProgressPasses&) = delete;
+    ProgressPasses& operator=(const ProgressPasses&) = delete;
+};
+
+/// Begins the next pass of this thread's innermost ProgressPasses; nothing when none is open.
+void progress_next_pass();
 
 /// A launch's report: `done` of `total` units of `what` are finished (done == total: it ended).
 /// Inside a stage it is that stage's step; outside any, a stage of its own.

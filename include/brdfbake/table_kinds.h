@@ -74,6 +74,10 @@ struct TableKind {
     int (*value_channels)(const LutRequest&) = one_per_request;
     /// Integrations per cell (the split-sum kinds integrate twice, a measured conductor per RGB wavelength).
     int (*integrations)(const LutRequest&) = one_per_request;
+    /// The names of the passes of a table that integrates its cells several times, one per
+    /// integration in the order the kind runs them ("E (F = 1)", "B (F = Schlick, f0 = 0)");
+    /// nullptr: one pass. Progress shows "pass k of n: NAME" (brdfbake/progress.h).
+    std::vector<std::string> (*pass_names)(const LutRequest&) = nullptr;
     /// The kernel programs the table builds ("albedo|MODEL|FRESNEL-KIND", "dielectric|MODEL").
     Programs kernel_programs;
     /// The Fresnel term validation resolves (a measured conductor without --wavelength: at 650 nm).
@@ -83,6 +87,16 @@ struct TableKind {
     /// Computes the table of a validated request.
     Compute compute;
 };
+
+/// Pass names of a kind that integrates once per z slice: `first` (unless empty), then
+/// "EACH at z slice k of N" for each of `slices`.
+inline std::vector<std::string> z_slice_pass_names(const std::string& first, const std::string& each, int slices) {
+    std::vector<std::string> names;
+    if (!first.empty()) names.push_back(first);
+    for (int k = 1; k <= slices; ++k)
+        names.push_back(each + " at z slice " + std::to_string(k) + " of " + std::to_string(slices));
+    return names;
+}
 
 /// Every kind, in help order.
 const std::vector<const TableKind*>& table_kinds();

@@ -1,0 +1,328 @@
+#include "scene/calibration.h"
+
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <cstring>
+#include <ctime>
+#include <fstream>
+#include <set>
+#include <sstream>
+#include <thread>
+
+#include "brdfbake/table_kinds.h"
+
+namespace brdfbake {
+
+namespace {
+
+using json = nlohmann::json;
+
+constexpr const char* kFormat = "brdfbake-calibration";
+constexpr int kVersion = 2;  // 1: a rate and a fixed time per kind (replaced)
+/// Measurements a running mean (or a line's runs) keeps: older ones fade out.
+constexpr int kMeanOf = 8;
+/// Runs of one size a line keeps.
+constexpr int kRunsPerSize = 2;
+
+std::string this_host() {
+    char name[256] = {0};
+    if (::gethostname(name, sizeof name - 1) != 0) return "unknown";
+    return name;
+}
+
+unsigned this_threads() { return std::max(1u, std::thread::hardware_concurrency()); }
+
+bool positive_finite(double v) { return std::isfinite(v) && v > 0; }
+
+/// A figure from its JSON object {"value": V, "measurements": N}; throws a line saying what is wrong.
+CalibratedFigure figure_of(const json& j, const std::string& name) {
+    if (!j.is_object() || !j.contains("value") || !j["value"].is_number() || !j.contains("measurements") ||
+        !j["measurements"].is_number_integer())
+        throw std::runtime_error("'" + name + "' is not {\"value\": V, \"measurements\": N}");
+    CalibratedFigure f;
+    f.value = j["value"].get<double>();
+    f.measurements = j["measurements"].get<int>();
+    if (!positive_finite(f.value) || f.measurements < 1)
+        throw std::runtime_error("'" + name + "' has value " + j["value"].dump() + " and " + j["measurements"].dump() +
+                                 " measurements (a positive value of at least 1 measurement)");
+    return f;
+}
+
+/// A line from its JSON object {"runs": [[size, seconds], ...]}; throws a line saying what is wrong.
+CalibratedLine line_of(const json& j, const std::string& name) {
+    if (!j.is_object() || !j.contains("runs") || !j["runs"].is_array())
+        throw std::runtime_error("'" + name + "' is not {\"runs\": [[size, seconds], ...]}");
+    CalibratedLine line;
+    for (const auto& r : j["runs"]) {
+        if (!r.is_array() || r.size() != 2 || !r[0].is_number() || !r[1].is_number())
+            throw std::runtime_error("'" + name + "': a run " + r.dump() + " is not [size, seconds]");
+        const double size = r[0].get<double>(), seconds = r[1].get<double>();
+        if (!(std::isfinite(size) && size >= 0) || !positive_finite(seconds))
+            throw std::runtime_error("'" + name + "': the run " + r.dump() +
+                                     " is not a size of at least 0 and a positive time");
+        line.runs.emplace_back(size, seconds);
+    }
+    if (line.runs.size() > size_t(kMeanOf)) line.runs.erase(line.runs.begin(), line.runs.end() - kMeanOf);
+    return line;
+}
+
+json json_of(const CalibratedLine& l) {
+    json runs = json::array();
+    for (const auto& [size, seconds] : l.runs) runs.push_back({size, seconds});
+    return {{"runs", runs}};
+}
+
+json json_of(const CalibratedFigure& f) { return {{"value", f.value}, {"measurements", f.measurements}}; }
+
+/// Fills `c` from the file's JSON; throws std::runtime_error with the reason.
+void parse(const json& j, Calibration& c) {
+    if (!j.is_object() || j.value("format", "") != kFormat)
+        throw std::runtime_error(std::string("it is not a brdfbake calibration (no \"format\": \"") + kFormat + "\")");
+    if (j.value("version", 0) != kVersion)
+        throw std::runtime_error("its version " + j.value("version", json()).dump() + " is not " + std::to_string(kVersion));
+    c.host = j.value("host", "");
+    c.hardware_threads = j.value("hardware_threads", 0u);
+    c.bakes = j.value("bakes", 0);
+    if (j.contains("tables")) {
+        if (!j["tables"].is_object()) throw std::runtime_error("'tables' is not an object");
+        for (const auto& [key, f] : j["tables"].items()) c.tables[key] = line_of(f, "tables: " + key);
+    }
+    if (j.contains("previews")) c.previews = line_of(j["previews"], "previews");
+    const std::pair<const char*, CalibratedFigure*> singles[] = {{"kernel_build_seconds", &c.build_seconds_per_program},
+                                                                 {"report_check_seconds", &c.report_check_seconds}};
+    for (const auto& [name, f] : singles)
+        if (j.contains(name)) *f = figure_of(j[name], name);
+}
+
+std::string utc_now() {
+    char s[32];
+    const std::time_t t = std::time(nullptr);
+    std::tm tm{};
+    gmtime_r(&t, &tm);
+    std::strftime(s, sizeof s, "%Y-%m-%dT%H:%M:%SZ", &tm);
+    return s;
+}
+
+/// mkdir -p of the folder holding `path`.
+void make_parent(const std::string& path) {
+    for (size_t at = path.find('/', 1); at != std::string::npos; at = path.find('/', at + 1))
+        ::mkdir(path.substr(0, at).c_str(), 0755);
+}
+
+}  // namespace
+
+void CalibratedFigure::add(double x) {
+    if (!positive_finite(x)) return;
+    const int n = std::min(measurements, kMeanOf - 1);
+    value = (value * n + x) / (n + 1);
+    ++measurements;
+}
+
+bool Calibration::applies() const {
+    return !path.empty() && bakes > 0 && host == this_host() && hardware_threads == this_threads();
+}
+
+double model_sample_cost(const std::string& model_name) {
+    // Measured on the same tables: sheen's 32x27 albedo at 16384 samples, 7.0e6 samples/s against
+    // GGX's 2.2e8 (the Charlie distribution's sampling is uniform and its visibility term costly).
+    static const std::map<std::string, double> costs = {{"sheen", 32.0}};
+    const auto it = costs.find(model_name);
+    return it == costs.end() ? 1.0 : it->second;
+}
+
+double builtin_rate(const std::string& kind, const std::string& model_name) {
+    const TableKind* k = find_table_kind(kind);
+    return builtin_figures::kSamplesPerSecondPerCore * this_threads() / ((k ? k->sample_cost : 1.0) * model_sample_cost(model_name));
+}
+
+void CalibratedLine::add(double size, double seconds) {
+    if (!(std::isfinite(size) && size >= 0) || !positive_finite(seconds)) return;
+    auto same = [&](const std::pair<double, double>& r) { return std::fabs(r.first - size) <= 0.01 * size; };
+    // At most kRunsPerSize of one size (the latest), so that repeated small bakes do not push out
+    // the one large run that says what the rate is; beyond kMeanOf runs the oldest goes, never
+    // the largest size's.
+    if (std::count_if(runs.begin(), runs.end(), same) >= kRunsPerSize) runs.erase(std::find_if(runs.begin(), runs.end(), same));
+    runs.emplace_back(size, seconds);
+    if (runs.size() > size_t(kMeanOf)) {
+        double largest = 0;
+        for (const auto& r : runs) largest = std::max(largest, r.first);
+        for (auto it = runs.begin(); it != runs.end(); ++it)
+            if (it->first < largest) {
+                runs.erase(it);
+                break;
+            }
+    }
+}
+
+double CalibratedLine::slope(double b0) const {
+    // Least squares of seconds = a + b size over the runs (Gauss's normal equations).
+    double n = 0, sx = 0, sy = 0, sxx = 0, sxy = 0, x_max = 0, x_min = 1e300;
+    for (const auto& [x, y] : runs) {
+        n += 1;
+        sx += x;
+        sy += y;
+        sxx += x * x;
+        sxy += x * y;
+        x_max = std::max(x_max, x);
+        x_min = std::min(x_min, x);
+    }
+    if (n < 2 || !(x_max > 1.5 * x_min)) return -1;  // one size: no slope
+    const double det = n * sxx - sx * sx;
+    double b = det > 0 ? (n * sxy - sx * sy) / det : -1;
+    double a = (sy - b * sx) / n;
+    if (a < 0) b = sxy / sxx;  // through the origin
+    if (!(b > b0 / 20 && b < b0 * 20)) return -1;  // noise, not a slope
+    return b;
+}
+
+double CalibratedLine::seconds(double size, double a0, double b0) const {
+    if (runs.empty()) return a0 + b0 * size;
+    const double b = slope(b0);
+    double n = 0, sx = 0, sy = 0;
+    for (const auto& [x, y] : runs) {
+        n += 1;
+        sx += x;
+        sy += y;
+    }
+    if (b > 0) return std::max(0.0, (sy - b * sx) / n) + b * size;
+    // The default line, scaled to pass through the runs' mean.
+    const double at_mean = a0 + b0 * sx / n;
+    return at_mean > 0 ? (a0 + b0 * size) * (sy / n) / at_mean : a0 + b0 * size;
+}
+
+double table_seconds(const Calibration* c, const std::string& kind, const std::string& model_name,
+                     const std::string& precision, double samples) {
+    const double a0 = builtin_figures::kSecondsPerTable;
+    double b0 = 1.0 / builtin_rate(kind, model_name);
+    if (!c || !c->applies()) return a0 + b0 * samples;
+    const auto it = c->tables.find(calibration_rate_key(kind, model_name, precision));
+    if (it != c->tables.end() && !it->second.runs.empty()) return it->second.seconds(samples, a0, b0);
+    // This machine's speed against the built-in rates, from every kind with a fitted slope.
+    double logs = 0;
+    int n = 0;
+    for (const auto& [key, line] : c->tables) {
+        std::istringstream words(key);
+        std::string k_name, m_name, p_name;
+        words >> k_name >> m_name >> p_name;
+        if (p_name != precision || !find_table_kind(k_name)) continue;
+        const double k_b0 = 1.0 / builtin_rate(k_name, m_name), b = line.slope(k_b0);
+        if (b > 0) {
+            logs += std::log(k_b0 / b);
+            ++n;
+        }
+    }
+    if (n > 0) b0 /= std::exp(logs / n);
+    return a0 + b0 * samples;
+}
+
+double preview_seconds(const Calibration* c, double texels) {
+    const double a0 = builtin_figures::kSecondsPerPreview, b0 = builtin_figures::kSecondsPerPreviewTexel;
+    if (!c || !c->applies()) return a0 + b0 * texels;
+    return c->previews.seconds(texels, a0, b0);
+}
+
+std::string calibration_rate_key(const std::string& kind, const std::string& model_name, const std::string& precision) {
+    return kind + " " + model_name + " " + precision;
+}
+
+std::string calibration_path() {
+    if (const char* p = std::getenv("BRDFBAKE_CALIBRATION"); p && *p) return std::string(p) == "off" ? "" : p;
+    if (const char* x = std::getenv("XDG_CACHE_HOME"); x && *x == '/') return std::string(x) + "/brdfbake/calibration.json";
+    if (const char* h = std::getenv("HOME"); h && *h == '/') return std::string(h) + "/.cache/brdfbake/calibration.json";
+    return {};
+}
+
+Calibration read_calibration(const std::string& path) {
+    Calibration c;
+    c.path = path;
+    if (path.empty()) return c;
+    std::ifstream in(path);
+    if (!in) {
+        c.host = this_host();
+        c.hardware_threads = this_threads();
+        return c;  // none yet: the first bake writes it
+    }
+    std::stringstream text;
+    text << in.rdbuf();
+    json j;
+    try {
+        j = json::parse(text.str());
+        parse(j, c);
+    } catch (const std::exception& e) {
+        // A file of this format (another version, a bad value) is this program's: the next bake
+        // replaces it. Any other file is left alone (the variable may name it by mistake).
+        const bool ours = j.is_object() && j.value("format", json()) == kFormat;
+        Calibration ignored;
+        ignored.path = path;
+        ignored.writable = ours;
+        ignored.host = this_host();
+        ignored.hardware_threads = this_threads();
+        std::string why = e.what();
+        if (dynamic_cast<const json::parse_error*>(&e)) why = "it is not valid JSON";
+        else if (dynamic_cast<const json::exception*>(&e)) why = "a value of the wrong type";
+        ignored.warning = "calibration file '" + path + "' ignored: " + why + "; the estimates use the built-in figures" +
+                          (ours ? " and the next bake replaces it"
+                                : ", and bakes do not record into it (remove it, or set BRDFBAKE_CALIBRATION to "
+                                  "another path or to off)");
+        return ignored;
+    }
+    if (c.host != this_host() || c.hardware_threads != this_threads()) {
+        // Another machine's figures (a shared home folder): this machine starts afresh.
+        Calibration fresh;
+        fresh.path = path;
+        fresh.host = this_host();
+        fresh.hardware_threads = this_threads();
+        return fresh;
+    }
+    return c;
+}
+
+void add_bake_timings(Calibration& c, const BakeTimings& t) {
+    c.host = this_host();
+    c.hardware_threads = this_threads();
+    ++c.bakes;
+    for (const auto& r : t.tables)
+        if (r.samples > 0) c.tables[calibration_rate_key(r.kind, r.model_name, r.precision)].add(double(r.samples), r.compute_seconds);
+    for (const auto& [texels, seconds] : t.previews) c.previews.add(texels, seconds);
+    if (t.programs > 0 && t.build_seconds > 0) c.build_seconds_per_program.add(t.build_seconds / t.programs);
+    if (t.report_checks > 0 && t.report_seconds > 0) c.report_check_seconds.add(t.report_seconds / t.report_checks);
+}
+
+std::string write_calibration(const Calibration& c) {
+    if (c.path.empty() || !c.writable) return {};
+    json j;
+    j["format"] = kFormat;
+    j["version"] = kVersion;
+    j["host"] = c.host;
+    j["hardware_threads"] = c.hardware_threads;
+    j["bakes"] = c.bakes;
+    j["updated"] = utc_now();
+    j["tables"] = json::object();
+    for (const auto& [key, line] : c.tables)
+        if (!line.runs.empty()) j["tables"][key] = json_of(line);
+    if (!c.previews.runs.empty()) j["previews"] = json_of(c.previews);
+    if (c.build_seconds_per_program.known()) j["kernel_build_seconds"] = json_of(c.build_seconds_per_program);
+    if (c.report_check_seconds.known()) j["report_check_seconds"] = json_of(c.report_check_seconds);
+    make_parent(c.path);
+    const std::string tmp = c.path + ".tmp-" + std::to_string(::getpid());
+    const std::string text = j.dump(2) + "\n";
+    FILE* f = std::fopen(tmp.c_str(), "w");
+    if (!f) return "cannot write '" + tmp + "': " + std::strerror(errno);
+    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
+    if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), c.path.c_str()) != 0) {
+        const std::string why = std::strerror(errno);
+        std::remove(tmp.c_str());
+        return "cannot write '" + c.path + "': " + why;
+    }
+    return {};
+}
+
+}  // namespace brdfbake

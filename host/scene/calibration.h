@@ -1,0 +1,133 @@
+// `plan`'s and `bake`'s time estimates from what bakes on this machine measured (issue 32: within
+// 1.5x of the bake). Each `brdfbake bake` records its stages' times into a calibration file: per
+// (table kind, model, precision) the samples per second its tables integrated at, the seconds a
+// preview took, a kernel build, a lobe check of the report. `plan` and `bake` estimate from the
+// file when it has figures for this machine, from the built-in figures (measured on the
+// development machine: benchmarks/results/plan-estimates-2c-shared.md) otherwise.
+//
+// The file: $BRDFBAKE_CALIBRATION (a path; "off": none is read or written), else
+// $XDG_CACHE_HOME/brdfbake/calibration.json, else ~/.cache/brdfbake/calibration.json. It is
+// replaced atomically (a temporary file renamed over it). A file that cannot be used is ignored
+// with one warning: one of this format (another version, a value out of range) is replaced by the
+// next bake; any other (not JSON, no "format": "brdfbake-calibration") is never written to (it
+// may be someone's file the variable names by mistake); docs/scenes.md, "Estimates".
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace brdfbake {
+
+/// The built-in figures of the cost model (the development machine, 2 hardware threads, PoCL,
+/// float; benchmarks/results/plan-estimates-2c-shared.md). A calibration replaces those it has.
+namespace builtin_figures {
+/// GGX albedo samples per second per hardware thread on PoCL's vector path, float (1024x316
+/// texels x 4096 samples in 5.8 s on 2 threads: 2.2e8 samples/s).
+constexpr double kSamplesPerSecondPerCore = 1.1e8;
+/// A kernel build and first launch on PoCL: 0.5 s cold, about 0.12 s from PoCL's kernel cache.
+constexpr double kSecondsPerProgram = 0.3;
+/// Per table: launches, assembling and writing the file (measured: 0.01 to 0.1 s).
+constexpr double kSecondsPerTable = 0.05;
+/// The preview picture bake writes beside a table (MathGL, single-threaded: 0.2 to 0.3 s for a
+/// 64x64 table), and per texel drawn.
+constexpr double kSecondsPerPreview = 0.3;
+constexpr double kSecondsPerPreviewTexel = 5e-7;
+/// Starting the process, the device and the bake folder (measured: about 0.3 s).
+constexpr double kStartupSeconds = 0.3;
+/// One lobe check of the bake report (24 directions x 2^14 samples and 16^3 reciprocity pairs:
+/// 0.05 to 0.3 s a check).
+constexpr double kSecondsPerReportCheck = 0.2;
+}  // namespace builtin_figures
+
+/// A measured figure: its running mean over the last few measurements.
+struct CalibratedFigure {
+    double value = 0.0;
+    int measurements = 0;  // 0: none (the built-in figure holds)
+    bool known() const { return measurements > 0; }
+    /// Adds a measurement: the mean of up to the last 8 (older ones fade out).
+    void add(double x);
+};
+
+/// A cost that grows with a size (a table's samples, a preview's texels): seconds = a + b size,
+/// fitted to recent measurements (up to 8, 2 of a size, the largest size kept).
+struct CalibratedLine {
+    std::vector<std::pair<double, double>> runs;  // (size, seconds), oldest first
+    void add(double size, double seconds);
+    /// The seconds at `size`: by least squares (a, b >= 0) over runs of at least two sizes whose
+    /// slope lies within 20x of b0's; from one size (or a slope beyond that), the default line
+    /// a0 + b0 size scaled through the runs' mean; the default itself without runs.
+    double seconds(double size, double a0, double b0) const;
+    /// The fitted slope where the runs determine one (two sizes at least, the larger's samples
+    /// costing at least as much as its fixed part), else -1.
+    double slope(double b0) const;
+};
+
+struct Calibration {
+    std::string path;     // the file (empty: calibration off)
+    std::string warning;  // why the file was ignored (empty: it was read, or there is none)
+    bool writable = true; // false: the file is not a calibration (never overwritten)
+    std::string host;     // the machine it was measured on
+    unsigned hardware_threads = 0;
+    int bakes = 0;        // bakes that recorded into it
+    /// Integration seconds over samples, by calibration_rate_key(kind, model, precision).
+    std::map<std::string, CalibratedLine> tables;
+    CalibratedLine previews;  // seconds over texels
+    CalibratedFigure build_seconds_per_program, report_check_seconds;
+
+    /// The file has figures for this machine (same host and hardware threads, a bake recorded).
+    bool applies() const;
+};
+
+/// The cost of one sample of a model relative to GGX's where it differs by more than 1.5x.
+double model_sample_cost(const std::string& model_name);
+
+/// The built-in samples per second of a table of `kind` and `model_name`: GGX albedo's over the
+/// kind's cost per sample (TableKind::sample_cost) and the model's.
+double builtin_rate(const std::string& kind, const std::string& model_name);
+
+/// The seconds a table of `samples` of `kind`, `model_name` and `precision` ("float", "double")
+/// integrates for: the calibration's line for it where it has runs; else the built-in rate, scaled
+/// by this machine's speed (the geometric mean, over the kinds with a fitted slope, of how much
+/// faster than their built-in rate they ran), plus the built-in fixed seconds. `calibration` may
+/// be nullptr (built-in figures).
+double table_seconds(const Calibration* calibration, const std::string& kind, const std::string& model_name,
+                     const std::string& precision, double samples);
+
+/// The seconds a preview of `texels` takes (the built-in line without runs).
+double preview_seconds(const Calibration* calibration, double texels);
+
+/// "albedo ggx float": the key of a table's measured rate.
+std::string calibration_rate_key(const std::string& kind, const std::string& model_name, const std::string& precision);
+
+/// The file's path from the environment (see the top of this file); empty: calibration off.
+std::string calibration_path();
+
+/// Reads the calibration at `path` (empty: off; a missing file: an empty calibration). Never
+/// throws: a file that cannot be used comes back empty, with `warning` saying why.
+Calibration read_calibration(const std::string& path);
+
+/// The stages one bake measured.
+struct BakeTimings {
+    struct TableRun {
+        std::string kind, model_name, precision;
+        std::uint64_t samples = 0;   // samples integrated (the plan's samples_total)
+        double compute_seconds = 0;  // integrating, kernel builds excluded
+    };
+    std::vector<TableRun> tables;
+    std::vector<std::pair<double, double>> previews;  // (texels, seconds) per preview
+    int programs = 0;                // kernel programs built
+    double build_seconds = 0;        // their total
+    int report_checks = 0;           // lobe checks of the report (0: no report)
+    double report_seconds = 0;
+};
+
+/// Adds a bake's measurements to `c`.
+void add_bake_timings(Calibration& c, const BakeTimings& t);
+
+/// Writes `c` to c.path atomically (a temporary file in the same folder, renamed over it);
+/// creates the folder. Returns an empty string, or why it could not (the bake goes on).
+std::string write_calibration(const Calibration& c);
+
+}  // namespace brdfbake
