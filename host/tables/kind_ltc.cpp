@@ -4,8 +4,9 @@
 // transformed clamped cosine D best matches the normalised lobe p = f cos(theta_i) / E (fitted by
 // host/fit/ltc_fit.h on the device), the magnitude E (the engine's albedo integration, F = 1, with
 // its error), the fresnel channel (integral of f cos (1 - wo.h)^5, the Schlick split's second
-// term as Heitz and Hill's fitLTC tabulates it) and the distance integral over the upper
-// hemisphere of |p - D| with its own error. docs/architecture.md, "The fitting layer".
+// term as Heitz and Hill's fitLTC tabulates it, by the same integration as the magnitude, with
+// its error) and the distance integral over the upper hemisphere of |p - D| with its own error
+// channel distance_error. docs/architecture.md, "The fitting layer".
 #include <algorithm>
 #include <cmath>
 #include <numeric>
@@ -26,7 +27,9 @@ namespace {
 /// LTC is a delta, which no finite M reaches).
 constexpr double kLtcAlphaFloor = 1e-3;
 
-std::vector<std::string> ltc_programs(const LutRequest& r) { return {"albedo|" + r.model + "|none", "ltc|" + r.model}; }
+std::vector<std::string> ltc_programs(const LutRequest& r) {
+    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick", "ltc|" + r.model};
+}
 
 void validate_ltc(const LutRequest&, const ModelConfig& m, const FresnelConfig& f) {
     if (m.traits().delta)
@@ -45,8 +48,10 @@ std::string stats_text(std::vector<double> v) {
     return s.str();
 }
 
-/// The fit's rows, rough to smooth, with the cells of each; `order[k]` is the table row of fit row k.
-std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const ModelConfig& m, std::vector<size_t>& order) {
+/// The fit's rows, rough to smooth, with the cells of each and their albedo E (the magnitude
+/// channel, where the texel is fitted at its own alpha); `order[k]` is the table row of fit row k.
+std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const ModelConfig& m, const AlbedoResult& e,
+                                                std::vector<size_t>& order) {
     const size_t w = g.table.x.parameter.size(), h = g.table.y.parameter.size();
     order.resize(h);
     std::iota(order.begin(), order.end(), 0);
@@ -59,9 +64,13 @@ std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const Mode
         for (size_t i = 0; i < w; ++i) {
             const AlbedoCell& c = g.cells[j * w + i];
             ParamBlock p = c.params;
+            bool floored = false;
             if (has_mirror_limit(m))
-                for (int s : slots) p[s] = std::max(p[s], kLtcAlphaFloor);
-            rows.back().push_back({c.mu, p});
+                for (int s : slots) {
+                    floored = floored || p[s] < kLtcAlphaFloor;
+                    p[s] = std::max(p[s], kLtcAlphaFloor);
+                }
+            rows.back().push_back({c.mu, p, floored ? 0.0 : e.values[j * w + i].value});
         }
     }
     return rows;
@@ -72,9 +81,12 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
     Table& t = g.table;
     t.quantity = "linearly transformed cosine fits (Heitz et al. 2016) of the lobe f cos(theta_i) / E, "
                  "viewer at (sin theta_o, 0, cos theta_o): M = [[m00, 0, m02], [0, m11, 0], [m20, 0, m22]]";
+    // E and the Schlick split's term B = integral of f cos (1 - wo.h)^5 (Schlick with f0 = 0), each
+    // to the tolerance: the table's error is the larger of their errors.
     const AlbedoResult albedo = integrate(engine, r, m, f, g.cells);
+    const AlbedoResult fresnel = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), g.cells);
     std::vector<size_t> order;
-    const std::vector<std::vector<fit::LtcCell>> rows = fit_rows(g, m, order);
+    const std::vector<std::vector<fit::LtcCell>> rows = fit_rows(g, m, albedo, order);
     fit::LtcFitOptions options;
     options.precision = r.precision;
     std::vector<std::vector<fit::LtcFit>> fits;
@@ -83,33 +95,29 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
         fits = fit::fit_ltc_rows(engine, m, rows, options, [&](size_t k) { stage.update(k + 1); });
     }
     const size_t w = t.x.parameter.size(), n = g.cells.size();
-    t.channels = {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance"};
+    t.channels = {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance", "distance_error"};
     t.values.assign(t.channels.size(), std::vector<double>(n));
     t.error.assign(n, 0.0);
-    std::vector<double> distance, distance_error, fresnel_error;
+    std::vector<double> distance, distance_error;
     for (size_t k = 0; k < rows.size(); ++k)
         for (size_t i = 0; i < w; ++i) {
             const size_t c = order[k] * w + i;
             const fit::LtcFit& ft = fits[k][i];
-            const double v[] = {ft.m.m00, ft.m.m02, ft.m.m11, ft.m.m20, ft.m.m22, albedo.values[c].value, ft.fresnel,
-                                ft.distance};
+            const double v[] = {ft.m.m00, ft.m.m02, ft.m.m11, ft.m.m20, ft.m.m22, albedo.values[c].value,
+                                fresnel.values[c].value, ft.distance, ft.distance_error};
             for (size_t ch = 0; ch < t.channels.size(); ++ch) t.values[ch][c] = v[ch];
-            t.error[c] = albedo.values[c].error;
+            t.error[c] = std::max(albedo.values[c].error, fresnel.values[c].error);
             distance.push_back(ft.distance);
             distance_error.push_back(ft.distance_error);
-            fresnel_error.push_back(ft.fresnel_error);
         }
     describe(t, r, m, f.canonical, albedo.method, albedo.samples_per_cell, g.clamped);
     t.attributes["distance"] = "integral over the upper hemisphere of |f cos / E - D|: " + stats_text(distance);
-    t.attributes["distance_error"] = "|distance on " + std::to_string(options.fine_side) + "^2 - on the fit's " +
-                                     std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
-                                     stats_text(distance_error);
-    t.attributes["fresnel_error"] = "|fresnel on " + std::to_string(options.fine_side) + "^2 - on " +
-                                    std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
-                                    stats_text(fresnel_error);
-    t.attributes["error_channel"] = "the magnitude's integration error (--samples, --method, --tolerance); the "
-                                    "distance's and the fresnel channel's errors: the distance_error and "
-                                    "fresnel_error attributes";
+    t.attributes["distance_error"] =
+        std::to_string(int(options.distance_sigmas)) + " standard errors of the mean over " +
+        std::to_string(options.distance_grids) + " independent jittered grids of " + std::to_string(options.distance_side) +
+        "^2 points (lobe- and LTC-sampled), for M as written (float32 entries): " + stats_text(distance_error);
+    t.attributes["error_channel"] = "the larger of the magnitude's and the fresnel channel's integration errors "
+                                    "(--samples, --method, --tolerance); the distance's: the distance_error channel";
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
                               std::to_string(options.fit_side) + "x" + std::to_string(options.fit_side) +
                               " sampler points per texel, rows from rough to smooth, each started from the row before";
@@ -126,7 +134,7 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
 TableKind ltc_kind() {
     TableKind k(TableKindId::Ltc, "ltc",
                 "linearly transformed cosines (Heitz et al. 2016) per (mu, alpha): m00 m02 m11 m20 m22, magnitude E, "
-                "fresnel, the fit's L1 distance (2D)",
+                "fresnel, the fit's L1 distance and its error (2D)",
                 ltc_programs, compute_ltc);
     k.plan_fresnel = "none (F = 1; the fresnel channel is the Schlick split's term)";
     k.validate = validate_ltc;
@@ -134,7 +142,8 @@ TableKind ltc_kind() {
     // default 2^18 samples (benchmarks/results/ltc-table-amd-epyc-2c.md): about 9 albedo samples'
     // cost per sample of its magnitude (the fit's cost does not scale with --samples).
     k.sample_cost = 9.0;
-    k.value_channels = [](const LutRequest&) { return 8; };
+    k.value_channels = [](const LutRequest&) { return 9; };
+    k.integrations = [](const LutRequest&) { return 2; };
     return k;
 }
 
