@@ -246,3 +246,55 @@ TEST_CASE("ltc: delta and anisotropic lobes and a Fresnel term are refused with 
         CHECK(testing::run_shell("test -e /tmp/ltc_refused.exr").status != 0);
     }
 }
+
+TEST_CASE("ltc --preset three: three.js's axes and packing, the plain table's M inverted and normalised", "[ltc][presets]") {
+    // docs/ltc_presets.md, read from three.js's LTC_Uv (uv = (roughness, sqrt(1 - dotNV)) * 63/64 +
+    // 0.5/64) and RE_Direct_RectArea_Physical (mInv = mat3(vec3(t1.x, 0, t1.y), vec3(0, 1, 0),
+    // vec3(t1.z, 0, t1.w)), GLSL columns): texel (a, t) at roughness a/(W - 1), alpha its square, and
+    // cos theta = 1 - (t/(H - 1))^2 (theta at most 1.57); ltc_1 = (Minv00, Minv20, Minv02, Minv22) / Minv11.
+    LutSettings s;
+    s.kind = "ltc";
+    s.preset = "three";
+    s.size = std::vector<int>{5, 6};  // mu texels, alpha texels (before the preset's axis order)
+    const LutSetup setup = apply_preset(s);
+    const Table three = compute_lut(testing::engine(), setup.request);
+    LutRequest plain_request = setup.request;
+    plain_request.packing.clear();
+    plain_request.axes.clear();
+    const Table plain = compute_lut(testing::engine(), plain_request);
+    CHECK(three.channels == std::vector<std::string>{"ltc_1.R", "ltc_1.G", "ltc_1.B", "ltc_1.A", "ltc_2.R", "ltc_2.G",
+                                                     "ltc_2.B", "ltc_2.A", "distance", "distance_error"});
+    CHECK(three.x.name == "roughness");
+    CHECK(three.y.name == "sqrt_one_minus_mu");
+    REQUIRE(three.x.parameter.size() == 6);
+    REQUIRE(three.y.parameter.size() == 5);
+    for (int a = 0; a < 6; ++a) CHECK(three.x.parameter[a] == Approx((a / 5.0) * (a / 5.0)).margin(1e-12));
+    for (int t = 0; t < 5; ++t) CHECK(three.y.parameter[t] == Approx(std::max(1 - (t / 4.0) * (t / 4.0), std::cos(1.57))).epsilon(1e-3));
+    // the plain table: mu on x, alpha on y; the preset: roughness on x, sqrt(1 - mu) on y
+    for (int t = 0; t < 5; ++t)
+        for (int a = 0; a < 6; ++a) {
+            const size_t c3 = size_t(t * 6 + a), cp = size_t(a * 5 + t);
+            INFO("a " << a << " t " << t);
+            CHECK(plain.x.parameter[t] == three.y.parameter[t]);
+            const double m00 = plain.values[0][cp], m02 = plain.values[1][cp], m11 = plain.values[2][cp],
+                         m20 = plain.values[3][cp], m22 = plain.values[4][cp];
+            const double r = three.values[0][c3], g = three.values[1][c3], b = three.values[2][c3], aa = three.values[3][c3];
+            // the stored Minv' = [[r, 0, b], [0, 1, 0], [g, 0, aa]] times M is a multiple of the identity
+            const double p00 = r * m00 + b * m20, p02 = r * m02 + b * m22, p20 = g * m00 + aa * m20, p22 = g * m02 + aa * m22;
+            const double p11 = m11, scale = std::max({std::abs(p00), std::abs(p22), p11});
+            CHECK(std::abs(p02) < 1e-5 * scale + 1e-6 * std::abs(b * m22));
+            CHECK(std::abs(p20) < 1e-5 * scale + 1e-6 * std::abs(g * m00));
+            CHECK(p00 == Approx(p11).epsilon(1e-5));
+            CHECK(p22 == Approx(p11).epsilon(1e-5));
+            CHECK(three.values[4][c3] == plain.values[5][cp]);  // magnitude
+            CHECK(three.values[5][c3] == plain.values[6][cp]);  // fresnel
+            CHECK(three.values[6][c3] == 0.0);
+            CHECK(three.values[7][c3] == 0.0);
+            CHECK(three.values[8][c3] == Approx(plain.values[7][cp]).margin(three.values[9][c3] + plain.values[8][cp]));
+        }
+    // normal incidence (t = 0) of the roughest column: M = diag(m, m, 1) up to scale, so ltc_1 = (1, 0, 0, m/1)
+    // with the lobe symmetric about the normal: G and B vanish, R = 1 (Minv00 = Minv11).
+    CHECK(three.values[0][5] == Approx(1.0).epsilon(2e-2));
+    CHECK(std::abs(three.values[1][5]) < 2e-2);
+    CHECK(std::abs(three.values[2][5]) < 2e-2);
+}

@@ -119,9 +119,8 @@ std::vector<double> distances(Engine& engine, cl::Kernel& kernel, Precision prec
     return s;
 }
 
-/// M with its entries rounded to float32, as every table format but the CSV holds them: the
-/// reported distance is that of this matrix.
-LtcMatrix as_written(LtcMatrix m) {
+/// M with its entries rounded to float32, as every table format but the CSV holds them.
+LtcMatrix as_float32(LtcMatrix m) {
     for (double* v : {&m.m00, &m.m02, &m.m11, &m.m20, &m.m22}) *v = double(float(*v));
     return m;
 }
@@ -286,7 +285,7 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
     for (size_t c = 0; c < cells.size(); ++c) {
         fits[c].x = as_q(minima[c].x);
         fits[c].q = absolute(c, minima[c].x);
-        fits[c].m = as_written(ltc_matrix(fits[c].q));
+        fits[c].m = o.as_written ? o.as_written(ltc_matrix(fits[c].q)) : as_float32(ltc_matrix(fits[c].q));
         fits[c].evaluations = minima[c].evaluations;
         fits[c].albedo = cells[c].albedo > 0 ? cells[c].albedo : fit_sums[c].albedo;
     }

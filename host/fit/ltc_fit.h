@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "brdfbake/engine.h"
@@ -50,6 +51,9 @@ struct LtcFitOptions {
     double distance_sigmas = 5;  // errors of that mean (the grids' spread)
     int max_evaluations = 300;       // per cell
     double value_tolerance = 2e-5;   // Nelder-Mead's convergence (nelder_mead.h)
+    /// The M that the table's stored values denote, given the fitted one (their float32 rounding);
+    /// empty: the entries rounded to float32. The reported distance is that M's.
+    std::function<LtcMatrix(const LtcMatrix&)> as_written;
     double size_tolerance = 1e-3;
 };
 
@@ -58,7 +62,7 @@ struct LtcFit {
     std::array<double, 4> q{};  // the fitted parameters (ltc_matrix)
     std::array<double, 4> x{};  // the same with theta relative to the lobe's average direction
     double distance = 0;        // integral over the upper hemisphere of |p - D|, p = f cos / E, of m
-    double distance_error = 0;  // as the entries are written: m's entries are float32 values
+    double distance_error = 0;  // m: the matrix as written (LtcFitOptions::as_written)
     double albedo = 0;          // the E of p (the cell's, or the fit's points' mean sample weight)
     int evaluations = 0;
 };

@@ -8,7 +8,9 @@
 // its error) and the distance integral over the upper hemisphere of |p - D| with its own error
 // channel distance_error. docs/architecture.md, "The fitting layer".
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <sstream>
 
@@ -31,7 +33,71 @@ std::vector<std::string> ltc_programs(const LutRequest& r) {
     return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick", "ltc|" + r.model};
 }
 
-void validate_ltc(const LutRequest&, const ModelConfig& m, const FresnelConfig& f) {
+/// How a table stores each texel's M with its magnitude E and fresnel term B (the value channels
+/// before distance and distance_error), and the M that the stored values denote (the distance
+/// reported is that M's).
+struct LtcPacking {
+    std::string name;  // LutRequest::packing
+    std::string quantity;
+    std::vector<std::string> channels;
+    std::function<std::vector<double>(const fit::LtcMatrix&, double e, double b)> values;
+    std::function<fit::LtcMatrix(const fit::LtcMatrix&)> as_written;
+};
+
+/// three.js's ltc_1 = M^-1 / M^-1_11 as (M^-1_00, M^-1_20, M^-1_02, M^-1_22), float32: its shaders
+/// build mInv = mat3(vec3(t1.x, 0, t1.y), vec3(0, 1, 0), vec3(t1.z, 0, t1.w)) (GLSL columns) in
+/// RE_Direct_RectArea_Physical (src/renderers/shaders/ShaderChunk/lights_physical_pars_fragment.glsl.js)
+/// from texture2D(ltc_1, LTC_Uv(...)); docs/ltc_presets.md. With D = m00 m22 - m02 m20,
+/// M^-1 = [[m22, 0, -m02], [0, D/m11, 0], [-m20, 0, m00]] / D.
+std::array<double, 4> three_ltc1(const fit::LtcMatrix& m) {
+    const double d = m.m00 * m.m22 - m.m02 * m.m20;
+    return {double(float(m.m11 * m.m22 / d)), double(float(-m.m11 * m.m20 / d)), double(float(-m.m11 * m.m02 / d)),
+            double(float(m.m11 * m.m00 / d))};
+}
+
+/// The M (up to scale, which D ignores) of a stored ltc_1 t: the inverse of [[t0, 0, t2], [0, 1, 0], [t1, 0, t3]].
+fit::LtcMatrix from_three_ltc1(const std::array<double, 4>& t) {
+    const double d = t[0] * t[3] - t[2] * t[1];
+    fit::LtcMatrix m;
+    m.m00 = t[3] / d;
+    m.m02 = -t[2] / d;
+    m.m11 = 1.0;
+    m.m20 = -t[1] / d;
+    m.m22 = t[0] / d;
+    return m;
+}
+
+const std::vector<LtcPacking>& ltc_packings() {
+    static const std::vector<LtcPacking> packings = {
+        {"",
+         "M = [[m00, 0, m02], [0, m11, 0], [m20, 0, m22]]",
+         {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel"},
+         [](const fit::LtcMatrix& m, double e, double b) { return std::vector<double>{m.m00, m.m02, m.m11, m.m20, m.m22, e, b}; },
+         {}},  // the entries themselves, float32: the fitter's default
+        // three.js's RectAreaLightTexturesLib (examples/jsm/lights): LTC_FLOAT_1 -> ltc_1 as above,
+        // LTC_FLOAT_2 -> ltc_2 = (E, B, 0, sphere term), read as specularColor * t2.x +
+        // (1 - specularColor) * t2.y; the rect-light shader reads no ltc_2.w: 0 here.
+        {"three",
+         "three.js's ltc_1 = M^-1 / M^-1_11 as (M^-1_00, M^-1_20, M^-1_02, M^-1_22) and ltc_2 = (magnitude, "
+         "fresnel, 0, 0)",
+         {"ltc_1.R", "ltc_1.G", "ltc_1.B", "ltc_1.A", "ltc_2.R", "ltc_2.G", "ltc_2.B", "ltc_2.A"},
+         [](const fit::LtcMatrix& m, double e, double b) {
+             const std::array<double, 4> t = three_ltc1(m);
+             return std::vector<double>{t[0], t[1], t[2], t[3], e, b, 0.0, 0.0};
+         },
+         [](const fit::LtcMatrix& m) { return from_three_ltc1(three_ltc1(m)); }},
+    };
+    return packings;
+}
+
+const LtcPacking& ltc_packing(const std::string& name) {
+    for (const LtcPacking& p : ltc_packings())
+        if (p.name == name) return p;
+    throw Error("the ltc table has no packing '" + name + "' (three, or none for its own channels)");
+}
+
+void validate_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    ltc_packing(r.packing);
     if (m.traits().delta)
         throw Error("the ltc table fits a lobe; '" + m.name + "' is a delta lobe, which no linearly transformed cosine fits");
     if (m.anisotropic)
@@ -79,8 +145,9 @@ std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const Mode
 Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
+    const LtcPacking& packing = ltc_packing(r.packing);
     t.quantity = "linearly transformed cosine fits (Heitz et al. 2016) of the lobe f cos(theta_i) / E, "
-                 "viewer at (sin theta_o, 0, cos theta_o): M = [[m00, 0, m02], [0, m11, 0], [m20, 0, m22]]";
+                 "viewer at (sin theta_o, 0, cos theta_o): " + packing.quantity;
     // E and the Schlick split's term B = integral of f cos (1 - wo.h)^5 (Schlick with f0 = 0), each
     // to the tolerance: the table's error is the larger of their errors.
     const AlbedoResult albedo = integrate(engine, r, m, f, g.cells);
@@ -89,13 +156,15 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
     const std::vector<std::vector<fit::LtcCell>> rows = fit_rows(g, m, albedo, order);
     fit::LtcFitOptions options;
     options.precision = r.precision;
+    options.as_written = packing.as_written;
     std::vector<std::vector<fit::LtcFit>> fits;
     {
         ProgressStage stage("LTC fit of " + m.canonical, rows.size(), "rows", "fitted");
         fits = fit::fit_ltc_rows(engine, m, rows, options, [&](size_t k) { stage.update(k + 1); });
     }
     const size_t w = t.x.parameter.size(), n = g.cells.size();
-    t.channels = {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance", "distance_error"};
+    t.channels = packing.channels;
+    t.channels.insert(t.channels.end(), {"distance", "distance_error"});
     t.values.assign(t.channels.size(), std::vector<double>(n));
     t.error.assign(n, 0.0);
     std::vector<double> distance, distance_error;
@@ -103,8 +172,8 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
         for (size_t i = 0; i < w; ++i) {
             const size_t c = order[k] * w + i;
             const fit::LtcFit& ft = fits[k][i];
-            const double v[] = {ft.m.m00, ft.m.m02, ft.m.m11, ft.m.m20, ft.m.m22, albedo.values[c].value,
-                                fresnel.values[c].value, ft.distance, ft.distance_error};
+            std::vector<double> v = packing.values(ft.m, albedo.values[c].value, fresnel.values[c].value);
+            v.insert(v.end(), {ft.distance, ft.distance_error});
             for (size_t ch = 0; ch < t.channels.size(); ++ch) t.values[ch][c] = v[ch];
             t.error[c] = std::max(albedo.values[c].error, fresnel.values[c].error);
             distance.push_back(ft.distance);
@@ -115,7 +184,7 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
     t.attributes["distance_error"] =
         std::to_string(int(options.distance_sigmas)) + " standard errors of the mean over " +
         std::to_string(options.distance_grids) + " independent jittered grids of " + std::to_string(options.distance_side) +
-        "^2 points (lobe- and LTC-sampled), for M as written (float32 entries): " + stats_text(distance_error);
+        "^2 points (lobe- and LTC-sampled), for the M that the stored float32 values denote: " + stats_text(distance_error);
     t.attributes["error_channel"] = "the larger of the magnitude's and the fresnel channel's integration errors "
                                     "(--samples, --method, --tolerance); the distance's: the distance_error channel";
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
@@ -142,7 +211,7 @@ TableKind ltc_kind() {
     // default 2^18 samples (benchmarks/results/ltc-table-amd-epyc-2c.md): about 9 albedo samples'
     // cost per sample of its magnitude (the fit's cost does not scale with --samples).
     k.sample_cost = 9.0;
-    k.value_channels = [](const LutRequest&) { return 9; };
+    k.value_channels = [](const LutRequest& r) { return int(ltc_packing(r.packing).channels.size()) + 2; };
     k.integrations = [](const LutRequest&) { return 2; };
     return k;
 }
