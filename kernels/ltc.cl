@@ -32,6 +32,18 @@
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
 
+/* A texel's model and Fresnel parameters and its viewer wo = (sin theta_o, 0, cos theta_o). */
+static inline bb_vec3 bb_ltc_cell(const unsigned int cell, __global const bb_scalar* cell_mu,
+                                  __global const bb_scalar* model_p, __global const bb_scalar* fresnel_p,
+                                  bb_params* p, bb_params* fp) {
+    for (int i = 0; i < BB_MAX_PARAMS; ++i) {
+        p->v[i] = model_p[cell * BB_MAX_PARAMS + i];
+        fp->v[i] = fresnel_p[i];
+    }
+    const bb_real mu = cell_mu[cell];
+    return bb_v3(sqrt(fmax(BB_R(0.0), BB_R(1.0) - mu * mu)), BB_R(0.0), mu);
+}
+
 __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __global const bb_scalar* model_p,
                                        __global const bb_scalar* fresnel_p,
                                        __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */,
@@ -43,12 +55,7 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
         return;
     const unsigned int cell = gid / per_cell, k = gid - cell * per_cell;
     bb_params p, fp;
-    for (int i = 0; i < BB_MAX_PARAMS; ++i) {
-        p.v[i] = model_p[cell * BB_MAX_PARAMS + i];
-        fp.v[i] = fresnel_p[i];
-    }
-    const bb_real mu = cell_mu[cell];
-    const bb_vec3 wo = bb_v3(sqrt(fmax(BB_R(0.0), BB_R(1.0) - mu * mu)), BB_R(0.0), mu);
+    const bb_vec3 wo = bb_ltc_cell(cell, cell_mu, model_p, fresnel_p, &p, &fp);
     const bb_real u1 = ((bb_real)(k % n_side) + BB_R(0.5)) / (bb_real)n_side;
     const bb_real u2 = ((bb_real)(k / n_side) + BB_R(0.5)) / (bb_real)n_side;
     const bb_sample s = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
@@ -122,12 +129,7 @@ __kernel void BB_ENTRY_LTC_DISTANCE(__global const bb_scalar* cell_mu, __global 
         return;
     const unsigned int cell = gid / n_grids, grid = gid - cell * n_grids;
     bb_params p, fp;
-    for (int i = 0; i < BB_MAX_PARAMS; ++i) {
-        p.v[i] = model_p[cell * BB_MAX_PARAMS + i];
-        fp.v[i] = fresnel_p[i];
-    }
-    const bb_real mu = cell_mu[cell];
-    const bb_vec3 wo = bb_v3(sqrt(fmax(BB_R(0.0), BB_R(1.0) - mu * mu)), BB_R(0.0), mu);
+    const bb_vec3 wo = bb_ltc_cell(cell, cell_mu, model_p, fresnel_p, &p, &fp);
     __global const bb_scalar* m = matrices + (size_t)cell * BB_LTC_MATRIX_VALUES;
     const bb_real inv_e = BB_R(1.0) / (bb_real)albedo[cell];
     const unsigned int stream = bb_ltc_hash(bb_ltc_hash(cell) ^ (grid * 0x9e3779b9u + 0x6c74636du));
