@@ -207,10 +207,11 @@ TableKind ltc_kind() {
                 ltc_programs, compute_ltc);
     k.plan_fresnel = "none (F = 1; the fresnel channel is the Schlick split's term)";
     k.validate = validate_ltc;
-    // Measured: the 64x64 GGX table takes 5.4 s of CPU against the albedo table's 0.6 s at the
-    // default 2^18 samples (benchmarks/results/ltc-table-amd-epyc-2c.md): about 9 albedo samples'
-    // cost per sample of its magnitude (the fit's cost does not scale with --samples).
-    k.sample_cost = 9.0;
+    // Measured: the 64x64 GGX table takes 9.3 s of CPU against the albedo table's 0.66 s at the
+    // default 2^18 samples (benchmarks/results/ltc-table-amd-epyc-2c.md, branch ltcfix): about 14
+    // albedo samples' cost per sample of its magnitude (the fit's and the distance's cost do not
+    // scale with --samples).
+    k.sample_cost = 14.0;
     k.value_channels = [](const LutRequest& r) { return int(ltc_packing(r.packing).channels.size()) + 2; };
     k.integrations = [](const LutRequest&) { return 2; };
     return k;
