@@ -36,6 +36,7 @@ struct LobePoints {
 struct CellSummary {
     double albedo = 0;         // mean weight: E on these points
     double average_theta = 0;  // the lobe's average direction (sin t, 0, cos t)
+    double width_x = 1, width_y = 1;  // E_p[|x'/z'|], E_p[|y'/z'|] about that direction (below)
 };
 
 cl::Program& ltc_program(Engine& engine, const ModelConfig& model, Precision precision) {
@@ -89,6 +90,25 @@ CellSummary summarise(const LobePoints& pts, size_t cell) {
     CellSummary s;
     s.albedo = w / double(per);
     s.average_theta = (ax == 0 && az == 0) ? 0.0 : std::atan2(ax, az);
+    // The lobe's widths about its average direction: for the LTC diag(a, c, 1) of the clamped
+    // cosine, x'/z' = a tan(theta_c) cos(phi_c), and E[|tan theta_c cos phi_c|] = 1 under the
+    // cosine (2/pi times integral of tan theta cos theta sin theta over theta, pi/2): E_p[|x'/z'|]
+    // is a, E_p[|y'/z'|] is c, a start near the fit for narrow lobes (directions within 0.05 of
+    // the frame's horizon are left out: their ratio is unbounded).
+    const double ct = std::cos(s.average_theta), st = std::sin(s.average_theta);
+    double wx = 0, wy = 0, wn = 0;
+    p = pts.host.data() + cell * per * BB_LTC_POINT_VALUES;
+    for (size_t k = 0; k < per; ++k, p += BB_LTC_POINT_VALUES) {
+        const double xp = ct * p[0] - st * p[2], zp = st * p[0] + ct * p[2];
+        if (p[3] <= 0 || zp < 0.05) continue;
+        wx += p[3] * std::abs(xp) / zp;
+        wy += p[3] * std::abs(p[1]) / zp;
+        wn += p[3];
+    }
+    if (wn > 0 && wx > 0 && wy > 0) {
+        s.width_x = wx / wn;
+        s.width_y = wy / wn;
+    }
     return s;
 }
 
@@ -180,16 +200,23 @@ std::array<double, 4> as_q(const std::vector<double>& x) { return {x[0], x[1], x
 
 /// The start of each cell's minimisation, in the row's parameters x = (theta - theta_avg, ln a,
 /// b, ln c) (the angle relative to the lobe's average direction): the best of a few candidates
-/// evaluated in one launch: the clamped cosine turned to the average direction (x = 0), and the
+/// evaluated in one launch: the clamped cosine turned to the average direction (x = 0), the same
+/// scaled to the lobe's widths (CellSummary::width_x, width_y; times e^s, s = -0.5, 0, 0.5), and the
 /// previous row's fit at the same cell with its widths (ln a, ln c) moved by s in -1.5 ... 0.5 (a
 /// smoother row's lobe is narrower; the moved candidates bridge a coarse roughness axis).
-std::vector<std::vector<double>> best_starts(size_t n_cells, const std::vector<std::array<double, 4>>* previous,
+std::vector<std::vector<double>> best_starts(const std::vector<CellSummary>& sums,
+                                             const std::vector<std::array<double, 4>>* previous,
                                              const BatchObjective& objective) {
+    const size_t n_cells = sums.size();
     std::vector<size_t> cell_of;
     std::vector<std::vector<double>> xs;
     for (size_t c = 0; c < n_cells; ++c) {
         cell_of.push_back(c);
         xs.push_back({0.0, 0.0, 0.0, 0.0});
+        for (double s : {-0.5, 0.0, 0.5}) {
+            cell_of.push_back(c);
+            xs.push_back({0.0, std::log(sums[c].width_x) + s, 0.0, std::log(sums[c].width_y) + s});
+        }
         if (!previous) continue;
         for (double s : {-1.5, -1.0, -0.5, -0.25, 0.0, 0.5}) {
             const std::array<double, 4>& x = (*previous)[c];
@@ -279,7 +306,7 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
     nm.max_evaluations = o.max_evaluations;
     nm.value_tolerance = o.value_tolerance;
     nm.size_tolerance = o.size_tolerance;
-    std::vector<Minimum> minima = minimize_batch(best_starts(cells.size(), previous, objective), nm, objective);
+    std::vector<Minimum> minima = minimize_batch(best_starts(fit_sums, previous, objective), nm, objective);
     polish_from_neighbours(minima, nm, objective);
     std::vector<LtcFit> fits(cells.size());
     for (size_t c = 0; c < cells.size(); ++c) {
