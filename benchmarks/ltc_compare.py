@@ -14,7 +14,8 @@ Its texel (t, a): alpha = max((a/63)^2, 1e-4), theta = min(1.57, t/63 * 1.57079)
 ltc.inc; x = sqrt(1 - cos theta), theta = min(1.57, acos(1 - x^2)) and alpha floored at 1e-5 for the
 later fit three.js ships).
 BRDFBAKE.csv is `brdfbake lut ltc --model ggx -o FILE.csv` (GGX with the height-correlated Smith
-G2, as ltc_code's brdf_ggx.h). Where a brdfbake texel's (mu, alpha) is not a published texel, the
+G2, as ltc_code's brdf_ggx.h), or `brdfbake lut ltc --preset three -o FILE.csv` (three.js's grid and
+packing: M from its ltc_1 columns). Where a brdfbake texel's (mu, alpha) is not a published texel, the
 published matrix is interpolated linearly in ltc_code's (t, a) index space, as a renderer sampling
 the published texture with bilinear filtering would (column `pub_at`: node or interp).
 
@@ -82,8 +83,11 @@ def read_brdfbake_csv(path):
             row["mu"] = row["sqrt_mu"] ** 2
         if "alpha" not in row and "roughness" in row:
             row["alpha"] = row["roughness"] ** 2
+        if "ltc_1.R" in row:  # `--preset three`: M from its ltc_1 as three.js's shader reads it
+            m = matrix_from_ltc_1(row["ltc_1.R"], row["ltc_1.G"], row["ltc_1.B"], row["ltc_1.A"])
+            row.update(m00=m[0, 0], m02=m[0, 2], m11=m[1, 1], m20=m[2, 0], m22=m[2, 2])
         rows.append(row)
-    missing = {"mu", "alpha", "m00", "m02", "m11", "m20", "m22"} - set(header or []) - {"mu", "alpha"}
+    missing = {"mu", "alpha", "m00", "m02", "m11", "m20", "m22"} - set(rows[0] if rows else header or []) - {"mu", "alpha"}
     if missing:
         sys.exit("ltc_compare: error: %s lacks the columns %s" % (path, ", ".join(sorted(missing))))
     return rows

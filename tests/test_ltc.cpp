@@ -133,16 +133,6 @@ TEST_CASE("ltc: a Lambertian lobe is fitted by the identity, distance 0", "[ltc]
         CHECK(f.m.m11 / f.m.m22 == Approx(1.0).margin(2e-3));
         CHECK(f.distance < 1e-3);
         CHECK(f.albedo == Approx(1.0).margin(1e-9));  // the cosine sampler's weight is 1
-        // the fresnel channel: integral of cos / pi (1 - wo.h)^5, by independent quadrature
-        const double s = std::sqrt(1 - mu * mu);
-        const double fresnel = sphere_integral(
-            [&](const std::array<double, 3>& w) {
-                std::array<double, 3> h = {w[0] + s, w[1], w[2] + mu};
-                const double n = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
-                return w[2] / kPi * std::pow(1 - (s * h[0] + mu * h[2]) / n, 5);
-            },
-            kPi / 2, 8);
-        CHECK(f.fresnel == Approx(fresnel).margin(3 * f.fresnel_error + 1e-6));
     }
 }
 
@@ -179,7 +169,8 @@ TEST_CASE("ltc: the table's channels, finite values, magnitude against independe
     r.width = 6;
     r.height = 5;
     const Table t = compute_lut(testing::engine(), r);
-    CHECK(t.channels == std::vector<std::string>{"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance"});
+    CHECK(t.channels ==
+          std::vector<std::string>{"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance", "distance_error"});
     REQUIRE(t.error.size() == 30);
     for (const auto& ch : t.values)
         for (double v : ch) CHECK(std::isfinite(v));
@@ -192,8 +183,25 @@ TEST_CASE("ltc: the table's channels, finite values, magnitude against independe
             CHECK(t.values[7][c] <= 2.0);
             CHECK(t.values[6][c] >= 0.0);
             CHECK(t.values[6][c] <= t.values[5][c]);  // (1 - wo.h)^5 <= 1
+            CHECK(t.values[8][c] > 0.0);              // the distance's error
             CHECK(t.error[c] > 0.0);
         }
+    // The fresnel channel, integral of f cos (1 - wo.h)^5 with the textbook GGX (reference.h), by
+    // the quadrature of sphere_integral, which reproduces E to 2e-6 at the same texel first.
+    for (size_t c : {size_t(8), size_t(21), size_t(29)}) {
+        const double mu = t.x.parameter[c % 6], alpha = t.y.parameter[c / 6];
+        INFO("mu " << mu << " alpha " << alpha);
+        const ref::Dir wo{std::sqrt(1 - mu * mu), 0, mu};
+        auto lobe = [&](const std::array<double, 3>& w, bool schlick) {
+            const double hx = w[0] + wo.x, hy = w[1], hz = w[2] + wo.z, hn = std::sqrt(hx * hx + hy * hy + hz * hz);
+            const double s = schlick ? std::pow(1 - (wo.x * hx + wo.z * hz) / hn, 5) : 1.0;
+            return double(ref::ggx_f(wo, {w[0], w[1], w[2]}, alpha, alpha, true)) * w[2] * s;
+        };
+        const double e = sphere_integral([&](const std::array<double, 3>& w) { return lobe(w, false); }, kPi / 2, 32);
+        REQUIRE(e == Approx(testing::ggx_albedo_reference<30>(alpha, mu, 1e-9)).margin(2e-6));
+        const double b = sphere_integral([&](const std::array<double, 3>& w) { return lobe(w, true); }, kPi / 2, 32);
+        CHECK(t.values[6][c] == Approx(b).margin(t.error[c] + 2e-6));
+    }
     CHECK(t.attributes.at("distance").find("median") != std::string::npos);
     // The EXR read by OpenEXR itself: every channel by name, the distance's statistics in the header.
     const std::string path = "/tmp/brdfbake-ltc-" + std::to_string(::getpid()) + ".exr";
@@ -237,4 +245,56 @@ TEST_CASE("ltc: delta and anisotropic lobes and a Fresnel term are refused with 
         CHECK(res.err.rfind("brdfbake: error: ", 0) == 0);
         CHECK(testing::run_shell("test -e /tmp/ltc_refused.exr").status != 0);
     }
+}
+
+TEST_CASE("ltc --preset three: three.js's axes and packing, the plain table's M inverted and normalised", "[ltc][presets]") {
+    // docs/ltc_presets.md, read from three.js's LTC_Uv (uv = (roughness, sqrt(1 - dotNV)) * 63/64 +
+    // 0.5/64) and RE_Direct_RectArea_Physical (mInv = mat3(vec3(t1.x, 0, t1.y), vec3(0, 1, 0),
+    // vec3(t1.z, 0, t1.w)), GLSL columns): texel (a, t) at roughness a/(W - 1), alpha its square, and
+    // cos theta = 1 - (t/(H - 1))^2 (theta at most 1.57); ltc_1 = (Minv00, Minv20, Minv02, Minv22) / Minv11.
+    LutSettings s;
+    s.kind = "ltc";
+    s.preset = "three";
+    s.size = std::vector<int>{5, 6};  // mu texels, alpha texels (before the preset's axis order)
+    const LutSetup setup = apply_preset(s);
+    const Table three = compute_lut(testing::engine(), setup.request);
+    LutRequest plain_request = setup.request;
+    plain_request.packing.clear();
+    plain_request.axes.clear();
+    const Table plain = compute_lut(testing::engine(), plain_request);
+    CHECK(three.channels == std::vector<std::string>{"ltc_1.R", "ltc_1.G", "ltc_1.B", "ltc_1.A", "ltc_2.R", "ltc_2.G",
+                                                     "ltc_2.B", "ltc_2.A", "distance", "distance_error"});
+    CHECK(three.x.name == "roughness");
+    CHECK(three.y.name == "sqrt_one_minus_mu");
+    REQUIRE(three.x.parameter.size() == 6);
+    REQUIRE(three.y.parameter.size() == 5);
+    for (int a = 0; a < 6; ++a) CHECK(three.x.parameter[a] == Approx((a / 5.0) * (a / 5.0)).margin(1e-12));
+    for (int t = 0; t < 5; ++t) CHECK(three.y.parameter[t] == Approx(std::max(1 - (t / 4.0) * (t / 4.0), std::cos(1.57))).epsilon(1e-3));
+    // the plain table: mu on x, alpha on y; the preset: roughness on x, sqrt(1 - mu) on y
+    for (int t = 0; t < 5; ++t)
+        for (int a = 0; a < 6; ++a) {
+            const size_t c3 = size_t(t * 6 + a), cp = size_t(a * 5 + t);
+            INFO("a " << a << " t " << t);
+            CHECK(plain.x.parameter[t] == three.y.parameter[t]);
+            const double m00 = plain.values[0][cp], m02 = plain.values[1][cp], m11 = plain.values[2][cp],
+                         m20 = plain.values[3][cp], m22 = plain.values[4][cp];
+            const double r = three.values[0][c3], g = three.values[1][c3], b = three.values[2][c3], aa = three.values[3][c3];
+            // the stored Minv' = [[r, 0, b], [0, 1, 0], [g, 0, aa]] times M is a multiple of the identity
+            const double p00 = r * m00 + b * m20, p02 = r * m02 + b * m22, p20 = g * m00 + aa * m20, p22 = g * m02 + aa * m22;
+            const double p11 = m11, scale = std::max({std::abs(p00), std::abs(p22), p11});
+            CHECK(std::abs(p02) < 1e-5 * scale + 1e-6 * std::abs(b * m22));
+            CHECK(std::abs(p20) < 1e-5 * scale + 1e-6 * std::abs(g * m00));
+            CHECK(p00 == Approx(p11).epsilon(1e-5));
+            CHECK(p22 == Approx(p11).epsilon(1e-5));
+            CHECK(three.values[4][c3] == plain.values[5][cp]);  // magnitude
+            CHECK(three.values[5][c3] == plain.values[6][cp]);  // fresnel
+            CHECK(three.values[6][c3] == 0.0);
+            CHECK(three.values[7][c3] == 0.0);
+            CHECK(three.values[8][c3] == Approx(plain.values[7][cp]).margin(three.values[9][c3] + plain.values[8][cp]));
+        }
+    // normal incidence (t = 0) of the roughest column: M = diag(m, m, 1) up to scale, so ltc_1 = (1, 0, 0, m/1)
+    // with the lobe symmetric about the normal: G and B vanish, R = 1 (Minv00 = Minv11).
+    CHECK(three.values[0][5] == Approx(1.0).epsilon(2e-2));
+    CHECK(std::abs(three.values[1][5]) < 2e-2);
+    CHECK(std::abs(three.values[2][5]) < 2e-2);
 }

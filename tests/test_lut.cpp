@@ -182,7 +182,7 @@ TEST_CASE("each kind's computed table has the axes and channels the README docum
         {"gen-schlick-ior", {{"s"}, "mu", false, true}},
         {"dfg-f82", {{"A", "B", "C"}, "mu", false, false}},
         {"sheen-viewer", {{"E"}, "mu", false, false}},
-        {"ltc", {{"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance"}, "mu", false, false}},
+        {"ltc", {{"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance", "distance_error"}, "mu", false, false}},
     };
     for (const TableKind* k : table_kinds()) {
         INFO(k->name);

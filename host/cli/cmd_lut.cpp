@@ -228,8 +228,9 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
                     "z axis; without --preset, " +
                         std::to_string(kDefaultLutTexels) + " on every axis")
         ->capture_default_str();
-    cmd->add_option("--mu-map", o->mu_map, "mu axis: linear (mu = u) or sqrt (u = sqrt(mu))")
-        ->check(CLI::IsMember({"linear", "sqrt"}))
+    cmd->add_option("--mu-map", o->mu_map,
+                    "mu axis: linear (mu = u), sqrt (u = sqrt(mu)) or sqrt-one-minus (u = sqrt(1 - mu), three.js's LTC)")
+        ->check(CLI::IsMember({"linear", "sqrt", "sqrt-one-minus"}))
         ->capture_default_str();
     cmd->add_option("--alpha-map", o->alpha_map, "roughness axis: alpha (v = alpha) or roughness (v = sqrt(alpha))")
         ->check(CLI::IsMember({"alpha", "roughness"}))

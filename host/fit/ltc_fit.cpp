@@ -35,8 +35,8 @@ struct LobePoints {
 
 struct CellSummary {
     double albedo = 0;         // mean weight: E on these points
-    double fresnel = 0;        // mean weight (1 - wo.h)^5
     double average_theta = 0;  // the lobe's average direction (sin t, 0, cos t)
+    double width_x = 1, width_y = 1;  // E_p[|x'/z'|], E_p[|y'/z'|] about that direction (below)
 };
 
 cl::Program& ltc_program(Engine& engine, const ModelConfig& model, Precision precision) {
@@ -81,17 +81,34 @@ LobePoints lobe_points(Engine& engine, const ModelConfig& model, Precision preci
 CellSummary summarise(const LobePoints& pts, size_t cell) {
     const size_t per = size_t(pts.side) * size_t(pts.side);
     const double* p = pts.host.data() + cell * per * BB_LTC_POINT_VALUES;
-    double w = 0, fr = 0, ax = 0, az = 0;
+    double w = 0, ax = 0, az = 0;
     for (size_t k = 0; k < per; ++k, p += BB_LTC_POINT_VALUES) {
         w += p[3];
-        fr += p[3] * p[5];
         ax += p[3] * p[0];
         az += p[3] * p[2];
     }
     CellSummary s;
     s.albedo = w / double(per);
-    s.fresnel = fr / double(per);
     s.average_theta = (ax == 0 && az == 0) ? 0.0 : std::atan2(ax, az);
+    // The lobe's widths about its average direction: for the LTC diag(a, c, 1) of the clamped
+    // cosine, x'/z' = a tan(theta_c) cos(phi_c), and E[|tan theta_c cos phi_c|] = 1 under the
+    // cosine (2/pi times integral of tan theta cos theta sin theta over theta, pi/2): E_p[|x'/z'|]
+    // is a, E_p[|y'/z'|] is c, a start near the fit for narrow lobes (directions within 0.05 of
+    // the frame's horizon are left out: their ratio is unbounded).
+    const double ct = std::cos(s.average_theta), st = std::sin(s.average_theta);
+    double wx = 0, wy = 0, wn = 0;
+    p = pts.host.data() + cell * per * BB_LTC_POINT_VALUES;
+    for (size_t k = 0; k < per; ++k, p += BB_LTC_POINT_VALUES) {
+        const double xp = ct * p[0] - st * p[2], zp = st * p[0] + ct * p[2];
+        if (p[3] <= 0 || zp < 0.05) continue;
+        wx += p[3] * std::abs(xp) / zp;
+        wy += p[3] * std::abs(p[1]) / zp;
+        wn += p[3];
+    }
+    if (wn > 0 && wx > 0 && wy > 0) {
+        s.width_x = wx / wn;
+        s.width_y = wy / wn;
+    }
     return s;
 }
 
@@ -122,20 +139,84 @@ std::vector<double> distances(Engine& engine, cl::Kernel& kernel, Precision prec
     return s;
 }
 
+/// M with its entries rounded to float32, as every table format but the CSV holds them.
+LtcMatrix as_float32(LtcMatrix m) {
+    for (double* v : {&m.m00, &m.m02, &m.m11, &m.m20, &m.m22}) *v = double(float(*v));
+    return m;
+}
+
+/// The reported distance of each fit's M (kernels/ltc.cl, ltc_distance): on `distance_grids`
+/// independent jittered grids of distance_side^2 points (not the fit's points, on which a fitted M
+/// is biased low), each giving S_g = (lobe-sampled + LTC-sampled estimate of integral_H min(p, D))
+/// / 2 and d_g = 1 + integral_H D - 2 S_g; the distance is the grids' mean, its error
+/// `distance_sigmas` standard errors of that mean plus the kernel's rounding.
+void report_distances(Engine& engine, const ModelConfig& model, const LtcFitOptions& o,
+                      const std::vector<LtcCell>& cells, std::vector<LtcFit>& fits) {
+    throw_if_cancelled();
+    RealBuffers bufs(engine, o.precision);
+    std::vector<double> mu, params, mats, albedo;
+    for (size_t c = 0; c < cells.size(); ++c) {
+        mu.push_back(cells[c].mu);
+        params.insert(params.end(), cells[c].params.begin(), cells[c].params.end());
+        const LtcMatrix& m = fits[c].m;
+        double det = 0;
+        const Mat3 inv = inverse(m, det);
+        const Mat3 fwd = {m.m00, 0, m.m02, 0, m.m11, 0, m.m20, 0, m.m22};
+        mats.insert(mats.end(), fwd.begin(), fwd.end());
+        mats.insert(mats.end(), inv.begin(), inv.end());
+        mats.push_back(det);
+        albedo.push_back(fits[c].albedo);
+    }
+    const FresnelConfig none = resolve_fresnel("none");
+    cl::Buffer b_mu = bufs.input(mu), b_p = bufs.input(params), b_m = bufs.input(mats), b_e = bufs.input(albedo);
+    cl::Buffer b_fp = bufs.input({none.params.begin(), none.params.end()});
+    cl::Buffer b_data = model_data_buffer(bufs, model.id);
+    const size_t grids = size_t(o.distance_grids), n = cells.size() * grids;
+    cl::Buffer b_out = bufs.output(2 * n);
+    cl::Kernel k(ltc_program(engine, model, o.precision), BB_ENTRY_NAME(BB_ENTRY_LTC_DISTANCE));
+    set_args(k, 0, b_mu, b_p, b_fp, b_data, cl_uint(cells.size()), cl_uint(grids), cl_uint(o.distance_side), b_m, b_e,
+             b_out);
+    run_range(engine, k, n);
+    const std::vector<double> parts = bufs.read(b_out, 2 * n);
+    // float sums of distance_side^2 terms of at most ~1: ~1e-6 relative each
+    const double rounding = o.precision == Precision::Float ? 1e-5 : 1e-12;
+    for (size_t c = 0; c < cells.size(); ++c) {
+        double sum = 0, sum2 = 0;
+        for (size_t g = 0; g < grids; ++g) {
+            const double s = 0.5 * (parts[2 * (c * grids + g)] + parts[2 * (c * grids + g) + 1]);
+            const double d = 1.0 + ltc_upper_mass(fits[c].m) - 2.0 * s;
+            if (!std::isfinite(d)) throw Error("the LTC distance holds a non-finite value: the fit stops");
+            sum += d;
+            sum2 += d * d;
+        }
+        const double mean = sum / double(grids);
+        const double var = grids > 1 ? std::max(0.0, (sum2 - sum * mean) / double(grids - 1)) : mean * mean;
+        fits[c].distance = std::max(0.0, mean);
+        fits[c].distance_error = o.distance_sigmas * std::sqrt(var / double(grids)) + rounding;
+    }
+}
+
 std::array<double, 4> as_q(const std::vector<double>& x) { return {x[0], x[1], x[2], x[3]}; }
 
 /// The start of each cell's minimisation, in the row's parameters x = (theta - theta_avg, ln a,
 /// b, ln c) (the angle relative to the lobe's average direction): the best of a few candidates
-/// evaluated in one launch: the clamped cosine turned to the average direction (x = 0), and the
+/// evaluated in one launch: the clamped cosine turned to the average direction (x = 0), the same
+/// scaled to the lobe's widths (CellSummary::width_x, width_y; times e^s, s = -0.5, 0, 0.5), and the
 /// previous row's fit at the same cell with its widths (ln a, ln c) moved by s in -1.5 ... 0.5 (a
 /// smoother row's lobe is narrower; the moved candidates bridge a coarse roughness axis).
-std::vector<std::vector<double>> best_starts(size_t n_cells, const std::vector<std::array<double, 4>>* previous,
+std::vector<std::vector<double>> best_starts(const std::vector<CellSummary>& sums,
+                                             const std::vector<std::array<double, 4>>* previous,
                                              const BatchObjective& objective) {
+    const size_t n_cells = sums.size();
     std::vector<size_t> cell_of;
     std::vector<std::vector<double>> xs;
     for (size_t c = 0; c < n_cells; ++c) {
         cell_of.push_back(c);
         xs.push_back({0.0, 0.0, 0.0, 0.0});
+        for (double s : {-0.5, 0.0, 0.5}) {
+            cell_of.push_back(c);
+            xs.push_back({0.0, std::log(sums[c].width_x) + s, 0.0, std::log(sums[c].width_y) + s});
+        }
         if (!previous) continue;
         for (double s : {-1.5, -1.0, -0.5, -0.25, 0.0, 0.5}) {
             const std::array<double, 4>& x = (*previous)[c];
@@ -196,7 +277,7 @@ void polish_from_neighbours(std::vector<Minimum>& minima, const NelderMeadOption
 }
 
 /// One row: the fit points and their summaries, the batched minimisation from `starts` (theta
-/// taken from each cell's average direction), then the distance on the fine and coarse points.
+/// taken from each cell's average direction), then the distance of the matrices as written.
 std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std::vector<LtcCell>& cells,
                             const std::vector<std::array<double, 4>>* previous, const LtcFitOptions& o) {
     cl::Kernel kernel(ltc_program(engine, model, o.precision), BB_ENTRY_NAME(BB_ENTRY_LTC_OBJECTIVE));
@@ -225,36 +306,17 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
     nm.max_evaluations = o.max_evaluations;
     nm.value_tolerance = o.value_tolerance;
     nm.size_tolerance = o.size_tolerance;
-    std::vector<Minimum> minima = minimize_batch(best_starts(cells.size(), previous, objective), nm, objective);
+    std::vector<Minimum> minima = minimize_batch(best_starts(fit_sums, previous, objective), nm, objective);
     polish_from_neighbours(minima, nm, objective);
     std::vector<LtcFit> fits(cells.size());
-    std::vector<size_t> all(cells.size());
-    std::vector<LtcMatrix> ms;
     for (size_t c = 0; c < cells.size(); ++c) {
-        all[c] = c;
         fits[c].x = as_q(minima[c].x);
         fits[c].q = absolute(c, minima[c].x);
-        fits[c].m = ltc_matrix(fits[c].q);
+        fits[c].m = o.as_written ? o.as_written(ltc_matrix(fits[c].q)) : as_float32(ltc_matrix(fits[c].q));
         fits[c].evaluations = minima[c].evaluations;
-        ms.push_back(fits[c].m);
+        fits[c].albedo = cells[c].albedo > 0 ? cells[c].albedo : fit_sums[c].albedo;
     }
-    // The reported values on the fine points; their error: the difference from the fit's own
-    // points (coarser, and the fit's minimum on them is biased low: the error errs large).
-    const LobePoints fine = lobe_points(engine, model, o.precision, cells, o.fine_side);
-    std::vector<CellSummary> fine_sums;
-    const cl::Buffer fine_inv = inverse_albedos(fine, fine_sums);
-    const std::vector<double> d_fine = distances(engine, kernel, o.precision, fine, fine_inv, all, ms);
-    const std::vector<double> d_coarse = distances(engine, kernel, o.precision, fit_pts, fit_inv_e, all, ms);
-    const std::vector<CellSummary>& coarse_sums = fit_sums;
-    // A floor for the rounding of the kernel's sums (float: ~1e-6 relative per term).
-    const double rounding = o.precision == Precision::Float ? 1e-5 : 1e-12;
-    for (size_t c = 0; c < cells.size(); ++c) {
-        fits[c].distance = std::max(0.0, d_fine[c]);
-        fits[c].distance_error = std::abs(d_fine[c] - d_coarse[c]) + rounding;
-        fits[c].fresnel = fine_sums[c].fresnel;
-        fits[c].fresnel_error = std::abs(fine_sums[c].fresnel - coarse_sums[c].fresnel) + rounding;
-        fits[c].albedo = fine_sums[c].albedo;
-    }
+    report_distances(engine, model, o, cells, fits);
     return fits;
 }
 

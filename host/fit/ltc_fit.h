@@ -7,6 +7,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <vector>
 
 #include "brdfbake/engine.h"
@@ -39,15 +40,20 @@ double ltc_upper_mass(const LtcMatrix& m);
 struct LtcCell {
     double mu = 1.0;
     ParamBlock params{};
+    double albedo = 0;  // E of the lobe, p = f cos / E in the reported distance; 0: the fit's points' E
 };
 
 struct LtcFitOptions {
     Precision precision = Precision::Float;
     int fit_side = 24;      // the objective's points per cell: fit_side^2 (the lobe's sampler)
-    int fine_side = 48;     // the reported distance and fresnel: fine_side^2 points, and their
-                            // error: the difference from the fit's fit_side^2 points
+    int distance_grids = 16; // the reported distance: the mean over this many independent jittered
+    int distance_side = 24;  // grids of distance_side^2 points; its error: distance_sigmas standard
+    double distance_sigmas = 5;  // errors of that mean (the grids' spread)
     int max_evaluations = 300;       // per cell
     double value_tolerance = 2e-5;   // Nelder-Mead's convergence (nelder_mead.h)
+    /// The M that the table's stored values denote, given the fitted one (their float32 rounding);
+    /// empty: the entries rounded to float32. The reported distance is that M's.
+    std::function<LtcMatrix(const LtcMatrix&)> as_written;
     double size_tolerance = 1e-3;
 };
 
@@ -55,11 +61,9 @@ struct LtcFit {
     LtcMatrix m;
     std::array<double, 4> q{};  // the fitted parameters (ltc_matrix)
     std::array<double, 4> x{};  // the same with theta relative to the lobe's average direction
-    double distance = 0;        // integral over the upper hemisphere of |p - D|, p = f cos / E
-    double distance_error = 0;
-    double fresnel = 0;         // integral of f cos (1 - wo.h)^5
-    double fresnel_error = 0;
-    double albedo = 0;          // E of the fine points (the mean sample weight)
+    double distance = 0;        // integral over the upper hemisphere of |p - D|, p = f cos / E, of m
+    double distance_error = 0;  // m: the matrix as written (LtcFitOptions::as_written)
+    double albedo = 0;          // the E of p (the cell's, or the fit's points' mean sample weight)
     int evaluations = 0;
 };
 

@@ -4,10 +4,13 @@
 // transformed clamped cosine D best matches the normalised lobe p = f cos(theta_i) / E (fitted by
 // host/fit/ltc_fit.h on the device), the magnitude E (the engine's albedo integration, F = 1, with
 // its error), the fresnel channel (integral of f cos (1 - wo.h)^5, the Schlick split's second
-// term as Heitz and Hill's fitLTC tabulates it) and the distance integral over the upper
-// hemisphere of |p - D| with its own error. docs/architecture.md, "The fitting layer".
+// term as Heitz and Hill's fitLTC tabulates it, by the same integration as the magnitude, with
+// its error) and the distance integral over the upper hemisphere of |p - D| with its own error
+// channel distance_error. docs/architecture.md, "The fitting layer".
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <functional>
 #include <numeric>
 #include <sstream>
 
@@ -26,9 +29,75 @@ namespace {
 /// LTC is a delta, which no finite M reaches).
 constexpr double kLtcAlphaFloor = 1e-3;
 
-std::vector<std::string> ltc_programs(const LutRequest& r) { return {"albedo|" + r.model + "|none", "ltc|" + r.model}; }
+std::vector<std::string> ltc_programs(const LutRequest& r) {
+    return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick", "ltc|" + r.model};
+}
 
-void validate_ltc(const LutRequest&, const ModelConfig& m, const FresnelConfig& f) {
+/// How a table stores each texel's M with its magnitude E and fresnel term B (the value channels
+/// before distance and distance_error), and the M that the stored values denote (the distance
+/// reported is that M's).
+struct LtcPacking {
+    std::string name;  // LutRequest::packing
+    std::string quantity;
+    std::vector<std::string> channels;
+    std::function<std::vector<double>(const fit::LtcMatrix&, double e, double b)> values;
+    std::function<fit::LtcMatrix(const fit::LtcMatrix&)> as_written;
+};
+
+/// three.js's ltc_1 = M^-1 / M^-1_11 as (M^-1_00, M^-1_20, M^-1_02, M^-1_22), float32: its shaders
+/// build mInv = mat3(vec3(t1.x, 0, t1.y), vec3(0, 1, 0), vec3(t1.z, 0, t1.w)) (GLSL columns) in
+/// RE_Direct_RectArea_Physical (src/renderers/shaders/ShaderChunk/lights_physical_pars_fragment.glsl.js)
+/// from texture2D(ltc_1, LTC_Uv(...)); docs/ltc_presets.md. With D = m00 m22 - m02 m20,
+/// M^-1 = [[m22, 0, -m02], [0, D/m11, 0], [-m20, 0, m00]] / D.
+std::array<double, 4> three_ltc1(const fit::LtcMatrix& m) {
+    const double d = m.m00 * m.m22 - m.m02 * m.m20;
+    return {double(float(m.m11 * m.m22 / d)), double(float(-m.m11 * m.m20 / d)), double(float(-m.m11 * m.m02 / d)),
+            double(float(m.m11 * m.m00 / d))};
+}
+
+/// The M (up to scale, which D ignores) of a stored ltc_1 t: the inverse of [[t0, 0, t2], [0, 1, 0], [t1, 0, t3]].
+fit::LtcMatrix from_three_ltc1(const std::array<double, 4>& t) {
+    const double d = t[0] * t[3] - t[2] * t[1];
+    fit::LtcMatrix m;
+    m.m00 = t[3] / d;
+    m.m02 = -t[2] / d;
+    m.m11 = 1.0;
+    m.m20 = -t[1] / d;
+    m.m22 = t[0] / d;
+    return m;
+}
+
+const std::vector<LtcPacking>& ltc_packings() {
+    static const std::vector<LtcPacking> packings = {
+        {"",
+         "M = [[m00, 0, m02], [0, m11, 0], [m20, 0, m22]]",
+         {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel"},
+         [](const fit::LtcMatrix& m, double e, double b) { return std::vector<double>{m.m00, m.m02, m.m11, m.m20, m.m22, e, b}; },
+         {}},  // the entries themselves, float32: the fitter's default
+        // three.js's RectAreaLightTexturesLib (examples/jsm/lights): LTC_FLOAT_1 -> ltc_1 as above,
+        // LTC_FLOAT_2 -> ltc_2 = (E, B, 0, sphere term), read as specularColor * t2.x +
+        // (1 - specularColor) * t2.y; the rect-light shader reads no ltc_2.w: 0 here.
+        {"three",
+         "three.js's ltc_1 = M^-1 / M^-1_11 as (M^-1_00, M^-1_20, M^-1_02, M^-1_22) and ltc_2 = (magnitude, "
+         "fresnel, 0, 0)",
+         {"ltc_1.R", "ltc_1.G", "ltc_1.B", "ltc_1.A", "ltc_2.R", "ltc_2.G", "ltc_2.B", "ltc_2.A"},
+         [](const fit::LtcMatrix& m, double e, double b) {
+             const std::array<double, 4> t = three_ltc1(m);
+             return std::vector<double>{t[0], t[1], t[2], t[3], e, b, 0.0, 0.0};
+         },
+         [](const fit::LtcMatrix& m) { return from_three_ltc1(three_ltc1(m)); }},
+    };
+    return packings;
+}
+
+const LtcPacking& ltc_packing(const std::string& name) {
+    for (const LtcPacking& p : ltc_packings())
+        if (p.name == name) return p;
+    throw Error("the ltc table has no packing '" + name + "' (three, or none for its own channels)");
+}
+
+void validate_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    ltc_packing(r.packing);
     if (m.traits().delta)
         throw Error("the ltc table fits a lobe; '" + m.name + "' is a delta lobe, which no linearly transformed cosine fits");
     if (m.anisotropic)
@@ -45,8 +114,10 @@ std::string stats_text(std::vector<double> v) {
     return s.str();
 }
 
-/// The fit's rows, rough to smooth, with the cells of each; `order[k]` is the table row of fit row k.
-std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const ModelConfig& m, std::vector<size_t>& order) {
+/// The fit's rows, rough to smooth, with the cells of each and their albedo E (the magnitude
+/// channel, where the texel is fitted at its own alpha); `order[k]` is the table row of fit row k.
+std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const ModelConfig& m, const AlbedoResult& e,
+                                                std::vector<size_t>& order) {
     const size_t w = g.table.x.parameter.size(), h = g.table.y.parameter.size();
     order.resize(h);
     std::iota(order.begin(), order.end(), 0);
@@ -59,9 +130,13 @@ std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const Mode
         for (size_t i = 0; i < w; ++i) {
             const AlbedoCell& c = g.cells[j * w + i];
             ParamBlock p = c.params;
+            bool floored = false;
             if (has_mirror_limit(m))
-                for (int s : slots) p[s] = std::max(p[s], kLtcAlphaFloor);
-            rows.back().push_back({c.mu, p});
+                for (int s : slots) {
+                    floored = floored || p[s] < kLtcAlphaFloor;
+                    p[s] = std::max(p[s], kLtcAlphaFloor);
+                }
+            rows.back().push_back({c.mu, p, floored ? 0.0 : e.values[j * w + i].value});
         }
     }
     return rows;
@@ -70,46 +145,48 @@ std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const Mode
 Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
+    const LtcPacking& packing = ltc_packing(r.packing);
     t.quantity = "linearly transformed cosine fits (Heitz et al. 2016) of the lobe f cos(theta_i) / E, "
-                 "viewer at (sin theta_o, 0, cos theta_o): M = [[m00, 0, m02], [0, m11, 0], [m20, 0, m22]]";
+                 "viewer at (sin theta_o, 0, cos theta_o): " + packing.quantity;
+    // E and the Schlick split's term B = integral of f cos (1 - wo.h)^5 (Schlick with f0 = 0), each
+    // to the tolerance: the table's error is the larger of their errors.
     const AlbedoResult albedo = integrate(engine, r, m, f, g.cells);
+    const AlbedoResult fresnel = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), g.cells);
     std::vector<size_t> order;
-    const std::vector<std::vector<fit::LtcCell>> rows = fit_rows(g, m, order);
+    const std::vector<std::vector<fit::LtcCell>> rows = fit_rows(g, m, albedo, order);
     fit::LtcFitOptions options;
     options.precision = r.precision;
+    options.as_written = packing.as_written;
     std::vector<std::vector<fit::LtcFit>> fits;
     {
         ProgressStage stage("LTC fit of " + m.canonical, rows.size(), "rows", "fitted");
         fits = fit::fit_ltc_rows(engine, m, rows, options, [&](size_t k) { stage.update(k + 1); });
     }
     const size_t w = t.x.parameter.size(), n = g.cells.size();
-    t.channels = {"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance"};
+    t.channels = packing.channels;
+    t.channels.insert(t.channels.end(), {"distance", "distance_error"});
     t.values.assign(t.channels.size(), std::vector<double>(n));
     t.error.assign(n, 0.0);
-    std::vector<double> distance, distance_error, fresnel_error;
+    std::vector<double> distance, distance_error;
     for (size_t k = 0; k < rows.size(); ++k)
         for (size_t i = 0; i < w; ++i) {
             const size_t c = order[k] * w + i;
             const fit::LtcFit& ft = fits[k][i];
-            const double v[] = {ft.m.m00, ft.m.m02, ft.m.m11, ft.m.m20, ft.m.m22, albedo.values[c].value, ft.fresnel,
-                                ft.distance};
+            std::vector<double> v = packing.values(ft.m, albedo.values[c].value, fresnel.values[c].value);
+            v.insert(v.end(), {ft.distance, ft.distance_error});
             for (size_t ch = 0; ch < t.channels.size(); ++ch) t.values[ch][c] = v[ch];
-            t.error[c] = albedo.values[c].error;
+            t.error[c] = std::max(albedo.values[c].error, fresnel.values[c].error);
             distance.push_back(ft.distance);
             distance_error.push_back(ft.distance_error);
-            fresnel_error.push_back(ft.fresnel_error);
         }
     describe(t, r, m, f.canonical, albedo.method, albedo.samples_per_cell, g.clamped);
     t.attributes["distance"] = "integral over the upper hemisphere of |f cos / E - D|: " + stats_text(distance);
-    t.attributes["distance_error"] = "|distance on " + std::to_string(options.fine_side) + "^2 - on the fit's " +
-                                     std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
-                                     stats_text(distance_error);
-    t.attributes["fresnel_error"] = "|fresnel on " + std::to_string(options.fine_side) + "^2 - on " +
-                                    std::to_string(options.fit_side) + "^2 sampler points| + rounding: " +
-                                    stats_text(fresnel_error);
-    t.attributes["error_channel"] = "the magnitude's integration error (--samples, --method, --tolerance); the "
-                                    "distance's and the fresnel channel's errors: the distance_error and "
-                                    "fresnel_error attributes";
+    t.attributes["distance_error"] =
+        std::to_string(int(options.distance_sigmas)) + " standard errors of the mean over " +
+        std::to_string(options.distance_grids) + " independent jittered grids of " + std::to_string(options.distance_side) +
+        "^2 points (lobe- and LTC-sampled), for the M that the stored float32 values denote: " + stats_text(distance_error);
+    t.attributes["error_channel"] = "the larger of the magnitude's and the fresnel channel's integration errors "
+                                    "(--samples, --method, --tolerance); the distance's: the distance_error channel";
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
                               std::to_string(options.fit_side) + "x" + std::to_string(options.fit_side) +
                               " sampler points per texel, rows from rough to smooth, each started from the row before";
@@ -126,15 +203,17 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
 TableKind ltc_kind() {
     TableKind k(TableKindId::Ltc, "ltc",
                 "linearly transformed cosines (Heitz et al. 2016) per (mu, alpha): m00 m02 m11 m20 m22, magnitude E, "
-                "fresnel, the fit's L1 distance (2D)",
+                "fresnel, the fit's L1 distance and its error (2D)",
                 ltc_programs, compute_ltc);
     k.plan_fresnel = "none (F = 1; the fresnel channel is the Schlick split's term)";
     k.validate = validate_ltc;
-    // Measured: the 64x64 GGX table takes 5.4 s of CPU against the albedo table's 0.6 s at the
-    // default 2^18 samples (benchmarks/results/ltc-table-amd-epyc-2c.md): about 9 albedo samples'
-    // cost per sample of its magnitude (the fit's cost does not scale with --samples).
-    k.sample_cost = 9.0;
-    k.value_channels = [](const LutRequest&) { return 8; };
+    // Measured: the 64x64 GGX table takes 9.3 s of CPU against the albedo table's 0.66 s at the
+    // default 2^18 samples (benchmarks/results/ltc-table-amd-epyc-2c.md, branch ltcfix): about 14
+    // albedo samples' cost per sample of its magnitude (the fit's and the distance's cost do not
+    // scale with --samples).
+    k.sample_cost = 14.0;
+    k.value_channels = [](const LutRequest& r) { return int(ltc_packing(r.packing).channels.size()) + 2; };
+    k.integrations = [](const LutRequest&) { return 2; };
     return k;
 }
 

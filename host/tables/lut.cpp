@@ -28,13 +28,20 @@ bool has_mirror_limit(const ModelConfig& m) {
     return m.smith_shadowing_slot >= 0;
 }
 
+std::string table_mu_axis_name(const LutRequest& r) {
+    return r.mu_map == "sqrt" ? "sqrt_mu" : r.mu_map == "sqrt-one-minus" ? "sqrt_one_minus_mu" : "mu";
+}
+
 Axis mu_axis(const LutRequest& r, int size) {
-    const bool sq = r.mu_map == "sqrt";
-    Axis a = make_axis(sq ? "sqrt_mu" : "mu", sq ? "mu = u^2 (u = sqrt(mu))" : "mu = u", r.mu_lo, r.mu_hi, size, r.texels);
+    // linear: mu = u; sqrt: u = sqrt(mu); sqrt-one-minus: u = sqrt(1 - mu) (three.js's LTC tables)
+    const bool sq = r.mu_map == "sqrt", om = r.mu_map == "sqrt-one-minus";
+    const std::string of_u = sq ? "u^2" : om ? "1 - u^2" : "u";
+    const std::string note = sq ? " (u = sqrt(mu))" : om ? " (u = sqrt(1 - mu))" : "";
+    Axis a = make_axis(table_mu_axis_name(r), "mu = " + of_u + note, r.mu_lo, r.mu_hi, size, r.texels);
     a.parameter_name = "mu";
     bool floored = false;
     for (double u : a.coordinate) {
-        double mu = sq ? u * u : u;
+        double mu = sq ? u * u : om ? 1.0 - u * u : u;
         if (mu < r.mu_floor) {
             mu = r.mu_floor;
             floored = true;
@@ -43,8 +50,8 @@ Axis mu_axis(const LutRequest& r, int size) {
     }
     if (floored) {
         std::ostringstream m;
-        m << (sq ? "mu = max(u^2, " : "mu = max(u, ") << r.mu_floor << ")" << (sq ? " (u = sqrt(mu))" : "")
-          << ": mu below " << r.mu_floor << " was computed at " << r.mu_floor;
+        m << "mu = max(" << of_u << ", " << r.mu_floor << ")" << note << ": mu below " << r.mu_floor
+          << " was computed at " << r.mu_floor;
         a.mapping = m.str();
     }
     return a;
@@ -233,7 +240,7 @@ FresnelConfig request_fresnel(const LutRequest& r) { return resolve_fresnel(r.fr
 
 std::vector<std::string> table_axis_names(const TableKind& kind, const LutRequest& r) {
     std::vector<std::string> names;
-    if (!kind.one_dimensional) names.push_back(r.mu_map == "sqrt" ? "sqrt_mu" : "mu");
+    if (!kind.one_dimensional) names.push_back(tables::table_mu_axis_name(r));
     names.push_back(r.alpha_map == "roughness" ? "roughness" : "alpha");
     if (kind.eta_axis) names.push_back(kind.own_z_axis.empty() ? tables::eta_axis_name(r) : kind.own_z_axis);
     return names;
@@ -277,7 +284,8 @@ void validate_lut(const LutRequest& r) {
     if (r.estimator != "ratio" && r.estimator != "cycles") throw Error("--estimator must be ratio or cycles");
     if (r.estimator != "ratio" && !kind.cycles_estimator)
         throw Error("--estimator " + r.estimator + " is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
-    if (r.mu_map != "linear" && r.mu_map != "sqrt") throw Error("--mu-map must be linear or sqrt");
+    if (r.mu_map != "linear" && r.mu_map != "sqrt" && r.mu_map != "sqrt-one-minus")
+        throw Error("--mu-map must be linear, sqrt or sqrt-one-minus");
     if (r.alpha_map != "alpha" && r.alpha_map != "roughness") throw Error("--alpha-map must be alpha or roughness");
     if (!(r.alpha_lo >= 0.0 && r.alpha_hi > r.alpha_lo && r.alpha_hi <= 3.0))
         throw Error("--alpha-range must satisfy 0 <= lo < hi <= 3");

@@ -23,6 +23,8 @@ bool has_mirror_limit(const ModelConfig& m);
 
 // The axes, with the request's texel convention (r.texels), range and mapping; every kind builds
 // its axes with these so that the grid options (--texels, ranges, floors) reach it.
+/// The mu axis's name under the request's --mu-map: mu, sqrt_mu or sqrt_one_minus_mu.
+std::string table_mu_axis_name(const LutRequest& r);
 /// The mu axis (x) of a 2D table; mu below r.mu_floor is computed at it (said in the mapping).
 Axis mu_axis(const LutRequest& r, int size);
 /// The roughness axis; `clamped` tells whether a texel's alpha was raised to BB_ALPHA_MIN. A texel

@@ -88,6 +88,20 @@ LutRequest gltf_sheen_layout() {
     return r;
 }
 
+// three.js's rect-light LTC textures (examples/jsm/lights/RectAreaLightTexturesLib.js: LTC_FLOAT_1
+// and LTC_FLOAT_2, 64 x 64 RGBA) as its shaders read them (bsdfs LTC_Uv: uv = (roughness,
+// sqrt(1 - dotNV)) * 63/64 + 0.5/64, i.e. texel i at i/63 on both axes; the matrix packing in
+// kind_ltc.cpp, "three"); ltc_code's fit behind them sets theta = min(1.57, acos(mu)), so the last
+// row is computed at mu = cos(1.57). docs/ltc_presets.md.
+LutRequest three_ltc_layout() {
+    LutRequest r = engine_layout(64, 64, {"roughness", "sqrt_one_minus_mu"});
+    r.texels = Texels::Edge;
+    r.mu_map = "sqrt-one-minus";
+    r.mu_floor = 7.963e-4;  // cos(1.57)
+    r.packing = "three";
+    return r;
+}
+
 std::string join_names(const std::vector<std::string>& names) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -135,10 +149,14 @@ const std::vector<LutPreset>& lut_presets() {
         // three.js (mrdoob/three.js, src/renderers/shaders/DFGLUTData.js): a 16 x 16 RG16F DataTexture,
         // (scale, bias) = (A, B), sampled at vec2(roughness, dotNV): x = roughness, y = NoV, texel
         // centres, row 0 at NoV near 0.
-        preset_row({"three", "three.js", "src/renderers/shaders/DFGLUTData.js", "exr", true,
+        preset_row({"three", "three.js",
+                    "src/renderers/shaders/DFGLUTData.js; ltc: LTC_FLOAT_1 and LTC_FLOAT_2 of "
+                    "examples/jsm/lights/RectAreaLightTexturesLib.js",
+                    "exr", true,
                     "16 x 16, x = roughness, y = NoV, texel centres, R = A (scale), G = B (bias), half-float EXR "
-                    "(RG16F)",
-                    {{K::Dfg, engine_layout(16, 16, roughness_mu), ""}}}),
+                    "(RG16F); ltc: 64 x 64, x = roughness a/63, y = sqrt(1 - NoV) t/63, channels ltc_1.RGBA = "
+                    "M^-1 / M^-1_11 as (00, 20, 02, 22) and ltc_2.RGBA = (magnitude, fresnel, 0, 0)",
+                    {{K::Dfg, engine_layout(16, 16, roughness_mu), ""}, {K::Ltc, three_ltc_layout(), ""}}}),
         // Blender Cycles: see cycles_layout and cycles_glass_layout. table_ggx_gen_schlick_s and
         // table_ggx_gen_schlick_ior_s[(z * 16 + y) * 16 + x]: x and y as table_ggx_E's, z = i/15 on
         // the kind's own z axis (cycles_z: Cycles' exponent or eta parameterisation, clamped to

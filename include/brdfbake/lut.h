@@ -20,7 +20,7 @@ struct LutRequest {
     double wavelength_nm = 0.0;   // conductor with a measured metal: 0 gives R, G, B at 650, 550, 450 nm
     int width = 32;               // mu texels (albedo, dfg) or alpha texels (eavg)
     int height = 32;              // alpha texels (albedo, dfg); 1 for eavg
-    std::string mu_map = "linear";      // linear: mu = u; sqrt: u = sqrt(mu), mu = u^2
+    std::string mu_map = "linear";      // linear: mu = u; sqrt: u = sqrt(mu), mu = u^2; sqrt-one-minus: u = sqrt(1 - mu)
     std::string alpha_map = "alpha";    // alpha: alpha = v; roughness: v = sqrt(alpha), alpha = v^2
     double alpha_lo = 0.0, alpha_hi = 1.0;  // range of the roughness-axis coordinate
     int depth = 16;               // eta texels (dielectric)
@@ -47,6 +47,9 @@ struct LutRequest {
     /// for the model's own G2; cycles: Blender Cycles' estimator, E_w of the masking-only lobe
     /// (the model must have shadowing=masking; --preset cycles then sets it), not divided by E.
     std::string estimator = "ratio";
+    /// The ltc kind's channels: empty, its own (m00 ... distance_error); "three": three.js's
+    /// ltc_1 (M^-1 / M^-1_11 packed) and ltc_2 (magnitude, fresnel, 0, 0) (docs/ltc_presets.md).
+    std::string packing;
 };
 
 /// Sets width, height and depth from 1 to 3 sizes as `--size` reads them: N is NxN (N for a

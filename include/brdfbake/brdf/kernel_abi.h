@@ -99,5 +99,7 @@
 #define BB_ENTRY_LTC_OBJECTIVE ltc_objective     /* integral of min(p, D) per candidate matrix */
 #define BB_LTC_POINT_VALUES 6                    /* per point: wi.xyz, weight, 1/pdf, (1 - wo.h)^5 */
 #define BB_LTC_CANDIDATE_VALUES 10               /* per candidate: M^-1 row-major, |det M^-1| */
+#define BB_ENTRY_LTC_DISTANCE ltc_distance       /* the reported distance on jittered grids */
+#define BB_LTC_MATRIX_VALUES 19                  /* per texel: M, M^-1 row-major, |det M^-1| */
 
 #endif /* BRDFBAKE_BRDF_KERNEL_ABI_H */
