@@ -220,6 +220,27 @@ std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<dou
     return text + "\n";
 }
 
+bool merl_rgb_spec(const std::string& spec) {
+    const Spec s = parse_spec(spec);
+    if (s.name != "merl") return false;
+    for (const auto& kv : s.keys)
+        if (kv.first == "channel") return kv.second == "rgb";
+    return false;
+}
+
+std::string merl_channel_spec(const std::string& spec, const std::string& channel) {
+    const Spec s = parse_spec(spec);
+    std::string out = s.name;
+    bool set = false;
+    for (const auto& kv : s.keys) {
+        const bool mine = kv.first == "channel";
+        set = set || mine;
+        out += (out == s.name ? ":" : ",") + kv.first + "=" + (mine ? channel : kv.second);
+    }
+    if (!set) out += (out == s.name ? ":" : ",") + std::string("channel=") + channel;
+    return out;
+}
+
 }  // namespace brdfbake
 
 const double* bb_merl_host_table(int index) {

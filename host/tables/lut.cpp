@@ -14,6 +14,7 @@
 #include "brdfbake/table_kinds.h"
 #include "models/key_reader.h"
 #include "models/params.h"
+#include "models/merl_file.h"
 #include "tables/lut_common.h"
 #include "tables/sweep.h"
 
@@ -250,7 +251,8 @@ bool sweeps_roughness(const LutRequest& r) {
 
 /// The request's model with a placeholder alpha that the table sweeps (as it is without one).
 ModelConfig swept_model(const LutRequest& r) {
-    if (!sweeps_roughness(r)) return resolve_model(r.model);
+    if (!sweeps_roughness(r))  // a merl spec's channel=rgb: the red channel's (kind_albedo.cpp makes all three)
+        return resolve_model(merl_rgb_spec(r.model) ? merl_channel_spec(r.model, "r") : r.model);
     const Spec spec = parse_spec(r.model);
     for (const auto& kv : spec.keys)
         if (kv.first == "alpha" || kv.first == "roughness" || kv.first == "alpha_x" || kv.first == "alpha_y")
