@@ -53,6 +53,16 @@ void write_lambert(const std::string& path, std::array<double, 3> rho) {
     write_raw(path, dims, planes);
 }
 
+/// A GGX file (F = 1, height-correlated) tabulated at the bins' nodes from the textbook GGX
+/// (reference.h), unmeasured below the horizon as in MERL's files.
+void write_ggx(const std::string& path, double alpha) {
+    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
+        if (o[2] <= 0 || i[2] <= 0) return std::array<double, 3>{-1, -1, -1};
+        const double f = double(ref::ggx_f({o[0], o[1], o[2]}, {i[0], i[1], i[2]}, alpha, alpha, true));
+        return std::array<double, 3>{f, f, f};
+    });
+}
+
 /// The test's own reading of a file: the first plane, scaled.
 std::vector<double> read_red(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -146,12 +156,7 @@ TEST_CASE("merl: a Lambert file's albedo is its rho, per channel and in Rec. 709
 TEST_CASE("merl: a GGX file's albedo is analytic GGX's within the file's tabulation error", "[merl]") {
     const double alpha = 0.5;
     const std::string path = tmp("ggx.binary");
-    // Tabulated at the bins' nodes from the textbook GGX (reference.h), unmeasured below the horizon.
-    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
-        if (o[2] <= 0 || i[2] <= 0) return std::array<double, 3>{-1, -1, -1};
-        const double f = double(ref::ggx_f({o[0], o[1], o[2]}, {i[0], i[1], i[2]}, alpha, alpha, true));
-        return std::array<double, 3>{f, f, f};
-    });
+    write_ggx(path, alpha);
     const std::vector<double> table = read_red(path);
     const std::vector<double> mus{0.3, 1.0};
     const AlbedoResult nearest = albedo_of("merl:file=" + path + ",channel=r", mus, 1 << 20);
@@ -287,11 +292,7 @@ TEST_CASE("merl: hostile files are one error line, exit status 2, nothing writte
 
 TEST_CASE("merl: lobe's numbers are the file's bins, read by the test's own lookup", "[merl][cli]") {
     const std::string path = tmp("lobe.binary");
-    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
-        if (o[2] <= 0 || i[2] <= 0) return std::array<double, 3>{-1, -1, -1};
-        const double f = double(ref::ggx_f({o[0], o[1], o[2]}, {i[0], i[1], i[2]}, 0.3, 0.3, true));
-        return std::array<double, 3>{f, f, f};
-    });
+    write_ggx(path, 0.3);
     const std::vector<double> table = read_red(path);
     // 200 angles: steps of 180/199 degrees keep the half angles off the bins' edges
     const auto r = testing::run_cli("lobe --model merl:file=" + path + ",channel=r --theta-i 60 --resolution 200 --data -");
