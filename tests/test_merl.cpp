@@ -338,3 +338,23 @@ TEST_CASE("merl: channel=rgb makes one table channel per colour, and only in tab
     std::remove(path.c_str());
     std::remove(out.c_str());
 }
+
+TEST_CASE("merl: a scene's material may name a MERL file beside the scene", "[merl][scene][cli]") {
+    const std::string dir = tmp("scene");
+    ::mkdir(dir.c_str(), 0700);
+    write_lambert(dir + "/paint.binary", {0.5, 0.5, 0.5});
+    std::ofstream(dir + "/scene.json") << R"({"materials": [{"name": "paint", "model": "merl:file=paint.binary,channel=g"}]})";
+    std::ofstream(dir + "/bad.json") << R"({"materials": [{"name": "paint", "model": "merl:file=missing.binary"}]})";
+    const auto r = testing::run_cli("plan " + dir + "/scene.json");
+    INFO(r.out << r.err);
+    CHECK(r.status == 0);
+    CHECK(r.out.find("merl:file=" + dir + "/paint.binary,channel=g,interp=nearest") != std::string::npos);
+    CHECK(r.out.find("no roughness axis") != std::string::npos);
+    const auto bad = testing::run_cli("plan " + dir + "/bad.json");
+    CHECK(bad.status == 2);
+    CHECK(testing::count_lines(bad.err) == 1);
+    CHECK(bad.err.find("material 'paint'") != std::string::npos);
+    CHECK(bad.err.find(dir + "/missing.binary") != std::string::npos);
+    for (const char* f : {"/paint.binary", "/scene.json", "/bad.json"}) std::remove((dir + f).c_str());
+    ::rmdir(dir.c_str());
+}

@@ -88,4 +88,8 @@ bool merl_rgb_spec(const std::string& spec);
 /// The spec with its channel key set to `channel` (r, g, b or y).
 std::string merl_channel_spec(const std::string& spec, const std::string& channel);
 
+/// A merl spec read from a file at `from` (a scene): a relative file= path is made relative to
+/// that file's folder; any other spec is returned as it is.
+std::string merl_spec_beside(const std::string& spec, const std::string& from);
+
 }  // namespace brdfbake
