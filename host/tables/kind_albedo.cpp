@@ -17,9 +17,9 @@ namespace {
 
 std::vector<std::string> albedo_program(const LutRequest& r) { return {"albedo|" + r.model + "|none"}; }
 
-/// Whether the model has no roughness axis (a measured material, lambert): its tables are E(mu_o)
-/// alone, 1D, and Eavg one number.
-bool without_roughness(const ModelConfig& m) { return m.traits().alpha_x_slot < 0; }
+/// Whether the model is a measured table (BB_TRAIT_MEASURED): no roughness axis, its tables are
+/// E(mu_o) alone, 1D, and Eavg one number.
+bool without_roughness(const ModelConfig& m) { return m.traits().measured; }
 
 /// E(mu_o) of a model without a roughness axis: a 1D table along mu (height 1).
 Table albedo_table_1d(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {

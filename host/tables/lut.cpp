@@ -240,12 +240,12 @@ std::vector<std::string> table_axis_names(const TableKind& kind, const LutReques
 
 namespace {
 
-/// Whether the request's model has a roughness axis; one without (merl, lambert) makes the 1D
-/// E(mu_o) table and the one-texel Eavg (kind_albedo.cpp), and every other kind refuses it.
+/// Whether the request's model is swept in alpha: all but a measured model (merl), whose albedo
+/// and eavg tables are 1D in mu and one texel (kind_albedo.cpp), and which every other kind refuses.
 bool sweeps_roughness(const LutRequest& r) {
     const std::string name = parse_spec(r.model).name;
     for (const ModelTraits& t : model_registry())
-        if (name == t.name) return t.alpha_x_slot >= 0;
+        if (name == t.name) return !t.measured;
     return true;  // an unknown name: sweep_model names the mistake
 }
 
