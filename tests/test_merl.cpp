@@ -53,6 +53,16 @@ void write_lambert(const std::string& path, std::array<double, 3> rho) {
     write_raw(path, dims, planes);
 }
 
+/// A GGX file (F = 1, height-correlated) tabulated at the bins' nodes from the textbook GGX
+/// (reference.h), unmeasured below the horizon as in MERL's files.
+void write_ggx(const std::string& path, double alpha) {
+    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
+        if (o[2] <= 0 || i[2] <= 0) return std::array<double, 3>{-1, -1, -1};
+        const double f = double(ref::ggx_f({o[0], o[1], o[2]}, {i[0], i[1], i[2]}, alpha, alpha, true));
+        return std::array<double, 3>{f, f, f};
+    });
+}
+
 /// The test's own reading of a file: the first plane, scaled.
 std::vector<double> read_red(const std::string& path) {
     std::ifstream in(path, std::ios::binary);
@@ -146,20 +156,15 @@ TEST_CASE("merl: a Lambert file's albedo is its rho, per channel and in Rec. 709
 TEST_CASE("merl: a GGX file's albedo is analytic GGX's within the file's tabulation error", "[merl]") {
     const double alpha = 0.5;
     const std::string path = tmp("ggx.binary");
-    // Tabulated at the bins' nodes from the textbook GGX (reference.h), unmeasured below the horizon.
-    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
-        if (o[2] <= 0 || i[2] <= 0) return std::array<double, 3>{-1, -1, -1};
-        const double f = double(ref::ggx_f({o[0], o[1], o[2]}, {i[0], i[1], i[2]}, alpha, alpha, true));
-        return std::array<double, 3>{f, f, f};
-    });
+    write_ggx(path, alpha);
     const std::vector<double> table = read_red(path);
-    const std::vector<double> mus{0.3, 0.7, 1.0};
+    const std::vector<double> mus{0.3, 1.0};
     const AlbedoResult nearest = albedo_of("merl:file=" + path + ",channel=r", mus, 1 << 20);
     const AlbedoResult linear = albedo_of("merl:file=" + path + ",channel=r,interp=linear", mus, 1 << 18);
     for (size_t k = 0; k < mus.size(); ++k) {
         const double exact = testing::ggx_albedo_reference<30>(alpha, mus[k], 1e-10);
         // the file's own albedo by the test's lookup; its error from halving the rule
-        const double fine = nearest_albedo(table, mus[k], 768), coarse = nearest_albedo(table, mus[k], 384);
+        const double fine = nearest_albedo(table, mus[k], 640), coarse = nearest_albedo(table, mus[k], 320);
         const double rule_error = std::fabs(fine - coarse);
         const double tabulation = std::fabs(fine - exact);
         INFO("mu = " << mus[k] << ": analytic " << exact << ", file (test's lookup) " << fine << " +- " << rule_error
@@ -186,7 +191,7 @@ TEST_CASE("merl: unmeasured bins are counted and their share of the hemisphere i
         const double f = hole ? -1.0 : rho / kPi;
         return std::array<double, 3>{f, f, f};
     });
-    const auto r = testing::run_cli("albedo --model merl:file=" + path + " --mu 0.002,0.5 --format json --samples 1048576");
+    const auto r = testing::run_cli("albedo --model merl:file=" + path + " --mu 0.002,0.5 --format json --samples 262144");
     REQUIRE(r.status == 0);
     const auto j = nlohmann::json::parse(r.out);
     for (const auto& e : j.at("results")) {
@@ -287,11 +292,7 @@ TEST_CASE("merl: hostile files are one error line, exit status 2, nothing writte
 
 TEST_CASE("merl: lobe's numbers are the file's bins, read by the test's own lookup", "[merl][cli]") {
     const std::string path = tmp("lobe.binary");
-    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
-        if (o[2] <= 0 || i[2] <= 0) return std::array<double, 3>{-1, -1, -1};
-        const double f = double(ref::ggx_f({o[0], o[1], o[2]}, {i[0], i[1], i[2]}, 0.3, 0.3, true));
-        return std::array<double, 3>{f, f, f};
-    });
+    write_ggx(path, 0.3);
     const std::vector<double> table = read_red(path);
     // 200 angles: steps of 180/199 degrees keep the half angles off the bins' edges
     const auto r = testing::run_cli("lobe --model merl:file=" + path + ",channel=r --theta-i 60 --resolution 200 --data -");
@@ -314,4 +315,46 @@ TEST_CASE("merl: lobe's numbers are the file's bins, read by the test's own look
     }
     CHECK(rows > 150);
     std::remove(path.c_str());
+}
+
+TEST_CASE("merl: channel=rgb makes one table channel per colour, and only in tables", "[merl][cli]") {
+    const std::string path = tmp("rgb-lut.binary"), out = tmp("rgb-lut.csv");
+    write_lambert(path, {0.2, 0.5, 0.8});
+    const auto r = testing::run_cli("lut eavg --model merl:file=" + path + ",channel=rgb --samples 1024 -o " + out);
+    REQUIRE(r.status == 0);
+    const std::string text = testing::slurp(out);
+    CHECK(text.find("# channels: Eavg_r Eavg_g Eavg_b error") != std::string::npos);
+    CHECK(text.find("channel=rgb") != std::string::npos);
+    const std::string last = text.substr(text.rfind("\n", text.size() - 2) + 1);
+    double x, er, eg, eb, err;
+    REQUIRE(std::sscanf(last.c_str(), "%lf,%lf,%lf,%lf,%lf", &x, &er, &eg, &eb, &err) == 5);
+    // Eavg of a Lambertian surface is its rho
+    CHECK(std::fabs(er - 0.2) <= err + 1e-6);
+    CHECK(std::fabs(eg - 0.5) <= err + 1e-6);
+    CHECK(std::fabs(eb - 0.8) <= err + 1e-6);
+    const auto refused = testing::run_cli("albedo --model merl:file=" + path + ",channel=rgb --mu 0.5");
+    CHECK(refused.status == 2);
+    CHECK(refused.err.find("one channel: r, g, b or y") != std::string::npos);
+    std::remove(path.c_str());
+    std::remove(out.c_str());
+}
+
+TEST_CASE("merl: a scene's material may name a MERL file beside the scene", "[merl][scene][cli]") {
+    const std::string dir = tmp("scene");
+    ::mkdir(dir.c_str(), 0700);
+    write_lambert(dir + "/paint.binary", {0.5, 0.5, 0.5});
+    std::ofstream(dir + "/scene.json") << R"({"materials": [{"name": "paint", "model": "merl:file=paint.binary,channel=g"}]})";
+    std::ofstream(dir + "/bad.json") << R"({"materials": [{"name": "paint", "model": "merl:file=missing.binary"}]})";
+    const auto r = testing::run_cli("plan " + dir + "/scene.json");
+    INFO(r.out << r.err);
+    CHECK(r.status == 0);
+    CHECK(r.out.find("merl:file=" + dir + "/paint.binary,channel=g,interp=nearest") != std::string::npos);
+    CHECK(r.out.find("no roughness axis") != std::string::npos);
+    const auto bad = testing::run_cli("plan " + dir + "/bad.json");
+    CHECK(bad.status == 2);
+    CHECK(testing::count_lines(bad.err) == 1);
+    CHECK(bad.err.find("material 'paint'") != std::string::npos);
+    CHECK(bad.err.find(dir + "/missing.binary") != std::string::npos);
+    for (const char* f : {"/paint.binary", "/scene.json", "/bad.json"}) std::remove((dir + f).c_str());
+    ::rmdir(dir.c_str());
 }

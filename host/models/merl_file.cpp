@@ -63,6 +63,13 @@ struct Store {
     std::vector<MerlTableInfo> info;
 };
 
+/// A parsed spec written back: name:key=value,...
+std::string spec_text(const Spec& s) {
+    std::string out = s.name;
+    for (size_t k = 0; k < s.keys.size(); ++k) out += (k ? "," : ":") + s.keys[k].first + "=" + s.keys[k].second;
+    return out;
+}
+
 Store& store() {
     static Store s;
     return s;
@@ -218,6 +225,36 @@ std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<dou
         text += line;
     }
     return text + "\n";
+}
+
+bool merl_rgb_spec(const std::string& spec) {
+    const Spec s = parse_spec(spec);
+    if (s.name != "merl") return false;
+    for (const auto& kv : s.keys)
+        if (kv.first == "channel") return kv.second == "rgb";
+    return false;
+}
+
+std::string merl_channel_spec(const std::string& spec, const std::string& channel) {
+    Spec s = parse_spec(spec);
+    bool set = false;
+    for (auto& kv : s.keys)
+        if (kv.first == "channel") {
+            kv.second = channel;
+            set = true;
+        }
+    if (!set) s.keys.emplace_back("channel", channel);
+    return spec_text(s);
+}
+
+std::string merl_spec_beside(const std::string& spec, const std::string& from) {
+    const size_t slash = from.find_last_of('/');
+    Spec s = parse_spec(spec);
+    if (s.name != "merl" || slash == std::string::npos) return spec;
+    for (auto& kv : s.keys)
+        if (kv.first == "file" && kv.second[0] != '/' && kv.second != kBuiltinLambert)
+            kv.second = from.substr(0, slash + 1) + kv.second;
+    return spec_text(s);
 }
 
 }  // namespace brdfbake

@@ -83,4 +83,13 @@ bool merl_unmeasured(const ModelConfig& model, const std::vector<double>& mus, M
 /// The table header line of merl_unmeasured ("# unmeasured: ..."), empty for other models.
 std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<double>& mus);
 
+/// Whether a model spec is merl with channel=rgb (a table's one channel per colour).
+bool merl_rgb_spec(const std::string& spec);
+/// The spec with its channel key set to `channel` (r, g, b or y).
+std::string merl_channel_spec(const std::string& spec, const std::string& channel);
+
+/// A merl spec read from a file at `from` (a scene): a relative file= path is made relative to
+/// that file's folder; any other spec is returned as it is.
+std::string merl_spec_beside(const std::string& spec, const std::string& from);
+
 }  // namespace brdfbake

@@ -286,6 +286,9 @@ ModelConfig resolve_sheen(KeyReader& keys) {
 ModelConfig resolve_merl(KeyReader& keys) {
     ModelConfig m;
     const auto file = keys.optional_string("file");
+    if (keys.optional_string("channel").value_or("") == "rgb")
+        throw Error("model 'merl': channel=rgb makes one table channel per colour (lut albedo, lut eavg); "
+                    "elsewhere give one channel: r, g, b or y");
     const std::string channel = keys.choice("channel", "y", {"r", "g", "b", "y"});
     const std::string interp = keys.choice("interp", "nearest", {"nearest", "linear"});
     if (!file) keys.finish();  // an unknown key (a misspelt file) is named first
@@ -324,6 +327,7 @@ struct ModelEntry {
                  ((TRAITS) & BB_TRAIT_SAMPLES_VECTOR) != 0, ((TRAITS) & BB_TRAIT_EVALS_VECTOR) != 0,               \
                  ((TRAITS) & BB_TRAIT_RECIPROCAL) != 0, AX, AY, EX, ((TRAITS) & BB_TRAIT_KINKED) != 0,             \
                  ((TRAITS) & BB_TRAIT_FURNACE) != 0, ((TRAITS) & BB_TRAIT_STOCHASTIC) != 0,                        \
+                 ((TRAITS) & BB_TRAIT_MEASURED) != 0,                                                               \
                  roughness_refusal_of(BB_MODEL_##NAME)},                                                            \
      resolve_##name},
 

@@ -21,6 +21,7 @@
 #include "brdfbake/version.h"
 #include "models/input_file.h"
 #include "models/key_reader.h"
+#include "models/merl_file.h"
 #include "scene/json_read.h"
 #include "scene/scene_text.h"
 #include "tables/sweep.h"
@@ -141,7 +142,8 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
             throw Error("scene '" + file + "': " + w.what + ": unknown key '" + item.key() +
                         "' (known: name, model, fresnel, wavelength, alpha, roughness, eta, transmission, tables, comment)");
     if (!m.contains("model")) throw Error("scene '" + file + "': " + w.what + " has no 'model' (e.g. \"ggx\")");
-    const std::string model_text = string_at(m["model"], w, "model");
+    // merl:file=FILE names a file beside the scene, as nk:FILE does
+    const std::string model_text = merl_spec_beside(string_at(m["model"], w, "model"), file);
     const std::string ctx = "scene '" + file + "': " + w.what;
 
     SweepSplit split;

@@ -1,9 +1,12 @@
 // The directional albedo E(mu_o, alpha) and the average albedo Eavg(alpha), both with F = 1 or
 // the request's Fresnel term.
+#include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
+#include "models/merl_file.h"
 #include "tables/lut_common.h"
 #include "tables/mu_average.h"
 #include "tables/sweep.h"
@@ -14,9 +17,9 @@ namespace {
 
 std::vector<std::string> albedo_program(const LutRequest& r) { return {"albedo|" + r.model + "|none"}; }
 
-/// Whether the model has no roughness axis (a measured material, lambert): its tables are E(mu_o)
-/// alone, 1D, and Eavg one number.
-bool without_roughness(const ModelConfig& m) { return m.traits().alpha_x_slot < 0; }
+/// Whether the model is a measured table (BB_TRAIT_MEASURED): no roughness axis, its tables are
+/// E(mu_o) alone, 1D, and Eavg one number.
+bool without_roughness(const ModelConfig& m) { return m.traits().measured; }
 
 /// E(mu_o) of a model without a roughness axis: a 1D table along mu (height 1).
 Table albedo_table_1d(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
@@ -39,8 +42,29 @@ Table albedo_table_1d(Engine& engine, const LutRequest& r, const ModelConfig& m,
     return t;
 }
 
+/// A table of `one` per colour for a merl spec with channel=rgb (channels E_r, E_g, E_b, the error
+/// the largest of the three, the model attribute with channel=rgb); `one` of m otherwise.
+Table per_colour(const LutRequest& r, const ModelConfig& m, const std::function<Table(const ModelConfig&)>& one) {
+    if (!merl_rgb_spec(r.model)) return one(m);
+    Table t;
+    for (const char* c : {"r", "g", "b"}) {
+        const Table ct = one(resolve_model(merl_channel_spec(r.model, c)));
+        if (t.values.empty()) {
+            t = ct;
+            t.channels.clear();
+            t.values.clear();
+        }
+        t.channels.push_back(ct.channels.front() + "_" + c);
+        t.values.push_back(ct.values.front());
+        for (size_t i = 0; i < t.error.size(); ++i) t.error[i] = std::max(t.error[i], ct.error[i]);
+    }
+    t.attributes["model"] = merl_channel_spec(t.attributes["model"], "rgb");
+    return t;
+}
+
 Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
-    if (without_roughness(m)) return albedo_table_1d(engine, r, m, f);
+    if (without_roughness(m))
+        return per_colour(r, m, [&](const ModelConfig& c) { return albedo_table_1d(engine, r, c, f); });
     return directional_albedo_table(engine, r, m, f,
                                     "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi");
 }
@@ -48,7 +72,7 @@ Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfi
 // Eavg = 2 int_0^1 E(mu) mu dmu by composite Gauss-Legendre in mu (average_over_mu): with a
 // tolerance the rule gets half of it and the sampling the other half; a texel that still misses
 // it is an error (exit status 1) naming it, as for the directional albedo.
-Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+Table eavg_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     bool clamped = false;
     Table t = roughness_table(r, "average albedo Eavg(alpha) = 2 integral_0^1 E(mu) mu dmu", clamped);
     std::vector<int> slots;
@@ -75,6 +99,10 @@ Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig&
     describe(t, r, m, f.canonical, avg.method, avg.samples, clamped);
     t.attributes["mu_quadrature"] = avg.rule;
     return t;
+}
+
+Table compute_eavg_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    return per_colour(r, m, [&](const ModelConfig& c) { return eavg_table(engine, r, c, f); });
 }
 
 }  // namespace

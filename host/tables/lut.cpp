@@ -15,6 +15,7 @@
 #include "brdfbake/table_kinds.h"
 #include "models/key_reader.h"
 #include "models/params.h"
+#include "models/merl_file.h"
 #include "tables/lut_common.h"
 #include "tables/sweep.h"
 
@@ -248,18 +249,19 @@ std::vector<std::string> table_axis_names(const TableKind& kind, const LutReques
 
 namespace {
 
-/// Whether the request's model has a roughness axis; one without (merl, lambert) makes the 1D
-/// E(mu_o) table and the one-texel Eavg (kind_albedo.cpp), and every other kind refuses it.
+/// Whether the request's model is swept in alpha: all but a measured model (merl), whose albedo
+/// and eavg tables are 1D in mu and one texel (kind_albedo.cpp), and which every other kind refuses.
 bool sweeps_roughness(const LutRequest& r) {
     const std::string name = parse_spec(r.model).name;
     for (const ModelTraits& t : model_registry())
-        if (name == t.name) return t.alpha_x_slot >= 0;
+        if (name == t.name) return !t.measured;
     return true;  // an unknown name: sweep_model names the mistake
 }
 
 /// The request's model with a placeholder alpha that the table sweeps (as it is without one).
 ModelConfig swept_model(const LutRequest& r) {
-    if (!sweeps_roughness(r)) return resolve_model(r.model);
+    if (!sweeps_roughness(r))  // a merl spec's channel=rgb: the red channel's (kind_albedo.cpp makes all three)
+        return resolve_model(merl_rgb_spec(r.model) ? merl_channel_spec(r.model, "r") : r.model);
     const Spec spec = parse_spec(r.model);
     for (const auto& kv : spec.keys)
         if (kv.first == "alpha" || kv.first == "roughness" || kv.first == "alpha_x" || kv.first == "alpha_y")

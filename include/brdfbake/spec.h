@@ -40,6 +40,7 @@ struct ModelTraits {
     bool kinked_quadrature;        // the quadrature's error estimate never assumes geometric convergence
     bool energy_conserving_example;  // the example's albedo is at most 1
     bool stochastic;               // its value is an estimate: sampling methods only, never quadrature
+    bool measured;                 // a measured table: tables are E(mu_o) and Eavg of it alone (no roughness)
     /// Why these parameters have no roughness to sweep although the model has alpha slots
     /// (torrance-sparrow with d=blinn), or nullptr.
     const char* (*roughness_refusal)(const ParamBlock& params);

@@ -131,6 +131,8 @@
 #define BB_TRAIT_STOCHASTIC 0x100     /* its value is itself an estimate (a random-walk simulation):
                                        * only the sampling methods integrate it, never quadrature
                                        * (docs/architecture.md, "The seam for new models") */
+#define BB_TRAIT_MEASURED 0x200       /* its values are a measured table (model data): no roughness
+                                       * axis, its tables are E(mu_o) and Eavg of the data alone */
 
 #define BB_MODEL_REGISTRY(X)                                                                                      \
     /* NAME                 name                 SPEC                   ARGS     QUAD        */                   \
@@ -170,7 +172,7 @@
       BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
       BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, "sheen:roughness=0.5")                                                 \
     X(MERL,                 merl,                "merl",                PLAIN,   SAMPLER,                         \
-      BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_RECIPROCAL | BB_TRAIT_KINKED | BB_TRAIT_FURNACE,                         \
+      BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_RECIPROCAL | BB_TRAIT_KINKED | BB_TRAIT_FURNACE | BB_TRAIT_MEASURED,     \
       -1, -1, -1, "merl:file=builtin:lambert")
 
 /* The values of the QUAD column. */
