@@ -52,17 +52,18 @@ TEST_CASE("walk: the signed Lambda is the projected area of the visible normals,
                 const bb_real lambda = bb_walk_lambda(beckmann ? BB_SMITH_BECKMANN : BB_SMITH_GGX,
                                                       bb_v3(v.x, v.y, v.z), a, a);
                 INFO((beckmann ? "beckmann" : "ggx") << " alpha " << a << " v.z " << vz);
-                CHECK((1 + lambda) * vz == Approx(area).epsilon(1e-6));
+                CHECK((1 + lambda) * vz == Approx(area).epsilon(1e-6).margin(1e-12));
             }
 }
 
 TEST_CASE("walk: visible normals of a direction below the horizon have the density <v, m> D(m)", "[random-walk]") {
-    // The mean of m.z and of <v, m> over 2^18 samples against their quadrature under <v, m>+ D.
+    // The mean of m.z and of <v, m> over 2^18 samples against their quadrature under <v, m>+ D;
+    // views within Beckmann's BB_WALK_BECKMANN_MIN_COS (stretched cosine >= -0.9).
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
     for (bool beckmann : {false, true})
         for (double a : {0.3, 1.0})
-            for (double vz : {-0.2, -0.8}) {
+            for (double vz : {-0.2, -0.5}) {
                 const ref::Dir v{std::sqrt(1 - vz * vz), 0, vz};
                 auto moment = [&](int k) {
                     return ref::integrate2(
