@@ -48,16 +48,16 @@ TEST_CASE("walk: the signed Lambda is the projected area of the visible normals,
                         const ref::Dir m = ref::dir(th, ph);
                         return double(std::max<ref::ld>(0, ref::dot(v, m)) * ref_d(beckmann, m, a) * std::sin(th));
                     },
-                    0, M_PI / 2, 0, 2 * M_PI, 1e-9);
+                    0, M_PI / 2, 0, M_PI, 1e-6);
                 const bb_real lambda = bb_walk_lambda(beckmann ? BB_SMITH_BECKMANN : BB_SMITH_GGX,
                                                       bb_v3(v.x, v.y, v.z), a, a);
                 INFO((beckmann ? "beckmann" : "ggx") << " alpha " << a << " v.z " << vz);
-                CHECK((1 + lambda) * vz == Approx(area).epsilon(1e-6).margin(1e-12));
+                CHECK((1 + lambda) * vz == Approx(2 * area).epsilon(1e-5).margin(1e-12));  // phi in [0, pi], twice
             }
 }
 
 TEST_CASE("walk: visible normals of a direction below the horizon have the density <v, m> D(m)", "[random-walk]") {
-    // The mean of m.z and of <v, m> over 2^18 samples against their quadrature under <v, m>+ D;
+    // The mean of m.z and of <v, m> over 2^17 samples against their quadrature under <v, m>+ D;
     // views within Beckmann's BB_WALK_BECKMANN_MIN_COS (stretched cosine >= -0.9).
     std::mt19937_64 rng(7);
     std::uniform_real_distribution<double> u(0.0, 1.0);
@@ -72,10 +72,10 @@ TEST_CASE("walk: visible normals of a direction below the horizon have the densi
                             const double w = double(std::max<ref::ld>(0, ref::dot(v, m)) * ref_d(beckmann, m, a));
                             return w * std::sin(th) * (k == 0 ? 1.0 : k == 1 ? double(m.z) : double(ref::dot(v, m)));
                         },
-                        0, M_PI / 2, 0, 2 * M_PI, 1e-9);
+                        0, M_PI / 2, 0, M_PI, 1e-6);  // the mirror half in phi: the ratios need no factor 2
                 };
                 const double norm = moment(0), ez = moment(1) / norm, ev = moment(2) / norm;
-                const int n = 1 << 18;
+                const int n = 1 << 17;
                 double sz = 0, sz2 = 0, sv = 0, sv2 = 0, below = 0;
                 for (int i = 0; i < n; ++i) {
                     const bb_vec3 m = bb_walk_sample_vndf(beckmann ? BB_SMITH_BECKMANN : BB_SMITH_GGX,
