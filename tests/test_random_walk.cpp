@@ -128,6 +128,20 @@ TEST_CASE("walk: the first order is the height-correlated lobe's albedo (quadrat
         }
 }
 
+TEST_CASE("walk: anisotropic alpha, the first order against quadrature at two azimuths", "[random-walk]") {
+    const double ax = 0.2, ay = 0.8, mu = 0.5;
+    AlbedoRequest req = walk_request("ggx:alpha_x=0.2,alpha_y=0.8,scattering=multiple", {mu, mu}, "none", 1 << 16);
+    req.cells[1].phi = M_PI / 2;
+    const WalkResult r = walk_albedo(testing::engine(), req);
+    for (size_t c = 0; c < 2; ++c) {
+        const double e1 = ref::albedo_halfvector(
+            [=](ref::Dir o, ref::Dir i) { return ref::ggx_f(o, i, ax, ay, true); }, mu, req.cells[c].phi, 1e-7);
+        INFO("phi " << req.cells[c].phi << ": first order " << r.values[c].single.value << " quadrature " << e1);
+        CHECK(std::fabs(r.values[c].single.value - e1) <= r.values[c].single.error);
+        CHECK(std::fabs(r.values[c].energy.value + r.values[c].cutoff.value - 1) <= r.values[c].energy.error + 1e-6);
+    }
+}
+
 TEST_CASE("walk: bounces=1 cuts off exactly what single scattering loses", "[random-walk]") {
     // E = E_single and cutoff = 1 - E_single, E_single by quadrature of the correlated lobe.
     const double a = 1.0;
