@@ -31,7 +31,8 @@
  * Visible normals of a direction below the horizon: GGX's sampler [H18] covers the whole sphere
  * of view directions (its projected-area parameterisation with s = (1 + vh.z)/2 < 1/2 keeps the
  * lifted normal at or above the horizon); Beckmann's slope sampler [HD14 sec. 4, J14] is written
- * for theta in [0, pi], and is called here with the signed cosine.
+ * for theta in [0, pi], and is called here with the signed cosine, down to a limit
+ * (BB_WALK_BECKMANN_MIN_COS, where its erf-domain inversion loses its digits).
  *
  * The random numbers: Philox4x32-10 (Random123, Salmon et al. 2011), one call per scattering,
  * counter (walk, replica, cell stream, BB_WALK_TAG | scattering), so that a walk's numbers depend
@@ -57,6 +58,10 @@
 /* The fourth counter word of a walk's Philox stream: "w" in the top byte, the scattering below. */
 #define BB_WALK_TAG 0x77000000u
 
+/* The steepest downward view (stretched cosine) whose visible normals Beckmann's sampler draws
+ * (bb_walk_sample_vndf). */
+#define BB_WALK_BECKMANN_MIN_COS BB_R(-0.9)
+
 /* Signed Smith Lambda of a ray direction w (either hemisphere): Lambda(w) for w.z > 0 [H14 eq. 86
  * (GGX), eq. 72 (Beckmann), with eq. 80 for the anisotropic projected roughness], and
  * Lambda(w) = -1 - Lambda(-w) for w.z <= 0 [HHdD16]. +-inf at the horizon, 0 and -1 at the poles. */
@@ -69,12 +74,21 @@ BB_FN bb_real bb_walk_lambda(int dist, bb_vec3 w, bb_real ax, bb_real ay) {
  * where the ray came from): density <v, m> D(m) / (its integral) over m with <v, m> > 0, m.z >= 0. */
 BB_FN bb_vec3 bb_walk_sample_vndf(int dist, bb_vec3 v, bb_real ax, bb_real ay, bb_real u1, bb_real u2) {
     if (dist == BB_SMITH_BECKMANN) {
-        /* [HD14 sec. 4] as bb_beckmann_sample_vndf, with the signed cosine of the stretched v */
+        /* [HD14 sec. 4] as bb_beckmann_sample_vndf, with the signed cosine of the stretched v.
+         * Its CDF, in the erf domain, is (1 + b + tan/sqrt(pi) exp(-x^2)) / (1 + erf(cot) + ...):
+         * as the view turns straight down, 1 + erf(cot) cancels (at stretched cos = -0.95 the
+         * float inversion is off by 4e-2 in the CDF, at -0.9 by 5e-5). Views steeper than
+         * BB_WALK_BECKMANN_MIN_COS are sampled as from that cone's edge, the same azimuth: a
+         * ray that steep upward hits a microfacet rarely (Beckmann's Lambda < 2e-4 there). Exactly
+         * horizontal views (a reflection can round to one) are taken 1e-6 off the horizon: the
+         * sampler's tan = sin/cos needs cos != 0. */
         bb_vec3 s11 = bb_normalize(bb_v3(ax * v.x, ay * v.y, v.z));
-        /* exactly horizontal (a reflection can round to it): the sampler's tan = sin/cos needs
-         * cos != 0; 1e-6 off the horizon changes the visible normals by O(1e-6) */
-        bb_real c = bb_select(s11.z, bb_select(BB_R(-1e-6), BB_R(1e-6), s11.z >= BB_R(0.0)), bb_fabs(s11.z) < BB_R(1e-6));
-        return bb_beckmann_sample_vndf_stretched(s11, c, ax, ay, u1, u2);
+        bb_real z = bb_max(s11.z, BB_WALK_BECKMANN_MIN_COS);
+        z = bb_select(z, bb_select(BB_R(-1e-6), BB_R(1e-6), z >= BB_R(0.0)), bb_fabs(z) < BB_R(1e-6));
+        bb_real r = bb_sqrt(s11.x * s11.x + s11.y * s11.y);
+        bb_real k = bb_safe_sqrt(BB_R(1.0) - z * z) / bb_select(r, BB_R(1.0), r <= BB_R(0.0));
+        s11 = bb_v3(bb_select(s11.x * k, k, r <= BB_R(0.0)), s11.y * k, z);
+        return bb_beckmann_sample_vndf_stretched(s11, z, ax, ay, u1, u2);
     }
     return bb_ggx_sample_vndf(v, ax, ay, u1, u2);
 }
