@@ -123,8 +123,8 @@ TEST_CASE("merl: spec keys, defaults, canonical spelling, one read per file and 
     const std::string path = tmp("rgb.binary");
     write_lambert(path, {0.2, 0.5, 0.8});
     const ModelConfig m = resolve_model("merl:file=" + path);
-    CHECK(m.canonical == "merl:file=" + path + ",channel=y,interp=nearest");
-    CHECK(m.params[BB_MERL_INTERP] == BB_MERL_NEAREST);
+    CHECK(m.canonical == "merl:file=" + path + ",channel=y,interp=linear");
+    CHECK(m.params[BB_MERL_INTERP] == BB_MERL_LINEAR);
     CHECK_FALSE(m.uses_fresnel);
     CHECK(m.traits().alpha_x_slot < 0);
     CHECK(resolve_model(m.canonical).params == m.params);  // the same table, not a second read
@@ -159,7 +159,7 @@ TEST_CASE("merl: a GGX file's albedo is analytic GGX's within the file's tabulat
     write_ggx(path, alpha);
     const std::vector<double> table = read_red(path);
     const std::vector<double> mus{0.3, 1.0};
-    const AlbedoResult nearest = albedo_of("merl:file=" + path + ",channel=r", mus, 1 << 20);
+    const AlbedoResult nearest = albedo_of("merl:file=" + path + ",channel=r,interp=nearest", mus, 1 << 20);
     const AlbedoResult linear = albedo_of("merl:file=" + path + ",channel=r,interp=linear", mus, 1 << 18);
     for (size_t k = 0; k < mus.size(); ++k) {
         const double exact = testing::ggx_albedo_reference<30>(alpha, mus[k], 1e-10);
@@ -191,7 +191,7 @@ TEST_CASE("merl: unmeasured bins are counted and their share of the hemisphere i
         const double f = hole ? -1.0 : rho / kPi;
         return std::array<double, 3>{f, f, f};
     });
-    const auto r = testing::run_cli("albedo --model merl:file=" + path + " --mu 0.002,0.5 --format json --samples 262144");
+    const auto r = testing::run_cli("albedo --model merl:file=" + path + ",interp=nearest --mu 0.002,0.5 --format json --samples 262144");
     REQUIRE(r.status == 0);
     const auto j = nlohmann::json::parse(r.out);
     for (const auto& e : j.at("results")) {
@@ -203,7 +203,7 @@ TEST_CASE("merl: unmeasured bins are counted and their share of the hemisphere i
     }
     CHECK(j.at("results")[0].at("unmeasured_share").get<double>() > 0.0);   // grazing wo reads holes
     CHECK(j.at("results")[1].at("unmeasured_share").get<double>() == 0.0);  // mu = 0.5 reads none
-    const auto t = testing::run_cli("albedo --model merl:file=" + path + " --mu 0.002");
+    const auto t = testing::run_cli("albedo --model merl:file=" + path + ",interp=nearest --mu 0.002");
     CHECK(t.out.find("# unmeasured: " + std::to_string(written) + " of 1458000 bins") != std::string::npos);
     std::remove(path.c_str());
 }
@@ -295,7 +295,7 @@ TEST_CASE("merl: lobe's numbers are the file's bins, read by the test's own look
     write_ggx(path, 0.3);
     const std::vector<double> table = read_red(path);
     // 200 angles: steps of 180/199 degrees keep the half angles off the bins' edges
-    const auto r = testing::run_cli("lobe --model merl:file=" + path + ",channel=r --theta-i 60 --resolution 200 --data -");
+    const auto r = testing::run_cli("lobe --model merl:file=" + path + ",channel=r,interp=nearest --theta-i 60 --resolution 200 --data -");
     REQUIRE(r.status == 0);
     std::istringstream in(r.out);
     int rows = 0;
@@ -348,7 +348,7 @@ TEST_CASE("merl: a scene's material may name a MERL file beside the scene", "[me
     const auto r = testing::run_cli("plan " + dir + "/scene.json");
     INFO(r.out << r.err);
     CHECK(r.status == 0);
-    CHECK(r.out.find("merl:file=" + dir + "/paint.binary,channel=g,interp=nearest") != std::string::npos);
+    CHECK(r.out.find("merl:file=" + dir + "/paint.binary,channel=g,interp=linear") != std::string::npos);
     CHECK(r.out.find("no roughness axis") != std::string::npos);
     const auto bad = testing::run_cli("plan " + dir + "/bad.json");
     CHECK(bad.status == 2);

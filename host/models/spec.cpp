@@ -290,7 +290,7 @@ ModelConfig resolve_merl(KeyReader& keys) {
         throw Error("model 'merl': channel=rgb makes one table channel per colour (lut albedo, lut eavg); "
                     "elsewhere give one channel: r, g, b or y");
     const std::string channel = keys.choice("channel", "y", {"r", "g", "b", "y"});
-    const std::string interp = keys.choice("interp", "nearest", {"nearest", "linear"});
+    const std::string interp = keys.choice("interp", "linear", {"nearest", "linear"});
     if (!file) keys.finish();  // an unknown key (a misspelt file) is named first
     if (!file) throw Error("model 'merl' needs file=PATH, a MERL binary file (e.g. merl:file=gold-metallic-paint.binary)");
     const MerlChannel c = channel == "r" ? MerlChannel::R : channel == "g" ? MerlChannel::G
