@@ -260,4 +260,44 @@ BB_FN bb_real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_par
     return bb_select(BB_R(0.0), w, ok);
 }
 
+/* ------------------------------------------------------------- kinks the rules split at
+ * A Gauss rule converges geometrically only where its integrand is smooth; where the derivative
+ * jumps inside a row (a cone, a cusp) it converges algebraically, and the three rules of the
+ * error estimate can agree on a value far off (issue 37: sheen with ashikhmin visibility at
+ * alpha 0.9375, 54x its estimate). The rules therefore split each row at such a point. */
+
+/* The mirror cone (BB_TRAIT_MIRROR_CONE): the sampler's u1 whose cos(theta_i) is cos(theta_o),
+ * the polar angle of the mirror direction, by bisection on the model's own sampler (its
+ * cos(theta_i) rises with u1 and does not depend on u2); 1 - u1 is the second part's length. */
+BB_FN bb_real bb_quad_sampler_cone_u1(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo) {
+    bb_real lo = BB_R(0.0), hi = BB_R(1.0);
+    for (int i = 0; i < 64; ++i) {
+        bb_real mid = BB_R(0.5) * (lo + hi);
+        bb_mask below = bb_model_sample(model, p, fkind, fp, wo, mid, BB_R(0.5)).wi.z < wo.z;
+        lo = bb_select(lo, mid, below);
+        hi = bb_select(mid, hi, below);
+    }
+    return BB_R(0.5) * (lo + hi);
+}
+
+/* Whether the Fresnel term has a cusp at wo.h = 1 (h along wo): generalized Schlick's
+ * (1 - cos)^exponent with a non-integer exponent (Cycles' z = 0.99 is exponent 0.05, whose
+ * weight drops from 1 to 0 within a few 1e-3 of cos = 1). Constant over a launch. */
+BB_FN int bb_quad_fresnel_cusp(int fkind, bb_params fp) {
+    if (fkind != BB_FRESNEL_GEN_SCHLICK) return 0;
+    bb_real e = fp.v[BB_GEN_SCHLICK_EXPONENT];
+    return !bb_all(e == bb_floor(e));
+}
+
+/* Where a half-vector row at azimuth offset delta comes closest to wo: wo.h = R cos(theta_h -
+ * theta*) with tan(theta*) = tan(theta_o) cos(delta), so the radial coordinate t* =
+ * asinh(tan(theta*) / a) (bb_make_quad_row's map); the middle of the row where theta* is not
+ * inside it (cos(delta) <= 0, or beyond t_max). At delta = 0 the Fresnel cusp sits there. */
+BB_FN bb_real bb_quad_row_cusp_t(bb_quad_row r, bb_vec3 wo, bb_real delta) {
+    bb_real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
+    bb_real x = sin_o * bb_cos(delta) / (wo.z * r.a);
+    bb_real ts = bb_log(x + bb_sqrt(x * x + BB_R(1.0))); /* asinh */
+    return bb_select(BB_R(0.5) * r.t_max, ts, x > BB_R(0.0) && ts < r.t_max);
+}
+
 #endif /* BRDFBAKE_BRDF_INTEGRANDS_H */
