@@ -127,12 +127,15 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     BB_QUAD_SPLITS
 
 /* The kinks each row is split at (integrands.h): `cone`, the sampler's u1 of the mirror cone
- * u_cone (BB_TRAIT_MIRROR_CONE); `cusp`, the Fresnel term's cusp at wo.h = 1 (per row,
- * bb_quad_row_cusp_t). Each part gets the rule's n nodes. */
+ * u_cone (BB_TRAIT_MIRROR_CONE); in half-vector space `cusp`, the Fresnel term's cusp at
+ * wo.h = 1, and kink_cos, the cosine where its weight leaves 0 (per row, bb_quad_row_cuts):
+ * n_parts parts of the row. Each part gets the rule's n nodes. */
 #define BB_QUAD_SPLITS                                                                            \
     const int cone = dist.kind == BB_QUAD_SAMPLER && bb_model_has_trait(BB_MODEL, BB_TRAIT_MIRROR_CONE); \
     const bb_real u_cone = cone ? bb_quad_sampler_cone_u1(BB_MODEL, p, BB_FRESNEL, fp, wo) : BB_R(1.0); \
-    const int cusp = dist.kind != BB_QUAD_SAMPLER && bb_quad_fresnel_cusp(BB_FRESNEL, fp)
+    const int cusp = dist.kind != BB_QUAD_SAMPLER && bb_quad_fresnel_cusp(BB_FRESNEL, fp);       \
+    const bb_real kink_cos = dist.kind != BB_QUAD_SAMPLER ? bb_quad_fresnel_kink_cos(BB_FRESNEL, fp) : BB_R(-1.0); \
+    const int n_parts = 1 + cusp + (bb_all(kink_cos > BB_R(0.0)) ? 2 : 0)
 
 #endif /* BB_QUADRATURE */
 
@@ -236,10 +239,12 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
         } else {
             const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, x[j]);
             const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
-            /* t over [0, t*] and [t*, t_max] for a Fresnel cusp (BB_QUAD_SPLITS), else [0, t_max] */
-            const bb_real t_cut = cusp ? bb_quad_row_cusp_t(r, wo, az.delta) : r.t_max;
-            for (int part = 0; part < 1 + cusp; ++part) {
-                const bb_real lo = part == 0 ? BB_R(0.0) : t_cut, len = part == 0 ? t_cut : r.t_max - t_cut;
+            /* t over [0, t_max] cut at the Fresnel term's cusp and kinks (BB_QUAD_SPLITS) */
+            bb_real cut[3];
+            bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
+            for (int part = 0; part < n_parts; ++part) {
+                const bb_real lo = part == 0 ? BB_R(0.0) : cut[part - 1];
+                const bb_real len = (part == n_parts - 1 ? r.t_max : cut[part]) - lo;
                 for (unsigned int k = 0; k < n; ++k) {
                     const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, lo + len * x[k]);
                     const int ok = isfinite(w);
@@ -328,9 +333,11 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
         bb_real row = BB_R(0.0), row_comp = BB_R(0.0);
         /* Not unrolled: 4x unrolling saved ~15% of this loop's time (5-7 ms of the 64x64 table
          * at --tolerance 1e-5) but cost ~0.1 s more of PoCL's cold compile. */
-        const bb_real t_cut = cusp ? bb_quad_row_cusp_t(r, wo, az.delta) : r.t_max;
-        for (int part = 0; part < 1 + cusp; ++part) {
-            const bb_real lo = part == 0 ? BB_R(0.0) : t_cut, len = part == 0 ? t_cut : r.t_max - t_cut;
+        bb_real cut[3];
+        bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
+        for (int part = 0; part < n_parts; ++part) {
+            const bb_real lo = part == 0 ? BB_R(0.0) : cut[part - 1];
+            const bb_real len = (part == n_parts - 1 ? r.t_max : cut[part]) - lo;
             for (unsigned int k = 0; k < n; ++k) {
                 const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, lo + len * x[k]);
                 const bb_mask ok = isfinite(w);

@@ -289,15 +289,61 @@ BB_FN int bb_quad_fresnel_cusp(int fkind, bb_params fp) {
     return !bb_all(e == bb_floor(e));
 }
 
-/* Where a half-vector row at azimuth offset delta comes closest to wo: wo.h = R cos(theta_h -
- * theta*) with tan(theta*) = tan(theta_o) cos(delta), so the radial coordinate t* =
- * asinh(tan(theta*) / a) (bb_make_quad_row's map); the middle of the row where theta* is not
- * inside it (cos(delta) <= 0, or beyond t_max). At delta = 0 the Fresnel cusp sits there. */
-BB_FN bb_real bb_quad_row_cusp_t(bb_quad_row r, bb_vec3 wo, bb_real delta) {
+/* The cosine wo.h below which the Fresnel term's weight leaves 0 with a kink, or -1 for none:
+ * Cycles' remapped dielectric clamp((F - F0) / (1 - F0), 0, 1) (gen-schlick-ior) is 0 where a
+ * high index's F dips below F0 (from cos = 1 down to past Brewster's angle; eta = 4.56, Cycles'
+ * z = 0.8, puts the kink at cos 0.09, in the tail of a narrow lobe seen at grazing). Found from
+ * a 64-step scan of the weight down from cos = 1 and bisection. Constant over a launch. */
+BB_FN bb_real bb_quad_fresnel_kink_cos(int fkind, bb_params fp) {
+    if (fkind != BB_FRESNEL_GEN_SCHLICK_IOR) return BB_R(-1.0);
+    bb_real hi = BB_R(1.0), lo = BB_R(-1.0);
+    for (int j = 63; j >= 0 && bb_all(lo < BB_R(0.0)); --j) {
+        bb_real c = (bb_real)j / BB_R(64.0);
+        if (bb_all(bb_fresnel_eval(fkind, fp, c) > BB_R(0.0))) lo = c;
+        else hi = c;
+    }
+    if (bb_all(lo < BB_R(0.0)) || bb_all(hi == BB_R(1.0))) return BB_R(-1.0); /* 0 nowhere below 1, or nowhere */
+    for (int i = 0; i < 60; ++i) {
+        bb_real mid = BB_R(0.5) * (lo + hi);
+        bb_mask pos = bb_fresnel_eval(fkind, fp, mid) > BB_R(0.0);
+        lo = bb_select(lo, mid, pos);
+        hi = bb_select(mid, hi, pos);
+    }
+    return BB_R(0.5) * (lo + hi);
+}
+
+/* The radial coordinate t = asinh(tan(theta_h) / a) of polar angle theta_h on a row (bb_make_quad_row's
+ * map), clamped to [0, t_max]. */
+BB_FN bb_real bb_quad_row_t(bb_quad_row r, bb_real theta) {
+    bb_real th = bb_clamp(theta, BB_R(0.0), BB_R(0.5) * BB_PI);
+    bb_real x = bb_sin(th) / (bb_cos(th) * r.a); /* +inf at pi/2: t_max */
+    bb_real t = bb_log(x + bb_sqrt(x * x + BB_R(1.0))); /* asinh */
+    return bb_clamp(t, BB_R(0.0), r.t_max);
+}
+
+/* Where a half-vector row at azimuth offset delta is cut (sorted into cut[0..2], unused ones
+ * t_max): along it wo.h = R cos(theta_h - theta*), R = sqrt(cos^2(theta_o) + sin^2(theta_o)
+ * cos^2(delta)), tan(theta*) = tan(theta_o) cos(delta). `cusp`: at theta*, where the row comes
+ * closest to wo (at delta = 0 the Fresnel cusp at wo.h = 1 sits there); `kink_cos` > 0: at
+ * theta* -+ acos(kink_cos / R), where wo.h crosses that cosine. */
+BB_FN void bb_quad_row_cuts(bb_quad_row r, bb_vec3 wo, bb_real delta, int cusp, bb_real kink_cos, bb_real* cut) {
     bb_real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
-    bb_real x = sin_o * bb_cos(delta) / (wo.z * r.a);
-    bb_real ts = bb_log(x + bb_sqrt(x * x + BB_R(1.0))); /* asinh */
-    return bb_select(BB_R(0.5) * r.t_max, ts, x > BB_R(0.0) && ts < r.t_max);
+    bb_real b = sin_o * bb_cos(delta);
+    bb_real big_r = bb_sqrt(wo.z * wo.z + b * b);
+    bb_real th = bb_atan2(b, wo.z);
+    bb_real c0 = cusp ? bb_quad_row_t(r, th) : r.t_max, c1 = r.t_max, c2 = r.t_max;
+    if (bb_all(kink_cos > BB_R(0.0))) {
+        bb_mask crosses = kink_cos < big_r;
+        bb_real q = bb_clamp(kink_cos / big_r, BB_R(-1.0), BB_R(1.0));
+    bb_real spread = bb_atan2(bb_safe_sqrt(BB_R(1.0) - q * q), q); /* acos(q) */
+        c1 = bb_select(r.t_max, bb_quad_row_t(r, th - spread), crosses);
+        c2 = bb_select(r.t_max, bb_quad_row_t(r, th + spread), crosses);
+    }
+    /* sort the three */
+    bb_real lo = bb_min(c0, bb_min(c1, c2)), hi = bb_max(c0, bb_max(c1, c2));
+    cut[0] = lo;
+    cut[1] = c0 + c1 + c2 - lo - hi;
+    cut[2] = hi;
 }
 
 #endif /* BRDFBAKE_BRDF_INTEGRANDS_H */
