@@ -243,13 +243,12 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
             bb_real cut[3];
             bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
             for (int part = 0; part < n_parts; ++part) {
-                const bb_real lo = part == 0 ? BB_R(0.0) : cut[part - 1];
-                const bb_real len = (part == n_parts - 1 ? r.t_max : cut[part]) - lo;
+                const bb_quad_part pt = bb_quad_row_part(cut, n_parts, part, r.t_max);
                 for (unsigned int k = 0; k < n; ++k) {
-                    const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, lo + len * x[k]);
+                    const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, pt.lo + pt.len * x[k]);
                     const int ok = isfinite(w);
                     bad += ok ? 0u : 1u;
-                    BB_KAHAN_ADD(row, row_comp, ok ? len * wt[k] * w : BB_R(0.0));
+                    BB_KAHAN_ADD(row, row_comp, ok ? pt.len * wt[k] * w : BB_R(0.0));
                 }
             }
             scale = az.ddelta; /* pi/2 for a whole quarter in delta */
@@ -336,13 +335,12 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
         bb_real cut[3];
         bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
         for (int part = 0; part < n_parts; ++part) {
-            const bb_real lo = part == 0 ? BB_R(0.0) : cut[part - 1];
-            const bb_real len = (part == n_parts - 1 ? r.t_max : cut[part]) - lo;
+            const bb_quad_part pt = bb_quad_row_part(cut, n_parts, part, r.t_max);
             for (unsigned int k = 0; k < n; ++k) {
-                const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, lo + len * x[k]);
+                const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, pt.lo + pt.len * x[k]);
                 const bb_mask ok = isfinite(w);
                 bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
-                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), len * wt[k] * w, ok));
+                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), pt.len * wt[k] * w, ok));
             }
         }
         const bb_real scale = az.ddelta;

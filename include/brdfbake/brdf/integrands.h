@@ -346,4 +346,17 @@ BB_FN void bb_quad_row_cuts(bb_quad_row r, bb_vec3 wo, bb_real delta, int cusp, 
     cut[2] = hi;
 }
 
+/* Part `part` of a row [0, t_max] cut into n_parts at the first n_parts - 1 of cut[]: its start
+ * and length (the kernels' rules run n nodes over each). */
+typedef struct {
+    bb_real lo, len;
+} bb_quad_part;
+
+BB_FN bb_quad_part bb_quad_row_part(const bb_real* cut, int n_parts, int part, bb_real t_max) {
+    bb_quad_part q;
+    q.lo = part == 0 ? BB_R(0.0) : cut[part - 1];
+    q.len = (part == n_parts - 1 ? t_max : cut[part]) - q.lo;
+    return q;
+}
+
 #endif /* BRDFBAKE_BRDF_INTEGRANDS_H */
