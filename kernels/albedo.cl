@@ -125,7 +125,19 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
         bad_count[gid] = 0u;                                                                      \
         return;                                                                                   \
     }                                                                                             \
-    const bb_scalar copies = mirrored ? 2 : 1
+    const bb_scalar copies = mirrored ? 2 : 1;                                                    \
+    BB_QUAD_SPLITS
+
+/* The kinks each row is split at (integrands.h): `cone`, the sampler's u1 of the mirror cone
+ * u_cone (BB_TRAIT_MIRROR_CONE); in half-vector space `cusp`, the Fresnel term's cusp at
+ * wo.h = 1, and kink_cos, the cosine where its weight leaves 0 (per row, bb_quad_row_cuts):
+ * n_parts parts of the row. Each part gets the rule's n nodes. */
+#define BB_QUAD_SPLITS                                                                            \
+    const int cone = dist.kind == BB_QUAD_SAMPLER && bb_model_has_trait(BB_MODEL, BB_TRAIT_MIRROR_CONE); \
+    const bb_real u_cone = cone ? bb_quad_sampler_cone_u1(BB_MODEL, p, BB_FRESNEL, fp, wo) : BB_R(1.0); \
+    const int cusp = dist.kind != BB_QUAD_SAMPLER && bb_quad_fresnel_cusp(BB_FRESNEL, fp);       \
+    const bb_real kink_cos = dist.kind != BB_QUAD_SAMPLER ? bb_quad_fresnel_kink_cos(BB_FRESNEL, fp) : BB_R(-1.0); \
+    const int n_parts = 1 + cusp + (bb_all(kink_cos > BB_R(0.0)) ? 2 : 0)
 
 #endif /* BB_QUADRATURE */
 
@@ -214,24 +226,34 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
                     }
                 }
             } else {
-                for (unsigned int k = 0; k < n; ++k) {
-                    const bb_real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, x[k], s).weight;
-                    const int ok = isfinite(w);
-                    bad += ok ? 0u : 1u;
-                    BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
+                /* u1 over [0, u_cone] and [u_cone, 1] for a mirror cone (BB_QUAD_SPLITS), else [0, 1] */
+                for (int part = 0; part < 1 + cone; ++part) {
+                    const bb_real lo = part == 0 ? BB_R(0.0) : u_cone, len = part == 0 ? u_cone : BB_R(1.0) - u_cone;
+                    for (unsigned int k = 0; k < n; ++k) {
+                        const bb_real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, lo + len * x[k], s).weight;
+                        const int ok = isfinite(w);
+                        bad += ok ? 0u : 1u;
+                        BB_KAHAN_ADD(row, row_comp, ok ? len * wt[k] * w : BB_R(0.0));
+                    }
                 }
             }
             scale = BB_R(0.25);
         } else {
             const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, x[j]);
             const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
-            for (unsigned int k = 0; k < n; ++k) {
-                const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
-                const int ok = isfinite(w);
-                bad += ok ? 0u : 1u;
-                BB_KAHAN_ADD(row, row_comp, ok ? wt[k] * w : BB_R(0.0));
+            /* t over [0, t_max] cut at the Fresnel term's cusp and kinks (BB_QUAD_SPLITS) */
+            bb_real cut[3];
+            bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
+            for (int part = 0; part < n_parts; ++part) {
+                const bb_quad_part pt = bb_quad_row_part(cut, n_parts, part, r.t_max);
+                for (unsigned int k = 0; k < n; ++k) {
+                    const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, pt.lo + pt.len * x[k]);
+                    const int ok = isfinite(w);
+                    bad += ok ? 0u : 1u;
+                    BB_KAHAN_ADD(row, row_comp, ok ? pt.len * wt[k] * w : BB_R(0.0));
+                }
             }
-            scale = az.ddelta * r.t_max; /* (pi/2) t_max for a whole quarter in delta */
+            scale = az.ddelta; /* pi/2 for a whole quarter in delta */
         }
         BB_KAHAN_ADD(sum, comp, wt[j] * scale * row);
     }
@@ -291,11 +313,14 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
                 }
             }
         } else {
-            for (unsigned int k = 0; k < n; ++k) {
-                const bb_real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, (bb_real)x[k], s).weight;
-                const bb_mask ok = isfinite(w);
-                bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
-                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), (bb_real)wt[k] * w, ok));
+            for (int part = 0; part < 1 + cone; ++part) {
+                const bb_real lo = part == 0 ? BB_R(0.0) : u_cone, len = part == 0 ? u_cone : BB_R(1.0) - u_cone;
+                for (unsigned int k = 0; k < n; ++k) {
+                    const bb_real w = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, lo + len * (bb_real)x[k], s).weight;
+                    const bb_mask ok = isfinite(w);
+                    bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
+                    BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), len * (bb_real)wt[k] * w, ok));
+                }
             }
         }
         BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * BB_R(0.25) * row, live));
@@ -309,13 +334,18 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
         bb_real row = BB_R(0.0), row_comp = BB_R(0.0);
         /* Not unrolled: 4x unrolling saved ~15% of this loop's time (5-7 ms of the 64x64 table
          * at --tolerance 1e-5) but cost ~0.1 s more of PoCL's cold compile. */
-        for (unsigned int k = 0; k < n; ++k) {
-            const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, r.t_max * x[k]);
-            const bb_mask ok = isfinite(w);
-            bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
-            BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), wt[k] * w, ok));
+        bb_real cut[3];
+        bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
+        for (int part = 0; part < n_parts; ++part) {
+            const bb_quad_part pt = bb_quad_row_part(cut, n_parts, part, r.t_max);
+            for (unsigned int k = 0; k < n; ++k) {
+                const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, pt.lo + pt.len * x[k]);
+                const bb_mask ok = isfinite(w);
+                bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
+                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), pt.len * wt[k] * w, ok));
+            }
         }
-        const bb_real scale = az.ddelta * r.t_max;
+        const bb_real scale = az.ddelta;
         BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * scale * row, live));
     }
 #endif

@@ -103,7 +103,10 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
         build.vector_width = 1;  // a ragged last step: the scalar kernel
         lanes = 1;
     }
-    check_memory(launch_bytes(n_cells, n_items, lanes > 1 ? double(points) * req.replicas : req.replicas,
+    // The vector paths tabulate their points in chunks (table_chunks), one launch each.
+    const std::vector<PointChunk> chunks =
+        lanes > 1 ? table_chunks(points, req.replicas, lanes) : std::vector<PointChunk>{{0, points}};
+    check_memory(launch_bytes(n_cells, n_items, lanes > 1 ? double(chunks.front().count) * req.replicas : req.replicas,
                                 lanes > 1 ? (disk ? BB_DISK_VALUES : BB_POINTS_VALUES) : 1, req.precision),
                  "integrating " + std::to_string(n_cells) + (n_cells == 1 ? " direction with " : " directions with ") + std::to_string(req.samples) +
                      " samples each");
@@ -134,29 +137,39 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     }
     cl::Buffer b_stream(engine.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, streams.size() * sizeof(cl_uint),
                         streams.data());
-    cl::Buffer b_points = bufs.input(lanes == 1 ? shifts
-                                     : disk   ? disk_table(shifts, req.replicas, points, lanes, req.precision)
-                                              : point_table(shifts, req.replicas, points, lanes, req.precision));
     cl::Buffer b_mean = bufs.output(n_items);
-    const NonFiniteCounts bad_counts(engine, n_items);
-
     cl::Kernel kernel(program, lanes == 1 ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS)
                                : disk     ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_DISK)
                                           : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_POINTS));
-    cl_uint a = set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_data, b_points, cl_uint(points), cl_uint(req.replicas),
-                         cl_uint(n_cells));
-    if (lanes == 1) {
-        const int method = req.method == Method::Importance        ? BB_METHOD_IMPORTANCE
-                           : req.method == Method::QuasiMonteCarlo ? BB_METHOD_QMC
-                                                                   : BB_METHOD_MC;
-        a = set_args(kernel, a, cl_int(method), cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream);
+    // Each chunk's launch gives the replicas' means over its points; their weighted sum is the mean.
+    std::vector<double> means(n_items, 0.0);
+    std::vector<cl_uint> bad(n_items, 0u);
+    double kernel_seconds = 0.0;
+    for (const PointChunk& chunk : chunks) {
+        cl::Buffer b_points = bufs.input(lanes == 1 ? shifts
+                                         : disk   ? disk_table(shifts, req.replicas, points, lanes, req.precision, chunk)
+                                                  : point_table(shifts, req.replicas, points, lanes, req.precision, chunk));
+        const NonFiniteCounts bad_counts(engine, n_items);
+        cl_uint a = set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_data, b_points, cl_uint(chunk.count),
+                             cl_uint(req.replicas), cl_uint(n_cells));
+        if (lanes == 1) {
+            const int method = req.method == Method::Importance        ? BB_METHOD_IMPORTANCE
+                               : req.method == Method::QuasiMonteCarlo ? BB_METHOD_QMC
+                                                                       : BB_METHOD_MC;
+            a = set_args(kernel, a, cl_int(method), cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream);
+        }
+        set_args(kernel, a, b_mean, bad_counts.buffer);
+        kernel_seconds += run_items(engine, kernel, n_items, double(chunk.count),
+                                    "albedo of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +
+                                        " samples each");
+        const std::vector<double> part = bufs.read(b_mean, n_items);
+        const std::vector<cl_uint> part_bad = bad_counts.read(engine);
+        const double share = chunks.size() == 1 ? 1.0 : double(chunk.count) / double(points);
+        for (size_t i = 0; i < n_items; ++i) {
+            means[i] += share * part[i];
+            bad[i] += part_bad[i];
+        }
     }
-    set_args(kernel, a, b_mean, bad_counts.buffer);
-    const double kernel_seconds =
-        run_items(engine, kernel, n_items, double(points),
-                  "albedo of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) + " samples each");
-    const std::vector<double> means = bufs.read(b_mean, n_items);
-    const std::vector<cl_uint> bad = bad_counts.read(engine);
 
     AlbedoResult result;
     result.samples_per_cell = points * req.replicas;

@@ -184,7 +184,10 @@ DielectricResult compute_dielectric_sampled(Engine& engine, const DielectricRequ
         build.vector_width = 1;  // a ragged last step: the scalar kernel
         lanes = 1;
     }
-    check_memory(launch_bytes(n_cells, n_items * 2, lanes > 1 ? double(points) * req.replicas : req.replicas,
+    // The vector path tabulates its disk points in chunks (table_chunks), one launch each.
+    const std::vector<PointChunk> chunks =
+        lanes > 1 ? table_chunks(points, req.replicas, lanes) : std::vector<PointChunk>{{0, points}};
+    check_memory(launch_bytes(n_cells, n_items * 2, lanes > 1 ? double(chunks.front().count) * req.replicas : req.replicas,
                                 lanes > 1 ? BB_DISK_VALUES : 1, req.precision),
                  "integrating " + std::to_string(n_cells) + " dielectric cells with " + std::to_string(req.samples) +
                      " samples each");
@@ -198,20 +201,32 @@ DielectricResult compute_dielectric_sampled(Engine& engine, const DielectricRequ
     }
     RealBuffers bufs(engine, req.precision);
     const std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
-    cl::Buffer b_mu = bufs.input(mus), b_alpha = bufs.input(alphas), b_eta = bufs.input(etas),
-               b_shift = bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision) : shifts);
+    cl::Buffer b_mu = bufs.input(mus), b_alpha = bufs.input(alphas), b_eta = bufs.input(etas);
     cl::Buffer b_r = bufs.output(n_items), b_t = bufs.output(n_items);
-    const NonFiniteCounts bad_counts(engine, n_items);
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS_DISK)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
-    set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(points), cl_uint(req.replicas), cl_uint(n_cells),
-             cl_int(req.shadowing), cl_int(req.transmission_shadowing), b_r, b_t, bad_counts.buffer);
-    const double kernel_seconds =
-        run_items(engine, kernel, n_items, kDielectricNodeCost * double(points),
-                  "rough dielectric of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +
-                      " samples each");
-    const std::vector<double> r = bufs.read(b_r, n_items), t = bufs.read(b_t, n_items);
-    const std::vector<cl_uint> bad = bad_counts.read(engine);
+    // Each chunk's launch gives the replicas' means over its points; their weighted sum is the mean.
+    std::vector<double> r(n_items, 0.0), t(n_items, 0.0);
+    std::vector<cl_uint> bad(n_items, 0u);
+    double kernel_seconds = 0.0;
+    for (const PointChunk& chunk : chunks) {
+        cl::Buffer b_shift =
+            bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision, chunk) : shifts);
+        const NonFiniteCounts bad_counts(engine, n_items);
+        set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(chunk.count), cl_uint(req.replicas), cl_uint(n_cells),
+                 cl_int(req.shadowing), cl_int(req.transmission_shadowing), b_r, b_t, bad_counts.buffer);
+        kernel_seconds += run_items(engine, kernel, n_items, kDielectricNodeCost * double(chunk.count),
+                                    "rough dielectric of " + std::to_string(n_cells) + " cells, " +
+                                        std::to_string(req.samples) + " samples each");
+        const std::vector<double> pr = bufs.read(b_r, n_items), pt = bufs.read(b_t, n_items);
+        const std::vector<cl_uint> part_bad = bad_counts.read(engine);
+        const double share = chunks.size() == 1 ? 1.0 : double(chunk.count) / double(points);
+        for (size_t i = 0; i < n_items; ++i) {
+            r[i] += share * pr[i];
+            t[i] += share * pt[i];
+            bad[i] += part_bad[i];
+        }
+    }
 
     DielectricResult result;
     result.samples_per_cell = points * req.replicas;

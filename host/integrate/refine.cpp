@@ -8,6 +8,7 @@
 
 #include "brdfbake/error.h"
 #include "brdfbake/progress.h"
+#include "brdfbake/spec.h"
 
 namespace brdfbake {
 
@@ -20,6 +21,30 @@ double cell_error(const std::vector<AlbedoValue>& channels) {
 }
 
 }  // namespace
+
+namespace {
+
+std::string not_met_text(const ToleranceNotMet::Facts& f) {
+    const double stated = f.stated > 0.0 ? f.stated : f.tolerance;
+    std::ostringstream e;
+    e << "--tolerance " << stated << " not met at " << f.missed << " of " << f.cells << " " << f.what
+      << (f.where.empty() ? "" : " (" + f.where + ")") << " within " << f.max_samples
+      << " samples per cell; worst: " << f.worst_cell << ", error estimate " << f.worst_error;
+    if (f.tolerance < stated) e << ", above the " << f.tolerance << " this integral may spend of the tolerance";
+    e << ". Raise --max-samples, " << (f.float_precision ? "use --precision double, " : "") << "or loosen the tolerance";
+    return e.str();
+}
+
+}  // namespace
+
+ToleranceNotMet::ToleranceNotMet(const Facts& facts) : Error(not_met_text(facts), kExitViolation), facts_(facts) {}
+
+ToleranceNotMet ToleranceNotMet::restated(double stated, const std::string& where) const {
+    Facts f = facts_;
+    if (stated > 0.0) f.stated = stated;
+    if (!where.empty()) f.where = where;
+    return ToleranceNotMet(f);
+}
 
 void check_tolerance(double tolerance, Precision precision) {
     if (!(tolerance > 0.0) || !std::isfinite(tolerance)) throw Error("--tolerance must be a positive number");
@@ -145,6 +170,20 @@ RefineOptions refine_options(const Engine& engine, const ToleranceRequest& tol, 
     return options;
 }
 
+// "mu = 0.5, alpha = 0.25" (both alphas where they differ): the cell's coordinates.
+std::string cell_text(const AlbedoRequest& req, size_t c) {
+    const ModelTraits& m = model_traits(req.model);
+    std::ostringstream t;
+    t << "mu = " << req.cells[c].mu;
+    if (m.alpha_x_slot >= 0) {
+        const double ax = req.cells[c].params[size_t(m.alpha_x_slot)];
+        const double ay = m.alpha_y_slot >= 0 ? req.cells[c].params[size_t(m.alpha_y_slot)] : ax;
+        t << ", alpha = " << ax;
+        if (ay != ax) t << ", alpha_y = " << ay;
+    }
+    return t.str();
+}
+
 // One round's request: `req` with the step's method and samples, over the cells `todo` only.
 template <typename Request>
 Request round_request(const Request& req, const RefineStep& step, const std::vector<size_t>& todo) {
@@ -198,13 +237,8 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
         size_t worst = o.missed.front();
         for (size_t c : o.missed)
             if (result.values[c].error > result.values[worst].error) worst = c;
-        std::ostringstream e;
-        e << "--tolerance " << tol.tolerance << " not met at " << o.missed.size() << " of " << req.cells.size()
-          << " cells within " << tol.max_samples << " samples per cell; worst: mu = " << req.cells[worst].mu
-          << ", error estimate " << result.values[worst].error << " (" << method_name(result.values[worst].method)
-          << "). Raise --max-samples, " << (req.precision == Precision::Float ? "use --precision double, " : "")
-          << "or loosen the tolerance";
-        throw Error(e.str(), kExitViolation);
+        throw ToleranceNotMet({tol.tolerance, 0.0, o.missed.size(), req.cells.size(), "cells", "", cell_text(req, worst),
+                               result.values[worst].error, tol.max_samples, req.precision == Precision::Float});
     }
     return result;
 }
@@ -246,13 +280,10 @@ DielectricResult compute_dielectric_to_tolerance(Engine& engine, const Dielectri
         for (size_t c : o.missed)
             if (error_of(c) > error_of(worst)) worst = c;
         const DielectricCell& w = req.cells[worst];
-        std::ostringstream e;
-        e << "--tolerance " << tol.tolerance << " not met at " << o.missed.size() << " of " << req.cells.size()
-          << " dielectric cells within " << tol.max_samples << " samples per cell; worst: mu = " << w.mu
-          << ", alpha = " << w.alpha << ", eta = " << w.eta << ", error estimate " << error_of(worst)
-          << ". Raise --max-samples, " << (req.precision == Precision::Float ? "use --precision double, " : "")
-          << "or loosen the tolerance";
-        throw Error(e.str(), kExitViolation);
+        std::ostringstream cell;
+        cell << "mu = " << w.mu << ", alpha = " << w.alpha << ", eta = " << w.eta;
+        throw ToleranceNotMet({tol.tolerance, 0.0, o.missed.size(), req.cells.size(), "dielectric cells", "", cell.str(),
+                               error_of(worst), tol.max_samples, req.precision == Precision::Float});
     }
     return out;
 }

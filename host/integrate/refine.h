@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/error.h"
 
 namespace brdfbake {
 
@@ -52,6 +53,33 @@ struct RefineOutcome {
     unsigned vector_width = 1;
     std::uint64_t total_samples = 0;     // channel 0's samples over all cells and rounds
     std::uint64_t last_step_samples = 0; // the samples of the last step that ran
+};
+
+/// The refusal of a tolerance run that missed its tolerance (exit status 1), in the user's terms:
+/// the --tolerance the user gave (a table that adds several integrals gives each a share of it;
+/// the share is named as such, never as the tolerance), where the cells lie (a table's slice),
+/// the worst cell's coordinates and its error estimate.
+class ToleranceNotMet : public Error {
+public:
+    struct Facts {
+        double tolerance = 0.0;  // what this integral was held to
+        double stated = 0.0;     // the user's --tolerance (0: `tolerance` itself)
+        size_t missed = 0, cells = 0;
+        std::string what;        // "cells", "dielectric cells"
+        std::string where;       // "slice cycles_z = 0.99 (exponent 0.0505)"; empty: none
+        std::string worst_cell;  // "mu = 0.5, alpha = 0.25"
+        double worst_error = 0.0;
+        std::uint64_t max_samples = 0;
+        bool float_precision = false;
+    };
+    explicit ToleranceNotMet(const Facts& facts);
+    const Facts& facts() const { return facts_; }
+    /// The same refusal where the tolerance was a share of the user's `stated` (0: unchanged) and
+    /// the cells lie `where` (empty: unchanged).
+    ToleranceNotMet restated(double stated, const std::string& where) const;
+
+private:
+    Facts facts_;
 };
 
 /// The plan of a tolerance run, one place for every kind: with the auto method (or `method`

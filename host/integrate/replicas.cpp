@@ -102,9 +102,16 @@ void check_sampling(std::uint64_t samples, unsigned replicas) {
 // lanes' x, then their y, then their h. Computed here once in double with the shared functions
 // and rounded to the kernel's real; the float kernel sees its shifts rounded to float, as the
 // scalar kernel does.
+std::vector<PointChunk> table_chunks(std::uint64_t points, unsigned replicas, unsigned lanes) {
+    const std::uint64_t step = std::max<std::uint64_t>(lanes, kTablePointsMax / replicas / lanes * lanes);
+    std::vector<PointChunk> chunks;
+    for (std::uint64_t first = 0; first < points; first += step) chunks.push_back({first, std::min(step, points - first)});
+    return chunks;
+}
+
 std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
-                               unsigned lanes, Precision precision) {
-    std::vector<double> table(size_t(replicas) * points * BB_DISK_VALUES);
+                               unsigned lanes, Precision precision, PointChunk chunk) {
+    std::vector<double> table(size_t(replicas) * chunk.count * BB_DISK_VALUES);
     const unsigned n = unsigned(points);
     for (unsigned r = 0; r < replicas; ++r) {
         double s1 = shifts[2 * r], s2 = shifts[2 * r + 1];
@@ -112,10 +119,11 @@ std::vector<double> disk_table(const std::vector<double>& shifts, unsigned repli
             s1 = double(float(s1));
             s2 = double(float(s2));
         }
-        double* out = table.data() + size_t(r) * points * BB_DISK_VALUES;
-        for (unsigned i = 0; i < n; ++i) {
+        double* out = table.data() + size_t(r) * chunk.count * BB_DISK_VALUES;
+        for (unsigned j = 0; j < unsigned(chunk.count); ++j) {
+            const unsigned i = unsigned(chunk.first) + j;
             const bb_vec2 d = bb_disk_polar(bb_rotate(bb_hammersley_u1(i, n), s1), bb_rotate(bb_hammersley_u2(i), s2));
-            const size_t base = size_t(i / lanes) * BB_DISK_VALUES * lanes + i % lanes;
+            const size_t base = size_t(j / lanes) * BB_DISK_VALUES * lanes + j % lanes;
             out[base] = d.x;
             out[base + lanes] = d.y;
             out[base + 2 * lanes] = bb_safe_sqrt(1.0 - d.x * d.x);
@@ -133,19 +141,20 @@ namespace {
 // same points to the last bit.
 template <typename T>
 void fill_point_table(std::vector<double>& table, const std::vector<double>& shifts, unsigned replicas,
-                      std::uint64_t points, unsigned lanes) {
+                      std::uint64_t points, unsigned lanes, PointChunk chunk) {
     const unsigned n = unsigned(points);
     for (unsigned r = 0; r < replicas; ++r) {
         const T s1 = T(shifts[2 * r]), s2 = T(shifts[2 * r + 1]);
-        double* out = table.data() + size_t(r) * points * BB_POINTS_VALUES;
-        for (unsigned i = 0; i < n; ++i) {
+        double* out = table.data() + size_t(r) * chunk.count * BB_POINTS_VALUES;
+        for (unsigned j = 0; j < unsigned(chunk.count); ++j) {
+            const unsigned i = unsigned(chunk.first) + j;
             T u1 = (T(i) + T(0.5)) / T(n) + s1;
             u1 = u1 >= T(1) ? u1 - T(1) : u1;
             const std::uint32_t bits = bb_reverse_bits(i);
             T u2 = (std::is_same<T, float>::value ? T(bits >> 8) * T(5.9604644775390625e-8)
                                                    : T(bits) * T(2.3283064365386963e-10)) + s2;
             u2 = u2 >= T(1) ? u2 - T(1) : u2;
-            const size_t base = size_t(i / lanes) * BB_POINTS_VALUES * lanes + i % lanes;
+            const size_t base = size_t(j / lanes) * BB_POINTS_VALUES * lanes + j % lanes;
             out[base] = double(u1);
             out[base + lanes] = double(u2);
         }
@@ -155,12 +164,12 @@ void fill_point_table(std::vector<double>& table, const std::vector<double>& shi
 }  // namespace
 
 std::vector<double> point_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
-                                unsigned lanes, Precision precision) {
-    std::vector<double> table(size_t(replicas) * points * BB_POINTS_VALUES);
+                                unsigned lanes, Precision precision, PointChunk chunk) {
+    std::vector<double> table(size_t(replicas) * chunk.count * BB_POINTS_VALUES);
     if (precision == Precision::Float)
-        fill_point_table<float>(table, shifts, replicas, points, lanes);
+        fill_point_table<float>(table, shifts, replicas, points, lanes, chunk);
     else
-        fill_point_table<double>(table, shifts, replicas, points, lanes);
+        fill_point_table<double>(table, shifts, replicas, points, lanes, chunk);
     return table;
 }
 

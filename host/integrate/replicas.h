@@ -15,15 +15,30 @@ namespace brdfbake {
 /// Cranley-Patterson shifts, two per replica (u1, u2), in [0, 1).
 std::vector<double> replica_shifts(unsigned replicas, std::uint64_t seed);
 
+/// A range of each replica's points [first, first + count) of its `points`-point set.
+struct PointChunk {
+    std::uint64_t first = 0, count = 0;
+};
+
+/// The most points (all replicas together) one point table holds.
+constexpr std::uint64_t kTablePointsMax = std::uint64_t(1) << 20;
+
+/// The chunks in which the vector paths tabulate and integrate `points` per replica: each a
+/// multiple of `lanes`, the table of one chunk (every replica's) at most kTablePointsMax points
+/// (or one step of lanes per replica), so that a table's memory is bounded whatever the sample
+/// count (torrance-sparrow at --tolerance 1e-7 in double asked 3.3 GB of one table).
+std::vector<PointChunk> table_chunks(std::uint64_t points, unsigned replicas, unsigned lanes);
+
 /// The disk point table of the vector paths (albedo_replicas_disk, dielectric_replicas_disk):
-/// per replica, per step of `lanes` points, BB_DISK_VALUES rows of lanes.
+/// per replica, per step of `lanes` points, BB_DISK_VALUES rows of lanes; the points `chunk` of
+/// each replica's `points`-point set.
 std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
-                               unsigned lanes, Precision precision);
+                               unsigned lanes, Precision precision, PointChunk chunk);
 
 /// The rotated Hammersley point table of the generic vector path (albedo_replicas_points):
-/// per replica, per step of `lanes` points, BB_POINTS_VALUES rows of lanes.
+/// per replica, per step of `lanes` points, BB_POINTS_VALUES rows of lanes; the points `chunk`.
 std::vector<double> point_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
-                                unsigned lanes, Precision precision);
+                                unsigned lanes, Precision precision, PointChunk chunk);
 
 /// Refuses a sample count the replicas cannot split (Error naming --samples).
 void check_sampling(std::uint64_t samples, unsigned replicas);

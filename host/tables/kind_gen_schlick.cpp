@@ -20,10 +20,12 @@
 // b term out of its albedo estimate: bsdf_microfacet.h marks it as a TODO.)
 #include <algorithm>
 #include <cmath>
+#include <sstream>
 
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
+#include "integrate/refine.h"
 #include "models/key_reader.h"
 #include "tables/lut_common.h"
 
@@ -75,6 +77,19 @@ FresnelConfig weight_fresnel(bool ior, double parameter, double eta_m1) {
     return f;
 }
 
+/// The weighted albedo E_w of slice k of the z axis; a missed tolerance names the slice ("slice
+/// cycles_z = 0.96875 (exponent 0.16)") beside the cell's mu and alpha.
+AlbedoResult integrate_slice(Engine& engine, const LutRequest& r, const ModelConfig& m, bool ior, const Axis& z,
+                             size_t k, double eta_m1, const std::vector<AlbedoCell>& cells, double share) {
+    try {
+        return integrate(engine, r, m, weight_fresnel(ior, z.parameter[k], eta_m1), cells, share);
+    } catch (const ToleranceNotMet& e) {
+        std::ostringstream where;
+        where << "slice " << z.name << " = " << z.coordinate[k] << " (" << z.parameter_name << " " << z.parameter[k] << ")";
+        throw e.restated(0.0, where.str());
+    }
+}
+
 /// s = E_w / E per texel and its error (err_w + s err_E) / E. With a tolerance, E is first found
 /// at half of it to learn its smallest value E_min; then both integrals go to E_min / 2 of it,
 /// which keeps that error within (1 + s) / 2 of it.
@@ -90,7 +105,7 @@ Table cycles_estimator_table(Engine& engine, const LutRequest& r, const ModelCon
     AlbedoResult w;
     for (size_t k = 0; k < t.z.parameter.size(); ++k) {
         if (ior && no_interface(t.z.coordinate[k])) continue;  // s = 0, error 0 (no_interface)
-        w = integrate(engine, r, m, weight_fresnel(ior, t.z.parameter[k], eta_m1[k]), g.cells);
+        w = integrate_slice(engine, r, m, ior, t.z, k, eta_m1[k], g.cells, 1.0);
         for (size_t c = 0; c < plane; ++c) {
             // E_w lies in [0, 1] (0 <= w <= 1, the masking-only lobe reflects at most 1)
             t.values[0][k * plane + c] = std::clamp(w.values[c].value, 0.0, 1.0);
@@ -131,7 +146,7 @@ Table gen_schlick_table(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.error.assign(plane * t.z.parameter.size(), 0.0);
     for (size_t k = 0; k < t.z.parameter.size(); ++k) {
         if (ior && no_interface(t.z.coordinate[k])) continue;  // s = 0, error 0 (no_interface)
-        const AlbedoResult w = integrate(engine, r, m, weight_fresnel(ior, t.z.parameter[k], eta_m1[k]), g.cells, e_min / 2);
+        const AlbedoResult w = integrate_slice(engine, r, m, ior, t.z, k, eta_m1[k], g.cells, e_min / 2);
         for (size_t c = 0; c < plane; ++c) {
             const double ev = e.values[c].value, ee = e.values[c].error;
             if (!(ev > 0.0)) throw Error("the lobe reflects nothing at some texel (E = 0): s is undefined there");

@@ -13,6 +13,7 @@
 #include "brdfbake/progress.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
+#include "integrate/refine.h"
 #include "models/key_reader.h"
 #include "models/params.h"
 #include "models/merl_file.h"
@@ -160,7 +161,11 @@ AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m
         if (r.tolerance.tolerance > 0.0) {
             ToleranceRequest t = r.tolerance;
             t.tolerance *= share;
-            integrated = compute_albedo_to_tolerance(engine, req, t);
+            try {
+                integrated = compute_albedo_to_tolerance(engine, req, t);
+            } catch (const ToleranceNotMet& e) {
+                throw e.restated(r.tolerance.tolerance, "");  // the message names the user's tolerance
+            }
         } else {
             integrated = compute_albedo(engine, req);
         }

@@ -260,4 +260,103 @@ BB_FN bb_real bb_quad_halfvector_point(int model, bb_params p, int fkind, bb_par
     return bb_select(BB_R(0.0), w, ok);
 }
 
+/* ------------------------------------------------------------- kinks the rules split at
+ * A Gauss rule converges geometrically only where its integrand is smooth; where the derivative
+ * jumps inside a row (a cone, a cusp) it converges algebraically, and the three rules of the
+ * error estimate can agree on a value far off (issue 37: sheen with ashikhmin visibility at
+ * alpha 0.9375, 54x its estimate). The rules therefore split each row at such a point. */
+
+/* The mirror cone (BB_TRAIT_MIRROR_CONE): the sampler's u1 whose cos(theta_i) is cos(theta_o),
+ * the polar angle of the mirror direction, by bisection on the model's own sampler (its
+ * cos(theta_i) rises with u1 and does not depend on u2); 1 - u1 is the second part's length. */
+BB_FN bb_real bb_quad_sampler_cone_u1(int model, bb_params p, int fkind, bb_params fp, bb_vec3 wo) {
+    bb_real lo = BB_R(0.0), hi = BB_R(1.0);
+    for (int i = 0; i < 64; ++i) {
+        bb_real mid = BB_R(0.5) * (lo + hi);
+        bb_mask below = bb_model_sample(model, p, fkind, fp, wo, mid, BB_R(0.5)).wi.z < wo.z;
+        lo = bb_select(lo, mid, below);
+        hi = bb_select(mid, hi, below);
+    }
+    return BB_R(0.5) * (lo + hi);
+}
+
+/* Whether the Fresnel term has a cusp at wo.h = 1 (h along wo): generalized Schlick's
+ * (1 - cos)^exponent with a non-integer exponent (Cycles' z = 0.99 is exponent 0.05, whose
+ * weight drops from 1 to 0 within a few 1e-3 of cos = 1). Constant over a launch. */
+BB_FN int bb_quad_fresnel_cusp(int fkind, bb_params fp) {
+    if (fkind != BB_FRESNEL_GEN_SCHLICK) return 0;
+    bb_real e = fp.v[BB_GEN_SCHLICK_EXPONENT];
+    return !bb_all(e == bb_floor(e));
+}
+
+/* The cosine wo.h below which the Fresnel term's weight leaves 0 with a kink, or -1 for none:
+ * Cycles' remapped dielectric clamp((F - F0) / (1 - F0), 0, 1) (gen-schlick-ior) is 0 where a
+ * high index's F dips below F0 (from cos = 1 down to past Brewster's angle; eta = 4.56, Cycles'
+ * z = 0.8, puts the kink at cos 0.09, in the tail of a narrow lobe seen at grazing). Found from
+ * a 64-step scan of the weight down from cos = 1 and bisection. Constant over a launch. */
+BB_FN bb_real bb_quad_fresnel_kink_cos(int fkind, bb_params fp) {
+    if (fkind != BB_FRESNEL_GEN_SCHLICK_IOR) return BB_R(-1.0);
+    bb_real hi = BB_R(1.0), lo = BB_R(-1.0);
+    for (int j = 63; j >= 0 && bb_all(lo < BB_R(0.0)); --j) {
+        bb_real c = (bb_real)j / BB_R(64.0);
+        if (bb_all(bb_fresnel_eval(fkind, fp, c) > BB_R(0.0))) lo = c;
+        else hi = c;
+    }
+    if (bb_all(lo < BB_R(0.0)) || bb_all(hi == BB_R(1.0))) return BB_R(-1.0); /* 0 nowhere below 1, or nowhere */
+    for (int i = 0; i < 60; ++i) {
+        bb_real mid = BB_R(0.5) * (lo + hi);
+        bb_mask pos = bb_fresnel_eval(fkind, fp, mid) > BB_R(0.0);
+        lo = bb_select(lo, mid, pos);
+        hi = bb_select(mid, hi, pos);
+    }
+    return BB_R(0.5) * (lo + hi);
+}
+
+/* The radial coordinate t = asinh(tan(theta_h) / a) of polar angle theta_h on a row (bb_make_quad_row's
+ * map), clamped to [0, t_max]. */
+BB_FN bb_real bb_quad_row_t(bb_quad_row r, bb_real theta) {
+    bb_real th = bb_clamp(theta, BB_R(0.0), BB_R(0.5) * BB_PI);
+    bb_real x = bb_sin(th) / (bb_cos(th) * r.a); /* +inf at pi/2: t_max */
+    bb_real t = bb_log(x + bb_sqrt(x * x + BB_R(1.0))); /* asinh */
+    return bb_clamp(t, BB_R(0.0), r.t_max);
+}
+
+/* Where a half-vector row at azimuth offset delta is cut (sorted into cut[0..2], unused ones
+ * t_max): along it wo.h = R cos(theta_h - theta*), R = sqrt(cos^2(theta_o) + sin^2(theta_o)
+ * cos^2(delta)), tan(theta*) = tan(theta_o) cos(delta). `cusp`: at theta*, where the row comes
+ * closest to wo (at delta = 0 the Fresnel cusp at wo.h = 1 sits there); `kink_cos` > 0: at
+ * theta* -+ acos(kink_cos / R), where wo.h crosses that cosine. */
+BB_FN void bb_quad_row_cuts(bb_quad_row r, bb_vec3 wo, bb_real delta, int cusp, bb_real kink_cos, bb_real* cut) {
+    bb_real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
+    bb_real b = sin_o * bb_cos(delta);
+    bb_real big_r = bb_sqrt(wo.z * wo.z + b * b);
+    bb_real th = bb_atan2(b, wo.z);
+    bb_real c0 = cusp ? bb_quad_row_t(r, th) : r.t_max, c1 = r.t_max, c2 = r.t_max;
+    if (bb_all(kink_cos > BB_R(0.0))) {
+        bb_mask crosses = kink_cos < big_r;
+        bb_real q = bb_clamp(kink_cos / big_r, BB_R(-1.0), BB_R(1.0));
+    bb_real spread = bb_atan2(bb_safe_sqrt(BB_R(1.0) - q * q), q); /* acos(q) */
+        c1 = bb_select(r.t_max, bb_quad_row_t(r, th - spread), crosses);
+        c2 = bb_select(r.t_max, bb_quad_row_t(r, th + spread), crosses);
+    }
+    /* sort the three */
+    bb_real lo = bb_min(c0, bb_min(c1, c2)), hi = bb_max(c0, bb_max(c1, c2));
+    cut[0] = lo;
+    cut[1] = c0 + c1 + c2 - lo - hi;
+    cut[2] = hi;
+}
+
+/* Part `part` of a row [0, t_max] cut into n_parts at the first n_parts - 1 of cut[]: its start
+ * and length (the kernels' rules run n nodes over each). */
+typedef struct {
+    bb_real lo, len;
+} bb_quad_part;
+
+BB_FN bb_quad_part bb_quad_row_part(const bb_real* cut, int n_parts, int part, bb_real t_max) {
+    bb_quad_part q;
+    q.lo = part == 0 ? BB_R(0.0) : cut[part - 1];
+    q.len = (part == n_parts - 1 ? t_max : cut[part]) - q.lo;
+    return q;
+}
+
 #endif /* BRDFBAKE_BRDF_INTEGRANDS_H */

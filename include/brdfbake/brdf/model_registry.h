@@ -133,6 +133,12 @@
                                        * (docs/architecture.md, "The seam for new models") */
 #define BB_TRAIT_MEASURED 0x200       /* its values are a measured table (model data): no roughness
                                        * axis, its tables are E(mu_o) and Eavg of the data alone */
+#define BB_TRAIT_MIRROR_CONE 0x400    /* the integrand has a cone (a kink of the derivative) at the
+                                       * mirror direction, such as sheen's sin^(1/alpha)(theta_h):
+                                       * the sampler-space rule splits u1 where the sampler's
+                                       * cos(theta_i) equals cos(theta_o) (integrands.h,
+                                       * bb_quad_sampler_cone_u1); the sampler's cos(theta_i) must
+                                       * rise with u1 and not depend on u2 */
 
 #define BB_MODEL_REGISTRY(X)                                                                                      \
     /* NAME                 name                 SPEC                   ARGS     QUAD        */                   \
@@ -169,7 +175,8 @@
       BB_TRAIT_DELTA | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                                                    \
       -1, -1, -1, "dielectric-specular:eta=1.5")                                                                  \
     X(SHEEN,                sheen,               "sheen",               PLAIN,   SAMPLER,                         \
-      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE |                  \
+          BB_TRAIT_MIRROR_CONE,                                                                                   \
       BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, "sheen:roughness=0.5")                                                 \
     X(MERL,                 merl,                "merl",                PLAIN,   SAMPLER,                         \
       BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_RECIPROCAL | BB_TRAIT_KINKED | BB_TRAIT_FURNACE | BB_TRAIT_MEASURED,     \
