@@ -382,14 +382,22 @@ std::string render(const FresnelOptions& o, const FresnelConfig& f, Precision pr
     return out.str();
 }
 
-/// The angles of --theta, each in [0, 90] degrees.
-std::vector<double> parse_thetas(const std::string& text) {
-    const std::vector<double> thetas = parse_number_list(text, "--theta");
-    for (double t : thetas)
+/// The angles of --theta, each in [0, 90] degrees, and their cosines.
+struct AngleGrid {
+    std::vector<double> thetas, cosines;
+};
+AngleGrid angle_grid(const std::string& text) {
+    AngleGrid a;
+    a.thetas = parse_number_list(text, "--theta");
+    for (double t : a.thetas) {
         if (!(t >= 0.0 && t <= 90.0))
             throw Error("--theta: " + format_number(t) + " is out of range; angles of incidence lie in [0, 90] degrees");
-    return thetas;
+        a.cosines.push_back(cos_deg(t));
+    }
+    return a;
 }
+
+Precision precision_of(const FresnelOptions& o) { return o.precision == "double" ? Precision::Double : Precision::Float; }
 
 /// `fresnel --rgb`: the reflectance's colour in linear sRGB per angle (fresnel_rgb_on_device).
 std::string render_rgb(const FresnelOptions& o, Precision precision, const std::vector<double>& thetas,
@@ -441,13 +449,11 @@ int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     resolve_fresnel(o.fresnel, 550.0);  // a bad spec is refused before any work
     parse_format(o.format);
     check_text_output(o.output);
-    const std::vector<double> thetas = parse_thetas(o.theta);
-    const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
-    std::vector<double> cosines;
-    for (double t : thetas) cosines.push_back(cos_deg(t));
+    const AngleGrid a = angle_grid(o.theta);
+    const Precision precision = precision_of(o);
     Engine engine(g.device, g.verbose);
-    const FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, cosines);
-    emit(o.output, render_rgb(o, precision, thetas, cosines, c, engine));
+    const FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, a.cosines);
+    emit(o.output, render_rgb(o, precision, a.thetas, a.cosines, c, engine));
     return kExitOk;
 }
 
@@ -491,7 +497,7 @@ int run_fresnel_fit(const FresnelOptions& o, const GlobalOptions& g) {
     resolve_fresnel(o.fresnel, 550.0);  // a bad spec is refused before any work
     parse_format(o.format);
     check_text_output(o.output);
-    const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
+    const Precision precision = precision_of(o);
     Engine engine(g.device, g.verbose);
     emit(o.output, render_f82_fit(o, fit::fit_f82_tint(engine, o.fresnel, precision)));
     return kExitOk;
@@ -518,11 +524,10 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
         throw Error("--plot '" + o.plot + "': expected a file name ending in .png or .svg");
     check_plot_output(o.plot, "--plot");
     check_text_output(o.output);
-    const std::vector<double> thetas = parse_thetas(o.theta);
-    const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
-
-    std::vector<double> cosines;
-    for (double t : thetas) cosines.push_back(cos_deg(t));
+    const AngleGrid grid = angle_grid(o.theta);
+    const std::vector<double>& thetas = grid.thetas;
+    const std::vector<double>& cosines = grid.cosines;
+    const Precision precision = precision_of(o);
 
     Engine engine(g.device, g.verbose);
     const FresnelCurves dev = fresnel_on_device(engine, f, precision, cosines);

@@ -84,11 +84,7 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     const size_t n_cells = req.cells.size();
     const size_t n_items = n_cells * req.replicas;
 
-    BuildRequest build;
-    build.kernel_file = "albedo.cl";
-    build.precision = req.precision;
-    build.model = req.model;
-    build.fresnel = req.fresnel.kind;
+    BuildRequest build = albedo_build("albedo.cl", req);
     build.random123 = req.method == Method::MonteCarlo;
     // The vector paths: importance sampling (GGX's disk path, or the model's own branch-free
     // sampler) and qmc's uniform hemisphere weights for models with a branch-free evaluation.
@@ -98,14 +94,9 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     build.has_vector_path = (req.method == Method::Importance && (disk || traits.samples_vector)) ||
                             (uniform && traits.evals_vector);
     build.vector_width = req.vector_width;
-    unsigned lanes = engine.vector_width(build);
-    if (lanes > 1 && points % lanes != 0) {
-        build.vector_width = 1;  // a ragged last step: the scalar kernel
-        lanes = 1;
-    }
-    // The vector paths tabulate their points in chunks (table_chunks), one launch each.
-    const std::vector<PointChunk> chunks =
-        lanes > 1 ? table_chunks(points, req.replicas, lanes) : std::vector<PointChunk>{{0, points}};
+    const VectorChunks plan = vector_chunks(engine, build, points, req.replicas);
+    const unsigned lanes = plan.lanes;
+    const std::vector<PointChunk>& chunks = plan.chunks;
     check_memory(launch_bytes(n_cells, n_items, lanes > 1 ? double(chunks.front().count) * req.replicas : req.replicas,
                                 lanes > 1 ? (disk ? BB_DISK_VALUES : BB_POINTS_VALUES) : 1, req.precision),
                  "integrating " + std::to_string(n_cells) + (n_cells == 1 ? " direction with " : " directions with ") + std::to_string(req.samples) +
@@ -194,11 +185,7 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     const unsigned n = quadrature_order(req.samples), m = n / 2, l = std::max(1u, n / 4);
     const size_t n_cells = req.cells.size(), n_items = n_cells * BB_QUAD_SLOTS;
 
-    BuildRequest build;
-    build.kernel_file = "albedo.cl";
-    build.precision = req.precision;
-    build.model = req.model;
-    build.fresnel = req.fresnel.kind;
+    BuildRequest build = albedo_build("albedo.cl", req);
     build.quadrature = true;
     // The vector path (albedo_quadrature_rows, one row of the rule per lane): the half-vector
     // rule, and the sampler's square for models whose sampler (or, for the cosine warp's rule in

@@ -179,14 +179,9 @@ DielectricResult compute_dielectric_sampled(Engine& engine, const DielectricRequ
     // table shared by all cells, as the albedo kernel's.
     build.has_vector_path = true;
     build.vector_width = req.vector_width;
-    unsigned lanes = engine.vector_width(build);
-    if (lanes > 1 && points % lanes != 0) {
-        build.vector_width = 1;  // a ragged last step: the scalar kernel
-        lanes = 1;
-    }
-    // The vector path tabulates its disk points in chunks (table_chunks), one launch each.
-    const std::vector<PointChunk> chunks =
-        lanes > 1 ? table_chunks(points, req.replicas, lanes) : std::vector<PointChunk>{{0, points}};
+    const VectorChunks plan = vector_chunks(engine, build, points, req.replicas);
+    const unsigned lanes = plan.lanes;
+    const std::vector<PointChunk>& chunks = plan.chunks;
     check_memory(launch_bytes(n_cells, n_items * 2, lanes > 1 ? double(chunks.front().count) * req.replicas : req.replicas,
                                 lanes > 1 ? BB_DISK_VALUES : 1, req.precision),
                  "integrating " + std::to_string(n_cells) + " dielectric cells with " + std::to_string(req.samples) +

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "brdfbake/albedo.h"
 #include "brdfbake/engine.h"
 #include "engine/device_buffer.h"
 
@@ -64,6 +65,16 @@ struct NonFiniteCounts {
 /// kernel_abi.h): a closed-form model reads none and gets BB_MODEL_DATA_DUMMY_SIZE zeros; merl
 /// gets the process's MERL tables (models/merl_file.h).
 cl::Buffer model_data_buffer(RealBuffers& buffers, int model);
+
+/// The build of `kernel_file` for an albedo request: its precision, model and Fresnel kind.
+inline BuildRequest albedo_build(const std::string& kernel_file, const AlbedoRequest& req) {
+    BuildRequest build;
+    build.kernel_file = kernel_file;
+    build.precision = req.precision;
+    build.model = req.model;
+    build.fresnel = req.fresnel.kind;
+    return build;
+}
 
 /// Memory a sampling or quadrature launch takes, for check_memory before anything is allocated:
 /// the cell arrays (mu, phi and the parameter block, in double on the host and again in the

@@ -22,11 +22,7 @@ WalkResult walk_albedo(Engine& engine, const AlbedoRequest& req) {
     check_memory(launch_bytes(n_cells, n_items * BB_WALK_SUMS, 0.0, 1, req.precision),
                  "random walks of " + std::to_string(n_cells) + " directions");
 
-    BuildRequest build;
-    build.kernel_file = "random_walk.cl";
-    build.precision = req.precision;
-    build.model = req.model;
-    build.fresnel = req.fresnel.kind;
+    BuildRequest build = albedo_build("random_walk.cl", req);
     build.random123 = true;
     cl::Program& program = engine.program(build);
 

@@ -109,6 +109,17 @@ std::vector<PointChunk> table_chunks(std::uint64_t points, unsigned replicas, un
     return chunks;
 }
 
+VectorChunks vector_chunks(const Engine& engine, BuildRequest& build, std::uint64_t points, unsigned replicas) {
+    VectorChunks v;
+    v.lanes = engine.vector_width(build);
+    if (v.lanes > 1 && points % v.lanes != 0) {
+        build.vector_width = 1;  // a ragged last step: the scalar kernel
+        v.lanes = 1;
+    }
+    v.chunks = v.lanes > 1 ? table_chunks(points, replicas, v.lanes) : std::vector<PointChunk>{{0, points}};
+    return v;
+}
+
 std::vector<double> disk_table(const std::vector<double>& shifts, unsigned replicas, std::uint64_t points,
                                unsigned lanes, Precision precision, PointChunk chunk) {
     std::vector<double> table(size_t(replicas) * chunk.count * BB_DISK_VALUES);

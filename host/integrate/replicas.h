@@ -29,6 +29,16 @@ constexpr std::uint64_t kTablePointsMax = std::uint64_t(1) << 20;
 /// count (torrance-sparrow at --tolerance 1e-7 in double asked 3.3 GB of one table).
 std::vector<PointChunk> table_chunks(std::uint64_t points, unsigned replicas, unsigned lanes);
 
+/// The vector paths' plan for `points` per replica: the lanes the engine gives `build` (1, with
+/// `build` set back to the scalar kernel, where `points` is not a multiple of them: a ragged last
+/// step), and the chunks their point tables are built in, one launch each (table_chunks; all
+/// points in one launch on the scalar kernel).
+struct VectorChunks {
+    unsigned lanes = 1;
+    std::vector<PointChunk> chunks;
+};
+VectorChunks vector_chunks(const Engine& engine, BuildRequest& build, std::uint64_t points, unsigned replicas);
+
 /// The disk point table of the vector paths (albedo_replicas_disk, dielectric_replicas_disk):
 /// per replica, per step of `lanes` points, BB_DISK_VALUES rows of lanes; the points `chunk` of
 /// each replica's `points`-point set.
