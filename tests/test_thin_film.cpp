@@ -14,6 +14,7 @@
 #include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/spec.h"
 #include "checks.h"
+#include "image_readers.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -168,4 +169,27 @@ TEST_CASE("thin film: a conductor table over R, G and B wavelengths accepts it",
     INFO(r.err);
     CHECK(r.status == 0);
     std::remove(("/tmp/brdfbake-thin-film-" + std::to_string(::getpid()) + ".csv").c_str());
+}
+
+/// Pixels within `tol` (8-bit) of the colour (r, g, b).
+size_t pixels_of(const testing::Png& p, int r, int g, int b, int tol) {
+    size_t n = 0;
+    for (size_t i = 0; i + 2 < p.samples.size(); i += size_t(p.channels))
+        n += std::abs(int(p.samples[i]) - r) <= tol && std::abs(int(p.samples[i + 1]) - g) <= tol &&
+             std::abs(int(p.samples[i + 2]) - b) <= tol;
+    return n;
+}
+
+TEST_CASE("thin film: --rgb --plot draws the R, G and B curves in their colours", "[fresnel][thin-film][cli][pictures]") {
+    const std::string png = "/tmp/brdfbake-thin-film-rgb-" + std::to_string(::getpid()) + ".png";
+    const auto r = testing::run_cli("fresnel --fresnel thin-film:eta=1.33,thickness=400,base_eta=1.5 --rgb --theta 0 --plot " + png);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const testing::Png p = testing::read_png8(png);
+    CHECK(p.width > 400);
+    // Each curve in its pen's pure colour (MathGL's r, g, b): many pixels of each.
+    CHECK(pixels_of(p, 255, 0, 0, 60) > 200);
+    CHECK(pixels_of(p, 0, 255, 0, 60) > 200);
+    CHECK(pixels_of(p, 0, 0, 255, 60) > 200);
+    std::remove(png.c_str());
 }

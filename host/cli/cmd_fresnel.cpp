@@ -10,6 +10,7 @@
 #include <functional>
 #include <iomanip>
 #include <iostream>
+#include <limits>
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
@@ -441,18 +442,45 @@ std::string render_rgb(const FresnelOptions& o, Precision precision, const std::
     return out.str();
 }
 
+/// The R, G and B curves of `fresnel --rgb --plot` over theta in [0, 90] (1 degree), on the device.
+PlotSpec rgb_panel(Engine& engine, const FresnelOptions& o, Precision precision) {
+    AngleGrid a;
+    for (int t = 0; t <= 90; ++t) {
+        a.thetas.push_back(t);
+        a.cosines.push_back(cos_deg(t));
+    }
+    const FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, a.cosines);
+    PlotSpec p;
+    p.title = plot_text(short_numbers(o.fresnel)) + ": linear sRGB (CIE 1931, D65)";
+    p.x = theta_axis();
+    p.y = PlotAxis{"reflectance, linear sRGB", 0.0, std::numeric_limits<double>::quiet_NaN(), 0.2};
+    const char* names[3] = {"R", "G", "B"};
+    const char* pens[3] = {"r-4", "g-4", "b-4"};
+    for (int ch = 0; ch < 3; ++ch) {
+        Curve curve{names[ch], a.thetas, {}, pens[ch]};
+        for (const auto& rgb : c.rgb) curve.y.push_back(rgb[ch]);
+        p.curves.push_back(curve);
+    }
+    p.legend = LegendPlace::BottomLeft;
+    return p;
+}
+
 int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     if (o.wavelength_nm != 0.0)
         throw Error("--rgb sums the visible spectrum (380 to 780 nm); drop --wavelength, which picks one");
-    if (o.compare || !o.plot.empty()) throw Error("--rgb prints colours; --plot and --compare draw one wavelength: drop one");
+    if (o.compare) throw Error("--compare draws one wavelength's comparison; drop --rgb or --compare");
     if (o.fresnel.empty()) throw Error("--rgb needs --fresnel SPEC");
     resolve_fresnel(o.fresnel, 550.0);  // a bad spec is refused before any work
     parse_format(o.format);
+    if (!o.plot.empty() && !is_plot_path(o.plot))
+        throw Error("--plot '" + o.plot + "': expected a file name ending in .png or .svg");
+    check_plot_output(o.plot, "--plot");
     check_text_output(o.output);
     const AngleGrid a = angle_grid(o.theta);
     const Precision precision = precision_of(o);
     Engine engine(g.device, g.verbose);
     const FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, a.cosines);
+    if (!o.plot.empty()) write_plot(o.plot, rgb_panel(engine, o, precision));
     emit(o.output, render_rgb(o, precision, a.thetas, a.cosines, c, engine));
     return kExitOk;
 }
