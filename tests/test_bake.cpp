@@ -173,3 +173,37 @@ TEST_CASE("a bake that fails before writing a table leaves no folder behind, -o 
     std::system(("rm -rf " + top).c_str());
     std::remove(a.c_str());
 }
+
+TEST_CASE("a deep 3D table's full-size preview lands with its summary or not at all, no temporary stays",
+          "[bake][cli]") {
+    const std::string out = scratch("deep");
+    const std::string scene = "/tmp/brdfbake-bake-" + std::to_string(::getpid()) + "-deep.json";
+    std::FILE* f = std::fopen(scene.c_str(), "w");
+    std::fprintf(f, "{\"settings\": {\"samples\": 256, \"mu_texels\": 8, \"alpha_texels\": 8},\n"
+                    " \"materials\": [{\"name\": \"glass\", \"model\": \"ggx\", \"eta\": [1.3, 1.6], "
+                    "\"roughness\": [0.2, 0.4]}]}\n");
+    std::fclose(f);
+    // The full-size picture's place is taken by a folder: its rename fails, the bake fails, and
+    // neither picture's temporary file stays (nor the summary without its full-size picture).
+    const std::string previews = out + "/previews", summary = previews + "/dielectric-ggx.exr.png";
+    REQUIRE(std::system(("mkdir -p " + previews + "/dielectric-ggx.exr.full.png").c_str()) == 0);
+    // An orphan of a killed bake (a process that is gone) goes too.
+    const std::string orphan = previews + "/.dielectric-ggx.exr.full.png.tmp-999999999";
+    REQUIRE(std::system(("touch " + orphan).c_str()) == 0);
+    const auto r = run_cli("bake " + scene + " -o " + out + " --no-report");
+    CHECK(r.status == 2);
+    CHECK(r.err.find("brdfbake: error: ") != std::string::npos);
+    CHECK(r.err.find("dielectric-ggx.exr.full.png") != std::string::npos);
+    CHECK(std::system(("test -z \"$(ls -A " + previews + " | grep -e '\\.tmp-')\"").c_str()) == 0);
+    CHECK(::access(summary.c_str(), F_OK) != 0);
+    CHECK(::access((out + "/dielectric-ggx.exr").c_str(), F_OK) != 0);
+    // With the place free, both land and the index names them.
+    REQUIRE(std::system(("rmdir " + previews + "/dielectric-ggx.exr.full.png").c_str()) == 0);
+    REQUIRE(run_cli("bake " + scene + " -o " + out + " --no-report -q").status == 0);
+    const auto index = nlohmann::json::parse(testing::slurp(out + "/index.json"));
+    CHECK(index["tables"][0]["preview"] == "previews/dielectric-ggx.exr.png");
+    CHECK(index["tables"][0]["preview_full"] == "previews/dielectric-ggx.exr.full.png");
+    CHECK(::access((previews + "/dielectric-ggx.exr.full.png").c_str(), R_OK) == 0);
+    std::system(("rm -rf " + out).c_str());
+    std::remove(scene.c_str());
+}

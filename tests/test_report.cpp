@@ -65,3 +65,36 @@ TEST_CASE("bake report: a section and a readable preview per table, no outside a
     fs::remove_all(dir);
     fs::remove_all(empty);
 }
+
+TEST_CASE("bake report: a deep 3D table's summary links its full-size picture, a PNG in the folder",
+          "[report][cli]") {
+    namespace fs = std::filesystem;
+    const std::string dir = "/tmp/brdfbake-report-deep-" + std::to_string(::getpid());
+    fs::remove_all(dir);
+    fs::create_directories(dir);
+    // Glasses from eta 1.3 to 1.6: a dielectric table with 7 eta slices (0.05 apart), more than a
+    // summary shows.
+    const std::string scene = dir + "-scene.json";
+    std::ofstream(scene) << R"({"settings": {"samples": 256, "mu_texels": 8, "alpha_texels": 8},
+ "materials": [{"name": "glass", "model": "ggx", "eta": [1.3, 1.6], "roughness": [0.2, 0.4]}]})";
+    REQUIRE(testing::run_cli("bake " + scene + " -o " + dir + " --no-report").status == 0);
+    const nlohmann::json index = nlohmann::json::parse(testing::slurp(dir + "/index.json"));
+    REQUIRE(index["tables"].size() == 1);
+    const auto& entry = index["tables"][0];
+    REQUIRE(entry["axes"].size() == 3);
+    CHECK(entry["axes"][2]["size"] == 7);
+    REQUIRE(entry.contains("preview_full"));
+    const std::string full = entry["preview_full"], summary = entry["preview"];
+    REQUIRE(testing::run_cli("report " + dir).status == 0);
+    const std::string page = testing::slurp(dir + "/index.html");
+    // The summary is the thumbnail, and the link around it leads to the full-size picture.
+    CHECK(page.find("<a href=\"" + full + "\"><img src=\"" + summary + "\"") != std::string::npos);
+    const testing::Png big = testing::read_png8(dir + "/" + full), small = testing::read_png8(dir + "/" + summary);
+    // All 7 slices side by side against the summary's 4, each panel at least as large.
+    CHECK(big.width >= small.width * 7 / 4);
+    CHECK(big.height >= small.height);
+    for (const auto& e : fs::directory_iterator(dir + "/previews"))
+        CHECK(e.path().filename().string().find(".tmp-") == std::string::npos);
+    fs::remove_all(dir);
+    fs::remove(scene);
+}

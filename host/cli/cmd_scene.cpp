@@ -242,7 +242,7 @@ int run_bake(const BakeCommandOptions& o, const GlobalOptions& g) {
     const Plan plan = load_plan(o.scene);
     const double plan_seconds = since(t0);
     BakeOptions options = o.bake;
-    if (o.previews) options.write_preview = [](const Table& t, const std::string& path) { write_table_preview(t, path, -1, PreviewLayout::Summary); };
+    if (o.previews) options.write_preview = [](const Table& t, const std::string& path) { return write_table_preview(t, path); };
     // The bake report (DIR/index.html) from the index just written, with each lobe's check; when
     // every table was up to date, only if the folder has none.
     std::optional<BakeReportSummary> report;  // printed after the bake's summary

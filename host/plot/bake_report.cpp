@@ -40,6 +40,15 @@ std::string html(const std::string& text) {
     return out;
 }
 
+/// A table's preview as the report shows it: the picture, and when a full-size picture of every
+/// slice lies beside it (a deep 3D table), the picture as a thumbnail linking to it.
+std::string preview_html(const std::string& picture, const std::string& full, const std::string& file) {
+    const std::string img = "<img src=\"" + html(picture) + "\" alt=\"preview of " + html(file) + "\">";
+    if (full.empty()) return "<p>" + img + "</p>\n";
+    return "<p><a href=\"" + html(full) + "\">" + img + "</a><br><a href=\"" + html(full) +
+           "\">full-size picture</a></p>\n";
+}
+
 /// A number as a person writes it: whole numbers in full (16384, not 1.638e+04), others to four
 /// significant digits, in exponent form only when very small or very large.
 std::string number(double v) {
@@ -262,8 +271,9 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
         o << "</table>\n";
         // The bake's preview, or one drawn from the file itself (what a renderer will load).
         const std::string own = entry.value("preview", std::string());
+        const std::string own_full = entry.value("preview_full", std::string());
         if (!own.empty() && fs::exists(fs::path(folder) / own)) {
-            o << "<p><img src=\"" << html(own) << "\" alt=\"preview of " << html(file) << "\"></p>\n";
+            o << preview_html(own, fs::exists(fs::path(folder) / own_full) ? own_full : "", file);
             ++summary.previews;
         } else if (options.draw_missing_previews && present) {
             const std::string picture = "report/" + file + ".png";
@@ -272,8 +282,8 @@ BakeReportSummary write_bake_report(Engine& engine, const std::string& folder, c
                 std::error_code ec;
                 fs::create_directories(fs::path(folder) / "report", ec);
                 if (ec) throw Error("cannot create '" + (fs::path(folder) / "report").string() + "': " + ec.message());
-                write_table_preview(t, (fs::path(folder) / picture).string());
-                o << "<p><img src=\"" << html(picture) << "\" alt=\"preview of " << html(file) << "\"></p>\n";
+                const std::string full = write_table_preview(t, (fs::path(folder) / picture).string());
+                o << preview_html(picture, full.empty() ? "" : "report/" + fs::path(full).filename().string(), file);
                 ++summary.previews;
             } catch (const Error& e) {
                 o << "<p class=\"note\">No preview: " << html(e.what()) << "</p>\n";

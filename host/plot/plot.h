@@ -133,8 +133,9 @@ struct Table;
 /// --plot`). Colours are clipped at the 99.5th percentile of a channel's texels (widened to
 /// [0, 1]); the colour bar's label says how many lie above and how far. Drawing is
 /// single-threaded (MathGL's threads slowed the bakes that draw beside their integration).
+/// Returns the full-size picture's path when one was written beside the summary, else "".
 enum class PreviewLayout { SummaryAndFull, Summary, Full };
-void write_table_preview(const Table& table, const std::string& path, int slice = -1,
+std::string write_table_preview(const Table& table, const std::string& path, int slice = -1,
                          PreviewLayout layout = PreviewLayout::SummaryAndFull);
 
 /// Slices of a 3D table a summary preview shows per channel, and its width at most (pixels).

@@ -238,7 +238,7 @@ std::vector<int> spread(int depth, int count) {
 
 }  // namespace
 
-void write_table_preview(const Table& table, const std::string& path, int slice, PreviewLayout layout) {
+std::string write_table_preview(const Table& table, const std::string& path, int slice, PreviewLayout layout) {
     // The picture runs every axis upwards: a flipped axis (lo > hi) is drawn unflipped.
     Table t = table;
     std::vector<std::string> flipped;
@@ -257,7 +257,7 @@ void write_table_preview(const Table& table, const std::string& path, int slice,
             p.curves.push_back({plot_text(t.channels[c]), t.x.parameter, t.values[c], ""});
         fig.panels.push_back(p);
         write_figure(path, fig);
-        return;
+        return "";
     }
     if (t.height() == 1 && t.depth() > 1) {
         // A 1D table with slices (dielectric-eavg: roughness x eta): one heatmap per channel over
@@ -276,27 +276,27 @@ void write_table_preview(const Table& table, const std::string& path, int slice,
         for (const Axis* a : {&t.x, &t.z}) caption += computed_at(*a);
         fig.caption = plot_text(caption);
         write_figure(path, fig);
-        return;
+        return "";
     }
     if (slice >= 0 || t.depth() == 1) {
         const std::vector<int> slices{std::min(std::max(slice, 0), t.depth() - 1)};
         write_slices(t, table, flipped, slices, 760, 640, "", path);
-        return;
+        return "";
     }
     // A 3D table: kSummarySlices slices per channel at most kSummaryWidth pixels wide; a deeper
     // table gets its full-size picture (kMaxSlices slices) beside the summary, named in its caption.
     if (layout == PreviewLayout::Full && t.depth() > kSummarySlices) {
         write_slices(t, table, flipped, spread(t.depth(), kMaxSlices), 520, 460, "", path);
-        return;
+        return "";
     }
     const std::vector<int> summary = spread(t.depth(), kSummarySlices);
-    std::string note;
+    std::string note, full;
     if (t.depth() > kSummarySlices && layout == PreviewLayout::Summary) {
         note = "; " + std::to_string(summary.size()) + " of " + std::to_string(t.depth()) +
                " slices (brdfbake show TABLE --plot FILE.png draws " +
                (t.depth() > kMaxSlices ? std::to_string(kMaxSlices) + " of them" : std::string("every slice")) + ")";
     } else if (t.depth() > kSummarySlices) {
-        const std::string full = full_preview_path(path);
+        full = full_preview_path(path);
         write_slices(t, table, flipped, spread(t.depth(), kMaxSlices), 520, 460, "", full);
         note = "; " + std::to_string(summary.size()) + " of " + std::to_string(t.depth()) + " slices, more in " +
                full.substr(full.find_last_of('/') + 1);
@@ -304,6 +304,7 @@ void write_table_preview(const Table& table, const std::string& path, int slice,
     const int columns = int(summary.size());
     const int width = columns <= 2 ? 760 : std::min(520, kSummaryWidth / columns);
     write_slices(t, table, flipped, summary, width, width * 460 / 520, note, path);
+    return full;
 }
 
 }  // namespace brdfbake

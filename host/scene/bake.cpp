@@ -16,6 +16,7 @@
 
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
+#include "brdfbake/output.h"
 #include "brdfbake/progress.h"
 #include "engine/distributed.h"
 #include "scene/bake_folder.h"
@@ -184,13 +185,19 @@ struct Baking {
 /// `show(step)`: the bake's progress says what runs now (the preview is a step of its own).
 double commit_table(Baking& b, const PlannedTable& t, const LutRequest& r, const Table& table, Clock::time_point started,
                     const std::function<void(const std::string&)>& show) {
-    std::string preview;
+    std::string preview, full;
     if (b.o.write_preview) {
         ::mkdir(join_path(b.o.output, "previews").c_str(), 0755);
         preview = "previews/" + t.file + ".png";
         show("drawing its preview " + preview);
         const auto p0 = Clock::now();
-        b.o.write_preview(table, join_path(b.o.output, preview));
+        {
+            // The summary and a deep 3D table's full-size picture land together or not at all.
+            OutputGroup together;
+            full = b.o.write_preview(table, join_path(b.o.output, preview));
+            together.commit();
+        }
+        if (!full.empty()) full = "previews/" + full.substr(full.find_last_of('/') + 1);
         if (b.timings)
             b.timings->previews.emplace_back(double(table.width()) * table.height() * table.depth(), since(p0));
         show("writing it");
@@ -202,7 +209,7 @@ double commit_table(Baking& b, const PlannedTable& t, const LutRequest& r, const
     const std::string hash = dist::exchange(dist::is_writer() ? content_hash_of_file(staged) : "")[0];
     const double seconds = since(started);
     const json before = b.index;
-    bake_index_set_table(b.index, b.plan, bake_index_table_entry(t, r, table, hash, preview, seconds));
+    bake_index_set_table(b.index, b.plan, bake_index_table_entry(t, r, table, hash, preview, full, seconds));
     b.folder.commit();
     // The index first: a table is never in the folder without the entry that describes it.
     write_bake_index(b.o.output, b.index);

@@ -21,8 +21,10 @@ struct BakeOptions {
     std::string output;           // the bake folder
     bool force = false;           // recompute tables that are up to date
     double lock_timeout = 600.0;  // seconds to wait for another bake into the same folder
-    /// Draws a table's preview picture (PNG) at a path; empty: no previews (--no-previews).
-    std::function<void(const Table&, const std::string&)> write_preview;
+    /// Draws a table's preview picture (PNG) at a path, and returns the path of the full-size
+    /// picture it wrote beside it ("" when none: tables shallow enough for one picture); empty: no
+    /// previews (--no-previews).
+    std::function<std::string(const Table&, const std::string&)> write_preview;
     /// Called at the end, while the folder is still locked, with the engine if one was started
     /// (nullptr when every table was up to date): the bake report. Also when a table's computation
     /// or commit fails, with the error's text as `failure` (empty otherwise), before it is rethrown.

@@ -110,7 +110,8 @@ BakeIndexJson new_bake_index(const Plan& plan) {
 }
 
 BakeIndexJson bake_index_table_entry(const PlannedTable& t, const LutRequest& r, const Table& table,
-                                     const std::string& content_hash, const std::string& preview, double seconds) {
+                                     const std::string& content_hash, const std::string& preview,
+                                     const std::string& preview_full, double seconds) {
     const TableKind& kind = *t.kind;
     json axes = json::array({axis_json(table.x)});
     if (table.height() > 1 || !kind.one_dimensional) axes.push_back(axis_json(table.y));
@@ -141,6 +142,7 @@ BakeIndexJson bake_index_table_entry(const PlannedTable& t, const LutRequest& r,
     if (r.wavelength_nm > 0) e["wavelength_nm"] = r.wavelength_nm;
     if (!t.layout.empty()) e["layout"] = t.layout;
     if (!preview.empty()) e["preview"] = preview;
+    if (!preview_full.empty()) e["preview_full"] = preview_full;
     return e;
 }
 

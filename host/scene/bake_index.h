@@ -33,10 +33,11 @@ const BakeIndexJson* bake_index_entry(const BakeIndexJson& index, const std::str
 BakeIndexJson new_bake_index(const Plan& plan);
 
 /// The entry of a table just computed: what it holds (kind, model, axes, error), what asked for
-/// it (the request and its hash), the hash of `content_hash` of its file, and its preview (empty:
-/// none).
+/// it (the request and its hash), the hash of `content_hash` of its file, its preview and the
+/// full-size picture beside it of a deep 3D table (relative to the folder; empty: none).
 BakeIndexJson bake_index_table_entry(const PlannedTable& planned, const LutRequest& request, const Table& table,
-                                     const std::string& content_hash, const std::string& preview, double seconds);
+                                     const std::string& content_hash, const std::string& preview,
+                                     const std::string& preview_full, double seconds);
 
 /// Puts `entry` into the index's tables, in the plan's order (replacing an entry of its file).
 void bake_index_set_table(BakeIndexJson& index, const Plan& plan, const BakeIndexJson& entry);
