@@ -118,26 +118,28 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], phi_o);                            \
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \
     const int mirrored = bb_quad_mirrored(dist, phi_o);                                           \
+    BB_QUAD_SPLITS;                                                                               \
     if ((mirrored && q >= 2u) ||                                                                  \
         ((piece & 1u) && (dist.kind == BB_QUAD_SAMPLER ||                                         \
-                          bb_all(bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5)).ddelta == BB_R(0.0))))) { \
+                          bb_all(bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5), kink_delta).ddelta == BB_R(0.0))))) { \
         piece_sum[gid] = 0;                                                                       \
         bad_count[gid] = 0u;                                                                      \
         return;                                                                                   \
     }                                                                                             \
-    const bb_scalar copies = mirrored ? 2 : 1;                                                    \
-    BB_QUAD_SPLITS
+    const bb_scalar copies = mirrored ? 2 : 1
 
 /* The kinks each row is split at (integrands.h): `cone`, the sampler's u1 of the mirror cone
  * u_cone (BB_TRAIT_MIRROR_CONE); in half-vector space `cusp`, the Fresnel term's cusp at
  * wo.h = 1, and kink_cos, the cosine where its weight leaves 0 (per row, bb_quad_row_cuts):
- * n_parts parts of the row. Each part gets the rule's n nodes. */
+ * n_parts parts of the row. Each part gets the rule's n nodes. kink_delta: the azimuth where
+ * rows stop crossing kink_cos, which cuts each quarter of an isotropic lobe (bb_quad_kink_delta). */
 #define BB_QUAD_SPLITS                                                                            \
     const int cone = dist.kind == BB_QUAD_SAMPLER && bb_model_has_trait(BB_MODEL, BB_TRAIT_MIRROR_CONE); \
     const bb_real u_cone = cone ? bb_quad_sampler_cone_u1(BB_MODEL, p, BB_FRESNEL, fp, wo) : BB_R(1.0); \
     const int cusp = dist.kind != BB_QUAD_SAMPLER && bb_quad_fresnel_cusp(BB_FRESNEL, fp);       \
     const bb_real kink_cos = dist.kind != BB_QUAD_SAMPLER ? bb_quad_fresnel_kink_cos(BB_FRESNEL, fp) : BB_R(-1.0); \
-    const int n_parts = 1 + cusp + (bb_all(kink_cos > BB_R(0.0)) ? 2 : 0)
+    const int n_parts = 1 + cusp + (bb_all(kink_cos > BB_R(0.0)) ? 2 : 0);                      \
+    const bb_real kink_delta = bb_all(kink_cos > BB_R(0.0)) ? bb_quad_kink_delta(wo, kink_cos) : BB_R(0.5) * BB_PI
 
 #endif /* BB_QUADRATURE */
 
@@ -239,7 +241,7 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
             }
             scale = BB_R(0.25);
         } else {
-            const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, x[j]);
+            const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, x[j], kink_delta);
             const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
             /* t over [0, t_max] cut at the Fresnel term's cusp and kinks (BB_QUAD_SPLITS) */
             bb_real cut[3];
@@ -329,7 +331,7 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
     for (unsigned int j0 = 0; j0 < n; j0 += BB_VECTOR_WIDTH) {
         const bb_real xj = bb_vload(x + j0), wj = bb_vload(wt + j0);
         const bb_mask live = wj > BB_R(0.0);
-        const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, xj);
+        const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, xj, kink_delta);
         const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
         bb_real row = BB_R(0.0), row_comp = BB_R(0.0);
         /* Not unrolled: 4x unrolling saved ~15% of this loop's time (5-7 ms of the 64x64 table

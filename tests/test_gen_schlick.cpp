@@ -242,3 +242,29 @@ TEST_CASE("gen-schlick: bad keys and requests give one line and exit status 2", 
                                "/tmp/brdfbake-genschlick-" + std::to_string(::getpid()) + ".exr");
     }
 }
+
+TEST_CASE("gen-schlick-ior: the cycles preset's grazing cells at eta 4.56 meet the tolerance and the reference",
+          "[genschlick][device]") {
+    // Issue 30: at z = 0.8 (eta 4.56) the remapped Fresnel's kink sits at wo.h = 0.09; at mu = 1e-4
+    // half-vector rows stop crossing it at an azimuth inside each quarter (bb_quad_kink_delta), and
+    // before the quarters were cut there 3 cells of this column missed 5e-7 (exit status 1).
+    LutRequest r;
+    r.kind = "gen-schlick-ior";
+    lut_preset("cycles").apply(r);
+    const Table t = compute_lut(testing::engine(), r);  // throws ToleranceNotMet on a miss
+    const bool mu_x = t.x.name == "mu";
+    const Axis& mu_axis = mu_x ? t.x : t.y;
+    const Axis& a_axis = mu_x ? t.y : t.x;
+    REQUIRE(mu_axis.parameter[0] == Approx(1e-4));
+    const size_t k = 12;  // z = 12/15 = 0.8
+    REQUIRE(t.z.parameter[k] == Approx((1 + 0.64) / (1 - 0.64)));
+    const size_t nx = t.x.parameter.size(), plane = nx * t.y.parameter.size();
+    for (size_t j : {8u, 9u, 10u}) {  // roughness 8/15 .. 10/15, the worst missed cell (alpha 0.444) among them
+        const size_t c = k * plane + (mu_x ? j * nx : j);
+        const double alpha = a_axis.parameter[j];
+        const double want = ref::ggx_gen_schlick_ior_s(1e-4, alpha, t.z.parameter[k], 1e-8);
+        INFO("alpha " << alpha << ": " << t.values[0][c] << " +- " << t.error[c] << ", reference " << want);
+        CHECK(t.error[c] <= 5e-7);
+        CHECK(std::fabs(t.values[0][c] - want) <= t.error[c] + 2e-7);  // + the reference's own (5e-8 / E)
+    }
+}

@@ -125,9 +125,15 @@ BB_FN int bb_quad_piece_count(bb_quad_dist d, bb_real phi_o) {
 /* The azimuth of node x in [0, 1] of piece (k, h) (piece = 2k + h); ddelta = 0 for an empty
  * piece. In a vector build (one row per lane, kernels/albedo.cl) only x may differ between
  * lanes: d and phi_o are one cell's, so the branches below are taken by every lane alike. */
-BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, bb_real phi_o, unsigned int piece, bb_real x) {
+/* kink_delta (bb_quad_kink_delta): for an isotropic lobe, the offset in quarter 0 where the rows
+ * stop crossing the Fresnel kink; each quarter is cut there (mirrored, at q - kink_delta in the
+ * odd quarters), pi/2 for none. */
+BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, bb_real phi_o, unsigned int piece, bb_real x,
+                                           bb_real kink_delta) {
     const bb_real q = BB_R(0.5) * BB_PI;
-    bb_real split = bb_quad_piece_split(d, phi_o);
+    const int odd = (int)((piece >> 1) & 1u);
+    bb_real kink_split = bb_select(kink_delta, q - kink_delta, odd);
+    bb_real split = bb_select(bb_quad_piece_split(d, phi_o), kink_split, d.ax == d.ay && kink_delta < q);
     bb_real k = (bb_real)(piece >> 1);
     int h = (int)(piece & 1u);
     bb_real lo = k * q + bb_select(BB_R(0.0), split, h);
@@ -310,6 +316,21 @@ BB_FN bb_real bb_quad_fresnel_kink_cos(int fkind, bb_params fp) {
         hi = bb_select(mid, hi, pos);
     }
     return BB_R(0.5) * (lo + hi);
+}
+
+/* The azimuth offset delta in [0, pi/2] at which half-vector rows stop crossing the kink
+ * wo.h = kink_cos, or pi/2 for none: a row's largest wo.h is R(delta) = sqrt(mu_o^2 +
+ * sin^2(theta_o) cos^2(delta)) (bb_quad_row_cuts), which falls to kink_cos at
+ * cos(delta) = sqrt(kink_cos^2 - mu_o^2) / sin(theta_o) when mu_o < kink_cos (grazing views: the
+ * preset's mu = 1e-4 at eta 4.56, kink_cos 0.09). Across it the row integral's derivative has a
+ * square-root singularity in delta, where the outer Gauss rule converges only algebraically. */
+BB_FN bb_real bb_quad_kink_delta(bb_vec3 wo, bb_real kink_cos) {
+    const bb_real q = BB_R(0.5) * BB_PI;
+    bb_real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
+    bb_mask has = kink_cos > wo.z && sin_o > BB_R(0.0);
+    bb_real c = bb_clamp(bb_safe_sqrt(kink_cos * kink_cos - wo.z * wo.z) / bb_select(BB_R(1.0), sin_o, has), BB_R(0.0), BB_R(1.0));
+    bb_real delta = bb_atan2(bb_safe_sqrt(BB_R(1.0) - c * c), c); /* acos(c) */
+    return bb_select(q, delta, has && delta > BB_R(0.0) && delta < q);
 }
 
 /* The radial coordinate t = asinh(tan(theta_h) / a) of polar angle theta_h on a row (bb_make_quad_row's
