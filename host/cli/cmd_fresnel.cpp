@@ -4,6 +4,7 @@
 #include <boost/math/quadrature/gauss_kronrod.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -442,14 +443,19 @@ std::string render_rgb(const FresnelOptions& o, Precision precision, const std::
     return out.str();
 }
 
-/// The R, G and B curves of `fresnel --rgb --plot` over theta in [0, 90] (1 degree), on the device.
-PlotSpec rgb_panel(Engine& engine, const FresnelOptions& o, Precision precision) {
+/// The plot's angles of `fresnel --rgb --plot`: theta in [0, 90] at 1 degree.
+AngleGrid plot_grid() {
     AngleGrid a;
     for (int t = 0; t <= 90; ++t) {
         a.thetas.push_back(t);
         a.cosines.push_back(cos_deg(t));
     }
-    const FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, a.cosines);
+    return a;
+}
+
+/// The R, G and B curves of `fresnel --rgb --plot`: `rgb` holds the colours at plot_grid()'s angles.
+PlotSpec rgb_panel(const FresnelOptions& o, const std::vector<std::array<double, 3>>& rgb) {
+    const AngleGrid a = plot_grid();
     PlotSpec p;
     p.title = plot_text(short_numbers(o.fresnel)) + ": linear sRGB (CIE 1931, D65)";
     p.x = theta_axis();
@@ -458,7 +464,7 @@ PlotSpec rgb_panel(Engine& engine, const FresnelOptions& o, Precision precision)
     const char* pens[3] = {"r-4", "g-4", "b-4"};
     for (int ch = 0; ch < 3; ++ch) {
         Curve curve{names[ch], a.thetas, {}, pens[ch]};
-        for (const auto& rgb : c.rgb) curve.y.push_back(rgb[ch]);
+        for (const auto& c : rgb) curve.y.push_back(c[ch]);
         p.curves.push_back(curve);
     }
     p.legend = LegendPlace::BottomLeft;
@@ -479,8 +485,15 @@ int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     const AngleGrid a = angle_grid(o.theta);
     const Precision precision = precision_of(o);
     Engine engine(g.device, g.verbose);
-    const FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, a.cosines);
-    if (!o.plot.empty()) write_plot(o.plot, rgb_panel(engine, o, precision));
+    // One spectral pass for the printed angles and, with --plot, the plot's grid after them.
+    std::vector<double> cosines = a.cosines;
+    if (!o.plot.empty())
+        for (double c : plot_grid().cosines) cosines.push_back(c);
+    FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, cosines);
+    if (!o.plot.empty())
+        write_plot(o.plot, rgb_panel(o, {c.rgb.begin() + std::ptrdiff_t(a.cosines.size()), c.rgb.end()}));
+    c.rgb.resize(a.cosines.size());
+    c.error.resize(a.cosines.size());
     emit(o.output, render_rgb(o, precision, a.thetas, a.cosines, c, engine));
     return kExitOk;
 }

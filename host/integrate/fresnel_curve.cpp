@@ -52,9 +52,10 @@ FresnelColour fresnel_rgb_on_device(Engine& engine, const std::string& fresnel_s
     FresnelColour c;
     c.rgb.assign(cosines.size(), {0.0, 0.0, 0.0});
     std::vector<std::array<double, 3>> coarse_rgb(cosines.size(), {0.0, 0.0, 0.0});
+    const auto at = fresnel_over_wavelengths(fresnel_spec);
     size_t k = 0;  // the coarse grid's index: every second wavelength of the fine one
     for (size_t i = 0; i < fine.nm.size(); ++i) {
-        const FresnelCurves f = fresnel_on_device(engine, resolve_fresnel(fresnel_spec, fine.nm[i]), precision, cosines);
+        const FresnelCurves f = fresnel_on_device(engine, at(fine.nm[i]), precision, cosines);
         ++c.wavelengths;
         const bool on_coarse = k < coarse.nm.size() && coarse.nm[k] == fine.nm[i];
         for (size_t j = 0; j < cosines.size(); ++j)

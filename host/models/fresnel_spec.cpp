@@ -284,4 +284,14 @@ FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
     return f;
 }
 
+std::function<FresnelConfig(double)> fresnel_over_wavelengths(const std::string& text) {
+    const std::string name = text.substr(0, text.find(':'));
+    const FresnelEntry* e = find_entry(name);
+    if (e && e->load && name.size() < text.size()) {
+        const NkTable table = e->load(text.substr(name.size() + 1));
+        return [table, text](double nm) { return measured(table, text, nm); };
+    }
+    return [text](double nm) { return resolve_fresnel(text, nm); };
+}
+
 }  // namespace brdfbake

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <functional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -94,6 +95,9 @@ ModelConfig resolve_model_simulated(const std::string& text);
 /// Resolves a Fresnel spec; throws Error as resolve_model does. `wavelength_nm` is the
 /// --wavelength option (0 when not given), needed by measured metals (metal:Al, nk:FILE).
 FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm = 0.0);
+/// resolve_fresnel of one spec at many wavelengths: a measured term's file or embedded table is
+/// read once, here, not once per wavelength.
+std::function<FresnelConfig(double wavelength_nm)> fresnel_over_wavelengths(const std::string& text);
 
 /// Names of the known models, for help texts and error messages.
 std::vector<std::string> model_names();
