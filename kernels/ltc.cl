@@ -48,7 +48,7 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
                                        __global const bb_scalar* fresnel_p,
                                        __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */,
                                        const unsigned int n_cells, const unsigned int n_side,
-                                       __global bb_scalar* points) {
+                                       const unsigned int grade, __global bb_scalar* points) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     const unsigned int per_cell = n_side * n_side;
     if (gid >= n_cells * per_cell)
@@ -57,7 +57,11 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
     bb_params p, fp;
     const bb_vec3 wo = bb_ltc_cell(cell, cell_mu, model_p, fresnel_p, &p, &fp);
     p.data = model_data;
-    const bb_real u1 = ((bb_real)(k % n_side) + BB_R(0.5)) / (bb_real)n_side;
+    /* u1 = 1 - (1 - s)^grade, s on the midpoint rule, the node weighing its cell's measure in u1
+     * (n times (1 - s_lo)^grade - (1 - s_hi)^grade): the samplers send the lobe's tail to u1 near 1 */
+    const bb_real s_lo = (bb_real)(k % n_side) / (bb_real)n_side, s_hi = (bb_real)(k % n_side + 1u) / (bb_real)n_side;
+    const bb_real u1 = BB_R(1.0) - pown(BB_R(1.0) - (s_lo + s_hi) * BB_R(0.5), (int)grade);
+    const bb_real cell_w = (pown(BB_R(1.0) - s_lo, (int)grade) - pown(BB_R(1.0) - s_hi, (int)grade)) * (bb_real)n_side;
     const bb_real u2 = ((bb_real)(k / n_side) + BB_R(0.5)) / (bb_real)n_side;
     const bb_sample s = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
     const bb_real f_cos = bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, s.wi) * s.wi.z;
@@ -69,8 +73,8 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
     out[0] = s.wi.x;
     out[1] = s.wi.y;
     out[2] = s.wi.z;
-    out[3] = ok ? s.weight : BB_R(0.0);
-    out[4] = ok ? s.weight / f_cos : BB_R(0.0);
+    out[3] = ok ? s.weight * cell_w : BB_R(0.0);
+    out[4] = ok ? s.weight / f_cos * cell_w : BB_R(0.0);
     out[5] = ok ? c * c * c * c * c : BB_R(0.0);
 }
 

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numeric>
 
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
@@ -15,6 +16,10 @@ namespace fit {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+/// A neighbour's fit restarts a cell's minimisation when it is this much (relative) better.
+constexpr double kPolishGain = 1e-3;
+/// The smallest distance the relative objective divides by.
+constexpr double kValueFloor = 1e-7;
 
 using Mat3 = std::array<double, 9>;  // row-major
 
@@ -54,7 +59,7 @@ void run_range(Engine& engine, cl::Kernel& kernel, size_t n) {
 }
 
 LobePoints lobe_points(Engine& engine, const ModelConfig& model, Precision precision, const std::vector<LtcCell>& cells,
-                       int side) {
+                       int side, int grade) {
     RealBuffers bufs(engine, precision);
     std::vector<double> mu, params;
     for (const LtcCell& c : cells) {
@@ -70,7 +75,7 @@ LobePoints lobe_points(Engine& engine, const ModelConfig& model, Precision preci
     out.side = side;
     out.buffer = bufs.output(n * BB_LTC_POINT_VALUES);
     cl::Kernel k(ltc_program(engine, model, precision), BB_ENTRY_NAME(BB_ENTRY_LTC_LOBE_POINTS));
-    set_args(k, 0, b_mu, b_p, b_fp, b_data, cl_uint(cells.size()), cl_uint(side), out.buffer);
+    set_args(k, 0, b_mu, b_p, b_fp, b_data, cl_uint(cells.size()), cl_uint(side), cl_uint(grade), out.buffer);
     run_range(engine, k, n);
     out.host = bufs.read(out.buffer, n * BB_LTC_POINT_VALUES);
     for (double v : out.host)
@@ -237,7 +242,9 @@ std::vector<std::vector<double>> best_starts(const std::vector<CellSummary>& sum
 
 /// Cells whose neighbour's fit (the next or previous mu of the row) is better than their own
 /// minimise again from it, as [HDHN16]'s fits start from the neighbouring texel; twice at most.
-void polish_from_neighbours(std::vector<Minimum>& minima, const NelderMeadOptions& nm, const BatchObjective& objective) {
+/// `moved(nb, c, x)`: the neighbour nb's parameters x expressed in cell c's.
+void polish_from_neighbours(std::vector<Minimum>& minima, const NelderMeadOptions& nm, const BatchObjective& objective,
+                            const std::function<std::vector<double>(size_t, size_t, const std::vector<double>&)>& moved) {
     const size_t n = minima.size();
     for (int pass = 0; pass < 2 && n > 1; ++pass) {
         std::vector<size_t> cell_of;
@@ -246,14 +253,14 @@ void polish_from_neighbours(std::vector<Minimum>& minima, const NelderMeadOption
             for (size_t nb : {c - 1, c + 1})
                 if (nb < n) {
                     cell_of.push_back(c);
-                    xs.push_back(minima[nb].x);
+                    xs.push_back(moved(nb, c, minima[nb].x));
                 }
         const std::vector<double> f = objective(cell_of, xs);
         std::vector<size_t> redo;
         std::vector<std::vector<double>> starts;
         for (size_t i = 0; i < xs.size(); ++i) {
             const size_t c = cell_of[i];
-            if (!(f[i] < minima[c].value - 1e-4)) continue;
+            if (!(f[i] < minima[c].value * (1.0 - kPolishGain))) continue;
             if (!redo.empty() && redo.back() == c) {
                 if (f[i] < f[i - 1]) starts.back() = xs[i];
                 continue;
@@ -276,6 +283,17 @@ void polish_from_neighbours(std::vector<Minimum>& minima, const NelderMeadOption
     }
 }
 
+/// The minimiser's coordinates of a cell: y = ((theta - theta_avg) / w, ln a, b / w, ln c) with w
+/// the lobe's width (CellSummary::width_x, at most 1), so that the simplex's steps and size
+/// tolerance are relative to the lobe (a lobe 2e-3 wide is lost in a step of 0.1 rad); and its
+/// value the distance over the best start's (the value tolerance relative: narrow lobes' distances
+/// are 1e-4 where rough ones' are 1e-1).
+struct CellScale {
+    double width = 1, value = 1;
+    std::vector<double> scaled(const std::vector<double>& x) const { return {x[0] / width, x[1], x[2] / width, x[3]}; }
+    std::vector<double> relative(const std::vector<double>& y) const { return {y[0] * width, y[1], y[2] * width, y[3]}; }
+};
+
 /// One row: the fit points and their summaries, the batched minimisation from `starts` (theta
 /// taken from each cell's average direction), then the distance of the matrices as written.
 std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std::vector<LtcCell>& cells,
@@ -290,28 +308,79 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
         }
         return bufs.input(inv);
     };
-    const LobePoints fit_pts = lobe_points(engine, model, o.precision, cells, o.fit_side);
+    const LobePoints fit_pts = lobe_points(engine, model, o.precision, cells, o.fit_side, o.fit_grade);
     std::vector<CellSummary> fit_sums;
     const cl::Buffer fit_inv_e = inverse_albedos(fit_pts, fit_sums);
     auto absolute = [&](size_t c, const std::vector<double>& x) {
         return std::array<double, 4>{fit_sums[c].average_theta + x[0], x[1], x[2], x[3]};
     };
-    const BatchObjective objective = [&](const std::vector<size_t>& cell_of, const std::vector<std::vector<double>>& xs) {
-        std::vector<LtcMatrix> ms;
-        for (size_t i = 0; i < xs.size(); ++i) ms.push_back(ltc_matrix(absolute(cell_of[i], xs[i])));
-        return distances(engine, kernel, o.precision, fit_pts, fit_inv_e, cell_of, ms);
+    auto objective_on = [&](const LobePoints& pts, const cl::Buffer& inv_e) -> BatchObjective {
+        return [&](const std::vector<size_t>& cell_of, const std::vector<std::vector<double>>& xs) {
+            std::vector<LtcMatrix> ms;
+            for (size_t i = 0; i < xs.size(); ++i) ms.push_back(ltc_matrix(absolute(cell_of[i], xs[i])));
+            return distances(engine, kernel, o.precision, pts, inv_e, cell_of, ms);
+        };
     };
+    std::vector<CellScale> scale(cells.size());
+    auto scaled = [&](const BatchObjective& objective) -> BatchObjective {
+        return [&scale, objective](const std::vector<size_t>& cell_of, const std::vector<std::vector<double>>& ys) {
+            std::vector<std::vector<double>> xs;
+            for (size_t i = 0; i < ys.size(); ++i) xs.push_back(scale[cell_of[i]].relative(ys[i]));
+            std::vector<double> f = objective(cell_of, xs);
+            for (size_t i = 0; i < f.size(); ++i) f[i] /= scale[cell_of[i]].value;
+            return f;
+        };
+    };
+    std::vector<size_t> all(cells.size());
+    std::iota(all.begin(), all.end(), size_t(0));
+    const BatchObjective objective = objective_on(fit_pts, fit_inv_e);
+    std::vector<std::vector<double>> starts = best_starts(fit_sums, previous, objective);
+    const std::vector<double> f0 = objective(all, starts);
+    for (size_t c = 0; c < cells.size(); ++c) {
+        scale[c].width = std::min(1.0, fit_sums[c].width_x);
+        scale[c].value = std::max(f0[c], kValueFloor);
+        starts[c] = scale[c].scaled(starts[c]);
+    }
     NelderMeadOptions nm;
-    nm.steps = {0.1, 0.2, 0.1, 0.2};
+    nm.steps = {0.5, 0.2, 0.5, 0.2};
     nm.max_evaluations = o.max_evaluations;
     nm.value_tolerance = o.value_tolerance;
     nm.size_tolerance = o.size_tolerance;
-    std::vector<Minimum> minima = minimize_batch(best_starts(fit_sums, previous, objective), nm, objective);
-    polish_from_neighbours(minima, nm, objective);
+    std::vector<Minimum> minima = minimize_batch(starts, nm, scaled(objective));
+    polish_from_neighbours(minima, nm, scaled(objective), [&](size_t nb, size_t c, const std::vector<double>& y) {
+        std::vector<double> x = scale[nb].relative(y);
+        x[0] += fit_sums[nb].average_theta - fit_sums[c].average_theta;
+        return scale[c].scaled(x);
+    });
+    if (o.refine_side > 0) {
+        // The coarse points' minimum is as far from the true one as their estimate's error lets
+        // it be (a lobe-sampled midpoint rule of fit_side^2 points): polish it on refine_side^2
+        // points with a smaller simplex and budget.
+        const LobePoints fine_pts = lobe_points(engine, model, o.precision, cells, o.refine_side, o.fit_grade);
+        std::vector<CellSummary> fine_sums;
+        const cl::Buffer fine_inv_e = inverse_albedos(fine_pts, fine_sums);
+        const BatchObjective fine = objective_on(fine_pts, fine_inv_e);
+        std::vector<std::vector<double>> from;
+        for (size_t c = 0; c < cells.size(); ++c) from.push_back(scale[c].relative(minima[c].x));
+        const std::vector<double> f1 = fine(all, from);
+        for (size_t c = 0; c < cells.size(); ++c) {
+            scale[c].value = std::max(f1[c], kValueFloor);
+            from[c] = minima[c].x;
+        }
+        NelderMeadOptions polish = nm;
+        for (double& s : polish.steps) s *= o.refine_step;
+        polish.max_evaluations = o.refine_evaluations;
+        const std::vector<Minimum> refined = minimize_batch(from, polish, scaled(fine));
+        for (size_t c = 0; c < cells.size(); ++c) {
+            minima[c].evaluations += refined[c].evaluations;
+            if (refined[c].value < 1.0) minima[c].x = refined[c].x;
+        }
+    }
     std::vector<LtcFit> fits(cells.size());
     for (size_t c = 0; c < cells.size(); ++c) {
-        fits[c].x = as_q(minima[c].x);
-        fits[c].q = absolute(c, minima[c].x);
+        const std::vector<double> x = scale[c].relative(minima[c].x);
+        fits[c].x = as_q(x);
+        fits[c].q = absolute(c, x);
         fits[c].m = o.as_written ? o.as_written(ltc_matrix(fits[c].q)) : as_float32(ltc_matrix(fits[c].q));
         fits[c].evaluations = minima[c].evaluations;
         fits[c].albedo = cells[c].albedo > 0 ? cells[c].albedo : fit_sums[c].albedo;

@@ -46,15 +46,22 @@ struct LtcCell {
 struct LtcFitOptions {
     Precision precision = Precision::Float;
     int fit_side = 24;      // the objective's points per cell: fit_side^2 (the lobe's sampler)
+    int fit_grade = 2;      // u1 = 1 - (1 - s)^fit_grade, s on the midpoint rule (kernels/ltc.cl)
     int distance_grids = 16; // the reported distance: the mean over this many independent jittered
     int distance_side = 24;  // grids of distance_side^2 points; its error: distance_sigmas standard
     double distance_sigmas = 5;  // errors of that mean (the grids' spread)
     int max_evaluations = 300;       // per cell
-    double value_tolerance = 2e-5;   // Nelder-Mead's convergence (nelder_mead.h)
+    double value_tolerance = 1e-3;   // Nelder-Mead's convergence (nelder_mead.h), relative to the
+                                     // start's distance, in coordinates scaled by the lobe's width
     /// The M that the table's stored values denote, given the fitted one (their float32 rounding);
     /// empty: the entries rounded to float32. The reported distance is that M's.
     std::function<LtcMatrix(const LtcMatrix&)> as_written;
     double size_tolerance = 1e-3;
+    /// The polish of each fit on refine_side^2 points (0: none), from the fit_side^2 minimum with
+    /// the simplex's steps times refine_step and at most refine_evaluations per cell.
+    int refine_side = 96;
+    double refine_step = 0.3;
+    int refine_evaluations = 100;
 };
 
 struct LtcFit {

@@ -189,7 +189,10 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
                                     "(--samples, --method, --tolerance); the distance's: the distance_error channel";
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
                               std::to_string(options.fit_side) + "x" + std::to_string(options.fit_side) +
-                              " sampler points per texel, rows from rough to smooth, each started from the row before";
+                              " sampler points per texel (u1 graded towards the lobe's tail, power " +
+                              std::to_string(options.fit_grade) + "), steps relative to the lobe's width, rows from rough "
+                              "to smooth, each started from the row before; then polished on " +
+                              std::to_string(options.refine_side) + "x" + std::to_string(options.refine_side) + " points";
     if (has_mirror_limit(m)) {
         std::ostringstream s;
         s << "texels below alpha = " << kLtcAlphaFloor << " are fitted at " << kLtcAlphaFloor;
