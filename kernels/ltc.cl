@@ -32,16 +32,25 @@
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
 
-/* A texel's model and Fresnel parameters and its viewer wo = (sin theta_o, 0, cos theta_o). */
-static inline bb_vec3 bb_ltc_cell(const unsigned int cell, __global const bb_scalar* cell_mu,
-                                  __global const bb_scalar* model_p, __global const bb_scalar* fresnel_p,
-                                  bb_params* p, bb_params* fp) {
+/* A texel's model parameters (with the model data) and Fresnel parameters, and its viewer
+ * wo = (sin theta_o, 0, cos theta_o): the prologue of ltc_lobe_points and ltc_distance. */
+typedef struct {
+    bb_params p, fp;
+    bb_vec3 wo;
+} bb_ltc_texel;
+
+static inline bb_ltc_texel bb_ltc_texel_of(const unsigned int cell, __global const bb_scalar* cell_mu,
+                                           __global const bb_scalar* model_p, __global const bb_scalar* fresnel_p,
+                                           __global const bb_scalar* model_data) {
+    bb_ltc_texel t;
     for (int i = 0; i < BB_MAX_PARAMS; ++i) {
-        p->v[i] = model_p[cell * BB_MAX_PARAMS + i];
-        fp->v[i] = fresnel_p[i];
+        t.p.v[i] = model_p[cell * BB_MAX_PARAMS + i];
+        t.fp.v[i] = fresnel_p[i];
     }
+    t.p.data = model_data;
     const bb_real mu = cell_mu[cell];
-    return bb_v3(sqrt(fmax(BB_R(0.0), BB_R(1.0) - mu * mu)), BB_R(0.0), mu);
+    t.wo = bb_v3(sqrt(fmax(BB_R(0.0), BB_R(1.0) - mu * mu)), BB_R(0.0), mu);
+    return t;
 }
 
 __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __global const bb_scalar* model_p,
@@ -54,9 +63,9 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
     if (gid >= n_cells * per_cell)
         return;
     const unsigned int cell = gid / per_cell, k = gid - cell * per_cell;
-    bb_params p, fp;
-    const bb_vec3 wo = bb_ltc_cell(cell, cell_mu, model_p, fresnel_p, &p, &fp);
-    p.data = model_data;
+    const bb_ltc_texel tx = bb_ltc_texel_of(cell, cell_mu, model_p, fresnel_p, model_data);
+    const bb_params p = tx.p, fp = tx.fp;
+    const bb_vec3 wo = tx.wo;
     /* u1 = 1 - (1 - s)^grade, s on the midpoint rule, the node weighing its cell's measure in u1
      * (n times (1 - s_lo)^grade - (1 - s_hi)^grade): the samplers send the lobe's tail to u1 near 1 */
     const bb_real s_lo = (bb_real)(k % n_side) / (bb_real)n_side, s_hi = (bb_real)(k % n_side + 1u) / (bb_real)n_side;
@@ -133,9 +142,9 @@ __kernel void BB_ENTRY_LTC_DISTANCE(__global const bb_scalar* cell_mu, __global 
     if (gid >= n_cells * n_grids)
         return;
     const unsigned int cell = gid / n_grids, grid = gid - cell * n_grids;
-    bb_params p, fp;
-    const bb_vec3 wo = bb_ltc_cell(cell, cell_mu, model_p, fresnel_p, &p, &fp);
-    p.data = model_data;
+    const bb_ltc_texel tx = bb_ltc_texel_of(cell, cell_mu, model_p, fresnel_p, model_data);
+    const bb_params p = tx.p, fp = tx.fp;
+    const bb_vec3 wo = tx.wo;
     __global const bb_scalar* m = matrices + (size_t)cell * BB_LTC_MATRIX_VALUES;
     const bb_real inv_e = BB_R(1.0) / (bb_real)albedo[cell];
     const unsigned int stream = bb_ltc_hash(bb_ltc_hash(cell) ^ (grid * 0x9e3779b9u + 0x6c74636du));
