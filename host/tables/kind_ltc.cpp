@@ -25,9 +25,12 @@ namespace brdfbake {
 namespace tables {
 namespace {
 
-/// The alpha at which a texel at alpha = 0 of a model with a mirror limit is fitted (the mirror's
-/// LTC is a delta, which no finite M reaches).
-constexpr double kLtcAlphaFloor = 1e-3;
+/// The alpha at which a texel below it of a model with a mirror limit is fitted (the mirror's LTC
+/// is a delta, which no finite M reaches): the models' own floor BB_ALPHA_MIN (microfacet.h).
+/// Measured (benchmarks/results/ltc_published.md, branch ltc2): with the floor at 1e-3, three.js's
+/// texel a = 1 (alpha 2.5e-4, cos theta 0.999) was fitted at 1e-3 and lay 1.195 from its true lobe;
+/// at 1e-4 it fits to 0.00066 (three.js 0.00058), and near-normal a = 0 texels to 0.00005-0.0017.
+constexpr double kLtcAlphaFloor = 1e-4;
 
 std::vector<std::string> ltc_programs(const LutRequest& r) {
     return {"albedo|" + r.model + "|none", "albedo|" + r.model + "|schlick", "ltc|" + r.model};
