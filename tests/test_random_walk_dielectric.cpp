@@ -163,3 +163,27 @@ TEST_CASE("walks to a tolerance: every reported value within it, or exit 1 namin
     CHECK(miss.err.find("--tolerance 1e-05 not met") != std::string::npos);
     CHECK(miss.out.empty());
 }
+
+TEST_CASE("compensation: every scheme conserves energy in the white furnace, as the walk does", "[random-walk]") {
+    // With F = 1 (Schlick f0 = 1) Kulla-Conty's, Fdez-Aguera's and Turquin's albedos are 1 by
+    // construction [KC17, FA19, T19] and the walk's is 1 (no walk is lost): every difference is
+    // within its error. Then the refusals.
+    const auto r = testing::run_cli("compensation --f0 1 --alpha 0.3,1 --mu 0.2,1 --walks 16384 --format json");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["results"].size() == 4);
+    for (const auto& e : j["results"])
+        for (const char* s : {"kulla-conty", "fdez-aguera", "turquin"}) {
+            INFO(e.dump());
+            CHECK(std::fabs(e[s].get<double>() - 1) <= 1e-4);
+            CHECK(std::fabs(e[std::string(s) + "_difference"].get<double>()) <= e[std::string(s) + "_error"].get<double>());
+        }
+    for (const std::string& args : {std::string("compensation --scheme kulla"), std::string("compensation --f0 2"),
+                                    std::string("compensation --model phong"), std::string("compensation --mu 0")}) {
+        const auto e = testing::run_cli(args);
+        INFO(args << "\n" << e.err);
+        CHECK(e.status == 2);
+        CHECK(testing::count_lines(e.err) == 1);
+        CHECK(e.out.empty());
+    }
+}
