@@ -121,7 +121,7 @@ TEST_CASE("dielectric walk: T from inside is T from outside over eta^2, averaged
     }
 }
 
-TEST_CASE("dielectric walk: the command prints R, T and their first orders; --fresnel refuses", "[random-walk]") {
+TEST_CASE("dielectric walk: the command prints R, T and their first orders, --fresnel refuses", "[random-walk]") {
     const auto r = testing::run_cli(
         "albedo --model ggx:alpha=0.5,scattering=multiple,eta=1.5 --mu 0.5 --samples 16384 --format json");
     REQUIRE(r.status == 0);

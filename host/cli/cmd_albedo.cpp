@@ -60,7 +60,7 @@ const char* kDielectricWalkMeaning =
 void walk_columns(const Run& r, size_t i, Format format, std::ostream& out) {
     const bool csv = format == Format::Csv;
     if (!r.model.simulated) {
-        if (csv) out << ",,,,,,,,,";
+        if (csv) out << ",,,,,,,,,,";  // the ten walk columns, empty
         return;
     }
     const WalkAlbedo& w = r.walk.values[i];

@@ -106,6 +106,14 @@ typedef struct {
     int bad;        /* 1 if the walk met a non-finite number (its weights are then 0) */
 } bb_walk_result;
 
+/* A walk's result before it ends: nothing escaped, nothing cut off. */
+BB_FN bb_walk_result bb_walk_result_zero(void) {
+    bb_walk_result r;
+    r.energy = r.single = r.cutoff = r.transmitted = r.single_t = BB_R(0.0);
+    r.bad = 0;
+    return r;
+}
+
 /* One random walk from the view wo (wo.z > 0) on the microsurface of the Smith lobe `dist` with
  * parameters p (alpha in BB_SMITH_ALPHA_X/Y), the Fresnel term (fkind, fp) at every scattering and
  * at most `bounces` scatterings; its random numbers from Philox with `key` and the counter words
@@ -114,13 +122,7 @@ BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_para
                                        philox4x32_key_t key, unsigned int walk, unsigned int rep,
                                        unsigned int stream) {
     bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
-    bb_walk_result r;
-    r.energy = BB_R(0.0);
-    r.single = BB_R(0.0);
-    r.cutoff = BB_R(0.0);
-    r.transmitted = BB_R(0.0);
-    r.single_t = BB_R(0.0);
-    r.bad = 0;
+    bb_walk_result r = bb_walk_result_zero();
     bb_vec3 w = bb_scale(wo, BB_R(-1.0)); /* the ray's direction */
     bb_real lc = BB_R(0.0);               /* log C1(h): above the surface */
     bb_real weight = BB_R(1.0);
@@ -179,13 +181,7 @@ BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, int b
     bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
     bb_real eta_out = p.v[BB_SMITH_WALK_ETA], eta_m1_out = p.v[BB_SMITH_WALK_ETA_M1];
     bb_real eta_in = BB_R(1.0) / eta_out, eta_m1_in = -eta_m1_out / eta_out; /* 1/eta - 1 = -(eta - 1)/eta */
-    bb_walk_result r;
-    r.energy = BB_R(0.0);
-    r.single = BB_R(0.0);
-    r.cutoff = BB_R(0.0);
-    r.transmitted = BB_R(0.0);
-    r.single_t = BB_R(0.0);
-    r.bad = 0;
+    bb_walk_result r = bb_walk_result_zero();
     bb_vec3 w = bb_scale(wo, BB_R(-1.0)); /* the ray's direction, in the frame of its side */
     bb_real lc = BB_R(0.0);               /* log C1(h), h in the frame of its side */
     int outside = 1;
