@@ -20,6 +20,7 @@
 #include "cli/cli.h"
 #include "integrate/random_walk.h"
 #include "models/key_reader.h"
+#include "plot/plot.h"
 #include "tables/mu_average.h"
 
 namespace brdfbake {
@@ -76,6 +77,7 @@ struct CompensationOptions {
     std::int64_t walks = std::int64_t(1) << 18;
     std::string format = "table";
     std::string output;
+    std::string plot;
 };
 
 /// One (alpha, mu) row: the walk, the single-scattering terms and each scheme's albedo.
@@ -185,9 +187,39 @@ std::string render(const CompensationOptions& o, const std::vector<size_t>& pick
     return out.str();
 }
 
+/// One panel per scheme: its albedo minus the walk's against mu, one curve per alpha.
+void plot_rows(const std::string& path, const CompensationOptions& o, const std::vector<size_t>& picked,
+               const std::vector<Row>& rows) {
+    Figure fig;
+    fig.panel_width = 640;
+    fig.panel_height = 480;
+    for (size_t s : picked) {
+        PlotSpec p;
+        p.title = std::string(schemes()[s].name) + " - walk";
+        p.x.label = "\\mu = cos \\theta_o";
+        p.y.label = "albedo difference";
+        p.x.lo = 0.0;
+        p.x.hi = 1.0;
+        std::vector<Curve> by_alpha;
+        for (const Row& r : rows) {
+            if (by_alpha.empty() || by_alpha.back().label != "\\alpha = " + format_number(r.alpha))
+                by_alpha.push_back(Curve{"\\alpha = " + format_number(r.alpha), {}, {}, ""});
+            by_alpha.back().x.push_back(r.mu);
+            by_alpha.back().y.push_back(r.scheme[s] - r.walk.value);
+        }
+        p.curves = by_alpha;
+        p.lines.push_back(RefLine{'y', 0.0, ""});
+        fig.panels.push_back(p);
+    }
+    fig.caption = "random walk (Heitz et al. 2016) against each scheme, " + o.model + ", Schlick f_0 = " +
+                  format_number(o.f0) + " at every bounce";
+    write_figure(path, fig);
+}
+
 int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
     const Format format = parse_format(o.format);
     check_text_output(o.output);
+    check_plot_output(o.plot, "--plot");
     std::vector<size_t> picked;
     std::string names;
     for (size_t s = 0; s < schemes().size(); ++s) {
@@ -205,7 +237,9 @@ int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
         if (!(mu > 0.0 && mu <= 1.0)) throw Error("--mu: " + format_number(mu) + " must lie in (0, 1]");
     for (double a : alphas) resolve_model(o.model + ":alpha=" + format_number(a));  // its range, before the device
     Engine engine(g.device, g.verbose);
-    emit(o.output, render(o, picked, compute(engine, o, alphas, mus), format));
+    const std::vector<Row> rows = compute(engine, o, alphas, mus);
+    if (!o.plot.empty()) plot_rows(o.plot, o, picked, rows);
+    emit(o.output, render(o, picked, rows, format));
     return kExitOk;
 }
 
@@ -224,6 +258,7 @@ void add_compensation_command(CLI::App& app, const GlobalOptions& global, Action
     cmd->add_option("--walks", o->walks, "random walks per direction")->capture_default_str();
     add_format_option(cmd, o->format, {"table", "json", "csv"});
     cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
+    cmd->add_option("--plot", o->plot, "draw each scheme's difference from the walk against mu into FILE.png or .svg");
 }
 
 }  // namespace brdfbake
