@@ -8,6 +8,7 @@
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
+#include <filesystem>
 #include <nlohmann/json.hpp>
 
 #include "brdfbake/brdf/random_walk.h"
@@ -168,8 +169,13 @@ TEST_CASE("compensation: every scheme conserves energy in the white furnace, as 
     // With F = 1 (Schlick f0 = 1) Kulla-Conty's, Fdez-Aguera's and Turquin's albedos are 1 by
     // construction [KC17, FA19, T19] and the walk's is 1 (no walk is lost): every difference is
     // within its error. Then the refusals.
-    const auto r = testing::run_cli("compensation --f0 1 --alpha 0.3,1 --mu 0.2,1 --walks 16384 --format json");
+    const std::string png = (std::filesystem::temp_directory_path() / "brdfbake-compensation-test.png").string();
+    std::filesystem::remove(png);
+    const auto r =
+        testing::run_cli("compensation --f0 1 --alpha 0.3,1 --mu 0.2,1 --walks 16384 --format json --plot " + png);
     REQUIRE(r.status == 0);
+    CHECK(std::filesystem::file_size(png) > 1000);  // the figure, one panel per scheme
+    std::filesystem::remove(png);
     const auto j = nlohmann::json::parse(r.out);
     REQUIRE(j["results"].size() == 4);
     for (const auto& e : j["results"])
