@@ -1,9 +1,12 @@
 /* Directional albedo of the multiple-scattering Smith microsurface (brdf/random_walk.h, [HHdD16]),
- * conductor case, by random walks: each work-item runs one replica of one cell, `n_walks` walks
- * from the cell's view wo, and writes three replica means, BB_WALK_SUMS per item:
- *   0  the escaped weight (the albedo E(wo), every order up to the bounce limit),
+ * conductor or rough dielectric (a cell whose BB_SMITH_WALK_ETA is > 0), by random walks: each
+ * work-item runs one replica of one cell, `n_walks` walks from the cell's view wo, and writes five
+ * replica means, BB_WALK_SUMS per item:
+ *   0  the weight escaped above (the albedo E(wo), or the dielectric's R, every order up to the limit),
  *   1  its first order (the single-scattering albedo, the height-correlated Smith lobe's),
- *   2  the weight cut off by the bounce limit (BB_SMITH_BOUNCES of the cell's parameters).
+ *   2  the weight cut off by the bounce limit (BB_SMITH_BOUNCES of the cell's parameters),
+ *   3  the dielectric's weight escaped below (T; 0 for a conductor),
+ *   4  its first order.
  * The host (host/integrate/random_walk.cpp) turns the replicas into means and error estimates.
  * A walk that meets a non-finite number is counted in bad_count and adds nothing.
  *
@@ -41,19 +44,22 @@ __kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global c
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], (bb_real)cell_phi[cell]);
     const int bounces = (int)p.v[BB_SMITH_BOUNCES];
     philox4x32_key_t key = {{seed_lo, seed_hi}};
-    bb_real e = BB_R(0.0), ec = BB_R(0.0), s = BB_R(0.0), sc = BB_R(0.0), c = BB_R(0.0), cc = BB_R(0.0);
+    const int dielectric = p.v[BB_SMITH_WALK_ETA] > BB_R(0.0);
+    bb_real sum[BB_WALK_SUMS], comp[BB_WALK_SUMS];
+    for (int k = 0; k < BB_WALK_SUMS; ++k) sum[k] = comp[k] = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int i = 0; i < n_walks && ok; ++i) {
         const bb_walk_result r =
-            bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, bounces, key, i, rep, cell_stream[cell]);
+            dielectric ? bb_walk_dielectric(BB_WALK_DIST, p, wo, bounces, key, i, rep, cell_stream[cell])
+                       : bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, bounces, key, i, rep, cell_stream[cell]);
         bad += (unsigned int)r.bad;
-        BB_KAHAN_ADD(e, ec, r.energy);
-        BB_KAHAN_ADD(s, sc, r.single);
-        BB_KAHAN_ADD(c, cc, r.cutoff);
+        BB_KAHAN_ADD(sum[0], comp[0], r.energy);
+        BB_KAHAN_ADD(sum[1], comp[1], r.single);
+        BB_KAHAN_ADD(sum[2], comp[2], r.cutoff);
+        BB_KAHAN_ADD(sum[3], comp[3], r.transmitted);
+        BB_KAHAN_ADD(sum[4], comp[4], r.single_t);
     }
     const bb_real n = (bb_real)n_walks;
-    sums[BB_WALK_SUMS * gid] = e / n;
-    sums[BB_WALK_SUMS * gid + 1] = s / n;
-    sums[BB_WALK_SUMS * gid + 2] = c / n;
+    for (int k = 0; k < BB_WALK_SUMS; ++k) sums[BB_WALK_SUMS * gid + k] = sum[k] / n;
     bad_count[gid] = ok ? bad : n_walks;
 }

@@ -187,7 +187,6 @@ TEST_CASE("walk: the command prints E, its single-scattering part and the cut-of
     CHECK(r.out.find("cutoff") != std::string::npos);
     for (const std::string& args :
          {std::string("albedo --model ggx:alpha=0.5,scattering=multiple --method quadrature"),
-          std::string("albedo --model ggx:alpha=0.5,scattering=multiple --tolerance 1e-3"),
           std::string("albedo --model ggx:alpha=0.5,bounces=10"),
           std::string("albedo --model beckmann:alpha=0.5,scattering=multiple,shadowing=separable"),
           std::string("lut albedo --model ggx:scattering=multiple --size 4x4 -o /tmp/walk-refused.exr"),

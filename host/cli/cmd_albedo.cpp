@@ -50,18 +50,29 @@ struct Run {
 const char* kWalkMeaning =
     "single: the first scattering order (the height-correlated Smith lobe's albedo); cutoff: the energy still "
     "inside the microsurface at the bounce limit, not in the albedo";
+const char* kDielectricWalkMeaning =
+    "albedo: R + T, the energy reflected (R) and transmitted (T) by the rough dielectric (transmitted radiance is "
+    "T times eta^2); single, single_T: the first scattering order of R and T (the height-correlated lobes, "
+    "Heitz 2014 eq. 99 and 100); cutoff: the energy still inside at the bounce limit, in neither";
 
-/// A walk run's extra columns of cell i (single scattering and cut-off energy, with errors).
+/// A walk run's extra columns of cell i: single scattering and cut-off energy, and the dielectric's
+/// R, T and T's first order (empty for a conductor), each with its error.
 void walk_columns(const Run& r, size_t i, Format format, std::ostream& out) {
+    const bool csv = format == Format::Csv;
     if (!r.model.simulated) {
-        if (format == Format::Csv) out << ",,,,";
+        if (csv) out << ",,,,,,,,,,";  // the ten walk columns, empty
         return;
     }
     const WalkAlbedo& w = r.walk.values[i];
-    char line[128];
-    std::snprintf(line, sizeof line, format == Format::Csv ? ",%.17g,%.3e,%.17g,%.3e" : " %12.8f %10.2e %12.8f %10.2e",
-                  w.single.value, w.single.error, w.cutoff.value, w.cutoff.error);
-    out << line;
+    std::vector<const AlbedoValue*> cols = {&w.single, &w.cutoff};
+    if (r.model.dielectric_walk) cols = {&w.energy, &w.transmitted, &w.single, &w.single_t, &w.cutoff};
+    if (csv && r.model.dielectric_walk) cols = {&w.single, &w.cutoff, &w.energy, &w.transmitted, &w.single_t};
+    char cell[64];
+    for (const AlbedoValue* v : cols) {
+        std::snprintf(cell, sizeof cell, csv ? ",%.17g,%.3e" : " %12.8f %10.2e", v->value, v->error);
+        out << cell;
+    }
+    if (csv && !r.model.dielectric_walk) out << ",,,,,,";
 }
 
 /// A walk run's JSON fields of cell i.
@@ -72,6 +83,13 @@ void walk_json(const Run& r, size_t i, nlohmann::json& e) {
     e["single_scattering_error"] = w.single.error;
     e["cutoff"] = w.cutoff.value;
     e["cutoff_error"] = w.cutoff.error;
+    if (!r.model.dielectric_walk) return;
+    e["reflected"] = w.energy.value;
+    e["reflected_error"] = w.energy.error;
+    e["transmitted"] = w.transmitted.value;
+    e["transmitted_error"] = w.transmitted.error;
+    e["single_scattering_transmitted"] = w.single_t.value;
+    e["single_scattering_transmitted_error"] = w.single_t.error;
 }
 
 const char* kErrorMeaning =
@@ -136,7 +154,8 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         bool walks = false;
         for (const Run& r : runs) walks = walks || r.model.simulated;
         out << (runs.size() > 1 ? "model," : "") << "mu,phi_deg,albedo,error"
-            << (walks ? ",single,single_error,cutoff,cutoff_error" : "") << "\n";
+            << (walks ? ",single,single_error,cutoff,cutoff_error,R,R_error,T,T_error,single_T,single_T_error" : "")
+            << "\n";
         for (const Run& r : runs)
             for (size_t i = 0; i < r.request.cells.size(); ++i) {
                 std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.3e", r.request.cells[i].mu,
@@ -160,9 +179,13 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         std::vector<double> mus;
         for (const auto& c : r.request.cells) mus.push_back(c.mu);
         out << merl_unmeasured_line(r.model, mus);
-        if (r.model.simulated) out << "# " << kWalkMeaning << "\n";
+        if (r.model.simulated) out << "# " << (r.model.dielectric_walk ? kDielectricWalkMeaning : kWalkMeaning) << "\n";
         out << "        mu   phi_deg       albedo      error"
-            << (r.model.simulated ? "       single      error       cutoff      error" : "") << "\n";
+            << (r.model.dielectric_walk ? "            R      error            T      error       single      error"
+                                          "     single_T      error       cutoff      error"
+                : r.model.simulated     ? "       single      error       cutoff      error"
+                                        : "")
+            << "\n";
         for (size_t i = 0; i < r.request.cells.size(); ++i) {
             std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %10.2e", r.request.cells[i].mu,
                           r.request.cells[i].phi * kDeg, r.result.values[i].value, r.result.values[i].error);
@@ -217,8 +240,6 @@ void check_walk_options(const ModelConfig& model, const AlbedoOptions& o) {
     if (o.integration.method != "auto" && o.integration.method != "mc")
         throw Error(what + "scattering=multiple is integrated by random walks (Philox, as --method mc); --method " +
                     o.integration.method + " is not supported for it");
-    if (o.integration.tolerance != 0.0)
-        throw Error(what + "--tolerance is not supported yet with scattering=multiple; give --samples (walks)");
 }
 
 int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
@@ -241,6 +262,9 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
         Run r;
         r.model = resolve_model_simulated(spec);
         if (r.model.simulated) check_walk_options(r.model, o);
+        if (fresnel.kind != 0 && r.model.dielectric_walk)
+            throw Error("model '" + r.model.canonical + "': eta=E walks the rough dielectric with the exact dielectric "
+                        "Fresnel term of eta; drop --fresnel");
         if (fresnel.kind != 0 && !r.model.uses_fresnel)
             throw Error("model '" + r.model.name + "' has no Fresnel term; drop --fresnel");
         r.request.model = r.model.id;
@@ -258,11 +282,15 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     Engine engine(g.device, g.verbose);
     for (Run& r : runs) {
         if (r.model.simulated) {
-            r.walk = walk_albedo(engine, r.request);
+            r.walk = choice.tolerance.tolerance > 0.0 ? walk_albedo_to_tolerance(engine, r.request, choice.tolerance)
+                                                      : walk_albedo(engine, r.request);
+            r.result.tolerance = choice.tolerance.tolerance;
+            r.result.rounds = r.walk.rounds;
+            r.result.total_samples = r.walk.total_walks;
             r.result.method = r.walk.method;
             r.result.samples_per_cell = r.walk.walks_per_cell;
             r.result.kernel_seconds = r.walk.kernel_seconds;
-            for (const WalkAlbedo& w : r.walk.values) r.result.values.push_back(w.energy);
+            for (const WalkAlbedo& w : r.walk.values) r.result.values.push_back(w.total);
         } else {
             r.result = albedo_of_model(engine, r.model, fresnel, r.request, choice.tolerance);
         }

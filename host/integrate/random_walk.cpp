@@ -54,24 +54,29 @@ WalkResult walk_albedo(Engine& engine, const AlbedoRequest& req) {
     const std::vector<double> sums = bufs.read(b_sums, n_items * BB_WALK_SUMS);
     const std::vector<cl_uint> bad = bad_counts.read(engine);
     result.walks_per_cell = walks * req.replicas;
+    result.total_walks = result.walks_per_cell * n_cells;
     std::ostringstream m;
     m << "random walks on the Smith microsurface (Heitz et al. 2016), Philox4x32-10, " << req.replicas
       << " replicas x " << walks << " walks";
     result.method = m.str();
 
-    // The three replica means of each item, one summary each; a non-finite walk refuses the cell.
-    std::vector<std::vector<double>> parts(BB_WALK_SUMS, std::vector<double>(n_items));
-    for (size_t i = 0; i < n_items; ++i)
+    // The five replica means of each item, and R + T, one summary each; a non-finite walk
+    // refuses the cell.
+    constexpr int kParts = BB_WALK_SUMS + 1;
+    std::vector<std::vector<double>> parts(kParts, std::vector<double>(n_items));
+    for (size_t i = 0; i < n_items; ++i) {
         for (int k = 0; k < BB_WALK_SUMS; ++k) parts[k][i] = sums[BB_WALK_SUMS * i + k];
+        parts[BB_WALK_SUMS][i] = sums[BB_WALK_SUMS * i] + sums[BB_WALK_SUMS * i + 3];
+    }
     const auto where = [&](size_t c) {
         return "a random walk met NaN or Inf at mu = " + format_number(req.cells[c].mu);
     };
     std::vector<std::vector<AlbedoValue>> summary;
-    for (int k = 0; k < BB_WALK_SUMS; ++k)
+    for (int k = 0; k < kParts; ++k)
         summary.push_back(summarize(parts[k], bad, req.replicas, result.walks_per_cell, req.precision, where));
     for (size_t c = 0; c < n_cells; ++c) {
-        WalkAlbedo w{summary[0][c], summary[1][c], summary[2][c]};
-        for (AlbedoValue* v : {&w.energy, &w.single, &w.cutoff}) {
+        WalkAlbedo w{summary[0][c], summary[1][c], summary[2][c], summary[3][c], summary[4][c], summary[5][c]};
+        for (AlbedoValue* v : {&w.energy, &w.single, &w.cutoff, &w.transmitted, &w.single_t, &w.total}) {
             v->samples = result.walks_per_cell;
             v->method = Method::MonteCarlo;
         }

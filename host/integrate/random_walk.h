@@ -13,9 +13,13 @@ namespace brdfbake {
 
 /// One cell's walk estimates: E (every order up to the limit), its first order, and the weight
 /// still inside the microsurface when the bounce limit stopped the walks (E + cutoff is what an
-/// unlimited walk would carry out, up to the noise).
+/// unlimited walk would carry out, up to the noise). The rough dielectric's walk (a cell whose
+/// BB_SMITH_WALK_ETA is > 0) splits what escapes: `energy` and `single` are its reflected R and
+/// R's first order, `transmitted` and `single_t` T and T's first order, `total` R + T (each
+/// estimated on its own replicas: its error is not the sum of theirs). For a conductor
+/// `transmitted` and `single_t` are 0 and `total` is `energy`.
 struct WalkAlbedo {
-    AlbedoValue energy, single, cutoff;
+    AlbedoValue energy, single, cutoff, transmitted, single_t, total;
 };
 
 struct WalkResult {
@@ -23,11 +27,18 @@ struct WalkResult {
     std::uint64_t walks_per_cell = 0;
     double kernel_seconds = 0.0;
     std::string method;  // in words
+    unsigned rounds = 1;             // walk_albedo_to_tolerance's rounds
+    std::uint64_t total_walks = 0;   // over every cell and round
 };
 
 /// The walks of `req` (a ggx or beckmann request whose cells' parameters ask for multiple
 /// scattering): req.samples walks per cell, split over req.replicas replicas, in req.precision,
 /// Philox keyed by req.seed and each cell's identity. Throws NonFiniteError if a walk met NaN.
 WalkResult walk_albedo(Engine& engine, const AlbedoRequest& req);
+
+/// The same to a tolerance (integrate/refine.cpp): rounds of 2^14 walks and up, 4x per round, up
+/// to tolerance.max_samples, over the cells whose values are not all within it. Throws
+/// ToleranceNotMet (exit status 1) naming the worst cell when cells remain above it.
+WalkResult walk_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance);
 
 }  // namespace brdfbake

@@ -9,6 +9,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/progress.h"
 #include "brdfbake/spec.h"
+#include "integrate/random_walk.h"
 
 namespace brdfbake {
 
@@ -283,6 +284,52 @@ DielectricResult compute_dielectric_to_tolerance(Engine& engine, const Dielectri
         std::ostringstream cell;
         cell << "mu = " << w.mu << ", alpha = " << w.alpha << ", eta = " << w.eta;
         throw ToleranceNotMet({tol.tolerance, 0.0, o.missed.size(), req.cells.size(), "dielectric cells", "", cell.str(),
+                               error_of(worst), tol.max_samples, req.precision == Precision::Float});
+    }
+    return out;
+}
+
+// The random walks to a tolerance: Monte Carlo rounds of 2^14 walks and up, 4x per round, over the
+// cells whose reported values (E or R + T, R, T, the first orders, the cut-off) are not all within
+// it; each round's estimate replaces the last.
+WalkResult walk_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
+    check_tolerance(tol.tolerance, req.precision);
+    if (req.cells.empty()) throw Error("no directions to integrate");
+    ToleranceRequest plan = tol;
+    plan.auto_method = false;
+    const std::vector<RefineStep> steps = tolerance_steps(plan, Method::MonteCarlo);
+    const RefineOptions options = refine_options(engine, tol, "random walks", req.cells.size(), false);
+    WalkResult out;
+    const RefineOutcome o =
+        refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
+            const WalkResult part = walk_albedo(engine, round_request(req, step, todo));
+            out.method = part.method;
+            RefineRound round;
+            for (const WalkAlbedo& w : part.values)
+                round.values.push_back({w.total, w.energy, w.transmitted, w.single, w.single_t, w.cutoff});
+            round.method = part.method;
+            round.kernel_seconds = part.kernel_seconds;
+            return round;
+        });
+    out.kernel_seconds = o.kernel_seconds;
+    out.rounds = o.rounds;
+    out.total_walks = o.total_samples;
+    for (size_t c = 0; c < req.cells.size(); ++c) {
+        const std::vector<AlbedoValue>& v = o.values[c];
+        out.values.push_back({v[1], v[3], v[5], v[2], v[4], v[0]});
+        out.walks_per_cell = std::max(out.walks_per_cell, o.spent[c]);
+    }
+    out.method = tolerance_method_text(tol.tolerance, o) + "; " + out.method;
+    if (!o.missed.empty()) {
+        size_t worst = o.missed.front();
+        auto error_of = [&](size_t c) {
+            double e = 0.0;
+            for (const AlbedoValue& v : o.values[c]) e = std::max(e, v.error);
+            return e;
+        };
+        for (size_t c : o.missed)
+            if (error_of(c) > error_of(worst)) worst = c;
+        throw ToleranceNotMet({tol.tolerance, 0.0, o.missed.size(), req.cells.size(), "cells", "", cell_text(req, worst),
                                error_of(worst), tol.max_samples, req.precision == Precision::Float});
     }
     return out;

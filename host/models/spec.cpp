@@ -130,13 +130,19 @@ ModelConfig resolve_lambert(KeyReader& keys) {
     return m;
 }
 
-/// Reads scattering=single|multiple and bounces=N of the Smith lobes: multiple is the random walk on
-/// the Smith microsurface (brdf/random_walk.h), whose first order is the height-correlated lobe,
-/// so it takes shadowing=correlated only; bounces (default BB_WALK_DEFAULT_BOUNCES) is its limit.
+/// Reads scattering=single|multiple, bounces=N and eta=E of the Smith lobes: multiple is the random
+/// walk on the Smith microsurface (brdf/random_walk.h), whose first order is the height-correlated
+/// lobe, so it takes shadowing=correlated only; bounces (default BB_WALK_DEFAULT_BOUNCES) is its
+/// limit; eta makes it the rough dielectric interface of that relative index (reflection and
+/// refraction at every bounce, bb_walk_dielectric), a conductor without it.
 void read_scattering(KeyReader& keys, ModelConfig& m) {
+    constexpr Range kWalkEta{0.01, 100.0};
     const std::string s = keys.choice("scattering", "single", {"single", "multiple"});
     if (s == "single") {
         if (keys.has("bounces")) throw Error("model '" + keys.name() + "': bounces=N needs scattering=multiple");
+        if (keys.has("eta"))
+            throw Error("model '" + keys.name() + "': eta=E (the rough dielectric's random walk) needs "
+                        "scattering=multiple; the single-scattering dielectric is `brdfbake lut dielectric`");
         return;
     }
     if (m.params[m.smith_shadowing_slot] != BB_SHADOWING_CORRELATED)
@@ -148,6 +154,12 @@ void read_scattering(KeyReader& keys, ModelConfig& m) {
     m.params[BB_SMITH_BOUNCES] = n;
     m.simulated = true;
     m.canonical += ",scattering=multiple,bounces=" + fmt(n);
+    if (const auto eta = keys.optional_number("eta", kWalkEta)) {
+        m.params[BB_SMITH_WALK_ETA] = *eta;
+        m.params[BB_SMITH_WALK_ETA_M1] = *eta - 1.0;
+        m.dielectric_walk = true;
+        m.canonical += ",eta=" + format_number(*eta);
+    }
 }
 
 // The microfacet lobes with a Smith shadowing choice: alpha in (slot_x, slot_y), the shadowing
@@ -386,7 +398,7 @@ ModelConfig resolve_model_simulated(const std::string& text) {
         keys.finish();
         m.id = e.traits.id;
         m.name = e.traits.name;
-        m.uses_fresnel = e.traits.uses_fresnel;
+        m.uses_fresnel = e.traits.uses_fresnel && !m.dielectric_walk;  // the walk's own exact dielectric F
         return m;
     }
     std::string list;

@@ -67,6 +67,9 @@ struct ModelConfig {
     /// Its value is a random-walk estimate (ggx and beckmann with scattering=multiple,
     /// brdf/random_walk.h): only resolve_model_simulated returns such a configuration.
     bool simulated = false;
+    /// The simulated rough dielectric (scattering=multiple with eta=E): reflected and transmitted
+    /// energy, the exact dielectric Fresnel term of eta at every bounce (no --fresnel).
+    bool dielectric_walk = false;
 
     /// The model's registry entry.
     const ModelTraits& traits() const { return model_traits(id); }

@@ -91,7 +91,7 @@
 /* ----------------------------------------------------------- kernels/random_walk.cl */
 
 #define BB_ENTRY_WALK_ALBEDO walk_albedo /* one replica of walks per work-item (brdf/random_walk.h) */
-#define BB_WALK_SUMS 3                    /* per item: escaped, first-order and cut-off means */
+#define BB_WALK_SUMS 5 /* per item: escaped above, its first order, cut-off, escaped below, its first order */
 
 /* ------------------------------------------------------------------- kernels/ltc.cl */
 

@@ -42,6 +42,7 @@
 #ifndef BRDFBAKE_BRDF_RANDOM_WALK_H
 #define BRDFBAKE_BRDF_RANDOM_WALK_H
 
+#include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/brdf/smith.h"
 
 /* Random123's Philox (a kernel that includes this header is built with -D BB_PHILOX and its -I). */
@@ -50,6 +51,8 @@
 /* Parameter slots of a Smith lobe used by the walk (beside smith.h's 0-2 and ggx.h's 3). */
 #define BB_SMITH_SCATTERING 4 /* BB_SCATTERING_SINGLE or BB_SCATTERING_MULTIPLE */
 #define BB_SMITH_BOUNCES 5    /* the walk's bounce limit (scatterings per walk) */
+#define BB_SMITH_WALK_ETA 6   /* 0: a conductor walk; > 0: the dielectric walk's relative index eta */
+#define BB_SMITH_WALK_ETA_M1 7 /* eta - 1, from the host in double (its digits near eta = 1) */
 #define BB_SCATTERING_SINGLE 0
 #define BB_SCATTERING_MULTIPLE 1
 #define BB_WALK_DEFAULT_BOUNCES 100
@@ -98,8 +101,18 @@ typedef struct {
     bb_real energy; /* the weight that escaped (every order up to the limit) */
     bb_real single; /* the part of it that escaped after one scattering */
     bb_real cutoff; /* the weight still inside after `bounces` scatterings */
+    bb_real transmitted; /* dielectric: the weight that escaped below the surface (0 for a conductor) */
+    bb_real single_t;    /* dielectric: the part of it transmitted after one scattering */
     int bad;        /* 1 if the walk met a non-finite number (its weights are then 0) */
 } bb_walk_result;
+
+/* A walk's result before it ends: nothing escaped, nothing cut off. */
+BB_FN bb_walk_result bb_walk_result_zero(void) {
+    bb_walk_result r;
+    r.energy = r.single = r.cutoff = r.transmitted = r.single_t = BB_R(0.0);
+    r.bad = 0;
+    return r;
+}
 
 /* One random walk from the view wo (wo.z > 0) on the microsurface of the Smith lobe `dist` with
  * parameters p (alpha in BB_SMITH_ALPHA_X/Y), the Fresnel term (fkind, fp) at every scattering and
@@ -109,11 +122,7 @@ BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_para
                                        philox4x32_key_t key, unsigned int walk, unsigned int rep,
                                        unsigned int stream) {
     bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
-    bb_walk_result r;
-    r.energy = BB_R(0.0);
-    r.single = BB_R(0.0);
-    r.cutoff = BB_R(0.0);
-    r.bad = 0;
+    bb_walk_result r = bb_walk_result_zero();
     bb_vec3 w = bb_scale(wo, BB_R(-1.0)); /* the ray's direction */
     bb_real lc = BB_R(0.0);               /* log C1(h): above the surface */
     bb_real weight = BB_R(1.0);
@@ -140,6 +149,73 @@ BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_para
         weight = weight * bb_fresnel_eval(fkind, fp, bb_clamp_cos(c));
         w = bb_reflect(v, m);
         if (!(bb_isfinite(lc) || lc < BB_R(0.0)) || !bb_isfinite(w.z) || !bb_isfinite(weight)) {
+            r.bad = 1;
+            break;
+        }
+    }
+    return r;
+}
+
+/* log C1(-h) = log(1 - C1(h)) from lc = log C1(h) < 0: the height seen from the other side of the
+ * microsurface (heights mirrored, C1 uniform). log(-expm1(lc)) near the top, log1p(-exp(lc)) below. */
+BB_FN bb_real bb_walk_flip_height(bb_real lc) {
+    return bb_select(bb_log1p(-bb_exp(lc)), bb_log(-bb_expm1(lc)), lc > BB_R(-0.6931471805599453));
+}
+
+/* One random walk on the rough dielectric microsurface [HHdD16 sec. 5 (dielectric), the
+ * microsurface seen from either side]: the interface of relative index eta (far side over near
+ * side, eta_m1 = eta - 1 exact) lit from above along -wo. At each intersection the microfacet
+ * normal is a visible one of -w on the side the ray travels in, and the exact unpolarised
+ * dielectric Fresnel term F(<-w, m>) of that side's relative index (eta outside, 1/eta inside
+ * [WMLT07 eq. 22]) chooses the event: reflection with probability F, refraction [WMLT07 eq. 40]
+ * (into the other side of the microsurface) with 1 - F, so that the weight stays 1 (total internal
+ * reflection has F = 1). Below the surface the microsurface is the same one seen upside down:
+ * the walk keeps its state in the frame of the side it travels in (directions and heights
+ * negated below), so that the height sampling and the visible normals are the conductor's, and a
+ * refraction turns the frame over: w -> -w_t, C1(h) -> 1 - C1(h) (bb_walk_flip_height). A walk
+ * that escapes upward from the upper side is reflected (r.energy), from the lower side
+ * transmitted (r.transmitted). Four Philox words per scattering: height, two for the normal and
+ * the Fresnel choice. */
+BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, int bounces, philox4x32_key_t key,
+                                        unsigned int walk, unsigned int rep, unsigned int stream) {
+    bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
+    bb_real eta_out = p.v[BB_SMITH_WALK_ETA], eta_m1_out = p.v[BB_SMITH_WALK_ETA_M1];
+    bb_real eta_in = BB_R(1.0) / eta_out, eta_m1_in = -eta_m1_out / eta_out; /* 1/eta - 1 = -(eta - 1)/eta */
+    bb_walk_result r = bb_walk_result_zero();
+    bb_vec3 w = bb_scale(wo, BB_R(-1.0)); /* the ray's direction, in the frame of its side */
+    bb_real lc = BB_R(0.0);               /* log C1(h), h in the frame of its side */
+    int outside = 1;
+    for (int k = 0;; ++k) {
+        philox4x32_ctr_t ctr = {{walk, rep, stream, BB_WALK_TAG | (unsigned int)k}};
+        philox4x32_ctr_t u = philox4x32(ctr, key);
+        bb_real l = bb_log1p(-bb_unit_from_bits(u.v[0]));
+        bb_real lambda = bb_walk_lambda(dist, w, ax, ay);
+        if (w.z > BB_R(0.0) && l <= lambda * lc) {
+            bb_real one_if_first = k == 1 ? BB_R(1.0) : BB_R(0.0);
+            r.energy = outside ? BB_R(1.0) : BB_R(0.0);
+            r.single = outside ? one_if_first : BB_R(0.0);
+            r.transmitted = outside ? BB_R(0.0) : BB_R(1.0);
+            r.single_t = outside ? BB_R(0.0) : one_if_first;
+            break;
+        }
+        if (k == bounces) {
+            r.cutoff = BB_R(1.0);
+            break;
+        }
+        lc = lc - l / lambda;
+        bb_vec3 v = bb_scale(w, BB_R(-1.0));
+        bb_vec3 m = bb_walk_sample_vndf(dist, v, ax, ay, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
+        bb_real c = bb_clamp_cos(bb_dot(v, m));
+        bb_real e = outside ? eta_out : eta_in, em1 = outside ? eta_m1_out : eta_m1_in;
+        bb_fresnel_sp f = bb_fresnel_dielectric_sp_m1(c, e, em1);
+        if (bb_unit_from_bits(u.v[3]) < BB_R(0.5) * (f.rs + f.rp)) {
+            w = bb_reflect(v, m);
+        } else {
+            w = bb_scale(bb_refract(v, m, c, e), BB_R(-1.0));
+            lc = bb_walk_flip_height(lc);
+            outside = !outside;
+        }
+        if (!(bb_isfinite(lc) || lc < BB_R(0.0)) || !bb_isfinite(w.z) || bb_dot(w, w) < BB_R(0.5)) {
             r.bad = 1;
             break;
         }

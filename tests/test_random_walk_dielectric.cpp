@@ -1,0 +1,195 @@
+// The rough dielectric random walk (brdf/random_walk.h, bb_walk_dielectric; [HHdD16] sec. 5):
+// the white furnace from both sides (R + T + cut-off = 1, and R -> 0, T -> 1 as eta -> 1), the
+// first order of R and T against the height-correlated rough dielectric by independent quadrature
+// (benchmarks/reference, Heitz 2014 eq. 99 and 100), the reciprocity of the transmitted energy
+// between the two sides (T_avg from inside = T_avg from outside / eta^2, a consequence of the
+// BSDF's generalised reciprocity and of energy conservation), and the command line.
+#include <catch2/catch.hpp>
+
+#include <boost/math/quadrature/gauss.hpp>
+#include <cmath>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+
+#include "brdfbake/brdf/random_walk.h"
+#include "integrate/random_walk.h"
+#include "model_refs.h"
+#include "support.h"
+
+using namespace brdfbake;
+
+namespace {
+
+/// Cells of `spec` (a scattering=multiple spec without eta) at every mu, for each eta in turn.
+AlbedoRequest dielectric_request(const std::string& spec, const std::vector<double>& mus,
+                                 const std::vector<double>& etas, std::uint64_t walks) {
+    AlbedoRequest req;
+    for (double eta : etas) {
+        const ModelConfig m = resolve_model_simulated(spec + ",eta=" + modelref::num(eta));
+        REQUIRE(m.dielectric_walk);
+        req.model = m.id;
+        for (const auto& c : cells_for(mus, 0.0, m.params)) req.cells.push_back(c);
+    }
+    req.fresnel = resolve_fresnel("none");
+    req.samples = walks;
+    req.precision = Precision::Float;
+    return req;
+}
+
+}  // namespace
+
+TEST_CASE("dielectric walk: white furnace, R + T + cut-off = 1 from both sides", "[random-walk]") {
+    // Every walk ends reflected, transmitted or cut off: the sum is 1 within the estimate at many
+    // (alpha, mu, eta), total internal reflection (eta < 1) included, for both distributions.
+    const std::vector<double> mus = {0.05, 0.3, 0.7, 1.0};
+    const std::vector<double> etas = {1.0001, 1.05, 1.5, 2.4, 1 / 1.05, 1 / 1.5, 1 / 2.4};
+    for (const char* d : {"ggx", "beckmann"})
+        for (double a : {0.05, 0.4, 1.0}) {
+            const std::string spec = std::string(d) + ":alpha=" + modelref::num(a) + ",scattering=multiple";
+            const WalkResult r = walk_albedo(testing::engine(), dielectric_request(spec, mus, etas, 1 << 13));
+            for (size_t c = 0; c < r.values.size(); ++c) {
+                const WalkAlbedo& w = r.values[c];
+                const double eta = etas[c / mus.size()], mu = mus[c % mus.size()];
+                INFO(spec << " eta " << eta << " mu " << mu << ": R " << w.energy.value << " T " << w.transmitted.value
+                          << " cutoff " << w.cutoff.value << " R+T " << w.total.value << " +- " << w.total.error);
+                CHECK(std::fabs(w.total.value + w.cutoff.value - 1.0) <= w.total.error + w.cutoff.error + 1e-6);
+                CHECK(std::fabs(w.energy.value + w.transmitted.value - w.total.value) <= 1e-5);
+                CHECK(w.cutoff.value < 2e-3);
+                CHECK(w.single.value <= w.energy.value);
+                CHECK(w.single_t.value <= w.transmitted.value);
+                if (eta == 1.0001) {  // no interface to speak of: everything crosses [Fresnel: F ~ 1e-9]
+                    CHECK(w.energy.value <= w.energy.error);
+                    CHECK(std::fabs(w.transmitted.value - 1) <= w.transmitted.error);
+                }
+            }
+        }
+}
+
+TEST_CASE("dielectric walk: the first orders are the height-correlated R and T (quadrature)", "[random-walk]") {
+    // [H14 eq. 99 and 100]: the walk's first reflection and first transmission against the Boost
+    // quadrature of the rough GGX interface with the Beta-function transmission (reference.h).
+    struct Cell {
+        double mu, alpha, eta;
+    };
+    const std::vector<Cell> cells = {{0.5, 0.3, 1.5}, {0.9, 0.6, 1 / 1.5}, {0.3, 1.0, 1.33}, {0.8, 0.8, 1 / 1.33}};
+    AlbedoRequest req = dielectric_request("ggx:alpha=0.3,scattering=multiple", {}, {1.5}, 1 << 17);
+    for (const Cell& c : cells)
+        req.cells.push_back(
+            dielectric_request("ggx:alpha=" + modelref::num(c.alpha) + ",scattering=multiple", {c.mu}, {c.eta}, 1)
+                .cells.front());
+    const WalkResult r = walk_albedo(testing::engine(), req);
+    for (size_t k = 0; k < cells.size(); ++k) {
+        double rr, tt;
+        ref::rough_dielectric_rt(cells[k].mu, cells[k].alpha, cells[k].eta, ref::DielectricShadowing::Beta, rr, tt, 1e-6);
+        const WalkAlbedo& w = r.values[k];
+        INFO("mu " << cells[k].mu << " alpha " << cells[k].alpha << " eta " << cells[k].eta << ": R1 " << w.single.value
+                   << " +- " << w.single.error << " vs " << rr << ", T1 " << w.single_t.value << " +- "
+                   << w.single_t.error << " vs " << tt << "; R " << w.energy.value << " T " << w.transmitted.value);
+        CHECK(std::fabs(w.single.value - rr) <= w.single.error);
+        CHECK(std::fabs(w.single_t.value - tt) <= w.single_t.error);
+        CHECK(w.total.value - w.total.error > rr + tt);  // what single scattering loses comes back
+    }
+}
+
+TEST_CASE("dielectric walk: T from inside is T from outside over eta^2, averaged over the cosine", "[random-walk]") {
+    // 2 integral of T(mu) mu dmu from inside (1/eta) = the same from outside (eta) / eta^2, the
+    // smooth interface's 1 - Favg(1/eta) = (1 - Favg(eta)) / eta^2 [d'Eon 2016], which the
+    // multiple-scattering BSDF keeps (reciprocity f(wi, wo) / eta_o^2 = f(wo, wi) / eta_i^2 [HHdD16]).
+    // Gauss-Legendre in mu (Boost.Math, 10 nodes).
+    using G = boost::math::quadrature::gauss<double, 10>;
+    std::vector<double> mus, weights;
+    for (size_t i = 0; i < G::abscissa().size(); ++i)
+        for (int s : {-1, 1}) {  // an even rule: Boost lists the 5 positive abscissae, no 0
+            mus.push_back(0.5 + 0.5 * s * G::abscissa()[i]);
+            weights.push_back(0.5 * G::weights()[i]);
+        }
+    const double eta = 1.5;
+    for (double a : {0.3, 0.9}) {
+        const WalkResult r = walk_albedo(
+            testing::engine(),
+            dielectric_request("ggx:alpha=" + modelref::num(a) + ",scattering=multiple", mus, {eta, 1 / eta}, 1 << 15));
+        double t_out = 0, t_in = 0, e_out = 0, e_in = 0;
+        for (size_t i = 0; i < mus.size(); ++i) {
+            const WalkAlbedo &o = r.values[i], &in = r.values[mus.size() + i];
+            t_out += 2 * weights[i] * mus[i] * o.transmitted.value;
+            t_in += 2 * weights[i] * mus[i] * in.transmitted.value;
+            e_out += 2 * weights[i] * mus[i] * o.transmitted.error;
+            e_in += 2 * weights[i] * mus[i] * in.transmitted.error;
+        }
+        INFO("alpha " << a << ": T_avg outside " << t_out << " +- " << e_out << ", inside " << t_in << " +- " << e_in
+                      << ", outside / eta^2 " << t_out / (eta * eta));
+        CHECK(std::fabs(t_in - t_out / (eta * eta)) <= e_in + e_out / (eta * eta) + 2e-3);
+    }
+}
+
+TEST_CASE("dielectric walk: the command prints R, T and their first orders, --fresnel refuses", "[random-walk]") {
+    const auto r = testing::run_cli(
+        "albedo --model ggx:alpha=0.5,scattering=multiple,eta=1.5 --mu 0.5 --samples 16384 --format json");
+    REQUIRE(r.status == 0);
+    CHECK(r.out.find("eta=1.5") != std::string::npos);
+    for (const char* key : {"\"reflected\"", "\"transmitted\"", "\"single_scattering_transmitted\"", "\"cutoff\""})
+        CHECK(r.out.find(key) != std::string::npos);
+    const auto t = testing::run_cli("albedo --model ggx:alpha=0.5,scattering=multiple,eta=0.5 --mu 0.5 --samples 4096");
+    REQUIRE(t.status == 0);
+    CHECK(t.out.find("single_T") != std::string::npos);
+    for (const std::string& args :
+         {std::string("albedo --model ggx:alpha=0.5,scattering=multiple,eta=1.5 --fresnel schlick:f0=0.04"),
+          std::string("albedo --model ggx:alpha=0.5,eta=1.5"),
+          std::string("albedo --model ggx:alpha=0.5,scattering=multiple,eta=0")}) {
+        const auto e = testing::run_cli(args);
+        INFO(args << "\n" << e.err);
+        CHECK(e.status == 2);
+        CHECK(testing::count_lines(e.err) == 1);
+        CHECK(e.err.rfind("brdfbake: error: ", 0) == 0);
+        CHECK(e.err.find("eta") != std::string::npos);
+        CHECK(e.out.empty());
+    }
+}
+
+TEST_CASE("walks to a tolerance: every reported value within it, or exit 1 naming the worst cell", "[random-walk]") {
+    const auto r = testing::run_cli("albedo --model ggx:alpha=0.5,scattering=multiple,eta=1.5 --mu 0.3,1 "
+                                    "--tolerance 6e-3 --format json");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    CHECK(j["tolerance"].get<double>() == 6e-3);
+    for (const auto& e : j["results"])
+        for (const char* k : {"error", "reflected_error", "transmitted_error", "single_scattering_error",
+                              "single_scattering_transmitted_error", "cutoff_error"})
+            CHECK(e[k].get<double>() <= 6e-3);
+    const auto miss = testing::run_cli(
+        "albedo --model ggx:alpha=0.5,scattering=multiple --mu 0.5 --tolerance 1e-5 --max-samples 65536");
+    INFO(miss.err);
+    CHECK(miss.status == 1);
+    CHECK(testing::count_lines(miss.err) == 1);
+    CHECK(miss.err.find("--tolerance 1e-05 not met") != std::string::npos);
+    CHECK(miss.out.empty());
+}
+
+TEST_CASE("compensation: every scheme conserves energy in the white furnace, as the walk does", "[random-walk]") {
+    // With F = 1 (Schlick f0 = 1) Kulla-Conty's, Fdez-Aguera's and Turquin's albedos are 1 by
+    // construction [KC17, FA19, T19] and the walk's is 1 (no walk is lost): every difference is
+    // within its error. Then the refusals.
+    const std::string png = (std::filesystem::temp_directory_path() / "brdfbake-compensation-test.png").string();
+    std::filesystem::remove(png);
+    const auto r =
+        testing::run_cli("compensation --f0 1 --alpha 0.3,1 --mu 0.2,1 --walks 16384 --format json --plot " + png);
+    REQUIRE(r.status == 0);
+    CHECK(std::filesystem::file_size(png) > 1000);  // the figure, one panel per scheme
+    std::filesystem::remove(png);
+    const auto j = nlohmann::json::parse(r.out);
+    REQUIRE(j["results"].size() == 4);
+    for (const auto& e : j["results"])
+        for (const char* s : {"kulla-conty", "fdez-aguera", "turquin"}) {
+            INFO(e.dump());
+            CHECK(std::fabs(e[s].get<double>() - 1) <= 1e-4);
+            CHECK(std::fabs(e[std::string(s) + "_difference"].get<double>()) <= e[std::string(s) + "_error"].get<double>());
+        }
+    for (const std::string& args : {std::string("compensation --scheme kulla"), std::string("compensation --f0 2"),
+                                    std::string("compensation --model phong"), std::string("compensation --mu 0")}) {
+        const auto e = testing::run_cli(args);
+        INFO(args << "\n" << e.err);
+        CHECK(e.status == 2);
+        CHECK(testing::count_lines(e.err) == 1);
+        CHECK(e.out.empty());
+    }
+}
