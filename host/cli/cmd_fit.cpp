@@ -6,9 +6,13 @@
 #include <nlohmann/json.hpp>
 
 #include "brdfbake/error.h"
+#include "brdfbake/evaluate.h"
 #include "brdfbake/output.h"
 #include "cli/cli.h"
 #include "fit/model_fit.h"
+#include "models/key_reader.h"
+#include "models/merl_file.h"
+#include "plot/plot.h"
 
 namespace brdfbake {
 namespace {
@@ -18,6 +22,7 @@ struct FitOptions {
     std::string precision = "double";
     std::string format = "table";
     std::string output;
+    std::string plot;
 };
 
 std::string render(const FitOptions& o, const fit::ModelFitResult& r) {
@@ -74,6 +79,50 @@ std::string render(const FitOptions& o, const fit::ModelFitResult& r) {
     return out.str();
 }
 
+/// --plot: f cos(theta_o) of the target (dashed) and of the fit (solid) per channel in the plane
+/// of incidence, theta_o signed (positive on the mirror side), at theta_i = 30, 60 and 80 deg.
+void plot_fit(Engine& engine, const FitOptions& o, const fit::ModelFitResult& r) {
+    constexpr double kDeg = 3.14159265358979323846 / 180;
+    const FresnelConfig target_fresnel = resolve_fresnel(o.request.target_fresnel);
+    const FresnelConfig none = resolve_fresnel("none");
+    const Precision precision = o.precision == "double" ? Precision::Double : Precision::Float;
+    Figure fig;
+    fig.panel_width = 640;
+    fig.panel_height = 520;
+    for (double theta_i : {30.0, 60.0, 80.0}) {
+        PlotSpec p;
+        p.title = "\\theta_i = " + format_number(theta_i) + "\\deg";
+        p.x.label = "\\theta_{o} (degrees, + on the mirror side)";
+        p.y.label = "f cos \\theta_{o}";
+        p.x.lo = -90;
+        p.x.hi = 90;
+        std::vector<Vec3> wo, wi;
+        std::vector<double> x;
+        for (int k = -89; k <= 89; ++k) {
+            wo.push_back({std::sin(k * kDeg), 0.0, std::cos(k * kDeg)});
+            wi.push_back({-std::sin(theta_i * kDeg), 0.0, std::cos(theta_i * kDeg)});
+            x.push_back(k);
+        }
+        for (const fit::ChannelFit& c : r.channels) {
+            const std::string colour = c.channel == "r" ? "r" : c.channel == "g" ? "g" : c.channel == "b" ? "b" : "k";
+            const std::string target = c.channel.empty() ? o.request.target : merl_channel_spec(o.request.target, c.channel);
+            const ModelConfig tm = resolve_model(target);
+            std::vector<double> ft = evaluate_on_device(engine, tm, tm.uses_fresnel ? target_fresnel : none, precision, wo, wi);
+            std::vector<double> ff = evaluate_on_device(engine, resolve_model(c.model_spec), resolve_fresnel(c.fresnel_spec),
+                                                        precision, wo, wi);
+            for (size_t k = 0; k < wo.size(); ++k) {
+                ft[k] *= wo[k][2];
+                ff[k] *= wo[k][2];
+            }
+            const std::string name = c.channel.empty() ? "" : " " + c.channel;
+            p.curves.push_back({"target" + name, x, ft, colour + ";2"});
+            p.curves.push_back({"fit" + name, x, ff, colour + "-2"});
+        }
+        fig.panels.push_back(p);
+    }
+    write_figure(o.plot, fig);
+}
+
 int run_fit(const FitOptions& o, const GlobalOptions& g) {
     if (o.request.target.empty()) throw Error("give --target SPEC, e.g. --target merl:file=gold.binary");
     fit::ModelFitRequest request = o.request;
@@ -81,8 +130,11 @@ int run_fit(const FitOptions& o, const GlobalOptions& g) {
     parse_format(o.format);
     fit::check_model_fit_request(request);
     check_text_output(o.output);
+    check_plot_output(o.plot, "--plot");
     Engine engine(g.device, g.verbose);
-    emit(o.output, render(o, fit::fit_model(engine, request)));
+    const fit::ModelFitResult result = fit::fit_model(engine, request);
+    if (!o.plot.empty()) plot_fit(engine, o, result);
+    emit(o.output, render(o, result));
     return kExitOk;
 }
 
@@ -114,6 +166,7 @@ void add_fit_command(CLI::App& app, const GlobalOptions& global, Action& action)
     add_precision_option(cmd, o->precision);
     add_format_option(cmd, o->format, {"table", "json", "csv"});
     cmd->add_option("-o,--output", o->output, "write the result here (default: standard output)");
+    cmd->add_option("--plot", o->plot, "draw f cos(theta_o) of the target and the fit at theta_i = 30, 60, 80 deg (.png or .svg)");
 }
 
 }  // namespace brdfbake
