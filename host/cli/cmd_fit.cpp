@@ -91,9 +91,10 @@ void plot_fit(Engine& engine, const FitOptions& o, const fit::ModelFitResult& r)
     fig.panel_height = 520;
     for (double theta_i : {30.0, 60.0, 80.0}) {
         PlotSpec p;
-        p.title = "\\theta_i = " + format_number(theta_i) + "\\deg";
+        p.title = "\\theta_i = " + std::to_string(int(theta_i)) + "\\deg";
         p.x.label = "\\theta_{o} (degrees, + on the mirror side)";
         p.y.label = "f cos \\theta_{o}";
+        p.legend = LegendPlace::TopLeft;  // the lobes peak on the mirror side (right)
         p.x.lo = -90;
         p.x.hi = 90;
         std::vector<Vec3> wo, wi;
