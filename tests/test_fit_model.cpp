@@ -130,7 +130,7 @@ TEST_CASE("fit: bad input is one error line, exit status 2", "[fit][cli][quick]"
          {"--target merl:file=/nonexistent.binary", "--target ggx:alpha=0.3 --model ggx:alpha=0.2",
           "--target ggx:alpha=0.3 --metric cubic", "--target ggx:alpha=0.3 --fresnel conductor",
           "--target ggx:alpha=0.3 --model lambert", "--target ggx:alpha=0.3 --stride 0",
-          "--target merl:file=/dev/zero"}) {
+          "--target merl:file=/dev/zero", "--target ggx:alpha=0.3 --plot fit.txt"}) {
         const auto r = testing::run_cli("fit " + args);
         INFO(args << "\n" << r.err);
         CHECK(r.status == 2);

@@ -29,20 +29,24 @@ double logistic(double x) { return 1.0 / (1.0 + std::exp(-x)); }
 double logit(double p) { return std::log(p / (1.0 - p)); }
 double alpha_of(double x) { return kAlphaLo + (kAlphaHi - kAlphaLo) * logistic(x); }
 
-const FitMetric& metric_named(const std::string& name) {
-    for (const FitMetric& m : fit_metrics())
-        if (name == m.name) return m;
+/// The row of `rows` (fit_metrics(), fit_amplitudes()) called `name`; else Error naming `option`.
+template <typename Row>
+const Row& row_named(const std::vector<Row>& rows, const std::string& name, const std::string& option,
+                     const std::string& what) {
     std::string names;
-    for (const FitMetric& m : fit_metrics()) names += (names.empty() ? "" : ", ") + std::string(m.name);
-    throw Error("--metric '" + name + "' is not known; the metrics are " + names);
+    for (const Row& r : rows) {
+        if (name == r.name) return r;
+        names += (names.empty() ? "" : ", ") + std::string(r.name);
+    }
+    throw Error(option + " '" + name + "' is not " + what + "; they are " + names);
+}
+
+const FitMetric& metric_named(const std::string& name) {
+    return row_named(fit_metrics(), name, "--metric", "a known metric");
 }
 
 const FitAmplitude& amplitude_named(const std::string& name) {
-    for (const FitAmplitude& a : fit_amplitudes())
-        if (name == a.name) return a;
-    std::string names;
-    for (const FitAmplitude& a : fit_amplitudes()) names += (names.empty() ? "" : ", ") + std::string(a.name);
-    throw Error("--fresnel '" + name + "' is not a fitted amplitude term; the terms are " + names);
+    return row_named(fit_amplitudes(), name, "--fresnel", "a fitted amplitude term");
 }
 
 bool has_parameter(const FitAmplitude& a) { return std::string(a.spec).find("%s") != std::string::npos; }
