@@ -53,7 +53,7 @@ TEST_CASE("fit: a GGX file's alpha and per-channel scale are recovered, its dist
     const std::array<double, 3> s = {0.9, 0.6, 0.3};
     write_lobe(path, [&](ref::Dir o, ref::Dir i) { return ref::ggx_f(o, i, alpha, alpha, true); }, s, s,
                [](auto&, auto&) { return false; });
-    const auto j = fit_json("--target merl:file=" + path + " --model ggx --stride 3");
+    const auto j = fit_json("--target merl:file=" + path + " --model ggx --stride 4");
     REQUIRE(j["channels"].size() == 3);
     for (int c = 0; c < 3; ++c) {
         const auto& ch = j["channels"][c];
@@ -65,7 +65,8 @@ TEST_CASE("fit: a GGX file's alpha and per-channel scale are recovered, its dist
         // the rounding of f * 1500 / scale to a double and of the kernel (double): ~1e-9 at most.
         CHECK(ch["distance"].get<double>() < 1e-5);
         CHECK(ch["unmeasured_share"].get<double>() == 0.0);
-        // The printed spec is one the other commands take as it stands.
+        if (c > 0) continue;
+        // The printed spec is one the other commands take as it stands (the red channel's).
         const auto r = testing::run_cli("albedo --model '" + ch["model"].get<std::string>() + "' --fresnel '" +
                                         ch["fresnel"].get<std::string>() + "' --mu 0.5");
         CHECK(r.status == 0);
