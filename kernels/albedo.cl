@@ -117,7 +117,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     const bb_real phi_o = (bb_real)cell_phi[cell];                                                      \
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], phi_o);                            \
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \
-    const int mirrored = bb_quad_mirrored(dist, phi_o);                                           \
+    const int mirrored = bb_quad_mirrored(BB_MODEL, p, dist, phi_o);                              \
     BB_QUAD_SPLITS;                                                                               \
     if ((mirrored && q >= 2u) ||                                                                  \
         ((piece & 1u) && (dist.kind == BB_QUAD_SAMPLER ||                                         \

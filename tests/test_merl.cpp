@@ -358,3 +358,35 @@ TEST_CASE("merl: a scene's material may name a MERL file beside the scene", "[me
     for (const char* f : {"/paint.binary", "/scene.json", "/bad.json"}) std::remove((dir + f).c_str());
     ::rmdir(dir.c_str());
 }
+
+TEST_CASE("merl: the quadrature covers the whole azimuth of a file that is not mirror-symmetric", "[merl]") {
+    // f = (1 + c 2 d_x d_y) / pi at every node (below the horizon too), d the difference vector
+    // of Rusinkiewicz 1998 in h's frame: 2 d_x d_y = sin^2 theta_d sin 2 phi_d, pi-periodic in
+    // phi_d (so the file's fold phi_d + pi changes nothing) and odd under the mirror image of a
+    // pair (phi_d -> -phi_d, y -> -y). The viewer at phi_o = 0 lies in the mirror plane, so the
+    // odd part integrates to 0 over the hemisphere, and so does its trilinear interpolant (the
+    // nodes phi_d = k pi/180 map onto nodes): E = 1 exactly at every mu. A rule that integrates
+    // half the azimuth and doubles it (mirror symmetry assumed) finds 1 + c (twice a half-lobe
+    // integral of the odd part) instead.
+    const double c = 0.9;
+    const std::string path = tmp("odd.binary");
+    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
+        double h[3] = {o[0] + i[0], o[1] + i[1], o[2] + i[2]};
+        const double n = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        for (double& v : h) v /= n;
+        // the nodes have phi_h = 0: h = (sin theta_h, 0, cos theta_h), d = R_y(-theta_h) wi
+        const double dx = i[0] * h[2] - i[2] * h[0], dy = i[1];
+        const double f = (1 + c * 2 * dx * dy) / kPi;
+        return std::array<double, 3>{f, f, f};
+    });
+    const std::vector<double> mus{0.3, 0.8};
+    const AlbedoResult r = compute_albedo(
+        testing::engine(), testing::albedo_request("merl:file=" + path + ",channel=r,interp=linear", mus,
+                                                   Method::Quadrature, Precision::Double, 1 << 16));
+    for (size_t k = 0; k < mus.size(); ++k) {
+        INFO("mu = " << mus[k] << ": E = " << r.values[k].value << " +- " << r.values[k].error);
+        CHECK(std::fabs(r.values[k].value - 1.0) <= r.values[k].error + 1e-9);
+        CHECK(r.values[k].error < 0.02);
+    }
+    std::remove(path.c_str());
+}

@@ -105,6 +105,7 @@ void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action
 void add_report_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_merge_command(CLI::App& app, const GlobalOptions& global, Action& action);
 void add_compensation_command(CLI::App& app, const GlobalOptions& global, Action& action);
+void add_fit_command(CLI::App& app, const GlobalOptions& global, Action& action);
 
 /// Parses and runs one command line (the words after the program's name), as main() does: the
 /// status it exits with; errors printed as one `brdfbake: error:` line (by rank 0 of an MPI job).

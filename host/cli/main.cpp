@@ -116,6 +116,7 @@ int run_command_line(const std::vector<std::string>& arguments) {
     add_bench_command(app, global, action);
     add_merge_command(app, global, action);
     add_compensation_command(app, global, action);
+    add_fit_command(app, global, action);
     accept_integer_forms(app);
 
     std::string names;

@@ -249,8 +249,9 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
         v.value = fine;
         v.error = quadrature_error(fine, coarse, coarsest, model_traits(req.model).kinked_quadrature) +
                   fp_bound * std::max(std::fabs(fine), 1e-3);
-        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(
-                                    bb_model_quad_dist(req.model, to_bb_params(req.cells[c].params)), req.cells[c].phi));
+        const bb_params cell_p = to_bb_params(req.cells[c].params);
+        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(req.model, cell_p,
+                                                                  bb_model_quad_dist(req.model, cell_p), req.cells[c].phi));
         result.samples_per_cell = std::max(result.samples_per_cell, v.samples);
         result.total_samples += v.samples;
         v.method = Method::Quadrature;

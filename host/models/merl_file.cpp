@@ -142,6 +142,20 @@ void write_merl_file(const std::string& path,
     if (!file) throw Error("cannot write MERL file '" + path + "'");
 }
 
+/// Whether phi_d nodes k and 180 - k (the mirror image of a pair, brdf/merl.h) agree in every
+/// row: both unmeasured, or within 1e-9 relative (a file written from a symmetric model by
+/// another program's trigonometry differs in the last bits).
+static bool table_mirror_symmetric(const std::vector<double>& t) {
+    for (int ih = 0; ih < BB_MERL_THETA_H; ++ih)
+        for (int id = 0; id < BB_MERL_THETA_D; ++id)
+            for (int k = 1; k < BB_MERL_PHI_D / 2; ++k) {
+                const double a = t[size_t(bb_merl_index(ih, id, k))], b = t[size_t(bb_merl_index(ih, id, BB_MERL_PHI_D - k))];
+                if ((a < 0) != (b < 0)) return false;
+                if (a >= 0 && std::fabs(a - b) > 1e-9 * std::max(std::fabs(a), std::fabs(b))) return false;
+            }
+    return true;
+}
+
 int merl_table_index(const std::string& path, MerlChannel channel) {
     Store& s = store();
     std::lock_guard<std::mutex> lock(s.mutex);
@@ -161,6 +175,7 @@ int merl_table_index(const std::string& path, MerlChannel channel) {
         t[i] = v;
         info.unmeasured += v < 0.0;
     }
+    info.mirror_symmetric = table_mirror_symmetric(t);
     s.tables.push_back(std::move(t));
     s.info.push_back(info);
     return int(s.info.size() - 1);

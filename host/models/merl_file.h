@@ -51,6 +51,9 @@ struct MerlTableInfo {
     std::string path;
     MerlChannel channel;
     std::size_t unmeasured = 0;  // bins with a negative value
+    /// phi_d nodes k and 180 - k hold the same value in every (theta_h, theta_d) row, within
+    /// 1e-9 relative, unmeasured alike (brdf/merl.h, bb_merl_mirror_symmetric).
+    bool mirror_symmetric = false;
 };
 
 /// The index in the process's store of the table of `channel` of the file at `path`, read once

@@ -309,6 +309,7 @@ ModelConfig resolve_merl(KeyReader& keys) {
                           : channel == "b" ? MerlChannel::B : MerlChannel::Y;
     m.params[BB_MERL_TABLE] = merl_table_index(*file, c);
     m.params[BB_MERL_INTERP] = interp == "linear" ? BB_MERL_LINEAR : BB_MERL_NEAREST;
+    m.params[BB_MERL_MIRROR] = interp == "linear" && merl_table_info(int(m.params[BB_MERL_TABLE])).mirror_symmetric;
     m.canonical = "merl:file=" + *file + ",channel=" + channel + ",interp=" + interp;
     return m;
 }

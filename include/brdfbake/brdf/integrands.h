@@ -86,8 +86,15 @@ BB_FN bb_quad_dist bb_model_quad_dist(int model, bb_params p) {
 /* Mirror symmetry of the rule: for an isotropic lobe the integrand at azimuth offset -delta
  * equals that at delta (half-vector space; in the sampler's square phi_i -> -phi_i needs
  * phi_o = 0 too, and every sampler-space model is isotropic). Then two quarters suffice.
+ * A measured table (merl) is mirror-symmetric only where the host found it so
+ * (bb_merl_mirror_symmetric): the mirror image of a pair takes phi_d to pi - phi_d (brdf/merl.h),
+ * which a measured file need not hold equal; otherwise its rule covers the whole azimuth.
  * In a vector build d and phi_o are one cell's, equal in every lane. */
-BB_FN int bb_quad_mirrored(bb_quad_dist d, bb_real phi_o) {
+BB_FN int bb_quad_mirrored(int model, bb_params p, bb_quad_dist d, bb_real phi_o) {
+#if BB_HAS_MODEL(BB_MODEL_MERL) /* merl.h is included only where the model may be merl */
+    if (model == BB_MODEL_MERL && !bb_merl_mirror_symmetric(p))
+        return 0;
+#endif
     return d.kind == BB_QUAD_SAMPLER ? bb_all(phi_o == BB_R(0.0)) : bb_all(d.ax == d.ay);
 }
 
@@ -117,8 +124,8 @@ BB_FN bb_real bb_quad_piece_split(bb_quad_dist d, bb_real phi_o) {
 }
 
 /* The number of non-empty pieces (the node count is this times n^2). */
-BB_FN int bb_quad_piece_count(bb_quad_dist d, bb_real phi_o) {
-    if (bb_quad_mirrored(d, phi_o)) return 2;
+BB_FN int bb_quad_piece_count(int model, bb_params p, bb_quad_dist d, bb_real phi_o) {
+    if (bb_quad_mirrored(model, p, d, phi_o)) return 2;
     return bb_all(bb_quad_piece_split(d, phi_o) < BB_R(0.5) * BB_PI) ? 8 : 4;
 }
 

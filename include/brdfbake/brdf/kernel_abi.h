@@ -102,4 +102,12 @@
 #define BB_ENTRY_LTC_DISTANCE ltc_distance       /* the reported distance on jittered grids */
 #define BB_LTC_MATRIX_VALUES 19                  /* per texel: M, M^-1 row-major, |det M^-1| */
 
+/* ------------------------------------------------------------------- kernels/fit.cl */
+
+#define BB_ENTRY_MODEL_FIT_OBJECTIVE model_fit_objective /* weighted squared residuals per (candidate, block) */
+#define BB_FIT_PAIR_VALUES 7                             /* per pair: wo.xyz, wi.xyz, weight */
+#define BB_FIT_METRIC_CBRT 0 /* (f cos theta_i)^(1/3), Ngan et al. 2005 */
+#define BB_FIT_METRIC_LOG 1  /* log(1 + f cos theta_i) */
+#define BB_FIT_METRIC_L2 2   /* f cos theta_i */
+
 #endif /* BRDFBAKE_BRDF_KERNEL_ABI_H */

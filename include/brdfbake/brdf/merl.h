@@ -46,6 +46,7 @@
 /* Parameter slots. */
 #define BB_MERL_TABLE 0  /* the table's index in the model data */
 #define BB_MERL_INTERP 1 /* BB_MERL_NEAREST or BB_MERL_LINEAR */
+#define BB_MERL_MIRROR 2 /* 1: the lookup is mirror-symmetric (bb_merl_mirror_symmetric) */
 
 #define BB_MERL_NEAREST 0
 #define BB_MERL_LINEAR 1
@@ -137,6 +138,15 @@ BB_FN bb_real bb_merl_linear(const double* t, bb_vec3 x) {
     }
     return weight > BB_R(0.0) ? sum / weight : BB_R(-1.0);
 }
+
+/* Whether the lookup is symmetric under the mirror image of a pair (y -> -y, which takes phi_d to
+ * pi - phi_d after the fold), so that a quadrature may integrate half the azimuth about a viewer
+ * in the mirror plane and double it (integrands.h, bb_quad_mirrored). The host sets the slot:
+ * 1 for interp=linear on a table whose nodes k and 180 - k of phi_d hold the same values (within
+ * 1e-9 relative; the nodes map onto each other, and so does the trilinear interpolant); 0 for a
+ * table that is not (a measured file need not be) and for interp=nearest, whose bins
+ * [k, k + 1) mirror onto [179 - k, 180 - k), not onto a bin. */
+BB_FN int bb_merl_mirror_symmetric(bb_params p) { return bb_all(p.v[BB_MERL_MIRROR] != BB_R(0.0)); }
 
 BB_FN bb_real bb_merl_eval(bb_params p, bb_vec3 wo, bb_vec3 wi) {
     if (!(wo.z > BB_R(0.0) && wi.z > BB_R(0.0))) return BB_R(0.0);
