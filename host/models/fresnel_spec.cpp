@@ -11,6 +11,7 @@
 #include "brdfbake/spec.h"
 #include "models/key_reader.h"
 #include "models/nk_data.h"
+#include "models/params.h"
 
 namespace brdfbake {
 
@@ -282,6 +283,11 @@ FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
         f.canonical += at_wavelength(wavelength_nm);
     }
     return f;
+}
+
+double fresnel_at(const FresnelConfig& f, double cos_theta) {
+    if (f.kind == BB_FRESNEL_TABLE) return bb_fresnel_table_at(cos_theta, int(f.curve.size()), f.curve.data());
+    return bb_fresnel_eval(f.kind, to_bb_params(f.params), cos_theta);
 }
 
 std::function<FresnelConfig(double)> fresnel_over_wavelengths(const std::string& text) {
