@@ -47,7 +47,7 @@ std::array<double, 3> step_difference(const std::string& fresnel) {
         const double c = i / 200.0;
         std::array<double, 3> a{}, b{};
         for (size_t k = 0; k < fine.nm.size(); ++k) {
-            const double v = fresnel_at(f[k], c);
+            const double v = fresnel_value(f[k], c);
             for (int ch = 0; ch < 3; ++ch) {
                 a[ch] += fine.rgb[k][ch] * v;
                 if ((k % 5) == 0) b[ch] += coarse.rgb[k / 5][ch] * v;
@@ -130,7 +130,7 @@ TEST_CASE("spectral conductor table: at mu = 1 and alpha -> 0, fresnel --rgb at 
     CHECK(t.values[0][1] > 1.0);
 }
 
-TEST_CASE("spectral conductor table: --rgb-wavelengths keeps 650, 550 and 450 nm; bad colour spaces refused",
+TEST_CASE("spectral conductor table: --rgb-wavelengths keeps 650, 550 and 450 nm, bad colour spaces are refused",
           "[fresnel][colour][lut][cli]") {
     LutRequest r = small_request("conductor", "metal:Cu");
     r.colour = "wavelengths";

@@ -178,7 +178,7 @@ AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m
     for (size_t k = 0; k < rest.size(); ++k) out.values[rest[k]] = integrated.values[k];
     for (size_t c : limit) {
         AlbedoValue v;
-        v.value = fresnel_at(f, cells[c].mu);
+        v.value = fresnel_value(f, cells[c].mu);
         v.error = 4 * std::numeric_limits<double>::epsilon();  // F evaluated in double
         v.method = integrated.values.empty() ? r.method : integrated.values.front().method;
         out.values[c] = v;

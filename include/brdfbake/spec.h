@@ -86,7 +86,7 @@ struct FresnelConfig {
 };
 
 /// F(cos) of a resolved term in double on the host, a tabulated curve included.
-double fresnel_at(const FresnelConfig& f, double cos_theta);
+double fresnel_value(const FresnelConfig& f, double cos_theta);
 
 /// Resolves a model spec; throws Error naming the problem (unknown model or key, value out of
 /// range, not a finite number).
