@@ -80,6 +80,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     bb_params p, fp;                                                                              \
     const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
     p.data = model_data;                                                                          \
+    fp.data = model_data;                                                                         \
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], (bb_real)cell_phi[cell])
 
 #ifdef BB_QUADRATURE
@@ -114,6 +115,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     bb_params p, fp;                                                                              \
     const unsigned int params_ok = bb_read_params(model_p, fresnel_p, cell, &p, &fp);             \
     p.data = model_data;                                                                          \
+    fp.data = model_data;                                                                         \
     const bb_real phi_o = (bb_real)cell_phi[cell];                                                      \
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], phi_o);                            \
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \

@@ -237,7 +237,7 @@ Table python_lut(Opt<std::string> kind, Opt<std::string> model, const py::object
     const LutSettings given{kind,     preset,    model,       estimator, fresnel,  wavelength,  dims,
                             mu_map,   alpha_map, eta_map,     texels,    alpha_range, eta_range, mu_range,
                             mu_floor, axes,      flip,        samples,   tolerance, max_samples, method,
-                            precision, half};
+                            precision, half,     std::nullopt /* colour: the default, linear sRGB */};
     const LutSetup setup = apply_preset(given);
     validate_lut(setup.request);  // every input checked before the device is touched
     if (output) check_table_path(*output);

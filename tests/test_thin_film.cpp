@@ -12,6 +12,7 @@
 #include <nlohmann/json.hpp>
 
 #include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "checks.h"
 #include "image_readers.h"
@@ -156,9 +157,41 @@ TEST_CASE("thin film: a spec without a wavelength, thickness or a valid key is r
     }
 }
 
-TEST_CASE("thin film: a conductor table over R, G and B wavelengths accepts it", "[fresnel][thin-film][lut]") {
+TEST_CASE("thin film: base=metal:Au is gold's n, k at each wavelength under the film", "[fresnel][thin-film]") {
+    // Gold's tabulated n, k (data/nk, Johnson & Christy) are the input; the film on it is held to
+    // the characteristic-matrix method, and thickness 0 to the bare conductor.
+    for (double nm : {450.0, 550.0, 650.0}) {
+        const FresnelConfig au = resolve_fresnel("metal:Au", nm);
+        const cld n2(au.params[BB_FRESNEL_ETA], au.params[BB_FRESNEL_K]);
+        for (double d : {0.0, 120.0, 400.0}) {
+            const FresnelConfig f =
+                resolve_fresnel("thin-film:eta=1.38,thickness=" + std::to_string(d) + ",base=metal:Au", nm);
+            INFO(f.canonical);
+            CHECK(f.canonical.find("base=metal:Au") != std::string::npos);
+            const Stack s{{1.38, 0}, n2, ld(d), ld(nm)};
+            const bb_params p = [&] {
+                bb_params b;
+                for (int k = 0; k < BB_MAX_PARAMS; ++k) b.v[k] = f.params[size_t(k)];
+                return b;
+            }();
+            for (double c : {1.0, 0.7, 0.3, 0.05}) {
+                CHECK(bb_fresnel_eval_rs(f.kind, p, c) == Approx(double(matrix_reflectance(s, c, false))).margin(1e-11));
+                CHECK(bb_fresnel_eval_rp(f.kind, p, c) == Approx(double(matrix_reflectance(s, c, true))).margin(1e-11));
+                if (d == 0.0) CHECK(bb_fresnel_eval(f.kind, p, c) == Approx(bare(s, c).rs * 0.5 + bare(s, c).rp * 0.5).margin(1e-12));
+            }
+        }
+    }
+    // The substrate is named once: base with base_eta, or an unmeasured base, is refused.
+    for (const char* spec : {"thin-film:eta=1.38,thickness=100,base=metal:Au,base_eta=1.5",
+                             "thin-film:eta=1.38,thickness=100,base=dielectric:eta=1.5", "thin-film:eta=1.38,thickness=100,base=metal:Xx"}) {
+        INFO(spec);
+        CHECK_THROWS_AS(resolve_fresnel(spec, 550.0), Error);
+    }
+}
+
+TEST_CASE("thin film: a conductor table accepts it", "[fresnel][thin-film][lut]") {
     // Its F depends on the wavelength as a measured metal's does: without --wavelength the
-    // conductor table holds R, G and B at 650, 550 and 450 nm.
+    // conductor table holds its colour R, G, B (test_fresnel_tables.cpp).
     const FresnelConfig g = resolve_fresnel("thin-film:eta=1.33,thickness=300,base_eta=1.5", 550.0);
     CHECK(g.kind == BB_FRESNEL_THIN_FILM);
     CHECK(g.params[BB_THIN_FILM_WAVELENGTH] == 550.0);

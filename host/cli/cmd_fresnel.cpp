@@ -41,6 +41,7 @@ struct FresnelOptions {
     std::string plot;
     bool compare = false;
     bool rgb = false;
+    std::string colour_space = "srgb";
     std::string fit;
 };
 
@@ -404,8 +405,10 @@ Precision precision_of(const FresnelOptions& o) { return o.precision == "double"
 /// `fresnel --rgb`: the reflectance's colour in linear sRGB per angle (fresnel_rgb_on_device).
 std::string render_rgb(const FresnelOptions& o, Precision precision, const std::vector<double>& thetas,
                        const std::vector<double>& cosines, const FresnelColour& c, const Engine& engine) {
-    const char* space = "linear sRGB (D65 white = 1, 1, 1), CIE 1931 2-degree observer, illuminant D65, "
-                        "380-780 nm summed at 1 nm";
+    const std::string space = std::string(o.colour_space == "acescg"
+                                              ? "ACEScg (AP1 primaries, ACES white by Bradford from D65; white = 1, 1, 1)"
+                                              : "linear sRGB (D65 white = 1, 1, 1)") +
+                              ", CIE 1931 2-degree observer, illuminant D65, 380-780 nm summed at 1 nm";
     std::ostringstream out;
     char line[240];
     const Format format = parse_format(o.format);
@@ -457,7 +460,8 @@ AngleGrid plot_grid() {
 PlotSpec rgb_panel(const FresnelOptions& o, const std::vector<std::array<double, 3>>& rgb) {
     const AngleGrid a = plot_grid();
     PlotSpec p;
-    p.title = plot_text(short_numbers(o.fresnel)) + ": linear sRGB (CIE 1931, D65)";
+    p.title = plot_text(short_numbers(o.fresnel)) + (o.colour_space == "acescg" ? ": ACEScg" : ": linear sRGB") +
+              " (CIE 1931, D65)";
     p.x = theta_axis();
     p.y = PlotAxis{"reflectance, linear sRGB", 0.0, std::numeric_limits<double>::quiet_NaN(), 0.2};
     const char* names[3] = {"R", "G", "B"};
@@ -489,7 +493,7 @@ int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     std::vector<double> cosines = a.cosines;
     if (!o.plot.empty())
         for (double c : plot_grid().cosines) cosines.push_back(c);
-    FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, cosines);
+    FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, cosines, o.colour_space);
     if (!o.plot.empty())
         write_plot(o.plot, rgb_panel(o, {c.rgb.begin() + std::ptrdiff_t(a.cosines.size()), c.rgb.end()}));
     c.rgb.resize(a.cosines.size());
@@ -534,6 +538,7 @@ int run_fresnel_fit(const FresnelOptions& o, const GlobalOptions& g) {
     if (o.fit != "f82-tint") throw Error("--fit '" + o.fit + "': the fit known is f82-tint");
     if (o.wavelength_nm != 0.0 || o.rgb || o.compare || !o.plot.empty())
         throw Error("--fit f82-tint fits the spectral colour of --fresnel alone; drop --wavelength, --rgb, --plot and --compare");
+    if (o.colour_space != "srgb") throw Error("--fit f82-tint gives linear-sRGB parameters; drop --colour-space");
     if (o.fresnel.empty()) throw Error("--fit needs --fresnel SPEC, e.g. --fresnel metal:Au");
     resolve_fresnel(o.fresnel, 550.0);  // a bad spec is refused before any work
     parse_format(o.format);
@@ -547,6 +552,7 @@ int run_fresnel_fit(const FresnelOptions& o, const GlobalOptions& g) {
 int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
     if (!o.fit.empty()) return run_fresnel_fit(o, g);
     if (o.rgb) return run_fresnel_rgb(o, g);
+    if (o.colour_space != "srgb") throw Error("--colour-space picks --rgb's colour space; add --rgb");
     const auto t0 = std::chrono::steady_clock::now();
     // Check every input before touching the device.
     if (o.compare) {
@@ -609,6 +615,10 @@ void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& act
     cmd->add_flag("--rgb", o->rgb,
                   "the reflectance's colour in linear sRGB: F over 380-780 nm (each wavelength's n, k or film) "
                   "weighed by the CIE 1931 observer under D65");
+    cmd->add_option("--colour-space", o->colour_space,
+                    "--rgb's colour space: srgb (linear sRGB) or acescg (ACES AP1, the ACES white by Bradford)")
+        ->check(CLI::IsMember({"srgb", "acescg"}))
+        ->capture_default_str();
     cmd->add_option("--fit", o->fit,
                     "f82-tint: the F82-tint f0 and tint per linear-sRGB channel of --fresnel's spectral colour "
                     "(OpenPBR's metal), with the largest deviation over angle");

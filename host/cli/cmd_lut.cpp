@@ -25,6 +25,8 @@ struct LutOptions {
     CLI::App* command = nullptr;  // to tell the options given from the defaults (a preset fills the rest)
     std::string kind, preset, model, estimator, fresnel;
     double wavelength_nm = 0.0;
+    std::string colour_space = "srgb";
+    bool rgb_wavelengths = false;
     std::string size;
     std::string mu_map, alpha_map, eta_map, texels;
     std::string alpha_range, eta_range, mu_range;
@@ -99,6 +101,9 @@ LutSettings given_settings(const LutOptions& o) {
     s.estimator = text("--estimator", o.estimator);
     s.fresnel = text("--fresnel", o.fresnel);
     s.wavelength_nm = number("--wavelength", o.wavelength_nm);
+    if (o.rgb_wavelengths && given("--colour-space"))
+        throw Error("--rgb-wavelengths takes R, G, B at 650, 550 and 450 nm, not a colour space; drop one of them");
+    s.colour = o.rgb_wavelengths ? std::optional<std::string>("wavelengths") : text("--colour-space", o.colour_space);
     if (given("--size")) s.size = parse_size(o.size);
     s.mu_map = text("--mu-map", o.mu_map);
     s.alpha_map = text("--alpha-map", o.alpha_map);
@@ -223,7 +228,16 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->check(CLI::IsMember({"ratio", "cycles"}))
         ->capture_default_str();
     cmd->add_option("--fresnel", o->fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();
-    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals");
+    cmd->add_option("--wavelength", o->wavelength_nm,
+                    "wavelength in nm for a Fresnel term that depends on it (metal:X, nk:FILE, thin-film); without it "
+                    "the table holds its colour, R, G, B");
+    cmd->add_option("--colour-space", o->colour_space,
+                    "the colour of a spectral Fresnel term (no --wavelength): srgb (linear sRGB, CIE 1931 2-degree "
+                    "observer under D65, 380-780 nm at 1 nm) or acescg (ACES AP1, D60 white by Bradford)")
+        ->check(CLI::IsMember({"srgb", "acescg"}))
+        ->capture_default_str();
+    cmd->add_flag("--rgb-wavelengths", o->rgb_wavelengths,
+                  "R, G, B at 650, 550 and 450 nm instead of the spectral colour (the tables before 2026-12)");
     cmd->add_option("--size", o->size, "N (N on every axis), WIDTHxHEIGHT (mu x alpha), WIDTHxHEIGHTxDEPTH (x eta) for the kinds with a "
                     "z axis; without --preset, " +
                         std::to_string(kDefaultLutTexels) + " on every axis")

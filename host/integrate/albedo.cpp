@@ -112,12 +112,12 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
     cl::Program& program = engine.program(build);
 
     const CellArrays cells = cell_arrays(req.cells);
-    const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
     const std::vector<double> shifts = replica_shifts(req.replicas, req.seed);
 
     RealBuffers bufs(engine, req.precision);
+    const FresnelBuffers fb = fresnel_buffers(bufs, req.model, req.fresnel);
     cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
-               b_fp = bufs.input(fparams), b_data = model_data_buffer(bufs, req.model);
+               b_fp = fb.params, b_data = fb.model_data;
     // mc: each cell's Philox stream from its content (cell_identity), not its place in the
     // launch, so that a cell has one value whichever cells share its launch (refinement rounds,
     // MPI ranks, shards).
@@ -206,10 +206,10 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
     append_gauss_legendre(m, nodes, lanes);
     append_gauss_legendre(l, nodes, lanes);
     const CellArrays cells = cell_arrays(req.cells);
-    const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
     RealBuffers bufs(engine, req.precision);
+    const FresnelBuffers fb = fresnel_buffers(bufs, req.model, req.fresnel);
     cl::Buffer b_mu = bufs.input(cells.mus), b_phi = bufs.input(cells.phis), b_p = bufs.input(cells.params),
-               b_fp = bufs.input(fparams), b_data = model_data_buffer(bufs, req.model), b_nodes = bufs.input(nodes);
+               b_fp = fb.params, b_data = fb.model_data, b_nodes = bufs.input(nodes);
     cl::Buffer b_sum = bufs.output(n_items);
     const NonFiniteCounts bad_counts(engine, n_items);
 

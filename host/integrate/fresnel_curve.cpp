@@ -46,9 +46,9 @@ FresnelCurves fresnel_on_device(Engine& engine, const FresnelConfig& f, Precisio
 }
 
 FresnelColour fresnel_rgb_on_device(Engine& engine, const std::string& fresnel_spec, Precision precision,
-                                    const std::vector<double>& cosines) {
-    const SpectralWeights& fine = srgb_weights(1);
-    const SpectralWeights& coarse = srgb_weights(2);
+                                    const std::vector<double>& cosines, const std::string& colour_space) {
+    const SpectralWeights& fine = colour_weights(colour_space, 1);
+    const SpectralWeights& coarse = colour_weights(colour_space, 2);
     FresnelColour c;
     c.rgb.assign(cosines.size(), {0.0, 0.0, 0.0});
     std::vector<std::array<double, 3>> coarse_rgb(cosines.size(), {0.0, 0.0, 0.0});

@@ -48,9 +48,25 @@ std::vector<cl_uint> NonFiniteCounts::read(Engine& engine) const {
     return counts;
 }
 
-cl::Buffer model_data_buffer(RealBuffers& buffers, int model) {
-    if (model == BB_MODEL_MERL) return buffers.input(merl_model_data());  // the tables of brdf/merl.h
-    return buffers.input(std::vector<double>(BB_MODEL_DATA_DUMMY_SIZE, 0.0));
+namespace {
+std::vector<double> model_data(int model) {
+    if (model == BB_MODEL_MERL) return merl_model_data();  // the tables of brdf/merl.h
+    return std::vector<double>(BB_MODEL_DATA_DUMMY_SIZE, 0.0);
+}
+}  // namespace
+
+cl::Buffer model_data_buffer(RealBuffers& buffers, int model) { return buffers.input(model_data(model)); }
+
+FresnelBuffers fresnel_buffers(RealBuffers& buffers, int model, const FresnelConfig& fresnel) {
+    std::vector<double> params(fresnel.params.begin(), fresnel.params.end());
+    if (fresnel.kind != BB_FRESNEL_TABLE) return {buffers.input(params), model_data_buffer(buffers, model)};
+    std::vector<double> data = model_data(model);
+    const size_t block = (data.size() + BB_FRESNEL_TABLE_ALIGN - 1) / BB_FRESNEL_TABLE_ALIGN;
+    data.resize(block * BB_FRESNEL_TABLE_ALIGN, 0.0);
+    data.insert(data.end(), fresnel.curve.begin(), fresnel.curve.end());
+    params[BB_FRESNEL_TABLE_BLOCK] = double(block);
+    params[BB_FRESNEL_TABLE_NODES] = double(fresnel.curve.size());
+    return {buffers.input(params), buffers.input(data)};
 }
 
 double launch_bytes(size_t n_cells, size_t n_items, double table_points, unsigned table_values, Precision p) {

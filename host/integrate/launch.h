@@ -66,6 +66,14 @@ struct NonFiniteCounts {
 /// gets the process's MERL tables (models/merl_file.h).
 cl::Buffer model_data_buffer(RealBuffers& buffers, int model);
 
+/// The Fresnel parameters and the model data of a launch: a tabulated Fresnel curve
+/// (BB_FRESNEL_TABLE, brdf/fresnel.h) follows the model's data, which is padded to
+/// BB_FRESNEL_TABLE_ALIGN numbers, and its block goes into the parameters.
+struct FresnelBuffers {
+    cl::Buffer params, model_data;
+};
+FresnelBuffers fresnel_buffers(RealBuffers& buffers, int model, const FresnelConfig& fresnel);
+
 /// The build of `kernel_file` for an albedo request: its precision, model and Fresnel kind.
 inline BuildRequest albedo_build(const std::string& kernel_file, const AlbedoRequest& req) {
     BuildRequest build;

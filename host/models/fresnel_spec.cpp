@@ -11,6 +11,7 @@
 #include "brdfbake/spec.h"
 #include "models/key_reader.h"
 #include "models/nk_data.h"
+#include "models/params.h"
 
 namespace brdfbake {
 
@@ -165,7 +166,8 @@ const std::vector<FresnelEntry>& registry() {
              {{"eta", "E", kRequired, kEta, "real part of the complex index eta + ik", BB_FRESNEL_ETA},
               {"k", "K", kRequired, kExtinction, "extinction coefficient, imaginary part of the index", BB_FRESNEL_K}}},
             {{"thin-film", "",
-              "one film (index eta + ik, thickness in nm) on a substrate (base_eta + i base_k) at --wavelength NM: "
+              "one film (index eta + ik, thickness in nm) on a substrate (base_eta + i base_k, or base=metal:X for a "
+              "measured one) at --wavelength NM: "
               "the Airy sum of wave optics (Born & Wolf 1.6.4; Belcour & Barla 2017)",
               true, BB_FRESNEL_THIN_FILM},
              {{"eta", "E", kRequired, kEta, "the film's index, e.g. 1.33 for a soap film", BB_THIN_FILM_ETA},
@@ -217,6 +219,34 @@ FresnelConfig resolve_keys(const FresnelEntry& e, const Spec& spec) {
     }
     keys.finish();
     if (e.derive) e.derive(f, values);
+    return f;
+}
+
+/// thin-film with base=metal:X (or nk:FILE): the substrate's n, k at the wavelength from that
+/// measured term instead of base_eta and base_k; otherwise the keys as any term's.
+FresnelConfig resolve_thin_film(const FresnelEntry& e, Spec spec, double wavelength_nm) {
+    std::string base;
+    for (auto it = spec.keys.begin(); it != spec.keys.end(); ++it)
+        if (it->first == "base") {
+            base = it->second;
+            spec.keys.erase(it);
+            break;
+        }
+    if (base.empty()) return resolve_keys(e, spec);
+    for (const auto& kv : spec.keys)
+        if (kv.first == "base_eta" || kv.first == "base_k")
+            throw Error("Fresnel thin-film: base=" + base + " is the substrate; drop " + kv.first);
+    const FresnelEntry* sub = find_entry(base.substr(0, base.find(':')));
+    if (!sub || !sub->load)
+        throw Error("Fresnel thin-film: base=" + base + " is not a measured term; base= takes metal:X (known: " +
+                    metal_argument() + ") or nk:FILE, or give base_eta and base_k");
+    spec.keys.emplace_back("base_eta", "1");  // replaced below by the measured substrate's
+    FresnelConfig f = resolve_keys(e, spec);
+    const FresnelConfig n = resolve_fresnel(base, wavelength_nm == 0.0 ? 550.0 : wavelength_nm);
+    f.params[BB_THIN_FILM_BASE_ETA] = n.params[BB_FRESNEL_ETA];
+    f.params[BB_THIN_FILM_BASE_K] = n.params[BB_FRESNEL_K];
+    f.canonical = f.canonical.substr(0, f.canonical.find(",base_eta=")) + ",base=" + base + " (base_eta=" +
+                  format_number(n.params[BB_FRESNEL_ETA]) + ",base_k=" + format_number(n.params[BB_FRESNEL_K]) + ")";
     return f;
 }
 
@@ -276,12 +306,18 @@ FresnelConfig resolve_fresnel(const std::string& text, double wavelength_nm) {
         for (const FresnelEntry& entry : registry()) names.push_back(entry.term.name);
         throw Error(unknown_name_message("Fresnel term", spec.name, names, "known", fresnel_spec_forms()));
     }
-    FresnelConfig f = resolve_keys(*e, spec);
+    FresnelConfig f = e->term.kind == BB_FRESNEL_THIN_FILM ? resolve_thin_film(*e, spec, wavelength_nm)
+                                                            : resolve_keys(*e, spec);
     if (e->wavelength_slot >= 0) {
         f.params[e->wavelength_slot] = checked_wavelength(wavelength_nm, e->term.name, "");
         f.canonical += at_wavelength(wavelength_nm);
     }
     return f;
+}
+
+double fresnel_value(const FresnelConfig& f, double cos_theta) {
+    if (f.kind == BB_FRESNEL_TABLE) return bb_fresnel_table_at(cos_theta, int(f.curve.size()), f.curve.data());
+    return bb_fresnel_eval(f.kind, to_bb_params(f.params), cos_theta);
 }
 
 std::function<FresnelConfig(double)> fresnel_over_wavelengths(const std::string& text) {

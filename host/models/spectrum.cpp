@@ -61,7 +61,55 @@ Matrix inverse(const Matrix& m) {
     return r;
 }
 
-SpectralWeights make_weights(int step_nm) {
+/// a * b.
+Matrix product(const Matrix& a, const Matrix& b) {
+    Matrix r{};
+    for (int i = 0; i < 3; ++i)
+        for (int j = 0; j < 3; ++j)
+            for (int k = 0; k < 3; ++k) r[i][j] += a[i][k] * b[k][j];
+    return r;
+}
+
+/// XYZ -> RGB of the primaries `prim` (x, y each) and the white point `white_xyz`: the primaries'
+/// XYZ (x/y, 1, z/y) as columns, scaled so that they sum to the white point (SMPTE RP 177 /
+/// IEC 61966-2-1's construction); the inverse maps XYZ to RGB.
+Matrix xyz_to_rgb(const double (&prim)[3][2], const std::array<double, 3>& white_xyz) {
+    Matrix p;
+    for (int c = 0; c < 3; ++c) {
+        const double x = prim[c][0], y = prim[c][1];
+        p[0][c] = x / y;
+        p[1][c] = 1.0;
+        p[2][c] = (1.0 - x - y) / y;
+    }
+    const Matrix pi = inverse(p);
+    std::array<double, 3> s{};
+    for (int i = 0; i < 3; ++i) s[i] = pi[i][0] * white_xyz[0] + pi[i][1] * white_xyz[1] + pi[i][2] * white_xyz[2];
+    Matrix rgb_to_xyz;
+    for (int r = 0; r < 3; ++r)
+        for (int c = 0; c < 3; ++c) rgb_to_xyz[r][c] = p[r][c] * s[c];
+    return inverse(rgb_to_xyz);
+}
+
+/// XYZ -> ACEScg: Bradford from `white_xyz` to the ACES white, then AP1 (spectrum.h).
+Matrix xyz_to_acescg(const std::array<double, 3>& white_xyz) {
+    const Matrix bradford = {{{0.8951, 0.2664, -0.1614}, {-0.7502, 1.7135, 0.0367}, {0.0389, -0.0685, 1.0296}}};
+    const double wx = 0.32168, wy = 0.33767;
+    const std::array<double, 3> aces_white = {wx / wy, 1.0, (1.0 - wx - wy) / wy};
+    Matrix scale{};
+    for (int i = 0; i < 3; ++i) {
+        double from = 0.0, to = 0.0;
+        for (int k = 0; k < 3; ++k) {
+            from += bradford[i][k] * white_xyz[k];
+            to += bradford[i][k] * aces_white[k];
+        }
+        scale[i][i] = to / from;
+    }
+    const Matrix adapt = product(inverse(bradford), product(scale, bradford));
+    const double ap1[3][2] = {{0.713, 0.293}, {0.165, 0.830}, {0.128, 0.044}};
+    return product(xyz_to_rgb(ap1, aces_white), adapt);
+}
+
+SpectralWeights make_weights(int step_nm, Matrix (*to_rgb)(const std::array<double, 3>&)) {
     const auto cmf = read_embedded_csv("cie/cie1931_2deg_1nm.csv");
     const auto d65 = read_embedded_csv("cie/cie_d65.csv");
     std::map<int, std::array<double, 3>> xyz_bar;
@@ -81,7 +129,7 @@ SpectralWeights make_weights(int step_nm) {
             v[c] /= y_sum;
             w.white_xyz[c] += v[c];
         }
-    const Matrix m = xyz_to_linear_srgb(w.white_xyz);
+    const Matrix m = to_rgb(w.white_xyz);
     for (const auto& v : xyz) {
         std::array<double, 3> rgb{};
         for (int i = 0; i < 3; ++i) rgb[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
@@ -93,34 +141,28 @@ SpectralWeights make_weights(int step_nm) {
 }  // namespace
 
 std::array<std::array<double, 3>, 3> xyz_to_linear_srgb(const std::array<double, 3>& white_xyz) {
-    // The primaries' XYZ (x/y, 1, z/y) as columns, scaled so that they sum to the white point
-    // (SMPTE RP 177 / IEC 61966-2-1's construction); the inverse maps XYZ to RGB.
-    const double prim[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};
-    Matrix p;
-    for (int c = 0; c < 3; ++c) {
-        const double x = prim[c][0], y = prim[c][1];
-        p[0][c] = x / y;
-        p[1][c] = 1.0;
-        p[2][c] = (1.0 - x - y) / y;
-    }
-    const Matrix pi = inverse(p);
-    std::array<double, 3> s{};
-    for (int i = 0; i < 3; ++i) s[i] = pi[i][0] * white_xyz[0] + pi[i][1] * white_xyz[1] + pi[i][2] * white_xyz[2];
-    Matrix rgb_to_xyz;
-    for (int r = 0; r < 3; ++r)
-        for (int c = 0; c < 3; ++c) rgb_to_xyz[r][c] = p[r][c] * s[c];
-    return inverse(rgb_to_xyz);
+    const double srgb[3][2] = {{0.64, 0.33}, {0.30, 0.60}, {0.15, 0.06}};
+    return xyz_to_rgb(srgb, white_xyz);
 }
 
-const SpectralWeights& srgb_weights(int step_nm) {
-    static const std::map<int, SpectralWeights> all = [] {
-        std::map<int, SpectralWeights> m;
-        for (int s : {1, 2, 4, 5}) m[s] = make_weights(s);
+const SpectralWeights& colour_weights(const std::string& colour_space, int step_nm) {
+    using Weights = std::map<std::pair<std::string, int>, SpectralWeights>;
+    static const Weights all = [] {
+        Weights m;
+        for (int s : {1, 2, 4, 5}) {
+            m[{"srgb", s}] = make_weights(s, xyz_to_linear_srgb);
+            m[{"acescg", s}] = make_weights(s, xyz_to_acescg);
+        }
         return m;
     }();
-    const auto it = all.find(step_nm);
+    if (colour_space != "srgb" && colour_space != "acescg")
+        throw Error("unknown colour space '" + colour_space + "'; known: srgb, acescg");
+    const auto it = all.find({colour_space, step_nm});
     if (it == all.end()) throw Error("spectral weights exist at 1, 2, 4 and 5 nm steps, not " + std::to_string(step_nm));
     return it->second;
 }
+
+const SpectralWeights& srgb_weights(int step_nm) { return colour_weights("srgb", step_nm); }
+const SpectralWeights& acescg_weights(int step_nm) { return colour_weights("acescg", step_nm); }
 
 }  // namespace brdfbake

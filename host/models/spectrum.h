@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <string>
 #include <vector>
 
 namespace brdfbake {
@@ -21,6 +22,19 @@ struct SpectralWeights {
 
 /// The weights at 1, 2, 4 or 5 nm steps (throws Error for another step).
 const SpectralWeights& srgb_weights(int step_nm);
+
+/// The same into ACEScg (S-2014-004 "ACEScg - A Working Space for CGI Render and Compositing",
+/// sec. 4.3: the AP1 primaries r 0.713, 0.293; g 0.165, 0.830; b 0.128, 0.044 and the ACES white
+/// x = 0.32168, y = 0.33767 of TB-2018-001). The colour under D65 is carried to the ACES white by
+/// the Bradford transform (Lam 1985; the matrix of ICC.1:2010 Annex E), applied as a von Kries
+/// scaling in its cone space from the sums' own D65 white, so that a perfect white is (1, 1, 1) in
+/// ACEScg too. The choice: OpenColorIO's ACES configurations convert linear sRGB to ACEScg with
+/// Bradford; colour-science's spectral route to ACES2065-1 defaults to CAT02 (the two differ by
+/// about 1e-3 on saturated colours).
+const SpectralWeights& acescg_weights(int step_nm);
+
+/// The weights of a colour space by name: "srgb" or "acescg" (throws Error for another).
+const SpectralWeights& colour_weights(const std::string& colour_space, int step_nm);
 
 /// The 3x3 XYZ -> linear-sRGB matrix for the white point `white_xyz` (rows: R, G, B).
 std::array<std::array<double, 3>, 3> xyz_to_linear_srgb(const std::array<double, 3>& white_xyz);

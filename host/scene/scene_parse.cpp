@@ -161,7 +161,7 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
     if (m.contains("fresnel")) {
         try {
             // A measured metal without a wavelength is checked at 550 nm; its conductor tables then
-            // hold R, G and B (650, 550, 450 nm), and albedo and eavg tables do not depend on it.
+            // hold its colour R, G, B (tables/spectral_fresnel.h), and albedo and eavg tables do not depend on it.
             std::string text = string_at(m["fresnel"], w, "fresnel");
             // nk:FILE names a file beside the scene (a relative path is read from the scene's folder).
             const size_t colon = text.find(':');

@@ -176,10 +176,9 @@ AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m
     AlbedoResult out = integrated;
     out.values.assign(cells.size(), AlbedoValue{});
     for (size_t k = 0; k < rest.size(); ++k) out.values[rest[k]] = integrated.values[k];
-    const bb_params fp = to_bb_params(f.params);
     for (size_t c : limit) {
         AlbedoValue v;
-        v.value = bb_fresnel_eval(f.kind, fp, cells[c].mu);
+        v.value = fresnel_value(f, cells[c].mu);
         v.error = 4 * std::numeric_limits<double>::epsilon();  // F evaluated in double
         v.method = integrated.values.empty() ? r.method : integrated.values.front().method;
         out.values[c] = v;

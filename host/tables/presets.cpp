@@ -278,6 +278,7 @@ LutSetup apply_preset(const LutSettings& given) {
     if (given.model) r.model = *given.model;
     if (given.fresnel) r.fresnel = *given.fresnel;
     if (given.wavelength_nm) r.wavelength_nm = *given.wavelength_nm;
+    if (given.colour) r.colour = *given.colour;
     if (given.size) {
         try {
             set_lut_size(r, *given.size);

@@ -25,11 +25,12 @@ FresnelCurves fresnel_on_device(Engine& engine, const FresnelConfig& fresnel, Pr
 /// by the CIE 1931 2-degree observer under D65 into linear sRGB (white = (1, 1, 1); see
 /// models/spectrum.h). `error` is |sum at 1 nm - sum at 2 nm| per channel: the CIE defines
 /// colorimetry by the 1 nm sum, and the 2 nm one shows how far the spectrum's sampling matters.
+/// `colour_space` "acescg" gives ACEScg instead (models/spectrum.h).
 struct FresnelColour {
     std::vector<std::array<double, 3>> rgb, error;  // per cosine
     int wavelengths = 0;                              // kernel launches
 };
 FresnelColour fresnel_rgb_on_device(Engine& engine, const std::string& fresnel_spec, Precision precision,
-                                    const std::vector<double>& cosines);
+                                    const std::vector<double>& cosines, const std::string& colour_space = "srgb");
 
 }  // namespace brdfbake

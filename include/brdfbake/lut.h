@@ -17,7 +17,10 @@ struct LutRequest {
     std::string kind;             // a TableKind's name (brdfbake/table_kinds.h): albedo, eavg, dfg, ...
     std::string model;            // model spec without the swept alpha, e.g. "ggx:shadowing=correlated"
     std::string fresnel = "none"; // albedo and eavg only
-    double wavelength_nm = 0.0;   // conductor with a measured metal: 0 gives R, G, B at 650, 550, 450 nm
+    double wavelength_nm = 0.0;   // a Fresnel term that depends on it: 0 gives the colour channels R, G, B
+    /// Those channels: "srgb" (linear sRGB from the spectrum, CIE 1931 2-degree observer, D65),
+    /// "acescg", or "wavelengths" (R, G, B at 650, 550, 450 nm: --rgb-wavelengths).
+    std::string colour = "srgb";
     int width = 32;               // mu texels (albedo, dfg) or alpha texels (eavg)
     int height = 32;              // alpha texels (albedo, dfg); 1 for eavg
     std::string mu_map = "linear";      // linear: mu = u; sqrt: u = sqrt(mu), mu = u^2; sqrt-one-minus: u = sqrt(1 - mu)
@@ -118,6 +121,7 @@ struct LutSettings {
     std::optional<double> samples, tolerance, max_samples;
     std::optional<std::string> method, precision;
     std::optional<bool> half;
+    std::optional<std::string> colour;  // --colour-space, or "wavelengths" for --rgb-wavelengths
 };
 
 /// Texels on every axis of a table without --size or a preset.

@@ -84,7 +84,12 @@ struct FresnelConfig {
     int kind = 0;           // BB_FRESNEL_* of brdf/fresnel.h
     std::string canonical;  // e.g. "none", "schlick:f0=0.04"
     ParamBlock params{};
+    /// BB_FRESNEL_TABLE: the node values of the tabulated curve (brdf/fresnel.h); empty otherwise.
+    std::vector<double> curve;
 };
+
+/// F(cos) of a resolved term in double on the host, a tabulated curve included.
+double fresnel_value(const FresnelConfig& f, double cos_theta);
 
 /// Resolves a model spec; throws Error naming the problem (unknown model or key, value out of
 /// range, not a finite number).

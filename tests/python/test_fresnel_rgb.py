@@ -59,9 +59,10 @@ def fresnel_exact(cos_i, n):
     return 0.5 * (abs(rs) ** 2 + abs(rp) ** 2)
 
 
-def run_rgb(spec, thetas):
+def run_rgb(spec, thetas, colour_space="srgb"):
     out = subprocess.run([EXE, "fresnel", "--fresnel", spec, "--rgb", "--precision", "double", "--format", "json",
-                          "--theta", ",".join(str(t) for t in thetas)], capture_output=True, text=True)
+                          "--colour-space", colour_space, "--theta", ",".join(str(t) for t in thetas)],
+                         capture_output=True, text=True)
     assert out.returncode == 0, out.stderr
     return json.loads(out.stdout)["results"]
 
@@ -86,6 +87,41 @@ def test_metal_colour_matches_numpy(metal):
         # channel (1 nm against 2 nm sums) is added.
         tol = 2e-3 + np.array(r["rgb_error"])
         assert np.all(np.abs(np.array(r["rgb"]) - rgb) <= tol), (metal, theta, r["rgb"], rgb)
+
+
+def xyz_to_rgb(primaries, white_xy):
+    """XYZ -> RGB of the chromaticities (SMPTE RP 177): the primaries scaled to sum to the white."""
+    xyz = lambda x, y: np.array([x / y, 1.0, (1.0 - x - y) / y])
+    p = np.column_stack([xyz(*c) for c in primaries])
+    return np.linalg.inv(p * np.linalg.solve(p, xyz(*white_xy)))
+
+
+# Bradford (Lam 1985), as ICC.1:2010 Annex E prints it.
+BRADFORD = np.array([[0.8951, 0.2664, -0.1614], [-0.7502, 1.7135, 0.0367], [0.0389, -0.0685, 1.0296]])
+
+
+@pytest.mark.parametrize("metal", ["Au", "Cu"])
+def test_acescg_colour_matches_numpy(metal):
+    """--colour-space acescg: the spectral colour in AP1 (S-2014-004) with the ACES white
+    (TB-2018-001), adapted from D65 by Bradford; numpy from the chromaticities alone."""
+    files = {"Au": "Au-Johnson.yml", "Cu": "Cu-Johnson.yml"}
+    nk = read_nk(files[metal])
+    nm, w = colour_weights()
+    n = np.interp(nm * 1e-3, nk[:, 0], nk[:, 1]) + 1j * np.interp(nm * 1e-3, nk[:, 0], nk[:, 2])
+    d65 = w.sum(axis=1)  # the sums' own white (x, y within 1e-4 of D65's)
+    aces = np.array([0.32168 / 0.33767, 1.0, (1 - 0.32168 - 0.33767) / 0.33767])
+    cone = BRADFORD @ aces / (BRADFORD @ d65)
+    adapt = np.linalg.inv(BRADFORD) @ np.diag(cone) @ BRADFORD
+    ap1 = xyz_to_rgb([(0.713, 0.293), (0.165, 0.830), (0.128, 0.044)], (0.32168, 0.33767))
+    for r, theta in zip(run_rgb("metal:" + metal, [0, 60, 85], "acescg"), [0, 60, 85]):
+        F = fresnel_exact(np.cos(np.radians(theta)), n)
+        rgb = ap1 @ adapt @ (w @ F)
+        assert np.all(np.abs(np.array(r["rgb"]) - rgb) <= 1e-9 + np.array(r["rgb_error"])), (metal, theta, r["rgb"], rgb)
+    # White stays white, and a constant spectrum its own value, in ACEScg too.
+    r = run_rgb("dielectric:eta=1.5", [0, 70], "acescg")
+    for res, theta in zip(r, [0, 70]):
+        F = fresnel_exact(np.cos(np.radians(theta)), 1.5 + 0j)
+        assert np.all(np.abs(np.array(res["rgb"]) - F) < 1e-12), (theta, res["rgb"], F)
 
 
 def test_constant_spectrum_is_its_own_colour():

@@ -50,6 +50,7 @@
 #define BB_FRESNEL_GEN_SCHLICK 5
 #define BB_FRESNEL_GEN_SCHLICK_IOR 6
 #define BB_FRESNEL_THIN_FILM 7 /* one film on a substrate at one wavelength: thin_film.h */
+#define BB_FRESNEL_TABLE 8     /* a curve F(cos) tabulated by the host (a colour channel): below */
 
 /* Parameter slots. */
 #define BB_SCHLICK_F0 0
@@ -281,6 +282,53 @@ BB_FN bb_real bb_fresnel_conductor_approx(bb_real cos_theta, bb_real eta, bb_rea
     return BB_R(0.5) * (r.rs + r.rp);
 }
 
+/* ------------------------------------------------------------ tabulated curve */
+
+/* A Fresnel curve the host tabulates: one colour channel of a spectral term, F_c(cos) =
+ * sum_lambda w_c(lambda) F(lambda, cos) (host/tables/spectral_fresnel.cpp). The albedo is linear
+ * in F and F depends on the angle alone, so the albedo at F_c is the channel of the spectral
+ * integral of the albedo: three integrations, not one per wavelength. F_c is not clamped: a
+ * colour outside the gamut (gold's linear-sRGB red, 1.04 at normal incidence) goes beyond
+ * [0, 1]. The n node values (at cos_i = i / (n - 1), i = 0 .. n - 1) are in the model data
+ * (BB_MODEL_DATA_ARG), from number BB_FRESNEL_TABLE_ALIGN * fp.v[BB_FRESNEL_TABLE_BLOCK] on
+ * (an offset in blocks, so that float parameters hold it exactly); F is their piecewise-linear
+ * interpolant, whose error the host measures. Unpolarised: Rs = Rp = F. cos is clamped to [0, 1]. */
+#define BB_FRESNEL_TABLE_NODES 0 /* n >= 2 */
+#define BB_FRESNEL_TABLE_BLOCK 1 /* where node 0 is, in blocks of BB_FRESNEL_TABLE_ALIGN numbers */
+#define BB_FRESNEL_TABLE_ID 2    /* the host's hash of the values: curves differ in their parameters */
+#define BB_FRESNEL_TABLE_ALIGN 64
+
+/* The interpolant at one (scalar) cosine, from the node values y[0 .. n - 1]. */
+#ifdef __OPENCL_C_VERSION__
+BB_FN bb_scalar bb_fresnel_table_at(bb_scalar cos_theta, int n, __global const bb_scalar* y) {
+#else
+BB_FN bb_scalar bb_fresnel_table_at(bb_scalar cos_theta, int n, const double* y) {
+#endif
+    bb_scalar t = (cos_theta < (bb_scalar)0 ? (bb_scalar)0 : (cos_theta > (bb_scalar)1 ? (bb_scalar)1 : cos_theta)) *
+                  (bb_scalar)(n - 1);
+    int i = (int)t;
+    i = i > n - 2 ? n - 2 : i;
+    bb_scalar f = t - (bb_scalar)i;
+    return y[i] + (y[i + 1] - y[i]) * f;
+}
+
+#ifdef __OPENCL_C_VERSION__
+/* F at cos_theta from the model data: per lane in a vector build (a gather). */
+BB_FN bb_real bb_fresnel_table(bb_real cos_theta, bb_params fp) {
+    int n = (int)bb_first(fp.v[BB_FRESNEL_TABLE_NODES]);
+    __global const bb_scalar* y =
+        fp.data + (size_t)bb_first(fp.v[BB_FRESNEL_TABLE_BLOCK]) * (size_t)BB_FRESNEL_TABLE_ALIGN;
+#ifdef BB_VECTOR_WIDTH
+    bb_scalar lanes[BB_VECTOR_WIDTH];
+    BB_CAT(vstore, BB_VECTOR_WIDTH)(cos_theta, 0, lanes);
+    for (int l = 0; l < BB_VECTOR_WIDTH; ++l) lanes[l] = bb_fresnel_table_at(lanes[l], n, y);
+    return BB_CAT(vload, BB_VECTOR_WIDTH)(0, lanes);
+#else
+    return bb_fresnel_table_at(cos_theta, n, y);
+#endif
+}
+#endif
+
 /* ---------------------------------------------------------------- dispatch */
 
 /* Rs and Rp for the given kind. The unpolarised kinds (none, Schlick) return Rs = Rp = F.
@@ -313,6 +361,12 @@ BB_FN bb_fresnel_sp bb_fresnel_eval_sp(int kind, bb_params fp, bb_real cos_theta
         return bb_fresnel_thin_film_sp(cos_theta, fp.v[BB_THIN_FILM_ETA], fp.v[BB_THIN_FILM_K],
                                        fp.v[BB_THIN_FILM_THICKNESS], fp.v[BB_THIN_FILM_BASE_ETA],
                                        fp.v[BB_THIN_FILM_BASE_K], fp.v[BB_THIN_FILM_WAVELENGTH]);
+#ifdef __OPENCL_C_VERSION__
+    case BB_FRESNEL_TABLE: { /* the host has no model data here: it reads FresnelConfig::curve */
+        bb_real f = bb_fresnel_table(cos_theta, fp);
+        return bb_make_fresnel_sp(f, f);
+    }
+#endif
     default:
         return bb_make_fresnel_sp(BB_R(1.0), BB_R(1.0));
     }
