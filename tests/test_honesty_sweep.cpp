@@ -82,6 +82,16 @@ LutRequest request(const std::string& kind, const std::string& model, int w, int
     return r;
 }
 
+/// A rough dielectric kind's request at one eta texel, 1.5, and `w` roughness texels over [lo, hi].
+LutRequest eta_15_request(const std::string& kind, int w, double alpha_lo, double alpha_hi) {
+    LutRequest r = request(kind, "ggx", w, 1, 1);
+    r.alpha_lo = alpha_lo;
+    r.alpha_hi = alpha_hi;
+    r.eta_lo = 1.4;
+    r.eta_hi = 1.6;
+    return r;
+}
+
 /// GGX (height-correlated) weighted by w(wo.h): the albedo under a Fresnel factor w.
 double weighted(double mu, double alpha, const std::function<ref::ld(ref::ld)>& w) {
     return ref::ggx_albedo_weighted(mu, alpha, w, 1e-9);
@@ -327,11 +337,7 @@ std::map<std::string, Sweep> sweeps() {
     s["sheen-viewer"] = sweep_sheen_viewer;
     s["dielectric-eavg"] = [] {
         // One texel: roughness 0.8 (alpha 0.64), eta 1.5, both sides; inside bends at mu = 1/1.5.
-        LutRequest r = request("dielectric-eavg", "ggx", 1, 1, 1);
-        r.alpha_lo = 0.75;
-        r.alpha_hi = 0.85;
-        r.eta_lo = 1.4;
-        r.eta_hi = 1.6;
+        const LutRequest r = eta_15_request("dielectric-eavg", 1, 0.75, 0.85);
         check_table(compute_lut(testing::engine(), r), 1e-6, [](double, double a, double eta) {
             REQUIRE(a == Approx(0.64).epsilon(1e-12));
             REQUIRE(eta == Approx(1.5).epsilon(1e-12));
@@ -341,12 +347,8 @@ std::map<std::string, Sweep> sweeps() {
     s["dielectric"] = [] {
         // Two texels of R, T, R_inside, T_inside at eta 1.5, rough lobes (the reference is slow
         // for narrow ones seen from inside).
-        LutRequest r = request("dielectric", "ggx", 2, 1, 1);
-        r.alpha_lo = 0.5;
-        r.alpha_hi = 0.7;
+        LutRequest r = eta_15_request("dielectric", 2, 0.5, 0.7);
         r.mu_lo = 0.5;
-        r.eta_lo = 1.4;
-        r.eta_hi = 1.6;
         check_table(compute_lut(testing::engine(), r), 1e-6, [](double mu, double a, double eta) {
             double ro, to, ri, ti;
             ref::rough_dielectric_rt(mu, a, eta, ref::DielectricShadowing::Beta, ro, to, 1e-9);
