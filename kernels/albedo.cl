@@ -121,9 +121,7 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     const bb_quad_dist dist = bb_model_quad_dist(BB_MODEL, p);                                    \
     const int mirrored = bb_quad_mirrored(BB_MODEL, p, dist, phi_o);                              \
     BB_QUAD_SPLITS;                                                                               \
-    if ((mirrored && q >= 2u) ||                                                                  \
-        ((piece & 1u) && (dist.kind == BB_QUAD_SAMPLER ||                                         \
-                          bb_all(bb_quad_azimuth_node(dist, phi_o, piece, BB_R(0.5), kink_delta).ddelta == BB_R(0.0))))) { \
+    if (bb_quad_piece_empty(BB_MODEL, p, dist, phi_o, piece, kink_delta)) {                         \
         piece_sum[gid] = 0;                                                                       \
         bad_count[gid] = 0u;                                                                      \
         return;                                                                                   \
@@ -139,10 +137,33 @@ BB_FN unsigned int bb_read_params(__global const bb_scalar* model_p, __global co
     const int cone = dist.kind == BB_QUAD_SAMPLER && bb_model_has_trait(BB_MODEL, BB_TRAIT_MIRROR_CONE); \
     const bb_real u_cone = cone ? bb_quad_sampler_cone_u1(BB_MODEL, p, BB_FRESNEL, fp, wo) : BB_R(1.0); \
     const int cusp = dist.kind != BB_QUAD_SAMPLER && bb_quad_fresnel_cusp(BB_FRESNEL, fp);       \
-    const bb_real kink_cos = dist.kind != BB_QUAD_SAMPLER ? bb_quad_fresnel_kink_cos(BB_FRESNEL, fp) : BB_R(-1.0); \
+    const bb_real kink_cos = bb_quad_cell_kink_cos(dist, BB_FRESNEL, fp);                        \
     const int n_parts = 1 + cusp + (bb_all(kink_cos > BB_R(0.0)) ? 2 : 0);                      \
-    const bb_real kink_delta = bb_all(kink_cos > BB_R(0.0)) ? bb_quad_kink_delta(wo, kink_cos) : BB_R(0.5) * BB_PI
+    const bb_real kink_delta = bb_quad_kink_delta(wo, kink_cos)
 
+
+/* One half-vector row r at azimuth offset delta (bb_make_quad_row), t over [0, t_max] cut at the
+ * Fresnel term's cusp and kinks (BB_QUAD_SPLITS: cusp, kink_cos, n_parts), the rule's n nodes on
+ * each part: the row's sum; the live lanes' non-finite points (skipped) are added to *bad. Shared
+ * by the scalar kernel (live = 1) and the rows kernel (one row per lane). */
+BB_FN bb_real bb_quad_halfvector_row(bb_params p, bb_params fp, bb_vec3 wo, bb_quad_dist dist, bb_quad_row r,
+                                     bb_real delta, int cusp, bb_real kink_cos, int n_parts,
+                                     __global const bb_scalar* x, __global const bb_scalar* wt, unsigned int n,
+                                     bb_mask live, bb_mask* bad) {
+    bb_real row = BB_R(0.0), row_comp = BB_R(0.0);
+    bb_real cut[3];
+    bb_quad_row_cuts(r, wo, delta, cusp, kink_cos, cut);
+    for (int part = 0; part < n_parts; ++part) {
+        const bb_quad_part pt = bb_quad_row_part(cut, n_parts, part, r.t_max);
+        for (unsigned int k = 0; k < n; ++k) {
+            const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, pt.lo + pt.len * x[k]);
+            const bb_mask ok = isfinite(w);
+            *bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
+            BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), pt.len * wt[k] * w, ok));
+        }
+    }
+    return row;
+}
 #endif /* BB_QUADRATURE */
 
 #ifndef BB_VECTOR_WIDTH
@@ -245,18 +266,9 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE(BB_QUADRATURE_ARGS) {
         } else {
             const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, x[j], kink_delta);
             const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
-            /* t over [0, t_max] cut at the Fresnel term's cusp and kinks (BB_QUAD_SPLITS) */
-            bb_real cut[3];
-            bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
-            for (int part = 0; part < n_parts; ++part) {
-                const bb_quad_part pt = bb_quad_row_part(cut, n_parts, part, r.t_max);
-                for (unsigned int k = 0; k < n; ++k) {
-                    const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, pt.lo + pt.len * x[k]);
-                    const int ok = isfinite(w);
-                    bad += ok ? 0u : 1u;
-                    BB_KAHAN_ADD(row, row_comp, ok ? pt.len * wt[k] * w : BB_R(0.0));
-                }
-            }
+            bb_mask row_bad = 0;
+            row = bb_quad_halfvector_row(p, fp, wo, dist, r, az.delta, cusp, kink_cos, n_parts, x, wt, n, 1, &row_bad);
+            bad += (unsigned int)row_bad;
             scale = az.ddelta; /* pi/2 for a whole quarter in delta */
         }
         BB_KAHAN_ADD(sum, comp, wt[j] * scale * row);
@@ -335,20 +347,9 @@ __kernel void BB_ENTRY_ALBEDO_QUADRATURE_ROWS(BB_QUADRATURE_ARGS) {
         const bb_mask live = wj > BB_R(0.0);
         const bb_quad_azimuth az = bb_quad_azimuth_node(dist, phi_o, piece, xj, kink_delta);
         const bb_quad_row r = bb_make_quad_row(dist, wo, phi_o, az.delta);
-        bb_real row = BB_R(0.0), row_comp = BB_R(0.0);
-        /* Not unrolled: 4x unrolling saved ~15% of this loop's time (5-7 ms of the 64x64 table
-         * at --tolerance 1e-5) but cost ~0.1 s more of PoCL's cold compile. */
-        bb_real cut[3];
-        bb_quad_row_cuts(r, wo, az.delta, cusp, kink_cos, cut);
-        for (int part = 0; part < n_parts; ++part) {
-            const bb_quad_part pt = bb_quad_row_part(cut, n_parts, part, r.t_max);
-            for (unsigned int k = 0; k < n; ++k) {
-                const bb_real w = bb_quad_halfvector_point(BB_MODEL, p, BB_FRESNEL, fp, wo, dist, r, pt.lo + pt.len * x[k]);
-                const bb_mask ok = isfinite(w);
-                bad += bb_select((bb_mask)0, (bb_mask)1, live & ~ok);
-                BB_KAHAN_ADD(row, row_comp, bb_select(BB_R(0.0), pt.len * wt[k] * w, ok));
-            }
-        }
+        /* Not unrolled (bb_quad_halfvector_row): 4x unrolling saved ~15% of this loop's time (5-7 ms
+         * of the 64x64 table at --tolerance 1e-5) but cost ~0.1 s more of PoCL's cold compile. */
+        const bb_real row = bb_quad_halfvector_row(p, fp, wo, dist, r, az.delta, cusp, kink_cos, n_parts, x, wt, n, live, &bad);
         const bb_real scale = az.ddelta;
         BB_KAHAN_ADD(sum, comp, bb_select(BB_R(0.0), wj * scale * row, live));
     }

@@ -85,7 +85,7 @@ void check_against_definition(const Decoded& d, bool charlie) {
                                                         << ", roughness " << r << ", reference " << expect);
         CHECK(d.at(p[0], p[1], 0) == d.at(p[0], p[1], 2));  // R = G = B: .r and .b read the same
         CHECK(d.at(p[0], p[1], 0) == d.at(p[0], p[1], 1));
-        // 16-bit quantization (7.6e-6) and the table's quadrature (its error channel: ~1e-5)
+        // 16-bit quantization (7.6e-6) and the table's quadrature (its error channel: below 1e-6)
         CHECK(std::fabs(d.at(p[0], p[1], charlie ? 0 : 2) - expect) < 1e-4);
     }
     for (double v : d.rgb) CHECK((v >= 0.0 && v <= 1.0));

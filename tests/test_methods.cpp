@@ -216,6 +216,22 @@ TEST_CASE("quadrature follows elongated anisotropic lobes off their axes", "[met
     }
 }
 
+TEST_CASE("quadrature counts the azimuth pieces it runs: an isotropic lobe cut where rows stop crossing a kink",
+          "[methods][quadrature][device]") {
+    // gen-schlick-ior at eta 4.56 (Cycles' z = 0.8): its clamped weight is 0 above wo.h = 0.09, so
+    // at mu_o = 1e-4 < 0.09 rows stop crossing that kink inside each quarter of the azimuth, which
+    // an isotropic lobe's two mirrored quarters are cut at (4 pieces); at mu_o = 0.9 every row's
+    // largest wo.h is above it, no cut (2 pieces). n = 32: rules of 32, 16 and 8 nodes.
+    AlbedoRequest req = testing::albedo_request("ggx:alpha=0.5", {1e-4, 0.9}, Method::Quadrature, Precision::Double,
+                                                4 * 32 * 32);
+    req.fresnel = resolve_fresnel("gen-schlick-ior:f0=0,f90=1,eta=4.55556");
+    const AlbedoResult r = compute_albedo(testing::engine(), req);
+    const std::uint64_t per_piece = 32u * 32u + 16u * 16u + 8u * 8u;
+    CHECK(r.values[0].samples == 4u * per_piece);
+    CHECK(r.values[1].samples == 2u * per_piece);
+    CHECK(r.samples_per_cell == 4u * per_piece);
+}
+
 TEST_CASE("float carries an index as close to 1 as 1.0001 through eta - 1", "[methods][fresnel][device]") {
     // 1.0001f is 1 + 1.00017e-4: from eta alone a float kernel would integrate F of the wrong
     // index, 3.3e-4 relative off (F ~ (eta - 1)^2), beyond its own error estimate.

@@ -249,9 +249,13 @@ AlbedoResult compute_quadrature(Engine& engine, const AlbedoRequest& req) {
         v.value = fine;
         v.error = quadrature_error(fine, coarse, coarsest, model_traits(req.model).kinked_quadrature) +
                   fp_bound * std::max(std::fabs(fine), 1e-3);
+        // The pieces the kernel ran (bb_quad_piece_empty): an isotropic lobe's quarters cut at a kink too.
         const bb_params cell_p = to_bb_params(req.cells[c].params);
-        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(req.model, cell_p,
-                                                                  bb_model_quad_dist(req.model, cell_p), req.cells[c].phi));
+        const bb_quad_dist dist = bb_model_quad_dist(req.model, cell_p);
+        const bb_real kink_cos = bb_quad_cell_kink_cos(dist, req.fresnel.kind, to_bb_params(req.fresnel.params));
+        const bb_vec3 wo = bb_dir_from_mu_phi(req.cells[c].mu, req.cells[c].phi);
+        v.samples = per_piece * std::uint64_t(bb_quad_piece_count(req.model, cell_p, dist, req.cells[c].phi,
+                                                                  bb_quad_kink_delta(wo, kink_cos)));
         result.samples_per_cell = std::max(result.samples_per_cell, v.samples);
         result.total_samples += v.samples;
         v.method = Method::Quadrature;

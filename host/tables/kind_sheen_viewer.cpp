@@ -14,13 +14,14 @@
 // The integral is computed here on the host, deterministically: half-vector directions drawn by
 // the inverse CDF of D_Charlie cos(theta_h) (sin(theta_h) = u^(alpha/(2 alpha + 1)), the viewer's
 // own Charlie() mapping), so that f NdotL / pdf(L) = 4 V NdotL VdotH / NdotH is bounded, and
-// integrated with a 128 x 128 Gauss-Legendre rule over (u, phi) (phi over [0, pi], the lobe is
-// mirror symmetric); the error channel is its difference from the 64 x 64 rule. The viewer's
-// runtime generator (ibl_filtering.frag, LUT()) sums the same integrand over Charlie-distributed
+// integrated by 32-point Gauss-Legendre rules on pieces split at every kink of the clamped
+// visibility (sheen_albedo); the error channel is the difference from the 16-point rules on the
+// same pieces. The viewer's runtime generator (ibl_filtering.frag, LUT()) sums the same integrand over Charlie-distributed
 // half vectors but divides by a uniform-hemisphere pdf (its factor 4 * 2 pi / N), so what it
 // renders into its runtime texture is not this integral; docs/models.md says so.
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <thread>
 
 #include "brdfbake/brdf/models.h"
@@ -32,6 +33,8 @@ namespace tables {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
+/// Gauss-Legendre points per smooth piece, in u and in phi: the value's rule and the error's.
+constexpr int kFine = 32, kCoarse = 16;
 
 /// The Estevez-Kulla fit of the sheen Lambda as the viewer's brdf.glsl writes it (lambdaSheen).
 double lambda_fit(double x, double alpha) {
@@ -79,24 +82,98 @@ Rule gauss_legendre(int n) {
     return r;
 }
 
-/// E(mu, alpha) with the rule's nodes in u (the Charlie inverse CDF) and phi in [0, pi].
-double sheen_albedo(const Rule& rule, bool charlie, double mu, double alpha) {
-    const double exponent = alpha / (2.0 * alpha + 1.0), sin_o = std::sqrt(std::max(0.0, 1.0 - mu * mu));
-    double sum = 0.0;
-    for (size_t i = 0; i < rule.x.size(); ++i) {
-        const double s = std::pow(rule.x[i], exponent), c = std::sqrt(std::max(0.0, 1.0 - s * s));
-        if (c <= 0.0) continue;
-        double inner = 0.0;
-        for (size_t j = 0; j < rule.x.size(); ++j) {
-            const double phi = kPi * rule.x[j];
-            const double vh = sin_o * s * std::cos(phi) + mu * c;  // V = (sin_o, 0, mu), H = (s cos, s sin, c)
-            const double nl = 2.0 * vh * c - mu;
-            if (vh <= 0.0 || nl <= 0.0) continue;
-            inner += rule.w[j] * visibility(charlie, alpha, mu, nl) * nl * 4.0 * vh / c;
+/// The NdotL levels where the clamped visibility's derivatives jump: 0 (the horizon, where the
+/// integrand meets 0 with a slope), each NdotL where V crosses 1 (found by a scan and bisection:
+/// V_Ashikhmin crosses once, V_Sheen's fitted Lambda may cross more often), and for V_Sheen 0.5,
+/// where lambda_sheen switches branches (its second derivative jumps there).
+std::vector<double> kink_levels(bool charlie, double alpha, double mu) {
+    std::vector<double> levels = {0.0};
+    if (charlie) levels.push_back(0.5);
+    auto above = [&](double nl) { return visibility(charlie, alpha, mu, nl) >= 1.0; };
+    const int scan = 256;
+    for (int k = 0; k < scan; ++k) {
+        double a = (k + 1e-9) / scan, b = (k + 1.0) / scan;
+        const bool at_a = above(a);
+        if (at_a == above(b)) continue;
+        for (int it = 0; it < 60; ++it) {
+            const double m = 0.5 * (a + b);
+            (above(m) == at_a ? a : b) = m;
         }
-        sum += rule.w[i] * inner;
+        levels.push_back(0.5 * (a + b));
     }
-    return sum;  // the pdf of (u, phi/pi) is uniform: the sum over the unit square is the mean
+    return levels;
+}
+
+/// The two rules' estimates of one texel, and the integrand evaluations they took.
+struct Estimate {
+    double fine = 0.0, coarse = 0.0;
+    std::uint64_t nodes = 0;
+};
+
+/// E(mu, alpha) by product Gauss-Legendre rules, split where the integrand's derivatives jump so
+/// that every piece is smooth and the difference of the kFine and kCoarse rules bounds the error
+/// (issue 37: the former 128^2 vs 64^2 rules over the whole square understated it at grazing mu).
+/// Half vectors H = (s cos phi, s sin phi, c) by the Charlie inverse CDF u (s = u^exponent), where
+/// f NdotL / pdf = 4 V NdotL VdotH / NdotH; with V = (sin_o, 0, mu), NdotL = 2 c (sin_o s cos phi
+/// + mu c) - mu falls with phi in [0, pi], so a row (fixed theta_h) splits phi where NdotL meets
+/// each kink level L (kink_levels). A row's NdotL spans [cos(2 theta_h + theta_o), cos(2 theta_h -
+/// theta_o)] (the reflection of V about H in the plane of incidence): a level enters or leaves the
+/// rows at theta_h = (theta_o +- acos L)/2 and (acos L - theta_o)/2, where the rows' integral has a
+/// (3/2)-power kink; the outer integral splits there. It runs over y = sqrt(1 - u) (du = 2 y dy):
+/// in u the rows have a branch point at u = 1 (c = sqrt(1 - u^(2 exponent))), next to the pieces
+/// that grazing views end there, and the lobe of a small alpha (within sqrt(alpha) of theta_h =
+/// pi/2) spans y in [0, ~1]. On each outer piece y = lo + width (3 t^2 - 2 t^3): the (3/2)-power
+/// kinks at its ends, and the rows' start a + b u^(2 exponent) at u = 0, are smoother in t.
+Estimate sheen_albedo(const Rule& fine, const Rule& coarse, bool charlie, double mu, double alpha) {
+    const double exponent = alpha / (2.0 * alpha + 1.0), sin_o = std::sqrt(std::max(0.0, 1.0 - mu * mu));
+    const double theta_o = std::acos(mu);
+    const std::vector<double> levels = kink_levels(charlie, alpha, mu);
+    std::vector<double> cuts_y = {0.0, 1.0};
+    for (double level : levels) {
+        const double a = std::acos(level);
+        for (double th : {0.5 * (theta_o + a), 0.5 * (theta_o - a), 0.5 * (a - theta_o)})
+            if (th > 0.0 && th < 0.5 * kPi) cuts_y.push_back(std::sqrt(-std::expm1(std::log(std::sin(th)) / exponent)));
+    }
+    std::sort(cuts_y.begin(), cuts_y.end());
+    Estimate e;
+    auto row = [&](const Rule& rule, double s, double c) {  // the mean over phi / pi in [0, 1]
+        if (c <= 0.0) return 0.0;
+        const double a = sin_o * s, b = mu * c;
+        std::vector<double> cuts = {0.0, kPi};
+        for (double level : levels) {
+            const double x = a > 0.0 ? ((level + mu) / (2.0 * c) - b) / a : 2.0;
+            if (std::abs(x) < 1.0) cuts.push_back(std::acos(x));
+        }
+        std::sort(cuts.begin(), cuts.end());
+        double sum = 0.0;
+        for (size_t p = 0; p + 1 < cuts.size(); ++p) {
+            const double lo = cuts[p], width = cuts[p + 1] - lo;
+            if (width <= 0.0 || 2.0 * c * (a * std::cos(lo + 0.5 * width) + b) - mu <= 0.0) continue;
+            e.nodes += rule.x.size();
+            for (size_t j = 0; j < rule.x.size(); ++j) {
+                const double vh = a * std::cos(lo + width * rule.x[j]) + b, nl = 2.0 * vh * c - mu;
+                if (nl > 0.0) sum += rule.w[j] * width * visibility(charlie, alpha, mu, nl) * nl * 4.0 * vh / c;
+            }
+        }
+        return sum / kPi;
+    };
+    auto piece = [&](const Rule& rule, double lo, double width) {  // over y in [lo, lo + width]
+        double sum = 0.0;
+        for (size_t i = 0; i < rule.x.size(); ++i) {
+            const double t = rule.x[i], dy = 6.0 * t * (1.0 - t) * width;
+            const double y = lo + width * t * t * (3.0 - 2.0 * t), log_u = std::log1p(-y * y);
+            const double s = std::exp(exponent * log_u), c = std::sqrt(-std::expm1(2.0 * exponent * log_u));
+            sum += rule.w[i] * dy * 2.0 * y * row(rule, s, c);
+        }
+        return sum;
+    };
+    for (size_t p = 0; p + 1 < cuts_y.size(); ++p) {
+        const double lo = cuts_y[p], width = cuts_y[p + 1] - lo;
+        if (width <= 0.0) continue;
+        e.fine += piece(fine, lo, width);
+        e.coarse += piece(coarse, lo, width);
+    }
+    return e;  // the pdf of (u, phi/pi) is uniform: the integral over the unit square is the mean
 }
 
 void validate_viewer(const LutRequest& r, const ModelConfig& m, const FresnelConfig&) {
@@ -113,18 +190,21 @@ Table compute_viewer(Engine&, const LutRequest& r, const ModelConfig& m, const F
     t.quantity = std::string("the glTF Sample Viewer's ") + (charlie ? "lut_sheen_E" : "lut_charlie") +
                  ": min(1, sheen directional albedo E(mu_o, sheenRoughness)) of D_Charlie with the viewer's " +
                  (charlie ? "V_Sheen (Estevez-Kulla fitted Lambda)" : "V_Ashikhmin") + " clamped to [0, 1]";
-    const Rule fine = gauss_legendre(128), coarse = gauss_legendre(64);
+    const Rule fine = gauss_legendre(kFine), coarse = gauss_legendre(kCoarse);
     const size_t n = g.cells.size();
     t.channels = {"E"};
     t.values.assign(1, std::vector<double>(n));
     t.error.assign(n, 0.0);
     std::vector<char> saturated(n, 0);
+    std::vector<std::uint64_t> nodes(n, 0);
     auto work = [&](size_t begin, size_t step) {
         for (size_t c = begin; c < n; c += step) {
             const double alpha = std::max(g.cells[c].params[BB_SHEEN_ALPHA], 1e-12);  // the viewer's r >= 1e-6
             const double mu = g.cells[c].mu;
-            const double e = sheen_albedo(fine, charlie, mu, alpha);
-            t.error[c] = std::abs(e - sheen_albedo(coarse, charlie, mu, alpha));
+            const Estimate est = sheen_albedo(fine, coarse, charlie, mu, alpha);
+            const double e = est.fine;
+            t.error[c] = std::abs(est.fine - est.coarse);
+            nodes[c] = est.nodes;
             saturated[c] = e > 1.0;
             t.values[0][c] = std::min(e, 1.0);
         }
@@ -134,8 +214,9 @@ Table compute_viewer(Engine&, const LutRequest& r, const ModelConfig& m, const F
     for (size_t k = 1; k < threads; ++k) pool.emplace_back(work, k, threads);
     work(0, threads);
     for (auto& th : pool) th.join();
-    describe(t, r, m, f.canonical, "quadrature (host, 128 x 128 Gauss-Legendre in the Charlie inverse CDF)",
-             128 * 128 + 64 * 64, g.clamped);
+    describe(t, r, m, f.canonical,
+             "quadrature (host, 32- and 16-point Gauss-Legendre in the Charlie inverse CDF, split at the clamp's kinks)",
+             n > 0 ? *std::max_element(nodes.begin(), nodes.end()) : 0, g.clamped);
     t.attributes["visibility"] = charlie ? "charlie" : "ashikhmin";
     t.attributes["saturated"] = std::to_string(std::count(saturated.begin(), saturated.end(), 1)) +
                                 " texels with E > 1 stored as 1";
@@ -152,10 +233,11 @@ TableKind sheen_viewer_kind() {
     k.plan_fresnel = "none (the sheen lobe has no Fresnel term)";
     k.required_model = "sheen";
     k.lobe_requirement = "the sheen-viewer table needs a sheen lobe (model sheen, KHR_materials_sheen)";
-    // Computed on the host: the plan counts its quadrature nodes (the layout's samples, 20480 a
-    // texel) as samples; a node costs about 1.5 engine albedo samples (10.5 s of CPU for the
-    // 128 x 128 table, measured on this project's 2-core machine).
-    k.sample_cost = 1.5;
+    // Computed on the host: the plan counts the layout's samples (20480 a texel) as samples; at 2.2
+    // engine albedo samples each they make the 15 s of CPU that the 128 x 128 lut_sheen_E takes
+    // (V_Sheen's fitted Lambda is the costly case; lut_charlie takes 1 s), measured on this
+    // project's 2-core machine.
+    k.sample_cost = 2.2;
     k.validate = validate_viewer;
     return k;
 }

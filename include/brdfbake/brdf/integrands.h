@@ -123,11 +123,6 @@ BB_FN bb_real bb_quad_piece_split(bb_quad_dist d, bb_real phi_o) {
     return bb_select(q - phi0, q, aligned);
 }
 
-/* The number of non-empty pieces (the node count is this times n^2). */
-BB_FN int bb_quad_piece_count(int model, bb_params p, bb_quad_dist d, bb_real phi_o) {
-    if (bb_quad_mirrored(model, p, d, phi_o)) return 2;
-    return bb_all(bb_quad_piece_split(d, phi_o) < BB_R(0.5) * BB_PI) ? 8 : 4;
-}
 
 /* The azimuth of node x in [0, 1] of piece (k, h) (piece = 2k + h); ddelta = 0 for an empty
  * piece. In a vector build (one row per lane, kernels/albedo.cl) only x may differ between
@@ -166,6 +161,28 @@ BB_FN bb_quad_azimuth bb_quad_azimuth_node(bb_quad_dist d, bb_real phi_o, unsign
     a.delta = j * q + bb_atan2(rho * s, c) - phi_o;
     a.ddelta = (th_hi - th_lo) * rho / (c * c + rho * rho * s * s);
     return a;
+}
+
+/* Whether piece (0..BB_QUAD_PIECES - 1) of a cell's rule is empty: with mirror symmetry
+ * (bb_quad_mirrored) quarters 2 and 3 (quarters 0 and 1 count twice); the halves h = 1 in the
+ * sampler's square, and where bb_quad_azimuth_node gives no width (no axis crossing, no kink
+ * cut: kink_delta as bb_quad_kink_delta gives it, pi/2 for none). The kernels skip these; the
+ * host counts the others (bb_quad_piece_count). */
+BB_FN int bb_quad_piece_empty(int model, bb_params p, bb_quad_dist d, bb_real phi_o, unsigned int piece,
+                              bb_real kink_delta) {
+    if (bb_quad_mirrored(model, p, d, phi_o) && (piece >> 1) >= 2u) return 1;
+    return (piece & 1u) && (d.kind == BB_QUAD_SAMPLER ||
+                            bb_all(bb_quad_azimuth_node(d, phi_o, piece, BB_R(0.5), kink_delta).ddelta == BB_R(0.0)));
+}
+
+/* The number of non-empty pieces of a cell's rule (its node count per rule of n nodes is this
+ * times n^2 times the parts of a row): 2 for an isotropic lobe, 4 where a kink cuts its quarters
+ * (bb_quad_kink_delta), 4 or 8 for an anisotropic one. */
+BB_FN int bb_quad_piece_count(int model, bb_params p, bb_quad_dist d, bb_real phi_o, bb_real kink_delta) {
+    int count = 0;
+    for (unsigned int piece = 0; piece < 8u; ++piece)
+        count += bb_quad_piece_empty(model, p, d, phi_o, piece, kink_delta) ? 0 : 1;
+    return count;
 }
 
 /* Sampler space for the cosine samplers (Lambert, Oren-Nayar: sin^2(theta_i) = u1; the
@@ -325,12 +342,18 @@ BB_FN bb_real bb_quad_fresnel_kink_cos(int fkind, bb_params fp) {
     return BB_R(0.5) * (lo + hi);
 }
 
+/* A cell's kink cosine: bb_quad_fresnel_kink_cos in half-vector space, -1 (none) in the sampler's. */
+BB_FN bb_real bb_quad_cell_kink_cos(bb_quad_dist d, int fkind, bb_params fp) {
+    return d.kind != BB_QUAD_SAMPLER ? bb_quad_fresnel_kink_cos(fkind, fp) : BB_R(-1.0);
+}
+
 /* The azimuth offset delta in [0, pi/2] at which half-vector rows stop crossing the kink
  * wo.h = kink_cos, or pi/2 for none: a row's largest wo.h is R(delta) = sqrt(mu_o^2 +
  * sin^2(theta_o) cos^2(delta)) (bb_quad_row_cuts), which falls to kink_cos at
  * cos(delta) = sqrt(kink_cos^2 - mu_o^2) / sin(theta_o) when mu_o < kink_cos (grazing views: the
  * preset's mu = 1e-4 at eta 4.56, kink_cos 0.09). Across it the row integral's derivative has a
- * square-root singularity in delta, where the outer Gauss rule converges only algebraically. */
+ * square-root singularity in delta, where the outer Gauss rule converges only algebraically.
+ * pi/2 for kink_cos <= mu_o (none: kink_cos -1). */
 BB_FN bb_real bb_quad_kink_delta(bb_vec3 wo, bb_real kink_cos) {
     const bb_real q = BB_R(0.5) * BB_PI;
     bb_real sin_o = bb_safe_sqrt(bb_sin2_from_cos(wo.z));
