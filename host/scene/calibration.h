@@ -14,6 +14,7 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
@@ -76,8 +77,29 @@ struct Calibration {
     CalibratedLine previews;  // seconds over texels
     CalibratedFigure build_seconds_per_program, report_check_seconds;
 
+    /// How much slower than on idle cores this machine runs now (measure_slowdown; 1: idle, or not
+    /// measured). The figures are idle-core seconds (the built-in ones measured so, a bake's
+    /// divided by its own slowdown); the estimates are those times this.
+    double slowdown = 1.0;
+
     /// The file has figures for this machine (same host and hardware threads, a bake recorded).
     bool applies() const;
+};
+
+/// A shared machine's cores are not all this process's: the wall time of parallel work over its
+/// CPU time per hardware thread (process-wide, every thread) says how much of them it gets. On
+/// the 2-core development machine, shared with other jobs, bakes took 1x to 9x their idle-core
+/// time within the same hour (benchmarks/results/plan-estimates-2c-shared.md).
+class SlowdownClock {
+public:
+    SlowdownClock();  // starts
+    /// wall seconds x hardware threads / CPU seconds since the start, at least 1 (1 also when
+    /// too little ran to say: under 0.02 CPU seconds).
+    double slowdown() const;
+    double wall_seconds() const;
+
+private:
+    double wall0_, cpu0_;
 };
 
 /// The cost of one sample of a model relative to GGX's where it differs by more than 1.5x.
@@ -121,7 +143,14 @@ struct BakeTimings {
     double build_seconds = 0;        // their total
     int report_checks = 0;           // lobe checks of the report (0: no report)
     double report_seconds = 0;
+    /// The machine's slowdown while the tables integrated (SlowdownClock over their
+    /// integration): the times above are divided by it when recorded.
+    double slowdown = 1.0;
 };
+
+/// BRDFBAKE_SLOWDOWN=X (a number of at least 1): the slowdown `plan` assumes instead of measuring
+/// it; -1 when unset. Throws Error naming the variable for any other value.
+double slowdown_from_environment();
 
 /// Adds a bake's measurements to `c`.
 void add_bake_timings(Calibration& c, const BakeTimings& t);

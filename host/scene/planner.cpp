@@ -527,6 +527,19 @@ Plan make_plan(const Scene& scene, const Calibration* calibration) {
         finish_table(plan, figures, std::move(t), file, half, model_name);
     }
     estimate_builds_and_report(plan, figures);
+    // Idle-core seconds times how much slower the machine runs now (calibration.h).
+    const double slowdown = calibration ? calibration->slowdown : 1.0;
+    if (slowdown > 1.0) {
+        for (auto& t : plan.tables) t.est_seconds *= slowdown;
+        plan.build_seconds *= slowdown;
+        plan.startup_seconds *= slowdown;
+        plan.report_seconds *= slowdown;
+        plan.samples_per_second /= slowdown;
+        char shared[160];
+        std::snprintf(shared, sizeof shared, "; times %.1f: the machine runs %.1fx slower than on idle cores now", slowdown,
+                      slowdown);
+        plan.throughput_basis += shared;
+    }
     return plan;
 }
 
