@@ -24,6 +24,7 @@ struct Frame {
     std::string pass;              // its pass, "pass 1 of 2: E" (empty: none)
     double launch_fraction = -1.0; // of the whole of its passes (the bar)
     double launch_shown = -1.0;    // of the launch itself (its percentage in words)
+    bool new_pass = false;         // a pass began and its first launch has not reported yet
     /// The passes open when a stage began inside a pass (pass k of n, outermost first): its
     /// fraction is placed in theirs, so one bar runs across all the passes.
     std::vector<std::pair<size_t, size_t>> passes;
@@ -196,6 +197,8 @@ ProgressStage::~ProgressStage() {
         std::lock_guard<std::mutex> lock(g_mutex);
         if (g_frames.size() != depth_) return;  // stages close in the order they opened
         if (depth_ == 1) publish(true);
+        // A counted inner stage's end ("4096 of 4096 cells certified") is shown once in a log.
+        else if (g_frames.back().total > 0) publish(false, true);
         g_frames.pop_back();
         if (!g_frames.empty()) {
             g_frames.back().launch.clear();
@@ -244,7 +247,9 @@ void report_progress(const std::string& what, std::uint64_t done, std::uint64_t 
         f.pass = label;
         f.launch_fraction = label.empty() ? raw : pass_fraction(raw);
         f.launch_shown = raw;
-        publish(false);
+        const bool new_pass = f.new_pass;
+        f.new_pass = false;
+        publish(false, new_pass);
         return;
     }
     const std::string what_shown = label.empty() ? what : label + ": " + what;
@@ -285,7 +290,8 @@ void progress_next_pass() {
         f.launch = f.pass = pass_label();
         f.launch_fraction = pass_fraction(0.0);
         f.launch_shown = 0.0;
-        publish(false, true);
+        f.new_pass = true;  // its first launch is written at once in a log
+        publish(false);
     }
 }
 

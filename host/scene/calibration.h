@@ -21,25 +21,28 @@
 
 namespace brdfbake {
 
-/// The built-in figures of the cost model (the development machine, 2 hardware threads, PoCL,
-/// float; benchmarks/results/plan-estimates-2c-shared.md). A calibration replaces those it has.
+/// The built-in figures of the cost model: seconds on idle cores of the development machine (AMD
+/// EPYC, 2 hardware threads, PoCL, float), from bakes' stage times divided by their measured
+/// slowdown (SlowdownClock; benchmarks/results/plan-estimates-2c-shared.md, 2026-12-03, load 15).
+/// A calibration replaces those it has; the estimates are these times the slowdown now.
 namespace builtin_figures {
-/// GGX albedo samples per second per hardware thread on PoCL's vector path, float (1024x316
-/// texels x 4096 samples in 5.8 s on 2 threads: 2.2e8 samples/s).
-constexpr double kSamplesPerSecondPerCore = 1.1e8;
-/// A kernel build and first launch on PoCL: 0.5 s cold, about 0.12 s from PoCL's kernel cache.
-constexpr double kSecondsPerProgram = 0.3;
-/// Per table: launches, assembling and writing the file (measured: 0.01 to 0.1 s).
-constexpr double kSecondsPerTable = 0.05;
-/// The preview picture bake writes beside a table (MathGL, single-threaded: 0.2 to 0.3 s for a
-/// 64x64 table), and per texel drawn.
-constexpr double kSecondsPerPreview = 0.3;
-constexpr double kSecondsPerPreviewTexel = 5e-7;
-/// Starting the process, the device and the bake folder (measured: about 0.3 s).
-constexpr double kStartupSeconds = 0.3;
+/// GGX albedo samples per second per hardware thread on PoCL's vector path, float (1024x1024
+/// texels x 4096 samples, 1.3e9 samples in 0.61-0.63 idle-core seconds on 2 threads: 2.1e9/s).
+constexpr double kSamplesPerSecondPerCore = 1.05e9;
+/// A kernel build from PoCL's cache (0.023 s measured; plan's slowdown probe has built the GGX
+/// albedo kernel; a cold build is several times more).
+constexpr double kSecondsPerProgram = 0.05;
+/// Per table: launches, assembling and writing the file (measured: 0.0002 to 0.002 s).
+constexpr double kSecondsPerTable = 0.005;
+/// The preview picture bake writes beside a table (MathGL, single-threaded: 0.02 s for 32 texels,
+/// 0.15-0.16 s for 316 K texels), and per texel drawn.
+constexpr double kSecondsPerPreview = 0.02;
+constexpr double kSecondsPerPreviewTexel = 4.3e-7;
+/// Starting the process, the device and the bake folder (measured: 0.06 to 0.09 CPU seconds).
+constexpr double kStartupSeconds = 0.1;
 /// One lobe check of the bake report (24 directions x 2^14 samples and 16^3 reciprocity pairs:
-/// 0.05 to 0.3 s a check).
-constexpr double kSecondsPerReportCheck = 0.2;
+/// 0.019 s a check, the mean of 20 bakes).
+constexpr double kSecondsPerReportCheck = 0.02;
 }  // namespace builtin_figures
 
 /// A measured figure: its running mean over the last few measurements.

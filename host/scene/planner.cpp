@@ -509,8 +509,8 @@ Plan make_plan(const Scene& scene, const Calibration* calibration) {
                                 (calibration->bakes == 1 ? "" : "s") + " (" + calibration->path +
                                 "; built-in figures where it has none; docs/scenes.md)";
     else
-        plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.1e8, built-in (PoCL, float, measured on "
-                                "the development machine; a bake calibrates them: docs/scenes.md)";
+        plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.05e9 on idle cores, built-in (PoCL, float, "
+                                "measured on the development machine; a bake calibrates them: docs/scenes.md)";
     if (calibration && !calibration->warning.empty()) plan.warnings.push_back(calibration->warning);
 
     plan.materials = scene.materials;
