@@ -169,6 +169,8 @@ double SlowdownClock::slowdown() const {
     return std::clamp(wall * this_threads() / cpu, 1.0, 100.0);
 }
 
+double serial_slowdown(double slowdown) { return std::max(1.0, slowdown / this_threads()); }
+
 double slowdown_from_environment() {
     const char* v = std::getenv("BRDFBAKE_SLOWDOWN");
     if (!v || !*v) return -1.0;
@@ -337,8 +339,9 @@ void add_bake_timings(Calibration& c, const BakeTimings& t) {
     for (const auto& r : t.tables)
         if (r.samples > 0)
             c.tables[calibration_rate_key(r.kind, r.model_name, r.precision)].add(double(r.samples), r.compute_seconds / s);
-    for (const auto& [texels, seconds] : t.previews) c.previews.add(texels, seconds / s);
-    if (t.programs > 0 && t.build_seconds > 0) c.build_seconds_per_program.add(t.build_seconds / t.programs / s);
+    const double serial = serial_slowdown(s);  // previews and builds run on one thread
+    for (const auto& [texels, seconds] : t.previews) c.previews.add(texels, seconds / serial);
+    if (t.programs > 0 && t.build_seconds > 0) c.build_seconds_per_program.add(t.build_seconds / t.programs / serial);
     if (t.report_checks > 0 && t.report_seconds > 0) c.report_check_seconds.add(t.report_seconds / t.report_checks / s);
 }
 

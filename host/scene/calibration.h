@@ -151,6 +151,12 @@ struct BakeTimings {
     double slowdown = 1.0;
 };
 
+/// The slowdown of a single-threaded stage (start-up, a kernel build, a preview) when parallel
+/// work runs `slowdown` times slower than on idle cores: the probe's wall over CPU time,
+/// max(1, slowdown / hardware threads). Measured on the development machine (2 threads, load 15):
+/// small bakes, mostly single-threaded, took 3.4x their CPU time while the probe measured 6.3.
+double serial_slowdown(double slowdown);
+
 /// BRDFBAKE_SLOWDOWN=X (a number of at least 1): the slowdown `plan` assumes instead of measuring
 /// it; -1 when unset. Throws Error naming the variable for any other value.
 double slowdown_from_environment();
