@@ -106,7 +106,8 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
 }
 
 /// How much slower than on idle cores the machine runs now (scene/calibration.h): a GGX albedo
-/// table of 2^27 samples timed after a first run of 2^20 that builds its kernel (about 0.1 s of CPU).
+/// table of 2^28 samples timed after a first run of 2^20 that builds its kernel (about 0.2 s of
+/// CPU; at 2^27 the measured factor spread 3 to 11 within two minutes at load 13).
 double probe_slowdown(const GlobalOptions& g) {
     Engine engine(g.device, false);
     LutRequest r;
@@ -117,7 +118,7 @@ double probe_slowdown(const GlobalOptions& g) {
     const ProgressSilence quiet;
     compute_lut(engine, r);
     r.width = 64;
-    r.height = 32;
+    r.height = 64;
     const SlowdownClock clock;
     compute_lut(engine, r);
     return clock.slowdown();
