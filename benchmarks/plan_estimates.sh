@@ -9,7 +9,10 @@
 # Not a test: timings depend on the machine. The estimates use the calibration file
 # (BRDFBAKE_CALIBRATION, docs/scenes.md "Estimates"), into which these bakes record too; the
 # column "basis" says whether the plan was calibrated. CALIBRATE=1 first bakes every scene once
-# (recording into the file) before measuring; BRDFBAKE_CALIBRATION=off measures the built-in figures.
+# (recording into the file) before measuring; BUILTIN=1 measures the built-in figures as a first
+# bake meets them (no calibration file yet: each plan is given a fresh path, so it measures the
+# machine's slowdown as `plan` does, and the bakes record nothing). Each plan measures how much
+# slower than idle cores the machine runs (BRDFBAKE_SLOWDOWN overrides; calibration.h).
 set -euo pipefail
 exe=$(realpath "${1:?usage: plan_estimates.sh BRDFBAKE [SCENE...]}")
 shift
@@ -37,11 +40,15 @@ echo "| --- | --- | --- | --- | --- | --- | --- | --- |"
 for s in "${scenes[@]}"; do
   extra=()
   case "$s" in *@*) extra=(${s#*@}); s=${s%%@*} ;; esac
-  read -r est basis < <("$exe" plan "$s" "${extra[@]}" --format json | /usr/bin/python3 -c 'import json,sys; e = json.load(sys.stdin)["estimate"]; print("%.2f" % e["seconds"], "calibrated" if e["basis"].startswith("calibrated") else "built-in")')
+  plan_env=()
+  [ "${BUILTIN:-0}" = 1 ] && plan_env=(env BRDFBAKE_CALIBRATION="$work/none-$RANDOM.json")
+  IFS=' ' read -r est basis < <("${plan_env[@]}" "$exe" plan "$s" "${extra[@]}" --format json | /usr/bin/python3 -c 'import json,re,sys; e = json.load(sys.stdin)["estimate"]; m = re.search(r"times ([0-9.]+)", e["basis"]); print("%.2f" % e["seconds"], ("calibrated" if e["basis"].startswith("calibrated") else "built-in") + ", slowdown " + (m.group(1) if m else "1"))')
   load=$(cut -d' ' -f1 /proc/loadavg)
   : >"$work/times"
   for _ in $(seq "$runs"); do
-    /usr/bin/time -f "%e %U %S" -o "$work/time" "${nice[@]}" "$exe" bake "$s" "${extra[@]}" --force -o "$work/out" 2>"$work/log" >/dev/null ||
+    bake_env=()
+    [ "${BUILTIN:-0}" = 1 ] && bake_env=(env BRDFBAKE_CALIBRATION=off)
+    /usr/bin/time -f "%e %U %S" -o "$work/time" "${bake_env[@]}" "${nice[@]}" "$exe" bake "$s" "${extra[@]}" --force -o "$work/out" 2>"$work/log" >/dev/null ||
       { echo "bake of $s failed:"; tail -3 "$work/log"; exit 1; }
     cat "$work/time" >>"$work/times"
     rm -rf "$work/out"

@@ -134,7 +134,7 @@ AlbedoOut python_albedo(const std::string& model_spec, const Array& mu, const st
     for (size_t i = 0; i < n; ++i) {
         const double m = mu.data()[i];
         if (!(m > 0.0 && m <= 1.0))
-            throw Error("mu: " + std::to_string(m) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
+            throw Error("mu: " + format_number(m) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
         req.cells.push_back(AlbedoCell{m, azimuth_from_degrees(phis[i]), model.params});
     }
     Engine& engine = engine_for(device);

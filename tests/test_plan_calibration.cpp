@@ -7,6 +7,8 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <fstream>
 #include <sstream>
@@ -14,6 +16,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "scene/calibration.h"
 #include "scene_support.h"
 #include "support.h"
 
@@ -61,9 +64,11 @@ std::string calibration_text(double rate, double fixed, double preview, const st
 }
 
 /// `plan` of the one-albedo-table scene with BRDFBAKE_CALIBRATION=`calibration`.
-json plan_with(const std::string& calibration) {
-    const auto r = testing::run_shell("BRDFBAKE_CALIBRATION='" + calibration + "' " + std::string(BRDFBAKE_EXE) +
-                                      " plan " + testing::scene::data("small_bake.json") +
+/// BRDFBAKE_SLOWDOWN=`slowdown`: assumed, not measured (by default idle cores: the figures alone
+/// make the estimate).
+json plan_with(const std::string& calibration, const std::string& slowdown = "1") {
+    const auto r = testing::run_shell("BRDFBAKE_SLOWDOWN=" + slowdown + " BRDFBAKE_CALIBRATION='" + calibration + "' " +
+                                      std::string(BRDFBAKE_EXE) + " plan " + testing::scene::data("small_bake.json") +
                                       " --tables albedo --samples 4096 --format json");
     INFO(r.err);
     REQUIRE(r.status == 0);
@@ -103,6 +108,72 @@ TEST_CASE("plan: a calibration file's figures give the estimate, proportionally"
     CHECK(p_fast["warnings"].empty());
     // The file is read, never written, by plan.
     CHECK(slurp_file(fast) == calibration_text(8e8, 0.25, 0.125));
+}
+
+TEST_CASE("plan: the estimates are idle-core seconds times the machine's slowdown now", "[scene][calibration][cli]") {
+    const std::string dir = scratch_dir("calibration-slowdown");
+    const std::string cal = dir + "/cal.json";
+    write_file(cal, calibration_text(8e8, 0.25, 0.125));
+    const json idle = plan_with(cal), shared = plan_with(cal, "3");
+    // The table's integration (its kernels) 3x, its preview (one thread) max(1, 3 / threads)x,
+    // from the figures written: samples / 8e8 + 0.25 s, the preview 0.125 s + 1e-6 s a texel.
+    const Estimate e = albedo_table(idle);
+    const double threads = std::max(1u, std::thread::hardware_concurrency());
+    const double integration = e.samples / 8e8 + 0.25, preview = 0.125 + 1e-6 * e.texels;
+    CHECK(e.seconds == Approx(integration + preview).epsilon(1e-9));
+    CHECK(albedo_table(shared).seconds == Approx(3 * integration + std::max(1.0, 3 / threads) * preview).epsilon(1e-9));
+    CHECK(shared["estimate"]["seconds"].get<double>() > 1.4 * idle["estimate"]["seconds"].get<double>());
+    CHECK(shared["estimate"]["basis"].get<std::string>().find("3.0x slower than on idle cores") != std::string::npos);
+    // A value that is not a slowdown: one line naming the variable, exit 2.
+    for (const std::string bad : {"0.5", "fast", "2x"}) {
+        const auto r = testing::run_shell("BRDFBAKE_SLOWDOWN=" + bad + " BRDFBAKE_CALIBRATION='" + cal + "' " +
+                                          std::string(BRDFBAKE_EXE) + " plan " + testing::scene::data("small_bake.json"));
+        INFO(bad << ": " << r.err);
+        CHECK(r.status == 2);
+        CHECK(r.err.rfind("brdfbake: error: BRDFBAKE_SLOWDOWN='" + bad + "' is not a number", 0) == 0);
+        CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    }
+    // Unset, plan measures it: at least 1 (never faster than idle cores); the basis says so when above.
+    const auto measured = testing::run_shell("BRDFBAKE_CALIBRATION='" + cal + "' " + std::string(BRDFBAKE_EXE) + " plan " +
+                                             testing::scene::data("small_bake.json") +
+                                             " --tables albedo --samples 4096 --format json");
+    REQUIRE(measured.status == 0);
+    CHECK(albedo_table(json::parse(measured.out)).seconds >= albedo_table(idle).seconds * (1 - 1e-9));
+}
+
+TEST_CASE("slowdown clock: one busy thread has one of the hardware threads", "[scene][calibration][quick]") {
+    // A single thread can use one core: wall x threads / CPU is at least the thread count (more
+    // when others share the core), whatever the machine.
+    const double threads = std::max(1u, std::thread::hardware_concurrency());
+    const brdfbake::SlowdownClock clock;
+    volatile double x = 0;
+    while (clock.wall_seconds() < 0.2) x = x + std::sqrt(x + 1.0);
+    CHECK(clock.slowdown() >= 0.9 * threads);
+    // Too little CPU time to say (a sleep): 1.
+    const brdfbake::SlowdownClock idle;
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    CHECK(idle.slowdown() == 1.0);
+}
+
+TEST_CASE("calibration: a bake's times are recorded over the slowdown it ran at", "[scene][calibration][quick]") {
+    using namespace brdfbake;
+    BakeTimings t;
+    t.tables.push_back({"albedo", "ggx", "float", 1000000, 6.0});
+    t.previews.push_back({4096.0, 1.5});
+    t.programs = 2;
+    t.build_seconds = 3.0;
+    t.report_checks = 4;
+    t.report_seconds = 12.0;
+    t.slowdown = 3.0;
+    Calibration c;
+    add_bake_timings(c, t);
+    REQUIRE(c.tables["albedo ggx float"].runs.size() == 1);
+    CHECK(c.tables["albedo ggx float"].runs[0].second == Approx(2.0));
+    // Previews and builds are single-threaded: over max(1, 3 / threads).
+    const double serial = std::max(1.0, 3.0 / std::max(1u, std::thread::hardware_concurrency()));
+    CHECK(c.previews.runs[0].second == Approx(1.5 / serial));
+    CHECK(c.build_seconds_per_program.value == Approx(1.5 / serial));
+    CHECK(c.report_check_seconds.value == Approx(1.0));
 }
 
 TEST_CASE("plan: another machine's calibration and none give the built-in figures", "[scene][calibration][cli]") {

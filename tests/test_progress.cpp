@@ -47,9 +47,9 @@ TEST_CASE("progress: lines when stderr is not a terminal, nothing with --quiet, 
     const std::string a = scratch("a.csv"), b = scratch("b.csv");
     const auto shown = run_shown_ok(kLong + a);
     INFO(shown.err);
-    const std::regex line(R"(brdfbake: +([0-9]+)% of albedo of 4096 cells, 1048576 samples each \([0-9.]+ s)");
+    const std::regex line(R"(brdfbake: +([0-9]+)% of albedo table into [^:]+: albedo of 4096 cells, 1048576 samples each [0-9]+% \([0-9.]+ s)");
     CHECK(std::regex_search(shown.err, line));
-    CHECK(shown.err.find("100% of albedo") != std::string::npos);
+    CHECK(shown.err.find("100% of albedo table into " + a) != std::string::npos);
     CHECK(shown.err.find('\r') == std::string::npos);  // no terminal control in a log
     const auto quiet = run_cli("--quiet " + kLong + b);
     REQUIRE(quiet.status == 0);
@@ -85,7 +85,7 @@ TEST_CASE("progress: a bar redrawn in place on a terminal", "[cli][progress]") {
     const std::string text = testing::slurp(log);
     INFO(text);
     CHECK(text.find("\r\033[K[") != std::string::npos);       // redrawn in place
-    CHECK(std::regex_search(text, std::regex(R"(\[#+\.*\] +[0-9]+%  albedo of 4096 cells)")));
+    CHECK(std::regex_search(text, std::regex(R"(\[#+\.*\] +[0-9]+%  albedo table into [^:]+: albedo of 4096 cells)")));
     CHECK(text.find("brdfbake:  ") == std::string::npos);      // not the plain lines
     std::remove(out.c_str());
     std::remove(log.c_str());
@@ -115,13 +115,13 @@ TEST_CASE("progress: a tolerance table reports cells certified over its rounds",
     INFO(shown.err);
     // 16x16x8 texels, two sides of the interface: 4096 cells, counted as they are certified.
     const std::regex line(
-        R"(brdfbake: +[0-9]+% of rough dielectric of 4096 cells to tolerance 0.0001: ([0-9]+) of 4096 cells certified)");
+        R"(brdfbake: +[0-9]+% of dielectric table into [^:]+: rough dielectric of 4096 cells to tolerance 0.0001 \(([0-9]+) of 4096 cells certified\))");
     const std::vector<double> certified = matches(shown.err, line);
     REQUIRE(certified.size() >= 2);
     CHECK(certified.front() == 0);       // the first line, at the start of round 1
     CHECK(certified.back() == 4096);     // the last: every cell met the tolerance
     CHECK(std::is_sorted(certified.begin(), certified.end()));
-    CHECK(shown.err.find("brdfbake: 100% of rough dielectric") != std::string::npos);
+    CHECK(shown.err.find("brdfbake: 100% of dielectric table into " + a) != std::string::npos);
     CHECK(shown.err.find('\r') == std::string::npos);
     const auto quiet = testing::run_shell(kShow + std::string(BRDFBAKE_EXE) + " --quiet " + kDielectric + b);
     REQUIRE(quiet.status == 0);
@@ -169,7 +169,7 @@ TEST_CASE("progress: a tolerance table's bar on a terminal", "[cli][progress]") 
     const std::string text = testing::slurp(log);
     INFO(text);
     CHECK(std::regex_search(
-        text, std::regex(R"(\r\x1b\[K\[[#.]+\] +[0-9]+%  rough dielectric of 4096 cells to tolerance 0.0001: [0-9]+ of 4096 cells certified)")));
+        text, std::regex(R"(\r\x1b\[K\[[#.]+\] +[0-9]+%  dielectric table into [^:]+: rough dielectric of 4096 cells to tolerance 0.0001 \([0-9]+ of 4096 cells certified\))")));
     CHECK(text.find("brdfbake:  ") == std::string::npos);  // not the plain lines
     std::remove(out.c_str());
     std::remove(log.c_str());
@@ -250,11 +250,16 @@ TEST_CASE("progress passes: 'pass k of n: NAME', the launch's fraction its pass'
         progress_next_pass();
         CHECK(sink.states.back().step == "[1/1] t.exr: pass 1 of 2: E");
         report_progress("albedo of 8 cells", 4, 8);
-        CHECK(sink.states.back().step_fraction == Approx(0.25));
+        CHECK(sink.states.back().milestone);  // a pass's first launch: a log writes it at once
+        report_progress("albedo of 8 cells", 4, 8);
+        CHECK(!sink.states.back().milestone);
+        // The words give the launch's own share (half of it), the bar its share of both passes.
+        CHECK(sink.states.back().step_fraction == Approx(0.5));
+        CHECK(sink.states.back().fraction == Approx(0.25));
         progress_next_pass();
         report_progress("albedo of 8 cells", 4, 8);
         CHECK(sink.states.back().step == "[1/1] t.exr: pass 2 of 2: B");
-        CHECK(sink.states.back().step_fraction == Approx(0.75));
+        CHECK(sink.states.back().step_fraction == Approx(0.5));
         CHECK(sink.states.back().fraction == Approx(0.75));
         // A pass beyond the names counts on with the last name.
         progress_next_pass();
@@ -279,14 +284,33 @@ TEST_CASE("progress passes: 'pass k of n: NAME', the launch's fraction its pass'
 
 TEST_CASE("progress: a split-sum table names its two passes, E then B (Karis 2013)", "[cli][progress]") {
     // dfg integrates every cell twice: E with F = 1 and B with Schlick's F at f0 = 0.
-    const std::string out = scratch("dfg.csv");
-    const auto shown = run_shown_ok("lut dfg --model ggx --size 64x64 --samples 65536 --no-preview -o " + out);
+    const std::string out = scratch("dfg.csv"), picture = scratch("dfg.png");
+    const auto shown = run_shown_ok("lut dfg --model ggx --size 64x64 --samples 65536 --preview " + picture + " -o " + out);
     INFO(shown.err);
     const size_t first = shown.err.find("pass 1 of 2: E (F = 1): albedo of 4096 cells");
     const size_t second = shown.err.find("pass 2 of 2: B (F = Schlick, f0 = 0): albedo of 4096 cells");
+    const size_t drawing = shown.err.find("dfg table into " + out + ": drawing its preview " + picture);
     CHECK(first != std::string::npos);
     CHECK(second != std::string::npos);
+    CHECK(drawing != std::string::npos);  // the preview is a step of its own, after the passes
     CHECK(first < second);
+    CHECK(second < drawing);
     CHECK(shown.err.find("pass 3") == std::string::npos);
+    // One bar across both passes, as in a bake: every line is of the one stage, its percentage
+    // never goes back, and the second pass starts at half of it (two passes of equal samples).
+    const std::regex line(R"(brdfbake: +([0-9]+)% of (.+?)(?=: | \())");
+    std::vector<double> pct;
+    for (auto it = std::sregex_iterator(shown.err.begin(), shown.err.end(), line); it != std::sregex_iterator(); ++it) {
+        CHECK((*it)[2].str() == "dfg table into " + out);
+        pct.push_back(std::stod((*it)[1].str()));
+    }
+    REQUIRE(pct.size() >= 3);
+    CHECK(std::is_sorted(pct.begin(), pct.end()));
+    CHECK(pct.back() == 100);
+    const std::string second_line = shown.err.substr(shown.err.rfind('\n', second) + 1);
+    std::smatch at_second;
+    REQUIRE(std::regex_search(second_line, at_second, std::regex(R"(^brdfbake: +([0-9]+)%)")));
+    CHECK(std::stod(at_second[1].str()) >= 50);
     std::remove(out.c_str());
+    std::remove(picture.c_str());
 }

@@ -9,6 +9,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/output.h"
+#include "brdfbake/progress.h"
 #include "brdfbake/table_kinds.h"
 #include "brdfbake/version.h"
 #include "cli/cli.h"
@@ -165,11 +166,22 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
                      shard.second, part.cells.size());
         return kExitOk;
     }
-    const Table table = compute_lut(engine, r);
-    OutputGroup together;  // the table and its preview land together or not at all
-    write_table(table, o.output, setup.half);
-    if (!o.no_preview) write_table_preview(table, preview, -1, PreviewLayout::Summary);
-    together.commit();
+    Table table;
+    {
+        // One display, as `bake`'s: the table's passes ("pass 1 of 2: E") share one bar, then its
+        // preview is a step of its own.
+        // A refinement's later rounds cost what they cost: its time left is its round's.
+        ProgressStage stage(r.kind + " table into " + o.output, 1, {}, {}, r.tolerance.tolerance <= 0);
+        stage.update(0, {}, 1);
+        table = compute_lut(engine, r);
+        OutputGroup together;  // the table and its preview land together or not at all
+        write_table(table, o.output, setup.half);
+        if (!o.no_preview) {
+            stage.update(1, "drawing its preview " + preview);
+            write_table_preview(table, preview, -1, PreviewLayout::Summary);
+        }
+        together.commit();
+    }
     if (!o.no_preview && table.depth() > kSummarySlices)  // a summary: the full picture on demand
         std::fprintf(stderr, "brdfbake: preview %s shows %d of %d slices; brdfbake show %s --plot FILE.png draws more\n",
                      preview.c_str(), kSummarySlices, table.depth(), o.output.c_str());

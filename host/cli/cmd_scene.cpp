@@ -21,6 +21,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/output.h"
+#include "brdfbake/progress.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table.h"
 #include "brdfbake/version.h"
@@ -104,7 +105,28 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
         ->excludes(cmd->get_option("--preset"));
 }
 
-Plan load_plan(const SceneOptions& o) {
+/// How much slower than on idle cores the machine runs now (scene/calibration.h): a GGX albedo
+/// table of 2^28 samples timed after a first run of 2^20 that builds its kernel (about 0.2 s of
+/// CPU; at 2^27 the measured factor spread 3 to 11 within two minutes at load 13).
+double probe_slowdown(const GlobalOptions& g) {
+    Engine engine(g.device, false);
+    LutRequest r;
+    r.kind = "albedo";
+    r.model = "ggx";
+    r.width = r.height = 4;
+    r.samples = 1u << 16;
+    const ProgressSilence quiet;
+    compute_lut(engine, r);
+    r.width = 64;
+    r.height = 64;
+    const SlowdownClock clock;
+    compute_lut(engine, r);
+    return clock.slowdown();
+}
+
+/// The plan of the scene; `probe`: the estimates measured against the machine's load now
+/// (`plan`, with a calibration file; a bake measures its own).
+Plan load_plan(const SceneOptions& o, const GlobalOptions* probe = nullptr) {
     Scene scene = load_scene(o.scene);
     SceneSettings& s = scene.settings;
     if (o.samples < 0) throw Error("--samples must be positive");
@@ -124,7 +146,11 @@ Plan load_plan(const SceneOptions& o) {
     s.preset = o.preset;
     s.target = o.target;
     check_settings(s);
-    const Calibration calibration = read_calibration(calibration_path());  // estimates from earlier bakes
+    Calibration calibration = read_calibration(calibration_path());  // estimates from earlier bakes
+    if (probe && !calibration.path.empty()) {
+        const double given = slowdown_from_environment();
+        calibration.slowdown = given > 0 ? given : probe_slowdown(*probe);
+    }
     return make_plan(scene, &calibration);
 }
 
@@ -183,7 +209,7 @@ struct PlanOptions {
 };
 
 int run_plan(const PlanOptions& o, const GlobalOptions& g) {
-    const Plan plan = load_plan(o.scene);
+    const Plan plan = load_plan(o.scene, &g);
     std::string out = o.format == "json" ? plan_json(plan) : plan_text(plan);
     if (o.measure) {
         // The scene's models against every model, each model its own program as the engine

@@ -1,8 +1,9 @@
 // The command line's progress display (brdfbake/progress.h): on a terminal a bar on stderr that
 // redraws in place (done, rate, time left), also while a long launch reports nothing (a ticker
-// thread redraws the clock); otherwise a plain line at least every 5 s while a stage runs, and at
-// each further tenth after at least a second. A stage that ends within a second prints nothing, so short runs stay quiet
-// (BRDFBAKE_PROGRESS_DELAY sets that second).
+// thread redraws the clock); otherwise a plain line at least every 5 s while a stage runs, at
+// each further tenth after at least a second, and at once when a new pass or step begins. A stage
+// that ends within a second prints nothing, so short runs stay quiet (BRDFBAKE_PROGRESS_DELAY
+// sets that second).
 #include <sys/ioctl.h>
 #include <unistd.h>
 
@@ -105,9 +106,11 @@ public:
         std::lock_guard<std::mutex> lock(mutex_);
         if (s.stage_id != state_.stage_id) {
             shown_ = false;
+            milestone_ = false;
             last_tenth_ = -1;
         }
         state_ = s;
+        milestone_ = milestone_ || s.milestone;
         received_ = Clock::now();
         if (s.finished) {
             if (shown_) {
@@ -158,8 +161,10 @@ private:
         } else {
             const int tenth = int(std::floor(state_.fraction * 10));
             const double quiet = since(last_draw_);
-            if (shown_ && quiet < 5.0 && !(tenth > last_tenth_ && quiet >= 1.0)) return;
+            // A new pass or step (the preview) is written at once: a log names every one.
+            if (shown_ && quiet < 5.0 && !(tenth > last_tenth_ && quiet >= 1.0) && !milestone_) return;
             last_tenth_ = tenth;
+            milestone_ = false;
             line();
         }
         std::fflush(stderr);
@@ -210,6 +215,7 @@ private:
     bool stop_ = false;
     bool active_ = false;
     bool shown_ = false;
+    bool milestone_ = false;  // a new step or pass not yet written to the log
     int last_tenth_ = -1;
     ProgressState state_;
     Clock::time_point received_, last_draw_;

@@ -22,7 +22,12 @@ struct Frame {
     std::string step;
     std::string launch;            // the last launch reported inside the step
     std::string pass;              // its pass, "pass 1 of 2: E" (empty: none)
-    double launch_fraction = -1.0;
+    double launch_fraction = -1.0; // of the whole of its passes (the bar)
+    double launch_shown = -1.0;    // of the launch itself (its percentage in words)
+    bool new_pass = false;         // a pass began and its first launch has not reported yet
+    /// The passes open when a stage began inside a pass (pass k of n, outermost first): its
+    /// fraction is placed in theirs, so one bar runs across all the passes.
+    std::vector<std::pair<size_t, size_t>> passes;
     Clock::time_point start, step_start;
 };
 
@@ -57,15 +62,22 @@ std::string pass_label() {
     return label;
 }
 
-/// A launch's fraction `f` of its pass as the fraction of all the open passes.
-double pass_fraction(double f) {
-    for (auto p = g_passes.rbegin(); p != g_passes.rend(); ++p) {
-        if (p->current == 0 || p->names.empty()) continue;
-        const double n = double(std::max(p->names.size(), p->current));
-        f = (double(p->current - 1) + f) / n;
-    }
+/// The passes running now, (pass k, of n), outermost first.
+std::vector<std::pair<size_t, size_t>> passes_now() {
+    std::vector<std::pair<size_t, size_t>> now;
+    for (const Passes& p : g_passes)
+        if (p.current > 0 && !p.names.empty()) now.emplace_back(p.current, std::max(p.names.size(), p.current));
+    return now;
+}
+
+/// A fraction `f` of the innermost pass of `passes` as the fraction of all of them.
+double across_passes(double f, const std::vector<std::pair<size_t, size_t>>& passes) {
+    for (auto p = passes.rbegin(); p != passes.rend(); ++p) f = (double(p->first - 1) + f) / double(p->second);
     return f;
 }
+
+/// A launch's fraction `f` of its pass as the fraction of all the open passes.
+double pass_fraction(double f) { return across_passes(f, passes_now()); }
 
 /// The label is the launch's while no stage was opened inside the innermost pass.
 bool launches_labelled() { return !g_passes.empty() && g_frames.size() <= g_passes.back().depth; }
@@ -83,7 +95,8 @@ std::string percent(double f) {
 /// enclosing frame, the frame inside it in words.
 struct Step {
     std::string text;
-    double fraction = -1.0;
+    double fraction = -1.0;  // of the frame's step, across the passes it runs in (the bar)
+    double shown = -1.0;     // of what runs itself (the percentage in words)
     Clock::time_point start;
 };
 
@@ -107,6 +120,7 @@ Step step_of(size_t i) {
     if (i + 1 == g_frames.size()) {
         s.text = f.step.empty() ? f.launch : f.pass.empty() ? f.step : f.step + ": " + f.pass;
         s.fraction = f.launch_fraction;
+        s.shown = f.launch_shown;
         return s;
     }
     const Frame& c = g_frames[i + 1];
@@ -114,9 +128,10 @@ Step step_of(size_t i) {
     std::string text = c.what;
     const std::string n = counts(c);
     if (!n.empty()) text += " (" + n + ")";
-    if (!inner.text.empty()) text += ": " + inner.text + (inner.fraction >= 0 ? percent(inner.fraction) : "");
+    if (!inner.text.empty()) text += ": " + inner.text + (inner.shown >= 0 ? percent(inner.shown) : "");
     s.text = f.step.empty() ? text : f.step + "; " + text;
-    s.fraction = frame_fraction(c, inner);
+    s.shown = frame_fraction(c, inner);
+    s.fraction = across_passes(s.shown, c.passes);
     s.start = c.start;
     return s;
 }
@@ -131,7 +146,7 @@ ProgressState state_of(const Frame& f, const Step& s, bool finished) {
     st.unit = f.unit;
     st.done_word = f.done_word;
     st.step = finished ? std::string() : s.text;  // an ended stage is shown by its name alone
-    st.step_fraction = finished ? -1.0 : s.fraction;
+    st.step_fraction = finished ? -1.0 : s.shown;
     st.fraction = finished ? 1.0 : frame_fraction(f, s);
     st.elapsed = seconds_between(f.start, now);
     st.finished = finished;
@@ -146,11 +161,13 @@ ProgressState state_of(const Frame& f, const Step& s, bool finished) {
     return st;
 }
 
-void publish(bool finished) {
+void publish(bool finished, bool milestone = false) {
     ProgressSink* sink = g_sink.load();
     // A stage's end always reaches the sink (one shown before a silence began must not stay drawn).
     if (!sink || g_frames.empty() || (g_silenced > 0 && !finished)) return;
-    sink->update(state_of(g_frames.front(), step_of(0), finished));
+    ProgressState st = state_of(g_frames.front(), step_of(0), finished);
+    st.milestone = milestone;
+    sink->update(st);
 }
 
 }  // namespace
@@ -164,6 +181,7 @@ ProgressStage::ProgressStage(std::string what, std::uint64_t total, std::string 
     f.id = g_next_id++;
     const std::string label = launches_labelled() ? pass_label() : std::string();
     f.what = label.empty() ? std::move(what) : label + ": " + what;
+    if (!label.empty()) f.passes = passes_now();
     f.total = total;
     f.unit = std::move(unit);
     f.done_word = std::move(done_word);
@@ -179,11 +197,13 @@ ProgressStage::~ProgressStage() {
         std::lock_guard<std::mutex> lock(g_mutex);
         if (g_frames.size() != depth_) return;  // stages close in the order they opened
         if (depth_ == 1) publish(true);
+        // A counted inner stage's end ("4096 of 4096 cells certified") is shown once in a log.
+        else if (g_frames.back().total > 0) publish(false, true);
         g_frames.pop_back();
         if (!g_frames.empty()) {
             g_frames.back().launch.clear();
             g_frames.back().pass.clear();
-            g_frames.back().launch_fraction = -1.0;
+            g_frames.back().launch_fraction = g_frames.back().launch_shown = -1.0;
             publish(false);
         }
     } catch (...) {  // a sink that throws must not end the program from a destructor
@@ -196,12 +216,13 @@ void ProgressStage::update(std::uint64_t done, const std::string& step, std::uin
     Frame& f = g_frames[depth_ - 1];
     f.done = std::min(done, f.total ? f.total : done);
     if (step != f.step || step_units != f.step_units) f.step_start = Clock::now();
+    const bool new_step = step != f.step;
     f.step = step;
     f.step_units = step_units;
     f.launch.clear();
     f.pass.clear();
-    f.launch_fraction = -1.0;
-    publish(false);
+    f.launch_fraction = f.launch_shown = -1.0;
+    publish(false, new_step && !step.empty());
 }
 
 ProgressSilence::ProgressSilence() {
@@ -225,7 +246,10 @@ void report_progress(const std::string& what, std::uint64_t done, std::uint64_t 
         f.launch = label.empty() ? what : label + ": " + what;
         f.pass = label;
         f.launch_fraction = label.empty() ? raw : pass_fraction(raw);
-        publish(false);
+        f.launch_shown = raw;
+        const bool new_pass = f.new_pass;
+        f.new_pass = false;
+        publish(false, new_pass);
         return;
     }
     const std::string what_shown = label.empty() ? what : label + ": " + what;
@@ -265,6 +289,8 @@ void progress_next_pass() {
         Frame& f = g_frames.back();
         f.launch = f.pass = pass_label();
         f.launch_fraction = pass_fraction(0.0);
+        f.launch_shown = 0.0;
+        f.new_pass = true;  // its first launch is written at once in a log
         publish(false);
     }
 }

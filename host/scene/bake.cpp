@@ -347,6 +347,7 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
                             work);
         std::uint64_t done = 0;
         int n = 0;
+        double wall_sum = 0, idle_sum = 0;  // the tables' integration: wall and idle-core seconds
         for (size_t i = 0; i < plan.tables.size(); ++i) {
             if (fresh[i]) continue;
             const PlannedTable& t = plan.tables[i];
@@ -360,7 +361,10 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
             const std::string step = "[" + std::to_string(++n) + "/" + std::to_string(to_compute) + "] " + t.file;
             log_line(step + ": computing " + detail);
             const double built = engine->build_seconds();
+            const SlowdownClock clock;  // how much of the cores the integration had (calibration.h)
             const Table table = compute_planned(*engine, t, r, stage, done, step);
+            wall_sum += clock.wall_seconds();
+            idle_sum += clock.wall_seconds() / clock.slowdown();
             result.timings.tables.push_back({r.kind, t.request.model.substr(0, t.request.model.find(':')),
                                              precision_name(r.precision), t.samples_total,
                                              since(t1) - (engine->build_seconds() - built)});
@@ -379,6 +383,7 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
                           seconds, table.max_error());
             log_line(step.substr(0, step.find(' ')) + " " + msg);
         }
+        if (idle_sum > 0) result.timings.slowdown = wall_sum / idle_sum;
     } catch (const Error& e) {
         // The report shows the failure beside what was written (when the folder has an index: a
         // bake that wrote nothing into a new folder leaves none); the error goes on to the caller.

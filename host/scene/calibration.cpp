@@ -1,6 +1,8 @@
 #include "scene/calibration.h"
 
+#include <sys/resource.h>
 #include <sys/stat.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <nlohmann/json.hpp>
@@ -17,6 +19,7 @@
 #include <sstream>
 #include <thread>
 
+#include "brdfbake/error.h"
 #include "brdfbake/table_kinds.h"
 
 namespace brdfbake {
@@ -131,11 +134,53 @@ bool Calibration::applies() const {
 }
 
 double model_sample_cost(const std::string& model_name) {
-    // Measured on the same tables: sheen's 32x27 albedo at 16384 samples, 7.0e6 samples/s against
-    // GGX's 2.2e8 (the Charlie distribution's sampling is uniform and its visibility term costly).
-    static const std::map<std::string, double> costs = {{"sheen", 32.0}};
+    // Measured on the same cores: sheen's 32x27 albedo at 65536 samples, 4.7e7 samples/s against
+    // GGX's 2.1e9 in idle-core seconds (the Charlie distribution's sampling is uniform and its
+    // visibility term costly).
+    static const std::map<std::string, double> costs = {{"sheen", 45.0}};
     const auto it = costs.find(model_name);
     return it == costs.end() ? 1.0 : it->second;
+}
+
+namespace {
+
+double wall_now() {
+    timespec t{};
+    ::clock_gettime(CLOCK_MONOTONIC, &t);
+    return double(t.tv_sec) + 1e-9 * double(t.tv_nsec);
+}
+
+/// The process's CPU seconds (user and system, every thread: PoCL's workers too).
+double cpu_now() {
+    rusage u{};
+    ::getrusage(RUSAGE_SELF, &u);
+    return double(u.ru_utime.tv_sec + u.ru_stime.tv_sec) + 1e-6 * double(u.ru_utime.tv_usec + u.ru_stime.tv_usec);
+}
+
+}  // namespace
+
+SlowdownClock::SlowdownClock() : wall0_(wall_now()), cpu0_(cpu_now()) {}
+
+double SlowdownClock::wall_seconds() const { return wall_now() - wall0_; }
+
+double SlowdownClock::slowdown() const {
+    const double cpu = cpu_now() - cpu0_, wall = wall_now() - wall0_;
+    if (cpu < 0.02) return 1.0;
+    return std::clamp(wall * this_threads() / cpu, 1.0, 100.0);
+}
+
+double serial_slowdown(double slowdown) { return std::max(1.0, slowdown / this_threads()); }
+
+double slowdown_from_environment() {
+    const char* v = std::getenv("BRDFBAKE_SLOWDOWN");
+    if (!v || !*v) return -1.0;
+    char* end = nullptr;
+    const double x = std::strtod(v, &end);
+    if (end == v || *end != '\0' || !(x >= 1.0 && x <= 1000.0))
+        throw Error(std::string("BRDFBAKE_SLOWDOWN='") + v +
+                    "' is not a number from 1 to 1000 (how much slower than on idle cores the machine runs; unset "
+                    "it to let plan measure)");
+    return x;
 }
 
 double builtin_rate(const std::string& kind, const std::string& model_name) {
@@ -289,11 +334,15 @@ void add_bake_timings(Calibration& c, const BakeTimings& t) {
     c.host = this_host();
     c.hardware_threads = this_threads();
     ++c.bakes;
+    // Idle-core seconds: what the bake measured over how much slower than idle it ran.
+    const double s = std::isfinite(t.slowdown) && t.slowdown >= 1 ? t.slowdown : 1.0;
     for (const auto& r : t.tables)
-        if (r.samples > 0) c.tables[calibration_rate_key(r.kind, r.model_name, r.precision)].add(double(r.samples), r.compute_seconds);
-    for (const auto& [texels, seconds] : t.previews) c.previews.add(texels, seconds);
-    if (t.programs > 0 && t.build_seconds > 0) c.build_seconds_per_program.add(t.build_seconds / t.programs);
-    if (t.report_checks > 0 && t.report_seconds > 0) c.report_check_seconds.add(t.report_seconds / t.report_checks);
+        if (r.samples > 0)
+            c.tables[calibration_rate_key(r.kind, r.model_name, r.precision)].add(double(r.samples), r.compute_seconds / s);
+    const double serial = serial_slowdown(s);  // previews and builds run on one thread
+    for (const auto& [texels, seconds] : t.previews) c.previews.add(texels, seconds / serial);
+    if (t.programs > 0 && t.build_seconds > 0) c.build_seconds_per_program.add(t.build_seconds / t.programs / serial);
+    if (t.report_checks > 0 && t.report_seconds > 0) c.report_check_seconds.add(t.report_seconds / t.report_checks / s);
 }
 
 std::string write_calibration(const Calibration& c) {

@@ -14,31 +14,37 @@
 #pragma once
 
 #include <cstdint>
+#include <functional>
 #include <map>
 #include <string>
 #include <vector>
 
 namespace brdfbake {
 
-/// The built-in figures of the cost model (the development machine, 2 hardware threads, PoCL,
-/// float; benchmarks/results/plan-estimates-2c-shared.md). A calibration replaces those it has.
+/// The built-in figures of the cost model: seconds on idle cores of the development machine (AMD
+/// EPYC, 2 hardware threads, PoCL, float), from bakes' stage times divided by their measured
+/// slowdown (SlowdownClock; benchmarks/results/plan-estimates-2c-shared.md, 2026-12-03, load 15).
+/// A calibration replaces those it has; the estimates are these times the slowdown now.
 namespace builtin_figures {
-/// GGX albedo samples per second per hardware thread on PoCL's vector path, float (1024x316
-/// texels x 4096 samples in 5.8 s on 2 threads: 2.2e8 samples/s).
-constexpr double kSamplesPerSecondPerCore = 1.1e8;
-/// A kernel build and first launch on PoCL: 0.5 s cold, about 0.12 s from PoCL's kernel cache.
-constexpr double kSecondsPerProgram = 0.3;
-/// Per table: launches, assembling and writing the file (measured: 0.01 to 0.1 s).
-constexpr double kSecondsPerTable = 0.05;
-/// The preview picture bake writes beside a table (MathGL, single-threaded: 0.2 to 0.3 s for a
-/// 64x64 table), and per texel drawn.
-constexpr double kSecondsPerPreview = 0.3;
-constexpr double kSecondsPerPreviewTexel = 5e-7;
-/// Starting the process, the device and the bake folder (measured: about 0.3 s).
-constexpr double kStartupSeconds = 0.3;
+/// GGX albedo samples per second per hardware thread on PoCL's vector path, float (1024x1024
+/// texels x 4096 samples, 1.3e9 samples in 0.61-0.63 idle-core seconds on 2 threads: 2.1e9/s).
+constexpr double kSamplesPerSecondPerCore = 1.05e9;
+/// A kernel build from PoCL's cache (0.023 s measured; plan's slowdown probe has built the GGX
+/// albedo kernel; a cold build is several times more).
+constexpr double kSecondsPerProgram = 0.05;
+/// Per table: launches, assembling and writing the file (measured: 0.0002 to 0.002 s).
+constexpr double kSecondsPerTable = 0.005;
+/// The preview picture bake writes beside a table (MathGL, single-threaded: 0.02 s for 32 texels,
+/// 0.15-0.16 s for 316 K texels), and per texel drawn.
+constexpr double kSecondsPerPreview = 0.02;
+constexpr double kSecondsPerPreviewTexel = 4.3e-7;
+/// Starting the process and the device (0.06 to 0.09 CPU seconds), the bake folder, its index and
+/// report page: about 0.2 s (tests/data/small_glass.json's bake took 0.37 CPU seconds against
+/// 0.26 s for its other stages).
+constexpr double kStartupSeconds = 0.2;
 /// One lobe check of the bake report (24 directions x 2^14 samples and 16^3 reciprocity pairs:
-/// 0.05 to 0.3 s a check).
-constexpr double kSecondsPerReportCheck = 0.2;
+/// 0.019 s a check, the mean of 20 bakes).
+constexpr double kSecondsPerReportCheck = 0.02;
 }  // namespace builtin_figures
 
 /// A measured figure: its running mean over the last few measurements.
@@ -76,8 +82,29 @@ struct Calibration {
     CalibratedLine previews;  // seconds over texels
     CalibratedFigure build_seconds_per_program, report_check_seconds;
 
+    /// How much slower than on idle cores this machine runs now (measure_slowdown; 1: idle, or not
+    /// measured). The figures are idle-core seconds (the built-in ones measured so, a bake's
+    /// divided by its own slowdown); the estimates are those times this.
+    double slowdown = 1.0;
+
     /// The file has figures for this machine (same host and hardware threads, a bake recorded).
     bool applies() const;
+};
+
+/// A shared machine's cores are not all this process's: the wall time of parallel work over its
+/// CPU time per hardware thread (process-wide, every thread) says how much of them it gets. On
+/// the 2-core development machine, shared with other jobs, bakes took 1x to 9x their idle-core
+/// time within the same hour (benchmarks/results/plan-estimates-2c-shared.md).
+class SlowdownClock {
+public:
+    SlowdownClock();  // starts
+    /// wall seconds x hardware threads / CPU seconds since the start, at least 1 (1 also when
+    /// too little ran to say: under 0.02 CPU seconds).
+    double slowdown() const;
+    double wall_seconds() const;
+
+private:
+    double wall0_, cpu0_;
 };
 
 /// The cost of one sample of a model relative to GGX's where it differs by more than 1.5x.
@@ -121,7 +148,20 @@ struct BakeTimings {
     double build_seconds = 0;        // their total
     int report_checks = 0;           // lobe checks of the report (0: no report)
     double report_seconds = 0;
+    /// The machine's slowdown while the tables integrated (SlowdownClock over their
+    /// integration): the times above are divided by it when recorded.
+    double slowdown = 1.0;
 };
+
+/// The slowdown of a single-threaded stage (start-up, a kernel build, a preview) when parallel
+/// work runs `slowdown` times slower than on idle cores: the probe's wall over CPU time,
+/// max(1, slowdown / hardware threads). Measured on the development machine (2 threads, load 15):
+/// small bakes, mostly single-threaded, took 3.4x their CPU time while the probe measured 6.3.
+double serial_slowdown(double slowdown);
+
+/// BRDFBAKE_SLOWDOWN=X (a number of at least 1): the slowdown `plan` assumes instead of measuring
+/// it; -1 when unset. Throws Error naming the variable for any other value.
+double slowdown_from_environment();
 
 /// Adds a bake's measurements to `c`.
 void add_bake_timings(Calibration& c, const BakeTimings& t);

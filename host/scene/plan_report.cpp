@@ -156,7 +156,7 @@ std::string plan_text(const Plan& p) {
         o << "\nwarnings:\n";
         for (const auto& w : grouped_warnings(p.warnings)) o << "  warning: " << w << "\n";
     }
-    o << "\ntotal: " << p.tables.size() << " tables, " << human_count(total_samples) << " samples, about "
+    o << "\ntotal: " << p.tables.size() << " table" << (p.tables.size() == 1 ? "" : "s") << ", " << human_count(total_samples) << " samples, about "
       << human_seconds(total_s + p.build_seconds + p.startup_seconds + p.report_seconds) << " (" << human_seconds(total_s)
       << " integrating at " << human_count(p.samples_per_second) << " samples/s and writing each table and its preview: "
       << p.throughput_basis << "; " << human_seconds(p.startup_seconds) << " start-up; "

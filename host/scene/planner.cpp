@@ -163,8 +163,15 @@ struct Figures {
     const Calibration* calibration = nullptr;  // nullptr: built-in figures only
     double program = builtin_figures::kSecondsPerProgram;
     double check = builtin_figures::kSecondsPerReportCheck;
+    /// How much slower than on idle cores parallel stages (the kernels) and single-threaded ones
+    /// (start-up, builds, previews) run now (calibration.h).
+    double parallel = 1.0, serial = 1.0;
 
     explicit Figures(const Calibration* c) {
+        if (c) {
+            parallel = c->slowdown;
+            serial = serial_slowdown(c->slowdown);
+        }
         if (!c || !c->applies()) return;
         calibration = c;
         if (c->build_seconds_per_program.known()) program = c->build_seconds_per_program.value;
@@ -364,9 +371,9 @@ void finish_table(Plan& plan, const Figures& figures, PlannedTable t, const std:
     const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
     t.cells = texels * std::uint64_t(kind.cells_per_texel);
     t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
-    t.est_seconds = table_seconds(figures.calibration, kind.name, model_name, precision_name(r.precision),
-                                  double(t.samples_total)) +
-                    preview_seconds(figures.calibration, double(texels));
+    t.est_seconds = figures.parallel * table_seconds(figures.calibration, kind.name, model_name,
+                                                     precision_name(r.precision), double(t.samples_total)) +
+                    figures.serial * preview_seconds(figures.calibration, double(texels));
     const int channels = kind.value_channels(r) + 1;  // values + error
     // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while the
     // kernel runs; the finished table holds doubles.
@@ -467,8 +474,8 @@ void estimate_builds_and_report(Plan& plan, const Figures& figures) {
     for (const auto& t : plan.tables)
         for (const std::string& p : t.kind->kernel_programs(t.request)) programs.insert(p);
     plan.programs = int(programs.size());
-    plan.build_seconds = figures.program * plan.programs;
-    plan.startup_seconds = builtin_figures::kStartupSeconds;
+    plan.build_seconds = figures.serial * figures.program * plan.programs;
+    plan.startup_seconds = figures.serial * builtin_figures::kStartupSeconds;
     // The bake report checks each lobe with a table at both ends of its roughness range.
     std::set<std::string> checks;
     for (const auto& m : plan.materials)
@@ -477,7 +484,7 @@ void estimate_builds_and_report(Plan& plan, const Figures& figures) {
                 for (double a : {lobe.alpha.lo, lobe.alpha.hi})
                     checks.insert(lobe.model + "|" + lobe.fresnel + "|" + std::to_string(a));
     plan.report_checks = int(checks.size());
-    plan.report_seconds = figures.check * plan.report_checks;
+    plan.report_seconds = figures.parallel * figures.check * plan.report_checks;
 }
 
 }  // namespace
@@ -509,8 +516,8 @@ Plan make_plan(const Scene& scene, const Calibration* calibration) {
                                 (calibration->bakes == 1 ? "" : "s") + " (" + calibration->path +
                                 "; built-in figures where it has none; docs/scenes.md)";
     else
-        plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.1e8, built-in (PoCL, float, measured on "
-                                "the development machine; a bake calibrates them: docs/scenes.md)";
+        plan.throughput_basis = std::to_string(cores) + " hardware threads x 1.05e9 on idle cores, built-in (PoCL, float, "
+                                "measured on the development machine; a bake calibrates them: docs/scenes.md)";
     if (calibration && !calibration->warning.empty()) plan.warnings.push_back(calibration->warning);
 
     plan.materials = scene.materials;
@@ -527,6 +534,15 @@ Plan make_plan(const Scene& scene, const Calibration* calibration) {
         finish_table(plan, figures, std::move(t), file, half, model_name);
     }
     estimate_builds_and_report(plan, figures);
+    // Idle-core seconds times how much slower the machine runs now (calibration.h).
+    if (figures.parallel > 1.0) {
+        plan.samples_per_second /= figures.parallel;
+        char shared[200];
+        std::snprintf(shared, sizeof shared,
+                      "; times %.1f: the machine runs %.1fx slower than on idle cores now (%.1fx single-threaded stages)",
+                      figures.parallel, figures.parallel, figures.serial);
+        plan.throughput_basis += shared;
+    }
     return plan;
 }
 

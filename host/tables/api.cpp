@@ -14,6 +14,7 @@
 #include "brdfbake/lut.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
+#include "models/key_reader.h"
 
 namespace brdfbake {
 
@@ -57,7 +58,7 @@ AlbedoValues albedo(const std::string& model_spec, const std::vector<double>& mu
     req.precision = precision_of(o.precision);
     for (size_t i = 0; i < mu.size(); ++i) {
         if (!(mu[i] > 0.0 && mu[i] <= 1.0))
-            throw Error("albedo: mu = " + std::to_string(mu[i]) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
+            throw Error("albedo: mu = " + format_number(mu[i]) + " is out of range; mu = cos(theta_o) must lie in (0, 1]");
         const double phi = o.phi_deg.empty() ? 0.0 : o.phi_deg[o.phi_deg.size() == 1 ? 0 : i];
         req.cells.push_back(AlbedoCell{mu[i], azimuth_from_degrees(phi), model.params});
     }

@@ -130,10 +130,10 @@ TableKind dielectric_kind() {
     k.cells_per_texel = 2;  // both sides of the interface
     k.plan_fresnel = "exact dielectric at each eta";
     k.lobe_requirement = "a dielectric table needs an index of refraction (fresnel dielectric:eta=E or 'eta')";
-    // A dielectric sample (microfacet normal, exact Fresnel, reflect or refract) costs about 7
-    // albedo samples (measured: 226 M samples of tests/data/materials.gltf in 7.6 s against GGX
-    // albedo's 2.2e8 samples/s on the same machine; benchmarks/results/plan-estimates-2c-shared.md).
-    k.sample_cost = 7.4;
+    // A dielectric sample (microfacet normal, exact Fresnel, reflect or refract) costs about 10
+    // albedo samples (idle-core seconds: 56.6 M samples in 0.27-0.30 s against GGX albedo's 2.1e9
+    // samples/s on the same 2 cores; benchmarks/results/plan-estimates-2c-shared.md).
+    k.sample_cost = 10.0;
     k.value_channels = four;
     k.validate = validate_dielectric;
     return k;

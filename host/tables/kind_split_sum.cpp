@@ -65,6 +65,10 @@ TableKind dfg_kind() {
     k.value_channels = two;
     k.integrations = two;
     k.pass_names = split_sum_passes;
+    // Measured: the 1024x1024 lut_ggx's 34.4 G samples in about 11.5 idle-core seconds on 2
+    // threads (23.7 CPU s), 3.0e9 samples/s against GGX albedo's 2.1e9
+    // (benchmarks/results/plan-estimates-2c-shared.md).
+    k.sample_cost = 0.7;
     return k;
 }
 

@@ -30,6 +30,8 @@ struct ProgressState {
     /// The stage reports its end even when an error unwinds it (a ProgressStage); a launch
     /// reporting outside any stage may stop without a last report.
     bool closes = true;
+    /// A new step or pass began ("pass 2 of 2: B", "drawing its preview"): a log shows it at once.
+    bool milestone = false;
 };
 
 class ProgressSink {
