@@ -32,14 +32,14 @@ def ltc_l1(a1, b1, a2, b2, n=512):
 
 
 def main():
-    table = np.load(sys.argv[1])  # (roughness rows, mu columns, [a, b, R, distance, error])
+    table = np.load(sys.argv[1])  # (roughness rows, mu columns, [a, b, R, distance, distance_error, error])
     ref = runpy.run_path(sys.argv[2])
     rows = []
     for j in sorted(ref["R"]):
         for i in range(32):
             if i / 31 < 0.1 or j / 31 < 0.1:
                 continue
-            a, b, r, dist, err = table[j, i]
+            a, b, r, dist, _, err = table[j, i]
             ra, rb, rr = ref["A"][j][i], ref["B"][j][i], ref["R"][j][i]
             rows.append((j, i, r, err, rr, abs(r - rr), a, b, ra, rb, ltc_l1(a, b, ra, rb), dist))
     print("| j (roughness) | i (mu) | R | error | R Cycles | dR | a | b | A Cycles | B Cycles | L1(LTC, LTC Cycles) | distance |")

@@ -7,7 +7,8 @@
 // |M^-1 w|^3, D_o = max(0, z)/pi, Heitz et al. 2016 eq. 1 and sec. 3.1), fitted by the fitting
 // layer's Nelder-Mead (fit/nelder_mead.h) to the layer's reflected lobe, a histogram of the walks'
 // exits through the top. Channels a, b, R, distance (the L1 distance between the normalised lobe
-// and the LTC, both averaged over the histogram's bins), and error.
+// and the LTC, both averaged over the histogram's bins), distance_error (the histogram's noise
+// floor in it) and error (R's).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -29,7 +30,9 @@ namespace {
 /// never turn back.
 constexpr double kSheenFloor = 0.01;
 /// The fewest top exits a texel's fit uses; below it the texel holds the cosine (a = 1, b = 0).
-constexpr double kMinExits = 2000;
+constexpr double kMinExits = 1000;
+/// A texel with fewer exits than kMinExits is walked again with this many times the walks.
+constexpr std::uint64_t kRewalk = 16;
 /// Sub-points per bin side for the LTC's bin averages.
 constexpr int kSub = 3;
 
@@ -53,23 +56,42 @@ double ltc_d(double a, double b, double x, double y, double z) {
     return std::max(0.0, z / n) / M_PI * a * a / (n * n * n);
 }
 
+/// The sub-points of every bin (SheenLobeBins, one side of phi = 0), kSub x kSub each, with their
+/// weights sin(theta) normalised per bin: computed once.
+struct SubPoints {
+    std::vector<std::array<double, 4>> p;  // x, y, z, weight; bin k's points at [k kSub^2, (k + 1) kSub^2)
+};
+const SubPoints& sub_points() {
+    static const SubPoints pts = [] {
+        SubPoints s;
+        const int nt = SheenLobeBins::theta(), np = SheenLobeBins::phi();
+        const double dt = 0.5 * M_PI / nt, dp = M_PI / np;
+        for (int i = 0; i < nt; ++i)
+            for (int j = 0; j < np; ++j) {
+                const size_t first = s.p.size();
+                double w = 0.0;
+                for (int si = 0; si < kSub; ++si)
+                    for (int sj = 0; sj < kSub; ++sj) {
+                        const double th = (i + (si + 0.5) / kSub) * dt, ph = (j + (sj + 0.5) / kSub) * dp;
+                        const double st = std::sin(th);
+                        s.p.push_back({st * std::cos(ph), st * std::sin(ph), std::cos(th), st});
+                        w += st;
+                    }
+                for (size_t k = first; k < s.p.size(); ++k) s.p[k][3] /= w;
+            }
+        return s;
+    }();
+    return pts;
+}
+
 /// Per bin (SheenLobeBins), the LTC's mean density over the bin (one side of phi = 0).
 std::vector<double> ltc_bins(double a, double b) {
-    const int nt = SheenLobeBins::theta(), np = SheenLobeBins::phi();
-    const double dt = 0.5 * M_PI / nt, dp = M_PI / np;
-    std::vector<double> out(nt * np);
-    for (int i = 0; i < nt; ++i)
-        for (int j = 0; j < np; ++j) {
-            double s = 0.0, w = 0.0;
-            for (int si = 0; si < kSub; ++si)
-                for (int sj = 0; sj < kSub; ++sj) {
-                    const double th = (i + (si + 0.5) / kSub) * dt, ph = (j + (sj + 0.5) / kSub) * dp;
-                    const double st = std::sin(th);
-                    s += ltc_d(a, b, st * std::cos(ph), st * std::sin(ph), std::cos(th)) * st;
-                    w += st;
-                }
-            out[i * np + j] = s / w;
-        }
+    const SubPoints& s = sub_points();
+    std::vector<double> out(s.p.size() / (kSub * kSub), 0.0);
+    for (size_t k = 0; k < s.p.size(); ++k) {
+        const auto& q = s.p[k];
+        out[k / (kSub * kSub)] += q[3] * ltc_d(a, b, q[0], q[1], q[2]);
+    }
     return out;
 }
 
@@ -109,7 +131,7 @@ std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const SheenVolumeResult& 
         std::vector<std::vector<double>> starts;
         for (size_t i = 0; i < w; ++i) {
             const SheenVolumeValue& v = walks.values[j * w + i];
-            if (v.reflectance.value * double(walks.walks_per_cell) < kMinExits) continue;
+            if (v.reflectance.value * double(v.reflectance.samples) < kMinExits) continue;
             texels.push_back(j * w + i);
             starts.push_back(start[i]);
         }
@@ -129,10 +151,11 @@ std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const SheenVolumeResult& 
             f.a = double(float(std::exp(mins[t].x[0])));  // as written (float32)
             f.b = double(float(mins[t].x[1]));
             f.distance = bin_distance(v.lobe, v.reflectance.value, ltc_bins(f.a, f.b));
-            // the histogram's noise, propagated: 3 standard errors per bin, over R
+            // the histogram's noise floor: where the lobe equals D, a bin's |p - D| averages
+            // sqrt(2/pi) of its standard error (lobe_error holds 3 of them); summed over the bins
             for (size_t b = 0; b < v.lobe.size(); ++b)
                 f.distance_error += 2.0 * SheenLobeBins::solid_angle(int(b) / SheenLobeBins::phi()) *
-                                    v.lobe_error[b] / v.reflectance.value;
+                                    std::sqrt(2.0 / M_PI) * v.lobe_error[b] / 3.0 / v.reflectance.value;
             f.fitted = true;
             start[c % w] = mins[t].x;
         }
@@ -165,10 +188,25 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
         req.cells.push_back({std::max(g.cells[c].mu, kSheenFloor), std::max(t.y.parameter[c / w], kSheenFloor),
                              BB_SHEEN_VOLUME_DEFAULT_BOUNCES});
     progress_next_pass();
-    const SheenVolumeResult walks = sheen_volume_walks(engine, req);
+    SheenVolumeResult walks = sheen_volume_walks(engine, req);
+    // Texels that reflect few walks (smooth layers seen from above) are walked again, kRewalk times
+    // as many: their walks are short (most cross the layer unscattered).
+    SheenVolumeRequest again = req;
+    again.cells.clear();
+    again.walks = req.walks * kRewalk;
+    std::vector<size_t> rewalked;
+    for (size_t c = 0; c < req.cells.size(); ++c)
+        if (walks.values[c].reflectance.value * double(walks.walks_per_cell) < kMinExits) {
+            again.cells.push_back(req.cells[c]);
+            rewalked.push_back(c);
+        }
+    if (!again.cells.empty()) {
+        const SheenVolumeResult more = sheen_volume_walks(engine, again);
+        for (size_t k = 0; k < rewalked.size(); ++k) walks.values[rewalked[k]] = more.values[k];
+    }
     const std::vector<TexelFit> fits = fit_texels(g, walks);
     const size_t n = g.cells.size();
-    t.channels = {"a", "b", "R", "distance"};
+    t.channels = {"a", "b", "R", "distance", "distance_error"};
     t.values.assign(t.channels.size(), std::vector<double>(n));
     t.error.assign(n, 0.0);
     std::vector<double> distance, distance_error, cutoff;
@@ -180,7 +218,8 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
         t.values[1][c] = ft.b;
         t.values[2][c] = v.reflectance.value;
         t.values[3][c] = ft.distance;
-        t.error[c] = std::max(v.reflectance.error, ft.distance_error);
+        t.values[4][c] = ft.distance_error;
+        t.error[c] = v.reflectance.error;
         cutoff.push_back(v.cutoff.value);
         if (ft.fitted) {
             distance.push_back(ft.distance);
@@ -195,8 +234,12 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.attributes["distance"] = "integral over the upper hemisphere of |lobe / R - D_ltc|, both averaged over " +
                                std::to_string(SheenLobeBins::theta()) + " x " + std::to_string(SheenLobeBins::phi()) +
                                " bins (theta, |phi|): " + stats_of(distance);
-    t.attributes["error_channel"] = "the larger of R's error (3 standard errors of the replicas) and the distance's "
-                                    "noise (3 standard errors per bin, summed): " + stats_of(distance_error);
+    t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
+                                    std::to_string(rewalked.size()) + " texels with fewer than " +
+                                    std::to_string(int(kMinExits)) + " reflected walks walked again with " +
+                                    std::to_string(kRewalk) + " times as many)";
+    t.attributes["distance_error"] = "the histogram's noise floor in the distance: sqrt(2/pi) standard errors per "
+                                     "bin, summed: " + stats_of(distance_error);
     t.attributes["unfitted"] = std::to_string(unfitted) + " texels with fewer than " +
                                std::to_string(int(kMinExits)) + " reflected walks hold the cosine (a = 1, b = 0)";
     t.attributes["cutoff"] = "share of walks still inside after " + std::to_string(BB_SHEEN_VOLUME_DEFAULT_BOUNCES) +
@@ -213,7 +256,7 @@ TableKind sheen_ltc_kind() {
                 sheen_ltc_programs, compute_sheen_ltc);
     k.plan_fresnel = "none (the sheen layer has no Fresnel term)";
     k.validate = validate_sheen_ltc;
-    k.value_channels = [](const LutRequest&) { return 4; };
+    k.value_channels = [](const LutRequest&) { return 5; };
     // A walk costs several albedo samples (its flights); not measured for the planner yet.
     k.sample_cost = 8.0;
     return k;

@@ -63,7 +63,7 @@ LutRequest cycles_sheen_layout() {
     r.alpha_map = "alpha";
     r.texels = Texels::Edge;
     r.mu_floor = 0.01;
-    r.samples = std::uint64_t(1) << 20;
+    r.samples = std::uint64_t(1) << 18;
     return r;
 }
 
