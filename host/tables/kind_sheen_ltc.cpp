@@ -29,6 +29,8 @@ namespace {
 /// [ZBC22]'s floors: mu and roughness at least 0.01 (sigma = 1e-4), the layer's walks below that
 /// never turn back.
 constexpr double kSheenFloor = 0.01;
+/// The layer's roughness r of a texel is sqrt of the sheen axis' alpha: sigma = r^2 = alpha, so
+/// that --alpha-map roughness puts r (Cycles' roughness) on the axis.
 /// The fewest top exits a texel's fit uses; below it the texel holds the cosine (a = 1, b = 0).
 constexpr double kMinExits = 1000;
 /// A texel with fewer exits than kMinExits is walked again with this many times the walks.
@@ -40,11 +42,11 @@ std::vector<std::string> sheen_ltc_programs(const LutRequest&) { return {"sheen_
 
 void validate_sheen_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     if (m.id != BB_MODEL_SHEEN)
-        throw Error("the sheen-ltc table sweeps the roughness of the volumetric sheen layer: --model sheen, not '" +
-                    m.name + "'");
-    if (r.alpha_map != "alpha")
-        throw Error("the sheen-ltc table's y axis is the layer's roughness itself (sigma = roughness^2 inside the "
-                    "layer): drop --alpha-map " + r.alpha_map);
+        throw Error("the sheen-ltc table sweeps the roughness of the volumetric sheen layer: --model sheen (its alpha "
+                    "is the layer's sigma = roughness^2), not '" + m.name + "'");
+    if (r.tolerance.tolerance > 0.0)
+        throw Error("the sheen-ltc table is a random-walk simulation of --samples walks a texel (default 2^18): drop "
+                    "--tolerance");
     if (r.alpha_hi > 1.0) throw Error("--alpha-range of a sheen-ltc table must lie within [0, 1]");
     if (f.kind != BB_FRESNEL_NONE) throw Error("the sheen layer has no Fresnel term: drop --fresnel");
 }
@@ -185,7 +187,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     req.lobe = true;
     const size_t w = t.x.parameter.size();
     for (size_t c = 0; c < g.cells.size(); ++c)
-        req.cells.push_back({std::max(g.cells[c].mu, kSheenFloor), std::max(t.y.parameter[c / w], kSheenFloor),
+        req.cells.push_back({std::max(g.cells[c].mu, kSheenFloor), std::max(std::sqrt(t.y.parameter[c / w]), kSheenFloor),
                              BB_SHEEN_VOLUME_DEFAULT_BOUNCES});
     progress_next_pass();
     SheenVolumeResult walks = sheen_volume_walks(engine, req);
@@ -229,7 +231,8 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
         }
     }
     describe(t, r, m, f.canonical, walks.method, walks.walks_per_cell, g.clamped);
-    t.attributes["model"] = "sheen-volume (the fiber SGGX layer of Zeltner et al. 2022; the y axis is its roughness)";
+    t.attributes["model"] = "sheen-volume: the fiber SGGX layer of Zeltner et al. 2022, sigma = the axis' alpha "
+                            "(roughness^2 with --alpha-map roughness)";
     t.attributes["floors"] = "mu and roughness below 0.01 are computed at 0.01 (Zeltner et al. 2022's fit)";
     t.attributes["distance"] = "integral over the upper hemisphere of |lobe / R - D_ltc|, both averaged over " +
                                std::to_string(SheenLobeBins::theta()) + " x " + std::to_string(SheenLobeBins::phi()) +
@@ -257,6 +260,9 @@ TableKind sheen_ltc_kind() {
     k.plan_fresnel = "none (the sheen layer has no Fresnel term)";
     k.validate = validate_sheen_ltc;
     k.value_channels = [](const LutRequest&) { return 5; };
+    k.required_model = "sheen";
+    k.lobe_requirement = "the sheen-ltc table needs a sheen lobe (model sheen, KHR_materials_sheen)";
+    k.simulated = true;
     // A walk costs several albedo samples (its flights); not measured for the planner yet.
     k.sample_cost = 8.0;
     return k;

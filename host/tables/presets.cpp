@@ -59,8 +59,7 @@ LutRequest cycles_layout(int width, int height, int depth, std::vector<std::stri
 // (kind_sheen_ltc.cpp); read by bsdf_sheen_setup (intern/cycles/kernel/closure/bsdf_sheen.h).
 LutRequest cycles_sheen_layout() {
     LutRequest r = engine_layout(32, 32);
-    r.model = "sheen";
-    r.alpha_map = "alpha";
+    r.model = "sheen";  // alpha = roughness^2 = the layer's sigma (engine_layout's --alpha-map roughness)
     r.texels = Texels::Edge;
     r.mu_floor = 0.01;
     r.samples = std::uint64_t(1) << 18;
