@@ -39,7 +39,8 @@ def main():
         for i in range(32):
             if i / 31 < 0.1 or j / 31 < 0.1:
                 continue
-            a, b, r, dist, _, err = table[j, i]
+            a, b, r, dist = table[j, i][:4]
+            err = table[j, i][-1]  # the error channel comes last
             ra, rb, rr = ref["A"][j][i], ref["B"][j][i], ref["R"][j][i]
             rows.append((j, i, r, err, rr, abs(r - rr), a, b, ra, rb, ltc_l1(a, b, ra, rb), dist))
     print("| j (roughness) | i (mu) | R | error | R Cycles | dR | a | b | A Cycles | B Cycles | L1(LTC, LTC Cycles) | distance |")
