@@ -192,16 +192,20 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     progress_next_pass();
     SheenVolumeResult walks = sheen_volume_walks(engine, req);
     // Texels that reflect few walks (smooth layers seen from above) are walked again, kRewalk times
-    // as many: their walks are short (most cross the layer unscattered).
+    // as many, when that gives them kMinExits: those that reflected at least kMinExits / kRewalk.
+    // (Rewalking those that reflect almost nothing, the smoothest row at grazing views, where a walk
+    // scatters ~1/mu times before it crosses, took hours.)
     SheenVolumeRequest again = req;
     again.cells.clear();
     again.walks = req.walks * kRewalk;
     std::vector<size_t> rewalked;
-    for (size_t c = 0; c < req.cells.size(); ++c)
-        if (walks.values[c].reflectance.value * double(walks.walks_per_cell) < kMinExits) {
+    for (size_t c = 0; c < req.cells.size(); ++c) {
+        const double exits = walks.values[c].reflectance.value * double(walks.walks_per_cell);
+        if (exits < kMinExits && exits * double(kRewalk) >= kMinExits) {
             again.cells.push_back(req.cells[c]);
             rewalked.push_back(c);
         }
+    }
     if (!again.cells.empty()) {
         const SheenVolumeResult more = sheen_volume_walks(engine, again);
         for (size_t k = 0; k < rewalked.size(); ++k) walks.values[rewalked[k]] = more.values[k];
@@ -238,7 +242,8 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
                                std::to_string(SheenLobeBins::theta()) + " x " + std::to_string(SheenLobeBins::phi()) +
                                " bins (theta, |phi|): " + stats_of(distance);
     t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
-                                    std::to_string(rewalked.size()) + " texels with fewer than " +
+                                    std::to_string(rewalked.size()) + " texels with " +
+                                    std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
                                     std::to_string(int(kMinExits)) + " reflected walks walked again with " +
                                     std::to_string(kRewalk) + " times as many)";
     t.attributes["distance_error"] = "the histogram's noise floor in the distance: sqrt(2/pi) standard errors per "
