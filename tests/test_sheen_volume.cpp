@@ -12,6 +12,7 @@
 #include <random>
 
 #include "brdfbake/brdf/sheen_volume.h"
+#include "brdfbake/lut.h"
 #include "integrate/sheen_volume.h"
 #include "reference/reference.h"
 #include "support.h"
@@ -44,6 +45,26 @@ double first_order(double mu, double alpha) {
         return double(p * ko * -std::expm1(-(ko + k)) / (ko + k) * std::sin(th));
     };
     return 2 * ref::integrate2(f, 1e-9, M_PI / 2, 0, M_PI, 1e-8);
+}
+
+/// Reflectance of an isotropically scattering slab of optical thickness 1, albedo 1, lit at mu:
+/// photons traced on the host with uniform directions on the sphere (std::mt19937_64), no SGGX;
+/// the value and 3 standard errors.
+std::pair<double, double> isotropic_slab(double mu, int n, std::uint64_t seed) {
+    std::mt19937_64 rng(seed);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    int top = 0;
+    for (int i = 0; i < n; ++i) {
+        double t = 0, wz = -mu;
+        for (;;) {
+            t -= -std::log1p(-u(rng)) * wz;
+            if (t < 0 || t > 1) break;
+            wz = 2 * u(rng) - 1;
+        }
+        top += t < 0;
+    }
+    const double p = double(top) / n;
+    return {p, 3 * std::sqrt(p * (1 - p) / n)};
 }
 
 SheenVolumeRequest request(const std::vector<std::pair<double, double>>& mu_alpha, std::uint64_t walks) {
@@ -116,30 +137,50 @@ TEST_CASE("sheen volume: energy, Beer-Lambert transmission and the first order a
 
 TEST_CASE("sheen volume: sigma = 1 is the isotropically scattering slab (independent simulation)",
           "[sheen-volume]") {
-    // Unit optical thickness, albedo 1, isotropic phase function: photons traced on the host with
-    // uniform directions on the sphere (std::mt19937_64), no SGGX involved.
+    // Unit optical thickness, albedo 1, isotropic phase function (isotropic_slab).
     const std::vector<double> mus = {0.2, 0.6, 1.0};
     std::vector<std::pair<double, double>> cells;
     for (double mu : mus) cells.push_back({mu, 1.0});
     const SheenVolumeResult r = sheen_volume_walks(testing::engine(), request(cells, 1 << 20));
-    std::mt19937_64 rng(11);
-    std::uniform_real_distribution<double> u(0.0, 1.0);
     for (size_t c = 0; c < mus.size(); ++c) {
-        const int n = 1 << 20;
-        int top = 0;
-        for (int i = 0; i < n; ++i) {
-            double t = 0, wz = -mus[c];
-            for (;;) {
-                t -= -std::log1p(-u(rng)) * wz;
-                if (t < 0 || t > 1) break;
-                wz = 2 * u(rng) - 1;
-            }
-            top += t < 0;
-        }
-        const double p = double(top) / n, err = 3 * std::sqrt(p * (1 - p) / n);
+        const auto [p, err] = isotropic_slab(mus[c], 1 << 20, 11 + c);
         const SheenVolumeValue& v = r.values[c];
         INFO("mu " << mus[c] << ": walk R " << v.reflectance.value << " +- " << v.reflectance.error
                    << ", isotropic slab " << p << " +- " << err);
         CHECK(std::fabs(v.reflectance.value - p) <= v.reflectance.error + err);
+    }
+}
+
+TEST_CASE("lut sheen-ltc: R at roughness 1 is the isotropic slab's, the LTC's lobe is a density; refusals",
+          "[sheen-volume]") {
+    // Edge texels: roughness 0 (floored at 0.01) and 1 (sigma = 1, the isotropic slab) at mu 0.5 and 1.
+    LutRequest r;
+    r.kind = "sheen-ltc";
+    r.model = "sheen";
+    r.alpha_map = "roughness";
+    r.texels = Texels::Edge;
+    r.mu_lo = 0.5;
+    r.width = 2;
+    r.height = 2;
+    r.samples = 1 << 18;
+    const Table t = compute_lut(testing::engine(), r);
+    REQUIRE(t.channels == std::vector<std::string>{"a", "b", "R", "distance", "distance_error"});
+    for (int i = 0; i < 2; ++i) {
+        const size_t c = 2 + i;  // row roughness 1
+        const auto [p, err] = isotropic_slab(t.x.parameter[i], 1 << 20, 5 + i);
+        INFO("mu " << t.x.parameter[i] << ": R " << t.values[2][c] << " +- " << t.error[c] << ", slab " << p);
+        CHECK(std::fabs(t.values[2][c] - p) <= t.error[c] + err);
+        CHECK(t.values[0][c] > 0.0);  // a > 0: M^-1 invertible
+        CHECK(t.values[3][c] >= 0.0);
+        CHECK(t.values[3][c] < 2.0);  // an L1 distance between two densities is below 2
+    }
+    for (const std::string& args : {std::string("lut sheen-ltc --model ggx --size 2x2 -o /tmp/sheen-refused.npy"),
+                                    std::string("lut sheen-ltc --model sheen --tolerance 1e-3 --size 2x2 -o /tmp/sheen-refused.npy")}) {
+        const auto e = testing::run_cli(args);
+        INFO(args << "\n" << e.err);
+        CHECK(e.status == 2);
+        CHECK(testing::count_lines(e.err) == 1);
+        CHECK(e.err.rfind("brdfbake: error: ", 0) == 0);
+        CHECK(e.err.find("sheen-ltc") != std::string::npos);
     }
 }
