@@ -76,7 +76,7 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
                       "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms, "
-                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82, sheen-viewer, ltc");
+                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82, sheen-viewer, ltc, sheen-ltc");
 }
 
 TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {
