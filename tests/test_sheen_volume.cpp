@@ -151,7 +151,7 @@ TEST_CASE("sheen volume: sigma = 1 is the isotropically scattering slab (indepen
     }
 }
 
-TEST_CASE("lut sheen-ltc: R at roughness 1 is the isotropic slab's, the LTC's lobe is a density; refusals",
+TEST_CASE("lut sheen-ltc: R at roughness 1 is the isotropic slab's, the LTC's lobe is a density, and refusals",
           "[sheen-volume]") {
     // Edge texels: roughness 0 (floored at 0.01) and 1 (sigma = 1, the isotropic slab) at mu 0.5 and 1.
     LutRequest r;
