@@ -92,7 +92,7 @@ TEST_CASE("sheen volume: the fiber SGGX's projected area and visible normals aga
                                    const long double c = std::max<long double>(0, ref::dot(v, m));
                                    return double(std::pow(c, k) * sggx_d(m, s) * std::sin(th));
                                },
-                               0, M_PI, 0, M_PI, 1e-9);
+                               0, M_PI, 0, M_PI, 1e-8);
             };
             const double area = moment(1), mean_c = moment(2) / area;
             INFO("alpha " << alpha << " v.z " << vz);
