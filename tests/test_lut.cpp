@@ -57,7 +57,7 @@ std::string tmp_path(const std::string& name) { return "/tmp/brdfbake-lut-" + st
 TEST_CASE("the table-kind registry: every kind once, found by name and id, unknown names listed", "[lut][quick]") {
     const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms",
                                                "sheen-albedo", "dielectric-eavg", "gen-schlick", "gen-schlick-ior",
-                                               "dfg-f82", "sheen-viewer", "ltc"};
+                                               "dfg-f82", "sheen-viewer", "ltc", "sheen-ltc"};
     REQUIRE(table_kinds().size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         const TableKind* k = table_kinds()[i];
@@ -76,7 +76,7 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
                       "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms, "
-                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82, sheen-viewer, ltc");
+                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82, sheen-viewer, ltc, sheen-ltc");
 }
 
 TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {
@@ -183,6 +183,7 @@ TEST_CASE("each kind's computed table has the axes and channels the README docum
         {"dfg-f82", {{"A", "B", "C"}, "mu", false, false}},
         {"sheen-viewer", {{"E"}, "mu", false, false}},
         {"ltc", {{"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance", "distance_error"}, "mu", false, false}},
+        {"sheen-ltc", {{"a", "b", "R", "distance", "distance_error"}, "mu", false, false}},
     };
     for (const TableKind* k : table_kinds()) {
         INFO(k->name);

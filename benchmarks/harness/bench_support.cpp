@@ -221,7 +221,8 @@ LutRequest kind_request(const TableKind& k, double texels, double tolerance, Pre
             r.model = model;
             r.fresnel = fresnel;
             set_lut_size(r, kind_size(k, texels));
-            r.tolerance.tolerance = tolerance;
+            r.tolerance.tolerance = k.simulated ? 0.0 : tolerance;  // a walk count, never a tolerance
+            if (k.simulated) r.samples = std::uint64_t(1) << 16;
             r.precision = p;
             try {
                 validate_lut(r);

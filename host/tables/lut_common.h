@@ -97,6 +97,7 @@ TableKind gen_schlick_kind();
 TableKind gen_schlick_ior_kind();
 TableKind dfg_f82_kind();
 TableKind ltc_kind();
+TableKind sheen_ltc_kind();
 
 }  // namespace tables
 }  // namespace brdfbake

@@ -54,6 +54,18 @@ LutRequest cycles_layout(int width, int height, int depth, std::vector<std::stri
     return r;
 }
 
+// table_sheen_ltc[(k * 32 + j) * 32 + i]: planes k = A, B, R of the volumetric sheen (Zeltner et
+// al. 2022), x = mu i/31, y = roughness j/31, both floored at 0.01 as the paper's fit floors them
+// (kind_sheen_ltc.cpp); read by bsdf_sheen_setup (intern/cycles/kernel/closure/bsdf_sheen.h).
+LutRequest cycles_sheen_layout() {
+    LutRequest r = engine_layout(32, 32);
+    r.model = "sheen";  // alpha = roughness^2 = the layer's sigma (engine_layout's --alpha-map roughness)
+    r.texels = Texels::Edge;
+    r.mu_floor = 0.01;
+    r.samples = std::uint64_t(1) << 18;
+    return r;
+}
+
 // table_ggx_glass_E and table_ggx_glass_inv_E[(z * 16 + y) * 16 + x], table_ggx_glass_Eavg and
 // table_ggx_glass_inv_Eavg[z * 16 + x]: the single-scattering albedo R + T of a rough GGX glass
 // interface (Eavg: 2 integral of (R + T) mu dmu over mu) with the exact dielectric Fresnel and
@@ -167,8 +179,8 @@ const std::vector<LutPreset>& lut_presets() {
         preset_row({"cycles", "Blender Cycles",
                     "table_ggx_E, table_ggx_Eavg, table_ggx_gen_schlick_s, table_ggx_gen_schlick_ior_s, "
                     "table_ggx_glass_E and table_ggx_glass_inv_E (dielectric: R + T and R_inside + T_inside), "
-                    "table_ggx_glass_Eavg and table_ggx_glass_inv_Eavg (dielectric-eavg: Eavg, Eavg_inside) "
-                    "(intern/cycles/scene/shader.tables)",
+                    "table_ggx_glass_Eavg and table_ggx_glass_inv_Eavg (dielectric-eavg: Eavg, Eavg_inside), "
+                    "table_sheen_ltc (sheen-ltc: a, b, R) (intern/cycles/scene/shader.tables)",
                     "h", false,
                     "32 x 32 (32 for eavg; 16 x 16 x 16 for gen-schlick, gen-schlick-ior and dielectric with z = "
                     "cycles_z, 16 x 16 for dielectric-eavg with z = cycles_z, the dielectric kinds with Cycles' "
@@ -181,7 +193,8 @@ const std::vector<LutPreset>& lut_presets() {
                      {K::GenSchlickIor, cycles_layout(16, 16, 16, cycles_3d), "ggx:shadowing=masking"},
                      {K::Dielectric, cycles_glass_layout(16, cycles_3d, 1e-6), ""},
                      // x = roughness, z = cycles_z: already Cycles' order
-                     {K::DielectricEavg, cycles_glass_layout(1, {}, 4e-6), ""}}}),
+                     {K::DielectricEavg, cycles_glass_layout(1, {}, 4e-6), ""},
+                     {K::SheenLtc, cycles_sheen_layout(), ""}}}),
         // Unreal Engine (Engine/Shaders/Private/BRDF.ush, EnvBRDF): the split-sum texture
         // PreIntegratedGF is read at float2(NoV, Roughness), .x the scale A and .y the bias B of
         // SpecularColor * A + saturate(50 * SpecularColor.g) * B; 128 x 32 texels, centres.

@@ -15,7 +15,7 @@
 
 namespace brdfbake {
 
-enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs, SheenAlbedo, DielectricEavg, GenSchlick, GenSchlickIor, DfgF82, SheenViewer, Ltc };
+enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs, SheenAlbedo, DielectricEavg, GenSchlick, GenSchlickIor, DfgF82, SheenViewer, Ltc, SheenLtc };
 
 /// 1 whatever the request: the value channels and integrations per cell of most kinds.
 int one_per_request(const LutRequest&);
@@ -69,6 +69,9 @@ struct TableKind {
     /// generalized-Schlick kinds); every other kind takes only "ratio", the default.
     bool cycles_estimator = false;
     double sample_cost = 1.0;  // the cost of one sample relative to an albedo sample
+    /// Its cells are random walks (sheen-ltc): --samples walks a texel, no --tolerance; `bench`
+    /// times it at a fixed walk count and reports its error without holding it to a tolerance.
+    bool simulated = false;
 
     /// Value channels (the error channel comes on top).
     int (*value_channels)(const LutRequest&) = one_per_request;

@@ -93,6 +93,13 @@
 #define BB_ENTRY_WALK_ALBEDO walk_albedo /* one replica of walks per work-item (brdf/random_walk.h) */
 #define BB_WALK_SUMS 5 /* per item: escaped above, its first order, cut-off, escaped below, its first order */
 
+/* ---------------------------------------------------------- kernels/sheen_volume.cl */
+
+#define BB_ENTRY_SHEEN_VOLUME sheen_volume /* one replica of sheen-layer walks per work-item */
+#define BB_SHEEN_SUMS 5                     /* per item: R, R1, T, T0, cut-off shares */
+#define BB_SHEEN_LOBE_THETA 16              /* the top exits' histogram: theta bins ... */
+#define BB_SHEEN_LOBE_PHI 16                /* ... and |phi| bins */
+
 /* ------------------------------------------------------------------- kernels/ltc.cl */
 
 #define BB_ENTRY_LTC_LOBE_POINTS ltc_lobe_points /* the lobe's fixed sample points per texel */

@@ -1,0 +1,62 @@
+// The volumetric sheen layer of Zeltner, Burley and Chiang 2022 by random walks
+// (brdf/sheen_volume.h, kernels/sheen_volume.cl): its reflectance R(mu, alpha), the first order,
+// the transmission and the share the bounce limit cut off, each with its error estimate, and the
+// histogram of the reflected directions (the lobe the sheen LTC is fitted to).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "brdfbake/albedo.h"
+
+namespace brdfbake {
+
+struct SheenVolumeCell {
+    double mu = 1.0;     // cosine of the view
+    double alpha = 0.5;  // roughness; the fibers' cross-section sigma = alpha^2
+    int bounces = 1000;  // the walk's scattering limit
+};
+
+struct SheenVolumeRequest {
+    std::vector<SheenVolumeCell> cells;
+    std::uint64_t walks = 1u << 20;  // per cell, split over the replicas
+    unsigned replicas = 16;
+    std::uint64_t seed = 1;
+    Precision precision = Precision::Float;
+    bool lobe = false;  // also the reflected directions' histogram
+};
+
+/// The bins of the lobe: theta_o uniform over [0, pi/2] (rows), |phi_o| uniform over [0, pi]
+/// (columns), phi_o measured from the view's azimuth; the lobe is symmetric about phi_o = 0.
+struct SheenLobeBins {
+    static int theta();
+    static int phi();
+    /// Solid angle of one bin on one side of phi = 0.
+    static double solid_angle(int row);
+};
+
+struct SheenVolumeValue {
+    AlbedoValue reflectance;    // R: the share of walks leaving through the top
+    AlbedoValue single;         // the part of R after exactly one scattering
+    AlbedoValue transmittance;  // T: leaving through the bottom
+    AlbedoValue direct;         // the part of T without scattering
+    AlbedoValue cutoff;         // still inside after `bounces` scatterings (R + T + cutoff = 1)
+    /// With SheenVolumeRequest::lobe: per bin (row-major, SheenLobeBins), the mean over the bin
+    /// of the reflected density f cos(theta_o) per solid angle (over both sides of phi = 0), and
+    /// its error (3 standard errors of the replicas).
+    std::vector<double> lobe, lobe_error;
+};
+
+struct SheenVolumeResult {
+    std::vector<SheenVolumeValue> values;  // one per cell
+    std::uint64_t walks_per_cell = 0;
+    double kernel_seconds = 0.0;
+    std::string method;  // in words
+};
+
+/// The walks of `req`: req.walks per cell over req.replicas replicas, in req.precision, Philox
+/// keyed by req.seed and each cell's content. Throws NonFiniteError if a walk met NaN.
+SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& req);
+
+}  // namespace brdfbake

@@ -1,0 +1,277 @@
+// The volumetric sheen of Zeltner, Burley and Chiang 2022 ([ZBC22], "Practical Multiple-Scattering
+// Sheen Using Linearly Transformed Cosines") as the LTC table renderers ship (Blender Cycles'
+// table_sheen_ltc): per texel (mu, roughness r), the reflectance R of the fiber SGGX layer
+// (brdf/sheen_volume.h, by random walks on the device: integrate/sheen_volume.h) and the LTC whose
+// inverse matrix is M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]] in the frame where the viewer is at
+// (sin theta_o, 0, cos theta_o) ([ZBC22] eq. 1: f cos(theta_i) = R D_o(M^-1 w / |M^-1 w|) |det M^-1| /
+// |M^-1 w|^3, D_o = max(0, z)/pi, Heitz et al. 2016 eq. 1 and sec. 3.1), fitted by the fitting
+// layer's Nelder-Mead (fit/nelder_mead.h) to the layer's reflected lobe, a histogram of the walks'
+// exits through the top. Channels a, b, R, distance (the L1 distance between the normalised lobe
+// and the LTC, both averaged over the histogram's bins), distance_error (the histogram's noise
+// floor in it) and error (R's).
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <sstream>
+
+#include "brdfbake/brdf/models.h"
+#include "brdfbake/brdf/sheen_volume.h"
+#include "brdfbake/error.h"
+#include "brdfbake/progress.h"
+#include "fit/nelder_mead.h"
+#include "integrate/sheen_volume.h"
+#include "tables/lut_common.h"
+
+namespace brdfbake {
+namespace tables {
+namespace {
+
+/// [ZBC22]'s floors: mu and roughness at least 0.01 (sigma = 1e-4), the layer's walks below that
+/// never turn back.
+constexpr double kSheenFloor = 0.01;
+/// The layer's roughness r of a texel is sqrt of the sheen axis' alpha: sigma = r^2 = alpha, so
+/// that --alpha-map roughness puts r (Cycles' roughness) on the axis.
+/// The fewest top exits a texel's fit uses; below it the texel holds the cosine (a = 1, b = 0).
+constexpr double kMinExits = 1000;
+/// A texel with fewer exits than kMinExits is walked again with this many times the walks.
+constexpr std::uint64_t kRewalk = 16;
+/// Sub-points per bin side for the LTC's bin averages.
+constexpr int kSub = 3;
+
+std::vector<std::string> sheen_ltc_programs(const LutRequest&) { return {"sheen_volume"}; }
+
+void validate_sheen_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    if (m.id != BB_MODEL_SHEEN)
+        throw Error("the sheen-ltc table sweeps the roughness of the volumetric sheen layer: --model sheen (its alpha "
+                    "is the layer's sigma = roughness^2), not '" + m.name + "'");
+    if (r.tolerance.tolerance > 0.0)
+        throw Error("the sheen-ltc table is a random-walk simulation of --samples walks a texel (default 2^18): drop "
+                    "--tolerance");
+    if (r.alpha_hi > 1.0) throw Error("--alpha-range of a sheen-ltc table must lie within [0, 1]");
+    if (f.kind != BB_FRESNEL_NONE) throw Error("the sheen layer has no Fresnel term: drop --fresnel");
+}
+
+/// The LTC density of M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]] at the unit direction w.
+double ltc_d(double a, double b, double x, double y, double z) {
+    const double u = a * x + b * z, v = a * y;
+    const double n = std::sqrt(u * u + v * v + z * z);
+    return std::max(0.0, z / n) / M_PI * a * a / (n * n * n);
+}
+
+/// The sub-points of every bin (SheenLobeBins, one side of phi = 0), kSub x kSub each, with their
+/// weights sin(theta) normalised per bin: computed once.
+struct SubPoints {
+    std::vector<std::array<double, 4>> p;  // x, y, z, weight; bin k's points at [k kSub^2, (k + 1) kSub^2)
+};
+const SubPoints& sub_points() {
+    static const SubPoints pts = [] {
+        SubPoints s;
+        const int nt = SheenLobeBins::theta(), np = SheenLobeBins::phi();
+        const double dt = 0.5 * M_PI / nt, dp = M_PI / np;
+        for (int i = 0; i < nt; ++i)
+            for (int j = 0; j < np; ++j) {
+                const size_t first = s.p.size();
+                double w = 0.0;
+                for (int si = 0; si < kSub; ++si)
+                    for (int sj = 0; sj < kSub; ++sj) {
+                        const double th = (i + (si + 0.5) / kSub) * dt, ph = (j + (sj + 0.5) / kSub) * dp;
+                        const double st = std::sin(th);
+                        s.p.push_back({st * std::cos(ph), st * std::sin(ph), std::cos(th), st});
+                        w += st;
+                    }
+                for (size_t k = first; k < s.p.size(); ++k) s.p[k][3] /= w;
+            }
+        return s;
+    }();
+    return pts;
+}
+
+/// Per bin (SheenLobeBins), the LTC's mean density over the bin (one side of phi = 0).
+std::vector<double> ltc_bins(double a, double b) {
+    const SubPoints& s = sub_points();
+    std::vector<double> out(s.p.size() / (kSub * kSub), 0.0);
+    for (size_t k = 0; k < s.p.size(); ++k) {
+        const auto& q = s.p[k];
+        out[k / (kSub * kSub)] += q[3] * ltc_d(a, b, q[0], q[1], q[2]);
+    }
+    return out;
+}
+
+/// integral over the upper hemisphere of |p - D| at bin resolution: p the lobe normalised by R.
+double bin_distance(const std::vector<double>& lobe, double r, const std::vector<double>& d) {
+    const int np = SheenLobeBins::phi();
+    double sum = 0.0;
+    for (size_t k = 0; k < lobe.size(); ++k)
+        sum += 2.0 * SheenLobeBins::solid_angle(int(k) / np) * std::abs(lobe[k] / r - d[k]);
+    return sum;
+}
+
+struct TexelFit {
+    double a = 1.0, b = 0.0, distance = 0.0, distance_error = 0.0;
+    bool fitted = false;
+};
+
+/// Fits the texels row by row from rough to smooth, each row's texels started from the row fitted
+/// before (as [ZBC22]'s fit runs from high to low roughness), a row's texels in one batch.
+std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const SheenVolumeResult& walks) {
+    const size_t w = g.table.x.parameter.size(), h = g.table.y.parameter.size();
+    std::vector<size_t> order(h);
+    for (size_t j = 0; j < h; ++j) order[j] = j;
+    const std::vector<double>& rough = g.table.y.parameter;
+    std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) { return rough[x] > rough[y]; });
+    std::vector<TexelFit> fits(w * h);
+    std::vector<std::vector<double>> start(w, std::vector<double>{0.0, 0.0});  // (ln a, b)
+    fit::NelderMeadOptions options;
+    options.steps = {0.2, 0.05};
+    options.max_evaluations = 400;
+    options.value_tolerance = 1e-6;
+    options.size_tolerance = 1e-5;
+    ProgressStage stage("LTC fit of the sheen layer's lobes", h, "rows", "fitted");
+    for (size_t k = 0; k < h; ++k) {
+        const size_t j = order[k];
+        std::vector<size_t> texels;
+        std::vector<std::vector<double>> starts;
+        for (size_t i = 0; i < w; ++i) {
+            const SheenVolumeValue& v = walks.values[j * w + i];
+            if (v.reflectance.value * double(v.reflectance.samples) < kMinExits) continue;
+            texels.push_back(j * w + i);
+            starts.push_back(start[i]);
+        }
+        const auto objective = [&](const std::vector<size_t>& problem, const std::vector<std::vector<double>>& x) {
+            std::vector<double> out(x.size());
+            for (size_t p = 0; p < x.size(); ++p) {
+                const SheenVolumeValue& v = walks.values[texels[problem[p]]];
+                out[p] = bin_distance(v.lobe, v.reflectance.value, ltc_bins(std::exp(x[p][0]), x[p][1]));
+            }
+            return out;
+        };
+        const std::vector<fit::Minimum> mins = fit::minimize_batch(starts, options, objective);
+        for (size_t t = 0; t < texels.size(); ++t) {
+            const size_t c = texels[t];
+            const SheenVolumeValue& v = walks.values[c];
+            TexelFit& f = fits[c];
+            f.a = double(float(std::exp(mins[t].x[0])));  // as written (float32)
+            f.b = double(float(mins[t].x[1]));
+            f.distance = bin_distance(v.lobe, v.reflectance.value, ltc_bins(f.a, f.b));
+            // the histogram's noise floor: where the lobe equals D, a bin's |p - D| averages
+            // sqrt(2/pi) of its standard error (lobe_error holds 3 of them); summed over the bins
+            for (size_t b = 0; b < v.lobe.size(); ++b)
+                f.distance_error += 2.0 * SheenLobeBins::solid_angle(int(b) / SheenLobeBins::phi()) *
+                                    std::sqrt(2.0 / M_PI) * v.lobe_error[b] / 3.0 / v.reflectance.value;
+            f.fitted = true;
+            start[c % w] = mins[t].x;
+        }
+        stage.update(k + 1);
+    }
+    return fits;
+}
+
+std::string stats_of(std::vector<double> v) {
+    if (v.empty()) return "none";
+    std::sort(v.begin(), v.end());
+    std::ostringstream s;
+    s.precision(4);
+    s << "min " << v.front() << ", median " << v[v.size() / 2] << ", max " << v.back();
+    return s.str();
+}
+
+Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    t.quantity = "the volumetric sheen of Zeltner, Burley and Chiang 2022: reflectance R of a unit layer of fiber "
+                 "SGGX microflakes (sigma = roughness^2, albedo 1) and the LTC M^-1 = [[a, 0, b], [0, a, 0], [0, 0, "
+                 "1]] of its lobe, viewer at (sin theta_o, 0, cos theta_o)";
+    SheenVolumeRequest req;
+    req.walks = r.samples;
+    req.precision = r.precision;
+    req.lobe = true;
+    const size_t w = t.x.parameter.size();
+    for (size_t c = 0; c < g.cells.size(); ++c)
+        req.cells.push_back({std::max(g.cells[c].mu, kSheenFloor), std::max(std::sqrt(t.y.parameter[c / w]), kSheenFloor),
+                             BB_SHEEN_VOLUME_DEFAULT_BOUNCES});
+    progress_next_pass();
+    SheenVolumeResult walks = sheen_volume_walks(engine, req);
+    // Texels that reflect few walks (smooth layers seen from above) are walked again, kRewalk times
+    // as many, when that gives them kMinExits: those that reflected at least kMinExits / kRewalk.
+    // (Rewalking those that reflect almost nothing, the smoothest row at grazing views, where a walk
+    // scatters ~1/mu times before it crosses, took hours.)
+    SheenVolumeRequest again = req;
+    again.cells.clear();
+    again.walks = req.walks * kRewalk;
+    std::vector<size_t> rewalked;
+    for (size_t c = 0; c < req.cells.size(); ++c) {
+        const double exits = walks.values[c].reflectance.value * double(walks.walks_per_cell);
+        if (exits < kMinExits && exits * double(kRewalk) >= kMinExits) {
+            again.cells.push_back(req.cells[c]);
+            rewalked.push_back(c);
+        }
+    }
+    if (!again.cells.empty()) {
+        const SheenVolumeResult more = sheen_volume_walks(engine, again);
+        for (size_t k = 0; k < rewalked.size(); ++k) walks.values[rewalked[k]] = more.values[k];
+    }
+    const std::vector<TexelFit> fits = fit_texels(g, walks);
+    const size_t n = g.cells.size();
+    t.channels = {"a", "b", "R", "distance", "distance_error"};
+    t.values.assign(t.channels.size(), std::vector<double>(n));
+    t.error.assign(n, 0.0);
+    std::vector<double> distance, distance_error, cutoff;
+    size_t unfitted = 0;
+    for (size_t c = 0; c < n; ++c) {
+        const SheenVolumeValue& v = walks.values[c];
+        const TexelFit& ft = fits[c];
+        t.values[0][c] = ft.a;
+        t.values[1][c] = ft.b;
+        t.values[2][c] = v.reflectance.value;
+        t.values[3][c] = ft.distance;
+        t.values[4][c] = ft.distance_error;
+        t.error[c] = v.reflectance.error;
+        cutoff.push_back(v.cutoff.value);
+        if (ft.fitted) {
+            distance.push_back(ft.distance);
+            distance_error.push_back(ft.distance_error);
+        } else {
+            ++unfitted;
+        }
+    }
+    describe(t, r, m, f.canonical, walks.method, walks.walks_per_cell, g.clamped);
+    t.attributes["model"] = "sheen-volume: the fiber SGGX layer of Zeltner et al. 2022, sigma = the axis' alpha "
+                            "(roughness^2 with --alpha-map roughness)";
+    t.attributes["floors"] = "mu and roughness below 0.01 are computed at 0.01 (Zeltner et al. 2022's fit)";
+    t.attributes["distance"] = "integral over the upper hemisphere of |lobe / R - D_ltc|, both averaged over " +
+                               std::to_string(SheenLobeBins::theta()) + " x " + std::to_string(SheenLobeBins::phi()) +
+                               " bins (theta, |phi|): " + stats_of(distance);
+    t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
+                                    std::to_string(rewalked.size()) + " texels with " +
+                                    std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
+                                    std::to_string(int(kMinExits)) + " reflected walks walked again with " +
+                                    std::to_string(kRewalk) + " times as many)";
+    t.attributes["distance_error"] = "the histogram's noise floor in the distance: sqrt(2/pi) standard errors per "
+                                     "bin, summed: " + stats_of(distance_error);
+    t.attributes["unfitted"] = std::to_string(unfitted) + " texels with fewer than " +
+                               std::to_string(int(kMinExits)) + " reflected walks hold the cosine (a = 1, b = 0)";
+    t.attributes["cutoff"] = "share of walks still inside after " + std::to_string(BB_SHEEN_VOLUME_DEFAULT_BOUNCES) +
+                             " scatterings: " + stats_of(cutoff);
+    return std::move(g.table);
+}
+
+}  // namespace
+
+TableKind sheen_ltc_kind() {
+    TableKind k(TableKindId::SheenLtc, "sheen-ltc",
+                "the volumetric sheen of Zeltner et al. 2022 per (mu, roughness): its LTC a, b (M^-1 = [[a,0,b],[0,a,0],"
+                "[0,0,1]]), reflectance R and the fit's L1 distance (2D, random walks)",
+                sheen_ltc_programs, compute_sheen_ltc);
+    k.plan_fresnel = "none (the sheen layer has no Fresnel term)";
+    k.validate = validate_sheen_ltc;
+    k.value_channels = [](const LutRequest&) { return 5; };
+    k.required_model = "sheen";
+    k.lobe_requirement = "the sheen-ltc table needs a sheen lobe (model sheen, KHR_materials_sheen)";
+    k.simulated = true;
+    // A walk costs several albedo samples (its flights); not measured for the planner yet.
+    k.sample_cost = 8.0;
+    return k;
+}
+
+}  // namespace tables
+}  // namespace brdfbake

@@ -1,0 +1,145 @@
+/* The volumetric sheen layer of [ZBC22] Zeltner, Burley and Chiang, "Practical Multiple-Scattering
+ * Sheen Using Linearly Transformed Cosines", SIGGRAPH 2022 Talks: a slab of unit thickness and
+ * density 1 filled with fiber-like specular SGGX microflakes [HDCD15] (Heitz, Dupuy, Crassin and
+ * Dachsbacher, "The SGGX Microflake Distribution", SIGGRAPH 2015), fibers along the normal z,
+ * single-scattering albedo 1, fiber cross-section sigma = alpha^2 ([ZBC22] sec. 3; alpha the
+ * artist's roughness). Light enters through the top; what leaves through the top is the sheen's
+ * reflectance R (the magnitude of its LTC), what leaves through the bottom is transmitted (the
+ * layer below; [ZBC22] counts it as not reflected).
+ *
+ * The medium, with S = diag(1, 1, s^2), s = sigma [HDCD15 sec. 3, a fiber of direction z]:
+ *   projected area   sigma(w) = sqrt(w^T S w) = sqrt(w.x^2 + w.y^2 + s^2 w.z^2)     [HDCD15 eq. 9]
+ *   normals          D(m) = 1 / (pi sqrt|S| (m^T S^-1 m)^2)
+ *                         = 1 / (pi s (m.x^2 + m.y^2 + m.z^2 / s^2)^2)                [HDCD15 eq. 8]
+ *   extinction       sigma_t(w) = density sigma(w), density 1                          [HDCD15 eq. 2]
+ *   phase function   p(wi -> wo) = D(wh) / (4 sigma(wi)), wh = (wi + wo)/|wi + wo|   [HDCD15 eq. 13,
+ *                    the specular microflake; wi points back along the ray]
+ * The SGGX normals are those of the ellipsoid x^T S x = 1, the image of the unit sphere under
+ * A = S^-1/2 = diag(1, 1, 1/s). A linear map keeps ratios of projected areas, so a visible normal
+ * of wi [HDCD15 sec. 5] is drawn as on a sphere seen from wi' = A^-1 wi / |A^-1 wi|: a point p'
+ * uniform on the disk across wi' lifted onto the sphere's visible half; the ellipsoid's normal at
+ * A p' is A^-T p' = (p'.x, p'.y, s p'.z), normalised (the construction of [H18 sec. 4] for GGX).
+ *
+ * The walk: from the top (depth t = 0; t grows downwards to 1 at the bottom) along -wo. A free
+ * flight of length l ~ Exp(sigma_t(w)) moves the depth by -l w.z; t < 0 escapes through the top
+ * (reflection, direction w), t > 1 through the bottom (transmission); otherwise the ray scatters:
+ * a visible normal m of -w, w' = reflect(-w, m). With albedo 1 every walk ends in exactly one of
+ * reflection, transmission, or the bounce limit (its `cutoff`, reported, never dropped).
+ *
+ * Closed forms the walk must meet (tests): transmission without scattering T0 = exp(-sigma(wo)/mu_o)
+ * (Beer-Lambert along the view), and the first order
+ *   R1(wo) = integral over the upper hemisphere of p(wo -> w) k_o (1 - exp(-(k_o + k))) / (k_o + k) dw,
+ *   k_o = sigma(wo)/mu_o, k = sigma(w)/mu
+ * (the depth of the first collision has density k_o exp(-k_o t), the way out attenuates by exp(-k t)).
+ *
+ * Random numbers: Philox4x32-10 as random_walk.h, one call per flight, counter
+ * (walk, replica, cell stream, BB_SHEEN_TAG | flight).
+ * [H18] Heitz, "Sampling the GGX Distribution of Visible Normals", JCGT 7(4), 2018. */
+#ifndef BRDFBAKE_BRDF_SHEEN_VOLUME_H
+#define BRDFBAKE_BRDF_SHEEN_VOLUME_H
+
+#include "brdfbake/brdf/compat.h"
+#include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/brdf/sampling.h"
+
+#ifdef BB_PHILOX
+#include <Random123/philox.h>
+#endif
+
+/* Parameter slots of the sheen-volume model. */
+#define BB_SHEEN_VOLUME_ROUGHNESS 0 /* alpha; sigma = alpha^2 */
+#define BB_SHEEN_VOLUME_BOUNCES 1   /* the walk's scattering limit */
+#define BB_SHEEN_VOLUME_DEFAULT_BOUNCES 1000
+#define BB_SHEEN_VOLUME_MAX_BOUNCES 1000000
+
+/* The fourth counter word of a sheen walk's Philox stream: "s" in the top byte. */
+#define BB_SHEEN_TAG 0x73000000u
+
+/* The fiber cross-section of a roughness: sigma = alpha^2 [ZBC22 sec. 3]. */
+BB_FN bb_real bb_sheen_volume_sigma(bb_real alpha) { return alpha * alpha; }
+
+/* Projected area sigma(w) of the fiber SGGX [HDCD15 eq. 9], s the fiber cross-section. */
+BB_FN bb_real bb_sggx_fiber_area(bb_vec3 w, bb_real s) {
+    return bb_sqrt(w.x * w.x + w.y * w.y + s * s * w.z * w.z);
+}
+
+/* D(m) of the fiber SGGX [HDCD15 eq. 8]. */
+BB_FN bb_real bb_sggx_fiber_d(bb_vec3 m, bb_real s) {
+    const bb_real q = m.x * m.x + m.y * m.y + m.z * m.z / (s * s);
+    return BB_INV_PI / (s * q * q);
+}
+
+/* The specular microflake phase function p(wi -> wo) = D(wh) / (4 sigma(wi)) [HDCD15 eq. 13],
+ * wi pointing back along the incoming ray, wo the scattered direction. */
+BB_FN bb_real bb_sggx_fiber_phase(bb_vec3 wi, bb_vec3 wo, bb_real s) {
+    const bb_vec3 h = bb_add(wi, wo);
+    const bb_real n2 = bb_dot(h, h);
+    if (n2 <= BB_R(0.0)) return BB_R(0.0);
+    return bb_sggx_fiber_d(bb_scale(h, BB_R(1.0) / bb_sqrt(n2)), s) / (BB_R(4.0) * bb_sggx_fiber_area(wi, s));
+}
+
+/* A visible normal of wi (density <wi, m>+ D(m) / sigma(wi)) from two uniform numbers: the
+ * sphere seen from A^-1 wi, mapped back by A^-T (see the header's comment). */
+BB_FN bb_vec3 bb_sggx_fiber_sample_vndf(bb_vec3 wi, bb_real s, bb_real u1, bb_real u2) {
+    const bb_vec3 v = bb_normalize(bb_v3(wi.x, wi.y, s * wi.z));
+    /* an orthonormal basis (t1, t2, v) (Duff et al. 2017, "Building an Orthonormal Basis, Revisited") */
+    const bb_real sg = bb_select(BB_R(-1.0), BB_R(1.0), v.z >= BB_R(0.0));
+    const bb_real a = BB_R(-1.0) / (sg + v.z), b = v.x * v.y * a;
+    const bb_vec3 t1 = bb_v3(BB_R(1.0) + sg * v.x * v.x * a, sg * b, -sg * v.x);
+    const bb_vec3 t2 = bb_v3(b, sg + v.y * v.y * a, -v.y);
+    const bb_real r = bb_sqrt(u1), phi = BB_R(2.0) * BB_PI * u2;
+    const bb_real d1 = r * bb_cos(phi), d2 = r * bb_sin(phi);
+    const bb_real lift = bb_safe_sqrt(BB_R(1.0) - d1 * d1 - d2 * d2);
+    const bb_vec3 p = bb_add(bb_add(bb_scale(t1, d1), bb_scale(t2, d2)), bb_scale(v, lift));
+    return bb_normalize(bb_v3(p.x, p.y, s * p.z));
+}
+
+/* How a walk ended. */
+#define BB_SHEEN_EXIT_TOP 0
+#define BB_SHEEN_EXIT_BOTTOM 1
+#define BB_SHEEN_EXIT_CUTOFF 2
+#define BB_SHEEN_EXIT_BAD 3
+
+typedef struct {
+    int exit;        /* BB_SHEEN_EXIT_* */
+    int scatterings; /* the scatterings before the exit */
+    bb_vec3 w;       /* the direction it left in */
+} bb_sheen_walk;
+
+#ifdef BB_PHILOX
+/* One walk through the layer of fiber cross-section s from the view wo (wo.z > 0), at most
+ * `bounces` scatterings. */
+BB_FN bb_sheen_walk bb_sheen_volume_walk(bb_real s, bb_vec3 wo, int bounces, philox4x32_key_t key, unsigned int walk,
+                                         unsigned int rep, unsigned int stream) {
+    bb_sheen_walk r;
+    r.w = bb_scale(wo, BB_R(-1.0));
+    r.scatterings = 0;
+    bb_real t = BB_R(0.0);
+    for (int k = 0;; ++k) {
+        philox4x32_ctr_t ctr = {{walk, rep, stream, BB_SHEEN_TAG | (unsigned int)k}};
+        philox4x32_ctr_t u = philox4x32(ctr, key);
+        /* free flight: l = -log(1 - U) / sigma_t(w) */
+        const bb_real l = -bb_log1p(-bb_unit_from_bits(u.v[0])) / bb_sggx_fiber_area(r.w, s);
+        t = t - l * r.w.z;
+        if (t < BB_R(0.0) || t > BB_R(1.0)) {
+            r.exit = t < BB_R(0.0) ? BB_SHEEN_EXIT_TOP : BB_SHEEN_EXIT_BOTTOM;
+            return r;
+        }
+        if (k == bounces) {
+            r.exit = BB_SHEEN_EXIT_CUTOFF;
+            return r;
+        }
+        /* scattering: a visible normal of -w, specular reflection */
+        const bb_vec3 v = bb_scale(r.w, BB_R(-1.0));
+        const bb_vec3 m = bb_sggx_fiber_sample_vndf(v, s, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
+        r.w = bb_normalize(bb_reflect(v, m));
+        r.scatterings = k + 1;
+        if (!bb_isfinite(r.w.z) || !bb_isfinite(t)) {
+            r.exit = BB_SHEEN_EXIT_BAD;
+            return r;
+        }
+    }
+}
+#endif
+
+#endif /* BRDFBAKE_BRDF_SHEEN_VOLUME_H */

@@ -1,0 +1,59 @@
+/* The volumetric sheen layer of [ZBC22] by random walks (brdf/sheen_volume.h): each work-item runs
+ * one replica of one cell, `n_walks` walks from the cell's view wo = (sqrt(1 - mu^2), 0, mu), and
+ * writes BB_SHEEN_SUMS replica means:
+ *   0  R, the share of walks that left through the top (the layer's reflectance),
+ *   1  R1, those that left through the top after one scattering (the first order),
+ *   2  T, through the bottom,
+ *   3  T0, through the bottom without scattering,
+ *   4  the share the bounce limit cut off,
+ * and, when n_bins > 0, the counts of the top exits in BB_SHEEN_LOBE_THETA x BB_SHEEN_LOBE_PHI bins
+ * (theta in [0, pi/2] and |phi| in [0, pi] uniform; the lobe is symmetric about phi = 0), the
+ * outgoing lobe's histogram. The host (host/integrate/sheen_volume.cpp) turns the replicas into
+ * means and error estimates. A walk that meets a non-finite number is counted in bad_count.
+ *
+ * Build options: [-D BB_REAL_DOUBLE] -D BB_PHILOX -I <Random123's include directory>. */
+#include "brdfbake/brdf/kernel_abi.h"
+#include "brdfbake/brdf/sheen_volume.h"
+
+__kernel void BB_ENTRY_SHEEN_VOLUME(__global const bb_scalar* cell_mu, __global const bb_scalar* cell_alpha,
+                                    __global const int* cell_bounces,
+                                    const unsigned int n_walks, /* walks per replica */
+                                    const unsigned int n_replicas, const unsigned int n_cells,
+                                    const unsigned int seed_lo, /* Philox key */
+                                    const unsigned int seed_hi,
+                                    __global const unsigned int* cell_stream, /* each cell's stream */
+                                    const unsigned int n_bins,                /* 0 or the lobe's bins */
+                                    __global bb_scalar* sums,                 /* BB_SHEEN_SUMS per item */
+                                    __global unsigned int* hist,              /* n_bins per item */
+                                    __global unsigned int* bad_count) {
+    const unsigned int gid = (unsigned int)get_global_id(0);
+    if (gid >= n_cells * n_replicas) return;
+    const unsigned int cell = gid / n_replicas, rep = gid - cell * n_replicas;
+    const bb_real s = bb_sheen_volume_sigma((bb_real)cell_alpha[cell]);
+    const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], BB_R(0.0));
+    const int bounces = cell_bounces[cell];
+    philox4x32_key_t key = {{seed_lo, seed_hi}};
+    __global unsigned int* h = hist + (size_t)gid * n_bins;
+    for (unsigned int b = 0; b < n_bins; ++b) h[b] = 0u;
+    unsigned int count[BB_SHEEN_SUMS] = {0u, 0u, 0u, 0u, 0u};
+    unsigned int bad = 0;
+    for (unsigned int i = 0; i < n_walks; ++i) {
+        const bb_sheen_walk r = bb_sheen_volume_walk(s, wo, bounces, key, i, rep, cell_stream[cell]);
+        bad += (unsigned int)(r.exit == BB_SHEEN_EXIT_BAD);
+        count[0] += (unsigned int)(r.exit == BB_SHEEN_EXIT_TOP);
+        count[1] += (unsigned int)(r.exit == BB_SHEEN_EXIT_TOP && r.scatterings == 1);
+        count[2] += (unsigned int)(r.exit == BB_SHEEN_EXIT_BOTTOM);
+        count[3] += (unsigned int)(r.exit == BB_SHEEN_EXIT_BOTTOM && r.scatterings == 0);
+        count[4] += (unsigned int)(r.exit == BB_SHEEN_EXIT_CUTOFF);
+        if (n_bins > 0 && r.exit == BB_SHEEN_EXIT_TOP) {
+            const bb_real theta = acos(bb_clamp(r.w.z, BB_R(0.0), BB_R(1.0)));
+            const bb_real phi = bb_atan2(bb_fabs(r.w.y), r.w.x);
+            const int it = min((int)(theta * (BB_R(2.0) / BB_PI) * BB_SHEEN_LOBE_THETA), BB_SHEEN_LOBE_THETA - 1);
+            const int ip = min((int)(phi / BB_PI * BB_SHEEN_LOBE_PHI), BB_SHEEN_LOBE_PHI - 1);
+            h[it * BB_SHEEN_LOBE_PHI + ip] += 1u;
+        }
+    }
+    const bb_real n = (bb_real)n_walks;
+    for (int k = 0; k < BB_SHEEN_SUMS; ++k) sums[BB_SHEEN_SUMS * gid + k] = (bb_real)count[k] / n;
+    bad_count[gid] = bad;
+}
