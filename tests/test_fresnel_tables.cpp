@@ -147,6 +147,15 @@ TEST_CASE("spectral conductor table: --rgb-wavelengths keeps 650, 550 and 450 nm
     testing::check_refused("lut conductor --model ggx --fresnel metal:Au --size 4 --colour-space srgb --rgb-wavelengths -o ",
                            out);
     testing::check_refused("lut conductor --model ggx --fresnel metal:Au --size 4 --tolerance 1e-6 -o ", out);
+    // A colour option where the table holds no colour would be ignored: refused, naming the option.
+    for (const char* args : {"lut albedo --model ggx --size 4 --colour-space acescg -o ",
+                             "lut conductor --model ggx --fresnel schlick:f0=0.5 --size 4 --colour-space acescg -o ",
+                             "lut conductor --model ggx --fresnel metal:Au --wavelength 500 --size 4 --rgb-wavelengths -o "}) {
+        testing::check_refused(args, out);
+        const auto refused = testing::run_cli(std::string(args) + out);
+        CHECK((refused.err.find("--colour-space") != std::string::npos ||
+               refused.err.find("--rgb-wavelengths") != std::string::npos));
+    }
     const auto r2 = testing::run_cli("fresnel --fresnel metal:Au --colour-space acescg");
     testing::check_usage_error(r2);
 }

@@ -96,6 +96,7 @@ TableKind conductor_kind() {
                 "with --rgb-wavelengths at 650, 550, 450 nm; E at --wavelength)",
                 conductor_program, compute_conductor);
     k.bakes_lobe_fresnel = true;
+    k.spectral_colour = true;
     k.needs_conductor_fresnel = true;
     k.lobe_requirement = "a conductor table needs a conductor Fresnel (conductor:, metal:, nk:)";
     k.value_channels = channels;

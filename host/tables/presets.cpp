@@ -7,6 +7,7 @@
 #include <utility>
 
 #include "brdfbake/error.h"
+#include "brdfbake/fresnel_terms.h"
 #include "brdfbake/lut.h"
 #include "brdfbake/table_kinds.h"
 #include "models/key_reader.h"
@@ -291,7 +292,17 @@ LutSetup apply_preset(const LutSettings& given) {
     if (given.model) r.model = *given.model;
     if (given.fresnel) r.fresnel = *given.fresnel;
     if (given.wavelength_nm) r.wavelength_nm = *given.wavelength_nm;
-    if (given.colour) r.colour = *given.colour;
+    if (given.colour) {  // only where the table holds a colour: anywhere else it would be ignored
+        const std::string option = *given.colour == "wavelengths" ? "--rgb-wavelengths" : "--colour-space";
+        if (!table_kind(r.kind).spectral_colour)
+            throw Error(option + " is for tables that hold a colour (conductor), not " + r.kind);
+        if (r.wavelength_nm != 0.0 || !fresnel_needs_wavelength(r.fresnel))
+            throw Error(option + " needs a Fresnel term that depends on the wavelength (metal:X, nk:FILE, "
+                        "thin-film:) and no --wavelength; --fresnel " + (r.fresnel.empty() ? "none" : r.fresnel) +
+                        (r.wavelength_nm != 0.0 ? " with --wavelength" : "") +
+                        " has one value, not a colour");
+        r.colour = *given.colour;
+    }
     if (given.size) {
         try {
             set_lut_size(r, *given.size);

@@ -53,6 +53,9 @@ struct TableKind {
     /// The table bakes the lobe's own Fresnel in (conductor); the other kinds hold F = 1, factor
     /// it out, or have eta as an axis, so that one table serves every Fresnel.
     bool bakes_lobe_fresnel = false;
+    /// A Fresnel term that depends on the wavelength, without --wavelength, gives the table colour
+    /// channels (conductor): --colour-space and --rgb-wavelengths apply to it, and to no other.
+    bool spectral_colour = false;
     std::string plan_fresnel;  // the Fresnel in the table, in words (plan text); empty: the request's
 
     // What a lobe must have for this kind: an index of refraction (every kind with an eta axis),
