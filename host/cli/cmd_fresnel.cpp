@@ -463,7 +463,7 @@ PlotSpec rgb_panel(const FresnelOptions& o, const std::vector<std::array<double,
     p.title = plot_text(short_numbers(o.fresnel)) + (o.colour_space == "acescg" ? ": ACEScg" : ": linear sRGB") +
               " (CIE 1931, D65)";
     p.x = theta_axis();
-    p.y = PlotAxis{"reflectance, linear sRGB", 0.0, std::numeric_limits<double>::quiet_NaN(), 0.2};
+    p.y = PlotAxis{o.colour_space == "acescg" ? "reflectance, ACEScg" : "reflectance, linear sRGB", 0.0, std::numeric_limits<double>::quiet_NaN(), 0.2};
     const char* names[3] = {"R", "G", "B"};
     const char* pens[3] = {"r-4", "g-4", "b-4"};
     for (int ch = 0; ch < 3; ++ch) {

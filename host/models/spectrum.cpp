@@ -163,6 +163,5 @@ const SpectralWeights& colour_weights(const std::string& colour_space, int step_
 }
 
 const SpectralWeights& srgb_weights(int step_nm) { return colour_weights("srgb", step_nm); }
-const SpectralWeights& acescg_weights(int step_nm) { return colour_weights("acescg", step_nm); }
 
 }  // namespace brdfbake

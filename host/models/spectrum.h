@@ -23,7 +23,7 @@ struct SpectralWeights {
 /// The weights at 1, 2, 4 or 5 nm steps (throws Error for another step).
 const SpectralWeights& srgb_weights(int step_nm);
 
-/// The same into ACEScg (S-2014-004 "ACEScg - A Working Space for CGI Render and Compositing",
+/// ACEScg (colour_weights("acescg", step)) follows S-2014-004 "ACEScg - A Working Space for CGI Render and Compositing",
 /// sec. 4.3: the AP1 primaries r 0.713, 0.293; g 0.165, 0.830; b 0.128, 0.044 and the ACES white
 /// x = 0.32168, y = 0.33767 of TB-2018-001). The colour under D65 is carried to the ACES white by
 /// the Bradford transform (Lam 1985; the matrix of ICC.1:2010 Annex E), applied as a von Kries
@@ -31,8 +31,7 @@ const SpectralWeights& srgb_weights(int step_nm);
 /// ACEScg too. The choice: OpenColorIO's ACES configurations convert linear sRGB to ACEScg with
 /// Bradford; colour-science's spectral route to ACES2065-1 defaults to CAT02 (the two differ by
 /// about 1e-3 on saturated colours).
-const SpectralWeights& acescg_weights(int step_nm);
-
+///
 /// The weights of a colour space by name: "srgb" or "acescg" (throws Error for another).
 const SpectralWeights& colour_weights(const std::string& colour_space, int step_nm);
 

@@ -16,7 +16,6 @@ namespace tables {
 namespace {
 
 constexpr double kRgbNm[3] = {650.0, 550.0, 450.0};
-const char* const kRgbNames[3] = {"R", "G", "B"};
 
 /// A term that depends on the wavelength, without --wavelength: three colour channels.
 bool rgb(const LutRequest& r) { return r.wavelength_nm == 0.0 && fresnel_needs_wavelength(r.fresnel); }
@@ -29,7 +28,7 @@ FresnelConfig conductor_fresnel(const LutRequest& r) {
 
 std::vector<std::string> conductor_passes(const LutRequest& r) {
     if (!rgb(r)) return {};
-    if (spectral_colour(r)) return {"R", "G", "B"};
+    if (spectral_colour(r)) return colour_channel_names();
     return {"R at 650 nm", "G at 550 nm", "B at 450 nm"};
 }
 
@@ -61,7 +60,7 @@ Table compute_conductor(Engine& engine, const LutRequest& r, const ModelConfig& 
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
     t.quantity = "Fresnel-weighted directional albedo E(mu_o, alpha) of a measured conductor at 650, 550 and 450 nm";
-    t.channels = {"R", "G", "B"};
+    t.channels = colour_channel_names();
     t.error.assign(g.cells.size(), 0.0);
     std::string fresnel_text;
     AlbedoResult last;
@@ -74,7 +73,7 @@ Table compute_conductor(Engine& engine, const LutRequest& r, const ModelConfig& 
             t.error[k] = std::max(t.error[k], last.values[k].error);
         }
         t.values.push_back(v);
-        fresnel_text += std::string(c ? "; " : "") + kRgbNames[c] + ": " + fc.canonical;
+        fresnel_text += std::string(c ? "; " : "") + colour_channel_names()[size_t(c)] + ": " + fc.canonical;
     }
     describe(t, r, m, fresnel_text, last.method, last.samples_per_cell, g.clamped);
     return t;

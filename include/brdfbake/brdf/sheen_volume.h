@@ -63,21 +63,6 @@ BB_FN bb_real bb_sggx_fiber_area(bb_vec3 w, bb_real s) {
     return bb_sqrt(w.x * w.x + w.y * w.y + s * s * w.z * w.z);
 }
 
-/* D(m) of the fiber SGGX [HDCD15 eq. 8]. */
-BB_FN bb_real bb_sggx_fiber_d(bb_vec3 m, bb_real s) {
-    const bb_real q = m.x * m.x + m.y * m.y + m.z * m.z / (s * s);
-    return BB_INV_PI / (s * q * q);
-}
-
-/* The specular microflake phase function p(wi -> wo) = D(wh) / (4 sigma(wi)) [HDCD15 eq. 13],
- * wi pointing back along the incoming ray, wo the scattered direction. */
-BB_FN bb_real bb_sggx_fiber_phase(bb_vec3 wi, bb_vec3 wo, bb_real s) {
-    const bb_vec3 h = bb_add(wi, wo);
-    const bb_real n2 = bb_dot(h, h);
-    if (n2 <= BB_R(0.0)) return BB_R(0.0);
-    return bb_sggx_fiber_d(bb_scale(h, BB_R(1.0) / bb_sqrt(n2)), s) / (BB_R(4.0) * bb_sggx_fiber_area(wi, s));
-}
-
 /* A visible normal of wi (density <wi, m>+ D(m) / sigma(wi)) from two uniform numbers: the
  * sphere seen from A^-1 wi, mapped back by A^-T (see the header's comment). */
 BB_FN bb_vec3 bb_sggx_fiber_sample_vndf(bb_vec3 wi, bb_real s, bb_real u1, bb_real u2) {
