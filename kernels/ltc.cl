@@ -4,8 +4,8 @@
  *
  *   ltc_lobe_points  one work-item per (texel, point): the model's importance sample of the
  *                    point (u1, u2) = ((i + 1/2)/n, (j + 1/2)/n) of an n x n grid, with its weight
- *                    w = f cos(theta_i) / pdf, the inverse pdf 1/pdf = w / (f cos(theta_i)) and the
- *                    Schlick factor (1 - wo.h)^5 of the fresnel channel. Fixed points: the
+ *                    w = f cos(theta_i) / pdf and the inverse pdf 1/pdf = w / (f cos(theta_i))
+ *                    (the grid graded in u1 towards the lobe's tail). Fixed points: the
  *                    objective is a deterministic function of the matrix.
  *   ltc_objective    one work-item per candidate matrix: S = (1/N) sum_k min(p_k, D(w_k)) / pdf_k,
  *                    the estimate of integral over the upper hemisphere of min(p, D) with the
@@ -76,15 +76,12 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
     const bb_real f_cos = bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, s.wi) * s.wi.z;
     const int ok = s.weight > BB_R(0.0) && f_cos > BB_R(0.0) && s.wi.z > BB_R(0.0) && isfinite(s.weight) &&
                    isfinite(f_cos);
-    const bb_vec3 h = bb_normalize(bb_add(wo, s.wi));
-    const bb_real c = BB_R(1.0) - clamp(bb_dot(wo, h), BB_R(0.0), BB_R(1.0));
     __global bb_scalar* out = points + (size_t)gid * BB_LTC_POINT_VALUES;
     out[0] = s.wi.x;
     out[1] = s.wi.y;
     out[2] = s.wi.z;
     out[3] = ok ? s.weight * cell_w : BB_R(0.0);
     out[4] = ok ? s.weight / f_cos * cell_w : BB_R(0.0);
-    out[5] = ok ? c * c * c * c * c : BB_R(0.0);
 }
 
 __kernel void BB_ENTRY_LTC_OBJECTIVE(__global const bb_scalar* points, const unsigned int points_per_cell,

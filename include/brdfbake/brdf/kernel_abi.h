@@ -104,7 +104,7 @@
 
 #define BB_ENTRY_LTC_LOBE_POINTS ltc_lobe_points /* the lobe's fixed sample points per texel */
 #define BB_ENTRY_LTC_OBJECTIVE ltc_objective     /* integral of min(p, D) per candidate matrix */
-#define BB_LTC_POINT_VALUES 6                    /* per point: wi.xyz, weight, 1/pdf, (1 - wo.h)^5 */
+#define BB_LTC_POINT_VALUES 5                    /* per point: wi.xyz, weight, 1/pdf */
 #define BB_LTC_CANDIDATE_VALUES 10               /* per candidate: M^-1 row-major, |det M^-1| */
 #define BB_ENTRY_LTC_DISTANCE ltc_distance       /* the reported distance on jittered grids */
 #define BB_LTC_MATRIX_VALUES 19                  /* per texel: M, M^-1 row-major, |det M^-1| */
