@@ -109,14 +109,6 @@ void validate_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig
         throw Error("the ltc table holds the lobe with F = 1 (its fresnel channel is the Schlick split's term); drop --fresnel");
 }
 
-std::string stats_text(std::vector<double> v) {
-    std::sort(v.begin(), v.end());
-    std::ostringstream s;
-    s.precision(4);
-    s << "min " << v.front() << ", median " << v[v.size() / 2] << ", max " << v.back();
-    return s.str();
-}
-
 /// The fit's rows, rough to smooth, with the cells of each and their albedo E (the magnitude
 /// channel, where the texel is fitted at its own alpha); `order[k]` is the table row of fit row k.
 std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const ModelConfig& m, const AlbedoResult& e,
@@ -183,11 +175,11 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
             distance_error.push_back(ft.distance_error);
         }
     describe(t, r, m, f.canonical, albedo.method, albedo.samples_per_cell, g.clamped);
-    t.attributes["distance"] = "integral over the upper hemisphere of |f cos / E - D|: " + stats_text(distance);
+    t.attributes["distance"] = "integral over the upper hemisphere of |f cos / E - D|: " + min_median_max_text(distance);
     t.attributes["distance_error"] =
         std::to_string(int(options.distance_sigmas)) + " standard errors of the mean over " +
         std::to_string(options.distance_grids) + " independent jittered grids of " + std::to_string(options.distance_side) +
-        "^2 points (lobe- and LTC-sampled), for the M that the stored float32 values denote: " + stats_text(distance_error);
+        "^2 points (lobe- and LTC-sampled), for the M that the stored float32 values denote: " + min_median_max_text(distance_error);
     t.attributes["error_channel"] = "the larger of the magnitude's and the fresnel channel's integration errors "
                                     "(--samples, --method, --tolerance); the distance's: the distance_error channel";
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +

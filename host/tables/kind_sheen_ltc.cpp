@@ -166,15 +166,6 @@ std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const SheenVolumeResult& 
     return fits;
 }
 
-std::string stats_of(std::vector<double> v) {
-    if (v.empty()) return "none";
-    std::sort(v.begin(), v.end());
-    std::ostringstream s;
-    s.precision(4);
-    s << "min " << v.front() << ", median " << v[v.size() / 2] << ", max " << v.back();
-    return s.str();
-}
-
 Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
@@ -240,18 +231,18 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.attributes["floors"] = "mu and roughness below 0.01 are computed at 0.01 (Zeltner et al. 2022's fit)";
     t.attributes["distance"] = "integral over the upper hemisphere of |lobe / R - D_ltc|, both averaged over " +
                                std::to_string(SheenLobeBins::theta()) + " x " + std::to_string(SheenLobeBins::phi()) +
-                               " bins (theta, |phi|): " + stats_of(distance);
+                               " bins (theta, |phi|): " + min_median_max_text(distance);
     t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
                                     std::to_string(rewalked.size()) + " texels with " +
                                     std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
                                     std::to_string(int(kMinExits)) + " reflected walks walked again with " +
                                     std::to_string(kRewalk) + " times as many)";
     t.attributes["distance_error"] = "the histogram's noise floor in the distance: sqrt(2/pi) standard errors per "
-                                     "bin, summed: " + stats_of(distance_error);
+                                     "bin, summed: " + min_median_max_text(distance_error);
     t.attributes["unfitted"] = std::to_string(unfitted) + " texels with fewer than " +
                                std::to_string(int(kMinExits)) + " reflected walks hold the cosine (a = 1, b = 0)";
     t.attributes["cutoff"] = "share of walks still inside after " + std::to_string(BB_SHEEN_VOLUME_DEFAULT_BOUNCES) +
-                             " scatterings: " + stats_of(cutoff);
+                             " scatterings: " + min_median_max_text(cutoff);
     return std::move(g.table);
 }
 

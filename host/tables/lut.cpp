@@ -34,6 +34,15 @@ std::string table_mu_axis_name(const LutRequest& r) {
     return r.mu_map == "sqrt" ? "sqrt_mu" : r.mu_map == "sqrt-one-minus" ? "sqrt_one_minus_mu" : "mu";
 }
 
+std::string min_median_max_text(std::vector<double> v) {
+    if (v.empty()) return "none";
+    std::sort(v.begin(), v.end());
+    std::ostringstream s;
+    s.precision(4);
+    s << "min " << v.front() << ", median " << v[v.size() / 2] << ", max " << v.back();
+    return s.str();
+}
+
 Axis mu_axis(const LutRequest& r, int size) {
     // linear: mu = u; sqrt: u = sqrt(mu); sqrt-one-minus: u = sqrt(1 - mu) (three.js's LTC tables)
     const bool sq = r.mu_map == "sqrt", om = r.mu_map == "sqrt-one-minus";

@@ -23,6 +23,9 @@ bool has_mirror_limit(const ModelConfig& m);
 
 // The axes, with the request's texel convention (r.texels), range and mapping; every kind builds
 // its axes with these so that the grid options (--texels, ranges, floors) reach it.
+/// The spread of a channel over a table for its header: "min A, median B, max C" (4 digits), or
+/// "none" for no values.
+std::string min_median_max_text(std::vector<double> v);
 /// The mu axis's name under the request's --mu-map: mu, sqrt_mu or sqrt_one_minus_mu.
 std::string table_mu_axis_name(const LutRequest& r);
 /// The mu axis (x) of a 2D table; mu below r.mu_floor is computed at it (said in the mapping).
