@@ -215,7 +215,8 @@ Table compute_viewer(Engine&, const LutRequest& r, const ModelConfig& m, const F
     work(0, threads);
     for (auto& th : pool) th.join();
     describe(t, r, m, f.canonical,
-             "quadrature (host, 32- and 16-point Gauss-Legendre in the Charlie inverse CDF, split at the clamp's kinks)",
+             "quadrature (host, " + std::to_string(kFine) + "- and " + std::to_string(kCoarse) +
+                 "-point Gauss-Legendre in the Charlie inverse CDF, split at the clamp's kinks)",
              n > 0 ? *std::max_element(nodes.begin(), nodes.end()) : 0, g.clamped);
     t.attributes["visibility"] = charlie ? "charlie" : "ashikhmin";
     t.attributes["saturated"] = std::to_string(std::count(saturated.begin(), saturated.end(), 1)) +
