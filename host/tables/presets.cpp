@@ -187,7 +187,8 @@ const std::vector<LutPreset>& lut_presets() {
                     "cycles_z, 16 x 16 for dielectric-eavg with z = cycles_z, the dielectric kinds with Cycles' "
                     "transmission shadowing; gen-schlick kinds with --estimator cycles: Cycles' own estimator on "
                     "ggx:shadowing=masking), x = roughness, y = mu, edge texels (i/(N - 1)), mu floored at 1e-4, "
-                    "double precision to 5e-7 (dielectric: 1e-6, dielectric-eavg: 4e-6), C header",
+                    "double precision to 5e-7 (dielectric: 1e-6, dielectric-eavg: 4e-6), C header; sheen-ltc: "
+                    "32 x 32, x = mu, y = roughness, both floored at 0.01",
                     {{K::Albedo, cycles_layout(32, 32, 16, roughness_mu), ""},
                      {K::Eavg, cycles_layout(32, 1, 16, {}), ""},
                      {K::GenSchlick, cycles_layout(16, 16, 16, cycles_3d), "ggx:shadowing=masking"},
