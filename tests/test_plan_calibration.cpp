@@ -276,3 +276,46 @@ TEST_CASE("bake records its stages into the calibration file, which plan then us
     CHECK(json::parse(slurp_file(cal))["bakes"] == 2);
     CHECK(testing::run_shell("ls -a " + dir + "/sub").out == ".\n..\ncalibration.json\n");
 }
+
+TEST_CASE("bake: each table's logged estimate is the plan's at the same slowdown", "[scene][calibration][cli]") {
+    // The figures written (8e8 samples/s after 0.25 s; a preview 0.125 s + 1e-6 s a texel) at a
+    // slowdown of 3 give the table's estimate: its integration 3x, its preview max(1, 3 / threads)x.
+    // The bake logs that estimate before the table (its first: no table has measured the machine yet).
+    const std::string dir = scratch_dir("calibration-bake-estimate");
+    const std::string cal = dir + "/cal.json", out = dir + "/out";
+    write_file(cal, calibration_text(8e8, 0.25, 0.125));
+    const Estimate e = albedo_table(plan_with(cal, "3"));
+    const auto r = testing::run_shell("BRDFBAKE_SLOWDOWN=3 BRDFBAKE_CALIBRATION='" + cal + "' " + std::string(BRDFBAKE_EXE) +
+                                      " bake " + testing::scene::data("small_bake.json") +
+                                      " --tables albedo --samples 4096 --no-report -o " + out);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const size_t at = r.err.find("[1/");
+    REQUIRE(at != std::string::npos);
+    const size_t est = r.err.find("(estimate ", at);
+    REQUIRE(est != std::string::npos);
+    const double logged = std::stod(r.err.substr(est + 10));
+    const double threads = std::max(1u, std::thread::hardware_concurrency());
+    const double expected = 3 * (e.samples / 8e8 + 0.25) + std::max(1.0, 3 / threads) * (0.125 + 1e-6 * e.texels);
+    CHECK(logged == Approx(expected).epsilon(2e-3));  // printed to 3 significant digits
+}
+
+TEST_CASE("plan: a cold PoCL kernel cache is found and its builds estimated as compiles", "[scene][calibration][cli]") {
+    // A fresh POCL_CACHE_DIR holds no program: the probe's build compiles (the compiler starts),
+    // and the plan says the cache is cold; once that program is cached, the next plan finds it warm.
+    const std::string dir = scratch_dir("calibration-cold");
+    const std::string run = "POCL_CACHE_DIR='" + dir + "/pocl' BRDFBAKE_CALIBRATION='" + dir + "/cal.json' " +
+                            std::string(BRDFBAKE_EXE) + " plan " + testing::scene::data("small_bake.json") +
+                            " --format json";
+    const auto cold = testing::run_shell(run);
+    INFO(cold.err);
+    REQUIRE(cold.status == 0);
+    const auto warm = testing::run_shell(run);
+    REQUIRE(warm.status == 0);
+    const json c = json::parse(cold.out)["estimate"], w = json::parse(warm.out)["estimate"];
+    CHECK(c["kernel_cache_cold"] == true);
+    CHECK(w["kernel_cache_cold"] == false);
+    // A compile costs ~20x a cached build (1.2 s against 0.02-0.05 s): more than the two plans'
+    // slowdowns can differ by.
+    CHECK(c["kernel_build_seconds"].get<double>() > w["kernel_build_seconds"].get<double>());
+}

@@ -107,8 +107,14 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
 
 /// How much slower than on idle cores the machine runs now (scene/calibration.h): a GGX albedo
 /// table of 2^28 samples timed after a first run of 2^20 that builds its kernel (about 0.2 s of
-/// CPU; at 2^27 the measured factor spread 3 to 11 within two minutes at load 13).
-double probe_slowdown(const GlobalOptions& g) {
+/// CPU; at 2^27 the measured factor spread 3 to 11 within two minutes at load 13). That build
+/// says whether PoCL's kernel cache is cold (Calibration::cold_cache). BRDFBAKE_SLOWDOWN=X
+/// replaces the measured factor (the cache is then taken as warm).
+void probe_slowdown(const GlobalOptions& g, Calibration& c) {
+    if (const double given = slowdown_from_environment(); given > 0) {
+        c.slowdown = given;
+        return;
+    }
     Engine engine(g.device, false);
     LutRequest r;
     r.kind = "albedo";
@@ -117,16 +123,17 @@ double probe_slowdown(const GlobalOptions& g) {
     r.samples = 1u << 16;
     const ProgressSilence quiet;
     compute_lut(engine, r);
+    const double build = engine.build_seconds();
     r.width = 64;
     r.height = 64;
     const SlowdownClock clock;
     compute_lut(engine, r);
-    return clock.slowdown();
+    c.slowdown = clock.slowdown();
+    c.cold_cache = build > builtin_figures::kColdBuildSeconds * serial_slowdown(c.slowdown);
 }
 
-/// The plan of the scene; `probe`: the estimates measured against the machine's load now
-/// (`plan`, with a calibration file; a bake measures its own).
-Plan load_plan(const SceneOptions& o, const GlobalOptions* probe = nullptr) {
+/// The scene with the command line's settings applied.
+Scene load_scene_with(const SceneOptions& o) {
     Scene scene = load_scene(o.scene);
     SceneSettings& s = scene.settings;
     if (o.samples < 0) throw Error("--samples must be positive");
@@ -146,14 +153,15 @@ Plan load_plan(const SceneOptions& o, const GlobalOptions* probe = nullptr) {
     s.preset = o.preset;
     s.target = o.target;
     check_settings(s);
-    Calibration calibration = read_calibration(calibration_path());  // estimates from earlier bakes
-    if (probe && !calibration.path.empty()) {
-        const double given = slowdown_from_environment();
-        calibration.slowdown = given > 0 ? given : probe_slowdown(*probe);
-    }
-    return make_plan(scene, &calibration);
+    return scene;
 }
 
+/// A bake whose tables take at least this many idle-core seconds measures the slowdown before
+/// it starts (the probe's 0.2 CPU s is then under a tenth of it); a shorter one estimates its
+/// first table at the plan's idle figures and the rest at the slowdown its tables measure.
+constexpr double kProbedBakeSeconds = 2.0;
+
+// --- kernel build measurement ------------------------------------------------------------------
 // --- kernel build measurement ------------------------------------------------------------------
 
 /// The model id of a model name, found by resolving it with typical parameters.
@@ -209,7 +217,12 @@ struct PlanOptions {
 };
 
 int run_plan(const PlanOptions& o, const GlobalOptions& g) {
-    const Plan plan = load_plan(o.scene, &g);
+    // The estimates measured against the machine's load now (with a calibration path: not under
+    // BRDFBAKE_CALIBRATION=off, which the tests use).
+    const Scene scene = load_scene_with(o.scene);
+    Calibration calibration = read_calibration(calibration_path());  // estimates from earlier bakes
+    if (!calibration.path.empty()) probe_slowdown(g, calibration);
+    const Plan plan = make_plan(scene, &calibration);
     std::string out = o.format == "json" ? plan_json(plan) : plan_text(plan);
     if (o.measure) {
         // The scene's models against every model, each model its own program as the engine
@@ -265,7 +278,15 @@ std::string join_path(const std::string& dir, const std::string& file) {
 
 int run_bake(const BakeCommandOptions& o, const GlobalOptions& g) {
     const auto t0 = Clock::now();
-    const Plan plan = load_plan(o.scene);
+    const Scene scene = load_scene_with(o.scene);
+    Calibration calibration = read_calibration(calibration_path());  // read once: estimates, then this bake's record
+    Plan plan = make_plan(scene, &calibration);
+    double idle_seconds = 0;
+    for (const auto& t : plan.tables) idle_seconds += t.idle_compute_seconds;
+    if (!calibration.path.empty() && (idle_seconds >= kProbedBakeSeconds || slowdown_from_environment() > 0)) {
+        probe_slowdown(g, calibration);  // the same factor as `plan`: the bake's estimates agree with it
+        plan = make_plan(scene, &calibration);
+    }
     const double plan_seconds = since(t0);
     BakeOptions options = o.bake;
     if (o.previews) options.write_preview = [](const Table& t, const std::string& path) { return write_table_preview(t, path); };
@@ -284,11 +305,10 @@ int run_bake(const BakeCommandOptions& o, const GlobalOptions& g) {
     };
     const BakeResult r = bake_plan(plan, options, [&] { return std::make_unique<Engine>(g.device, g.verbose); });
     if (r.computed > 0) {  // this bake's stage times calibrate later estimates (scene/calibration.h)
-        Calibration c = read_calibration(calibration_path());
         BakeTimings t = r.timings;
         t.report_checks = report ? plan.report_checks : 0;
-        add_bake_timings(c, t);
-        if (const std::string why = write_calibration(c); !why.empty())
+        add_bake_timings(calibration, t);
+        if (const std::string why = write_calibration(calibration); !why.empty())
             std::fprintf(stderr, "brdfbake: warning: calibration not recorded: %s\n", why.c_str());
     }
     if (r.computed == 0) {

@@ -133,14 +133,10 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
                                : disk     ? BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_DISK)
                                           : BB_ENTRY_NAME(BB_ENTRY_ALBEDO_REPLICAS_POINTS));
     // Each chunk's launch gives the replicas' means over its points; their weighted sum is the mean.
-    std::vector<double> means(n_items, 0.0);
-    std::vector<cl_uint> bad(n_items, 0u);
-    double kernel_seconds = 0.0;
-    for (const PointChunk& chunk : chunks) {
+    const ChunkSums sums = run_chunks(engine, bufs, chunks, points, n_items, {b_mean}, [&](const PointChunk& chunk, const cl::Buffer& bad) {
         cl::Buffer b_points = bufs.input(lanes == 1 ? shifts
                                          : disk   ? disk_table(shifts, req.replicas, points, lanes, req.precision, chunk)
                                                   : point_table(shifts, req.replicas, points, lanes, req.precision, chunk));
-        const NonFiniteCounts bad_counts(engine, n_items);
         cl_uint a = set_args(kernel, 0, b_mu, b_phi, b_p, b_fp, b_data, b_points, cl_uint(chunk.count),
                              cl_uint(req.replicas), cl_uint(n_cells));
         if (lanes == 1) {
@@ -149,26 +145,17 @@ AlbedoResult compute_sampled(Engine& engine, const AlbedoRequest& req) {
                                                                        : BB_METHOD_MC;
             a = set_args(kernel, a, cl_int(method), cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream);
         }
-        set_args(kernel, a, b_mean, bad_counts.buffer);
-        kernel_seconds += run_items(engine, kernel, n_items, double(chunk.count),
-                                    "albedo of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +
-                                        " samples each");
-        const std::vector<double> part = bufs.read(b_mean, n_items);
-        const std::vector<cl_uint> part_bad = bad_counts.read(engine);
-        const double share = chunks.size() == 1 ? 1.0 : double(chunk.count) / double(points);
-        for (size_t i = 0; i < n_items; ++i) {
-            means[i] += share * part[i];
-            bad[i] += part_bad[i];
-        }
-    }
-
+        set_args(kernel, a, b_mean, bad);
+        return run_items(engine, kernel, n_items, double(chunk.count),
+                         "albedo of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) + " samples each");
+    });
     AlbedoResult result;
     result.samples_per_cell = points * req.replicas;
     result.total_samples = result.samples_per_cell * n_cells;
-    result.kernel_seconds = kernel_seconds;
+    result.kernel_seconds = sums.kernel_seconds;
     result.vector_width = lanes;
     result.method = method_text(req.method, req.replicas, points);
-    result.values = summarize(means, bad, req.replicas, result.samples_per_cell, req.precision,
+    result.values = summarize(sums.means[0], sums.bad, req.replicas, result.samples_per_cell, req.precision,
                               [&](size_t c) { return nonfinite_where(req, c); });
     for (size_t c = 0; c < result.values.size(); ++c) {
         AlbedoValue& v = result.values[c];

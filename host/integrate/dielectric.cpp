@@ -201,36 +201,23 @@ DielectricResult compute_dielectric_sampled(Engine& engine, const DielectricRequ
     cl::Kernel kernel(program, lanes > 1 ? BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS_DISK)
                                          : BB_ENTRY_NAME(BB_ENTRY_DIELECTRIC_REPLICAS));
     // Each chunk's launch gives the replicas' means over its points; their weighted sum is the mean.
-    std::vector<double> r(n_items, 0.0), t(n_items, 0.0);
-    std::vector<cl_uint> bad(n_items, 0u);
-    double kernel_seconds = 0.0;
-    for (const PointChunk& chunk : chunks) {
+    const ChunkSums sums = run_chunks(engine, bufs, chunks, points, n_items, {b_r, b_t}, [&](const PointChunk& chunk, const cl::Buffer& bad) {
         cl::Buffer b_shift =
             bufs.input(lanes > 1 ? disk_table(shifts, req.replicas, points, lanes, req.precision, chunk) : shifts);
-        const NonFiniteCounts bad_counts(engine, n_items);
         set_args(kernel, 0, b_mu, b_alpha, b_eta, b_shift, cl_uint(chunk.count), cl_uint(req.replicas), cl_uint(n_cells),
-                 cl_int(req.shadowing), cl_int(req.transmission_shadowing), b_r, b_t, bad_counts.buffer);
-        kernel_seconds += run_items(engine, kernel, n_items, kDielectricNodeCost * double(chunk.count),
-                                    "rough dielectric of " + std::to_string(n_cells) + " cells, " +
-                                        std::to_string(req.samples) + " samples each");
-        const std::vector<double> pr = bufs.read(b_r, n_items), pt = bufs.read(b_t, n_items);
-        const std::vector<cl_uint> part_bad = bad_counts.read(engine);
-        const double share = chunks.size() == 1 ? 1.0 : double(chunk.count) / double(points);
-        for (size_t i = 0; i < n_items; ++i) {
-            r[i] += share * pr[i];
-            t[i] += share * pt[i];
-            bad[i] += part_bad[i];
-        }
-    }
-
+                 cl_int(req.shadowing), cl_int(req.transmission_shadowing), b_r, b_t, bad);
+        return run_items(engine, kernel, n_items, kDielectricNodeCost * double(chunk.count),
+                         "rough dielectric of " + std::to_string(n_cells) + " cells, " + std::to_string(req.samples) +
+                             " samples each");
+    });
     DielectricResult result;
     result.samples_per_cell = points * req.replicas;
-    result.kernel_seconds = kernel_seconds;
+    result.kernel_seconds = sums.kernel_seconds;
     result.method = method_text(Method::Importance, req.replicas, points);
     result.vector_width = lanes;
     auto where = [&](size_t c) { return dielectric_nonfinite_where(req, c); };
-    result.reflected = summarize(r, bad, req.replicas, result.samples_per_cell, req.precision, where);
-    result.transmitted = summarize(t, bad, req.replicas, result.samples_per_cell, req.precision, where);
+    result.reflected = summarize(sums.means[0], sums.bad, req.replicas, result.samples_per_cell, req.precision, where);
+    result.transmitted = summarize(sums.means[1], sums.bad, req.replicas, result.samples_per_cell, req.precision, where);
     for (auto* channel : {&result.reflected, &result.transmitted})
         for (AlbedoValue& v : *channel) {
             v.samples = result.samples_per_cell;

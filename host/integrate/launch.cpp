@@ -42,6 +42,26 @@ double run_items(Engine& engine, cl::Kernel& kernel, const LaunchShape& shape, d
     return seconds;
 }
 
+ChunkSums run_chunks(Engine& engine, RealBuffers& bufs, const std::vector<PointChunk>& chunks, std::uint64_t points,
+                     size_t n_items, const std::vector<cl::Buffer>& outputs,
+                     const std::function<double(const PointChunk& chunk, const cl::Buffer& bad)>& launch) {
+    ChunkSums sums;
+    sums.means.assign(outputs.size(), std::vector<double>(n_items, 0.0));
+    sums.bad.assign(n_items, 0u);
+    for (const PointChunk& chunk : chunks) {
+        const NonFiniteCounts bad_counts(engine, n_items);
+        sums.kernel_seconds += launch(chunk, bad_counts.buffer);
+        const double share = chunks.size() == 1 ? 1.0 : double(chunk.count) / double(points);
+        for (size_t k = 0; k < outputs.size(); ++k) {
+            const std::vector<double> part = bufs.read(outputs[k], n_items);
+            for (size_t i = 0; i < n_items; ++i) sums.means[k][i] += share * part[i];
+        }
+        const std::vector<cl_uint> part_bad = bad_counts.read(engine);
+        for (size_t i = 0; i < n_items; ++i) sums.bad[i] += part_bad[i];
+    }
+    return sums;
+}
+
 std::vector<cl_uint> NonFiniteCounts::read(Engine& engine) const {
     std::vector<cl_uint> counts(size);
     engine.queue().enqueueReadBuffer(buffer, CL_TRUE, 0, size * sizeof(cl_uint), counts.data());

@@ -4,12 +4,15 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
+#include <functional>
 #include <string>
 #include <vector>
 
 #include "brdfbake/albedo.h"
 #include "brdfbake/engine.h"
 #include "engine/device_buffer.h"
+#include "integrate/replicas.h"
 
 namespace brdfbake {
 
@@ -60,6 +63,21 @@ struct NonFiniteCounts {
     cl::Buffer buffer;
     size_t size;
 };
+
+/// What the chunks' launches of a sampling integrator (vector_chunks) sum to: per output, the
+/// replica means of every item; the non-finite samples per item; the kernel seconds.
+struct ChunkSums {
+    std::vector<std::vector<double>> means;
+    std::vector<cl_uint> bad;
+    double kernel_seconds = 0.0;
+};
+
+/// Runs `launch(chunk, bad)` for each chunk of each replica's `points` (it sets the kernel's
+/// arguments, `bad` the non-finite counts, and returns run_items' seconds), reads `outputs`
+/// (n_items values each) after it, and sums the chunks' means weighted by their share of points.
+ChunkSums run_chunks(Engine& engine, RealBuffers& bufs, const std::vector<PointChunk>& chunks, std::uint64_t points,
+                     size_t n_items, const std::vector<cl::Buffer>& outputs,
+                     const std::function<double(const PointChunk& chunk, const cl::Buffer& bad)>& launch);
 
 /// The model data buffer of an entry point that evaluates a model (BB_MODEL_DATA_ARG in
 /// kernel_abi.h): a closed-form model reads none and gets BB_MODEL_DATA_DUMMY_SIZE zeros; merl

@@ -326,6 +326,12 @@ const char* (*roughness_refusal_of(int id))(const ParamBlock&) {
     return id == BB_MODEL_TORRANCE_SPARROW ? torrance_sparrow_roughness_refusal : nullptr;
 }
 
+/// The planner's cost per sample of the models whose samples cost more than 1.5x GGX's. Sheen,
+/// measured on the development machine (benchmarks/results/plan-estimates-2c-shared.md): its 32x27
+/// albedo at 65536 samples ran at 4.7e7 samples/s against GGX's 2.1e9 in idle-core seconds (the
+/// Charlie distribution is sampled uniformly and its visibility term is costly).
+double sample_cost_of(int id) { return id == BB_MODEL_SHEEN ? 45.0 : 1.0; }
+
 using Resolver = ModelConfig (*)(KeyReader&);
 
 struct ModelEntry {
@@ -341,7 +347,7 @@ struct ModelEntry {
                  ((TRAITS) & BB_TRAIT_RECIPROCAL) != 0, AX, AY, EX, ((TRAITS) & BB_TRAIT_KINKED) != 0,             \
                  ((TRAITS) & BB_TRAIT_FURNACE) != 0, ((TRAITS) & BB_TRAIT_STOCHASTIC) != 0,                        \
                  ((TRAITS) & BB_TRAIT_MEASURED) != 0,                                                               \
-                 roughness_refusal_of(BB_MODEL_##NAME)},                                                            \
+                 roughness_refusal_of(BB_MODEL_##NAME), sample_cost_of(BB_MODEL_##NAME)},                           \
      resolve_##name},
 
 const std::vector<ModelEntry>& registry() {

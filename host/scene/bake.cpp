@@ -145,12 +145,18 @@ json starting_index(const Plan& plan, const BakeOptions& o, const json& old_inde
     return index;
 }
 
-/// Computes one table, in tiles where its kind allows, advancing `stage` from `done` units.
+/// A bake's progress counts estimated idle-core microseconds (at least one per stage).
+std::uint64_t progress_units(double idle_seconds) { return std::max<std::uint64_t>(1, std::uint64_t(idle_seconds * 1e6)); }
+
+/// The tables' CPU seconds from which their own measured slowdown replaces the plan's.
+constexpr double kMeasuredCpuSeconds = 0.1;
+
+/// Computes one table, in tiles where its kind allows, advancing `stage` from `done` by `units`.
 Table compute_planned(Engine& engine, const PlannedTable& t, const LutRequest& r, ProgressStage& stage,
-                      std::uint64_t done, const std::string& step) {
+                      std::uint64_t done, const std::string& step, std::uint64_t units) {
     const TableKind& kind = *t.kind;
     if (!kind.tileable) {
-        stage.update(done, step, t.samples_total);
+        stage.update(done, step, units);
         return compute_lut(engine, r);
     }
     const std::vector<LutRequest> tiles = bake_tiles(kind, r, 16);
@@ -159,8 +165,8 @@ Table compute_planned(Engine& engine, const PlannedTable& t, const LutRequest& r
     int rows = 0;
     for (const auto& tile : tiles) {
         const int tile_rows = kind.one_dimensional ? tile.width : tile.height;
-        const std::uint64_t before = t.samples_total * std::uint64_t(rows) / std::uint64_t(n);
-        const std::uint64_t after = t.samples_total * std::uint64_t(rows + tile_rows) / std::uint64_t(n);
+        const std::uint64_t before = units * std::uint64_t(rows) / std::uint64_t(n);
+        const std::uint64_t after = units * std::uint64_t(rows + tile_rows) / std::uint64_t(n);
         stage.update(done + before, step, after - before);
         parts.push_back(compute_lut(engine, tile));
         rows += tile_rows;
@@ -302,11 +308,11 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
     }
     std::vector<bool> fresh;
     Baking b{plan, o, folder, starting_index(plan, o, old_index, fresh), {}};
-    std::uint64_t work = 0;
+    std::uint64_t work = 0;  // the progress' units: idle-core microseconds, so that its time left holds across kinds
     int to_compute = 0;
     for (size_t i = 0; i < plan.tables.size(); ++i)
         if (!fresh[i]) {
-            work += plan.tables[i].samples_total;
+            work += progress_units(plan.tables[i].idle_compute_seconds) + progress_units(plan.tables[i].idle_preview_seconds);
             ++to_compute;
         }
 
@@ -347,24 +353,29 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
                             work);
         std::uint64_t done = 0;
         int n = 0;
-        double wall_sum = 0, idle_sum = 0;  // the tables' integration: wall and idle-core seconds
+        double wall_sum = 0, idle_sum = 0, cpu_sum = 0;  // the tables' integration: wall, idle-core and CPU seconds
         for (size_t i = 0; i < plan.tables.size(); ++i) {
             if (fresh[i]) continue;
             const PlannedTable& t = plan.tables[i];
+            // The plan's slowdown until the tables have measured their own (calibration.h).
+            const double slowdown = cpu_sum >= kMeasuredCpuSeconds ? wall_sum / idle_sum : plan.slowdown;
+            const std::uint64_t compute_units = progress_units(t.idle_compute_seconds),
+                                units = compute_units + progress_units(t.idle_preview_seconds);
             const auto t1 = Clock::now();
             LutRequest r = t.request;
             apply_eta_axis(t, r);
             char detail[160];
-            std::snprintf(detail, sizeof detail, "%s table %dx%d%s, %llu samples per cell (estimate %.1f s)",
+            std::snprintf(detail, sizeof detail, "%s table %dx%d%s, %llu samples per cell (estimate %.3g s)",
                           r.kind.c_str(), r.width, r.height, t.kind->eta_axis ? ("x" + std::to_string(t.depth)).c_str() : "",
-                          static_cast<unsigned long long>(r.samples), t.est_seconds);
+                          static_cast<unsigned long long>(r.samples), table_estimate(t, slowdown));
             const std::string step = "[" + std::to_string(++n) + "/" + std::to_string(to_compute) + "] " + t.file;
             log_line(step + ": computing " + detail);
             const double built = engine->build_seconds();
             const SlowdownClock clock;  // how much of the cores the integration had (calibration.h)
-            const Table table = compute_planned(*engine, t, r, stage, done, step);
+            const Table table = compute_planned(*engine, t, r, stage, done, step, compute_units);
             wall_sum += clock.wall_seconds();
             idle_sum += clock.wall_seconds() / clock.slowdown();
+            cpu_sum += clock.cpu_seconds();
             result.timings.tables.push_back({r.kind, t.request.model.substr(0, t.request.model.find(':')),
                                              precision_name(r.precision), t.samples_total,
                                              since(t1) - (engine->build_seconds() - built)});
@@ -372,9 +383,9 @@ BakeResult bake_plan(const Plan& plan, const BakeOptions& o,
             check_finite(table);
             // The table is computed: its units count as done while it is drawn and written.
             const double seconds = commit_table(b, t, r, table, t1, [&](const std::string& what) {
-                stage.update(done + t.samples_total, step + ": " + what);
+                stage.update(done + compute_units, step + ": " + what);
             });
-            done += t.samples_total;
+            done += units;
             stage.update(done);
             result.max_error = std::max(result.max_error, table.max_error());
             ++result.computed;

@@ -10,17 +10,17 @@
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
-#include <cstdio>
 #include <cstdlib>
-#include <cstring>
 #include <ctime>
-#include <fstream>
 #include <set>
 #include <sstream>
 #include <thread>
 
 #include "brdfbake/error.h"
+#include "brdfbake/output.h"
+#include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
+#include "models/input_file.h"
 
 namespace brdfbake {
 
@@ -34,6 +34,8 @@ constexpr int kVersion = 2;  // 1: a rate and a fixed time per kind (replaced)
 constexpr int kMeanOf = 8;
 /// Runs of one size a line keeps.
 constexpr int kRunsPerSize = 2;
+/// A calibration file is a few KiB; a larger one is not ours.
+constexpr std::uintmax_t kMaxFileBytes = 1 << 20;
 
 std::string this_host() {
     char name[256] = {0};
@@ -133,15 +135,6 @@ bool Calibration::applies() const {
     return !path.empty() && bakes > 0 && host == this_host() && hardware_threads == this_threads();
 }
 
-double model_sample_cost(const std::string& model_name) {
-    // Measured on the same cores: sheen's 32x27 albedo at 65536 samples, 4.7e7 samples/s against
-    // GGX's 2.1e9 in idle-core seconds (the Charlie distribution's sampling is uniform and its
-    // visibility term costly).
-    static const std::map<std::string, double> costs = {{"sheen", 45.0}};
-    const auto it = costs.find(model_name);
-    return it == costs.end() ? 1.0 : it->second;
-}
-
 namespace {
 
 double wall_now() {
@@ -162,6 +155,8 @@ double cpu_now() {
 SlowdownClock::SlowdownClock() : wall0_(wall_now()), cpu0_(cpu_now()) {}
 
 double SlowdownClock::wall_seconds() const { return wall_now() - wall0_; }
+
+double SlowdownClock::cpu_seconds() const { return cpu_now() - cpu0_; }
 
 double SlowdownClock::slowdown() const {
     const double cpu = cpu_now() - cpu0_, wall = wall_now() - wall0_;
@@ -185,7 +180,10 @@ double slowdown_from_environment() {
 
 double builtin_rate(const std::string& kind, const std::string& model_name) {
     const TableKind* k = find_table_kind(kind);
-    return builtin_figures::kSamplesPerSecondPerCore * this_threads() / ((k ? k->sample_cost : 1.0) * model_sample_cost(model_name));
+    double model_cost = 1.0;  // the registry's ModelTraits::sample_cost
+    for (const ModelTraits& m : model_registry())
+        if (model_name == m.name) model_cost = m.sample_cost;
+    return builtin_figures::kSamplesPerSecondPerCore * this_threads() / ((k ? k->sample_cost : 1.0) * model_cost);
 }
 
 void CalibratedLine::add(double size, double seconds) {
@@ -289,17 +287,26 @@ Calibration read_calibration(const std::string& path) {
     Calibration c;
     c.path = path;
     if (path.empty()) return c;
-    std::ifstream in(path);
-    if (!in) {
+    struct stat st{};
+    if (::stat(path.c_str(), &st) != 0 && errno == ENOENT) {
         c.host = this_host();
         c.hardware_threads = this_threads();
         return c;  // none yet: the first bake writes it
     }
-    std::stringstream text;
-    text << in.rdbuf();
+    std::string text;
+    try {
+        text = read_input_file(path, "calibration file", kMaxFileBytes);
+    } catch (const Error& e) {  // a folder, a device, too large, unreadable: never written to
+        Calibration ignored;
+        ignored.path = path;
+        ignored.writable = false;
+        ignored.warning = std::string(e.what()) + "; the estimates use the built-in figures, and bakes do not record "
+                          "into it (set BRDFBAKE_CALIBRATION to another path or to off)";
+        return ignored;
+    }
     json j;
     try {
-        j = json::parse(text.str());
+        j = json::parse(text);
         parse(j, c);
     } catch (const std::exception& e) {
         // A file of this format (another version, a bad value) is this program's: the next bake
@@ -361,15 +368,10 @@ std::string write_calibration(const Calibration& c) {
     if (c.build_seconds_per_program.known()) j["kernel_build_seconds"] = json_of(c.build_seconds_per_program);
     if (c.report_check_seconds.known()) j["report_check_seconds"] = json_of(c.report_check_seconds);
     make_parent(c.path);
-    const std::string tmp = c.path + ".tmp-" + std::to_string(::getpid());
-    const std::string text = j.dump(2) + "\n";
-    FILE* f = std::fopen(tmp.c_str(), "w");
-    if (!f) return "cannot write '" + tmp + "': " + std::strerror(errno);
-    const bool ok = std::fwrite(text.data(), 1, text.size(), f) == text.size();
-    if (std::fclose(f) != 0 || !ok || std::rename(tmp.c_str(), c.path.c_str()) != 0) {
-        const std::string why = std::strerror(errno);
-        std::remove(tmp.c_str());
-        return "cannot write '" + c.path + "': " + why;
+    try {
+        write_file_atomically(c.path, j.dump(2) + "\n");
+    } catch (const Error& e) {
+        return e.what();
     }
     return {};
 }

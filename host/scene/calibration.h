@@ -7,7 +7,7 @@
 //
 // The file: $BRDFBAKE_CALIBRATION (a path; "off": none is read or written), else
 // $XDG_CACHE_HOME/brdfbake/calibration.json, else ~/.cache/brdfbake/calibration.json. It is
-// replaced atomically (a temporary file renamed over it). A file that cannot be used is ignored
+// replaced atomically (write_file_atomically). A file that cannot be used is ignored
 // with one warning: one of this format (another version, a value out of range) is replaced by the
 // next bake; any other (not JSON, no "format": "brdfbake-calibration") is never written to (it
 // may be someone's file the variable names by mistake); docs/scenes.md, "Estimates".
@@ -42,6 +42,16 @@ constexpr double kSecondsPerPreviewTexel = 4.3e-7;
 /// report page: about 0.2 s (tests/data/small_glass.json's bake took 0.37 CPU seconds against
 /// 0.26 s for its other stages).
 constexpr double kStartupSeconds = 0.2;
+/// With PoCL's kernel cache cold (a first bake, a new brdfbake, a cleared cache), each program's
+/// build and the code generation at its first launch, and once per process the compiler's start:
+/// CPU seconds of cold bakes less warm ones, 1.65 s for 3 programs (small_glass.json), 2.6-2.8 s
+/// for 6 (examples/scene.json, metals_glass.json), 3.6 s for 8 (materials.gltf): 0.5 s + 0.4 s a
+/// program (benchmarks/results/plan-estimates-2c-shared.md, 2026-12-03 session 4).
+constexpr double kColdStartSeconds = 0.5;
+constexpr double kColdSecondsPerProgram = 0.4;
+/// A build of the slowdown probe's kernel longer than this (idle-core seconds) found the cache
+/// cold: cached it takes 0.02 s, cold 1.2 s (the compiler starts).
+constexpr double kColdBuildSeconds = 0.25;
 /// One lobe check of the bake report (24 directions x 2^14 samples and 16^3 reciprocity pairs:
 /// 0.019 s a check, the mean of 20 bakes).
 constexpr double kSecondsPerReportCheck = 0.02;
@@ -86,6 +96,9 @@ struct Calibration {
     /// measured). The figures are idle-core seconds (the built-in ones measured so, a bake's
     /// divided by its own slowdown); the estimates are those times this.
     double slowdown = 1.0;
+    /// PoCL's kernel cache was found cold (the probe's build took longer than kColdBuildSeconds):
+    /// the bake's programs are estimated as cold builds.
+    bool cold_cache = false;
 
     /// The file has figures for this machine (same host and hardware threads, a bake recorded).
     bool applies() const;
@@ -102,16 +115,14 @@ public:
     /// too little ran to say: under 0.02 CPU seconds).
     double slowdown() const;
     double wall_seconds() const;
+    double cpu_seconds() const;  // the process's, every thread
 
 private:
     double wall0_, cpu0_;
 };
 
-/// The cost of one sample of a model relative to GGX's where it differs by more than 1.5x.
-double model_sample_cost(const std::string& model_name);
-
 /// The built-in samples per second of a table of `kind` and `model_name`: GGX albedo's over the
-/// kind's cost per sample (TableKind::sample_cost) and the model's.
+/// kind's cost per sample (TableKind::sample_cost) and the model's (ModelTraits::sample_cost).
 double builtin_rate(const std::string& kind, const std::string& model_name);
 
 /// The seconds a table of `samples` of `kind`, `model_name` and `precision` ("float", "double")

@@ -161,7 +161,8 @@ std::string plan_text(const Plan& p) {
       << " integrating at " << human_count(p.samples_per_second) << " samples/s and writing each table and its preview: "
       << p.throughput_basis << "; " << human_seconds(p.startup_seconds) << " start-up; "
       << human_seconds(p.build_seconds) << " for " << p.programs << " kernel build" << (p.programs == 1 ? "" : "s")
-      << ", cached by PoCL after the first run; " << human_seconds(p.report_seconds) << " for the report's "
+      << (p.cold_builds ? ", PoCL's kernel cache is cold: compiled this once" : ", cached by PoCL")
+      << "; " << human_seconds(p.report_seconds) << " for the report's "
       << p.report_checks << " lobe check" << (p.report_checks == 1 ? "" : "s") << ", skipped by --no-report), peak memory " << human_bytes(peak_mem) << ", " << human_bytes(disk)
       << " on disk\n";
     return o.str();
@@ -242,6 +243,8 @@ std::string plan_json(const Plan& p) {
                      {"integration_seconds", total_s},
                      {"kernel_programs", p.programs},
                      {"kernel_build_seconds", p.build_seconds},
+                     {"kernel_cache_cold", p.cold_builds},
+                     {"slowdown", p.slowdown},
                      {"samples", total_samples},
                      {"samples_per_second", p.samples_per_second},
                      {"basis", p.throughput_basis}};

@@ -166,11 +166,13 @@ struct Figures {
     /// How much slower than on idle cores parallel stages (the kernels) and single-threaded ones
     /// (start-up, builds, previews) run now (calibration.h).
     double parallel = 1.0, serial = 1.0;
+    bool cold = false;  // PoCL's kernel cache is cold: builds cost a compile each
 
     explicit Figures(const Calibration* c) {
         if (c) {
             parallel = c->slowdown;
             serial = serial_slowdown(c->slowdown);
+            cold = c->cold_cache;
         }
         if (!c || !c->applies()) return;
         calibration = c;
@@ -371,9 +373,10 @@ void finish_table(Plan& plan, const Figures& figures, PlannedTable t, const std:
     const std::uint64_t texels = std::uint64_t(r.width) * r.height * t.depth;
     t.cells = texels * std::uint64_t(kind.cells_per_texel);
     t.samples_total = t.cells * r.samples * std::uint64_t(kind.integrations(r));
-    t.est_seconds = figures.parallel * table_seconds(figures.calibration, kind.name, model_name,
-                                                     precision_name(r.precision), double(t.samples_total)) +
-                    figures.serial * preview_seconds(figures.calibration, double(texels));
+    t.idle_compute_seconds =
+        table_seconds(figures.calibration, kind.name, model_name, precision_name(r.precision), double(t.samples_total));
+    t.idle_preview_seconds = preview_seconds(figures.calibration, double(texels));
+    t.est_seconds = table_estimate(t, figures.parallel);
     const int channels = kind.value_channels(r) + 1;  // values + error
     // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while the
     // kernel runs; the finished table holds doubles.
@@ -474,17 +477,29 @@ void estimate_builds_and_report(Plan& plan, const Figures& figures) {
     for (const auto& t : plan.tables)
         for (const std::string& p : t.kind->kernel_programs(t.request)) programs.insert(p);
     plan.programs = int(programs.size());
-    plan.build_seconds = figures.serial * figures.program * plan.programs;
     plan.startup_seconds = figures.serial * builtin_figures::kStartupSeconds;
-    // The bake report checks each lobe with a table at both ends of its roughness range.
-    std::set<std::string> checks;
+    // The bake report checks each lobe with a table at both ends of its roughness range; it builds
+    // two programs per (model, Fresnel) of the lobes it checks (the scan and the albedo kernel).
+    std::set<std::string> checks, checked_lobes;
     for (const auto& m : plan.materials)
         for (const auto& lobe : m.lobes)
-            if (!lobe.kinds.empty())
+            if (!lobe.kinds.empty()) {
+                checked_lobes.insert(lobe.model + "|" + lobe.fresnel);
                 for (double a : {lobe.alpha.lo, lobe.alpha.hi})
                     checks.insert(lobe.model + "|" + lobe.fresnel + "|" + std::to_string(a));
+            }
     plan.report_checks = int(checks.size());
     plan.report_seconds = figures.parallel * figures.check * plan.report_checks;
+    plan.cold_builds = figures.cold;
+    if (!figures.cold) {
+        plan.build_seconds = figures.serial * figures.program * plan.programs;
+        return;
+    }
+    // A cold cache: every program compiles (the report's too), once per process the compiler starts.
+    const int report_programs = 2 * int(checked_lobes.size());
+    plan.build_seconds = figures.serial * (builtin_figures::kColdStartSeconds +
+                                           builtin_figures::kColdSecondsPerProgram * plan.programs);
+    plan.report_seconds += figures.serial * builtin_figures::kColdSecondsPerProgram * report_programs;
 }
 
 }  // namespace
@@ -495,6 +510,10 @@ void apply_eta_axis(const PlannedTable& t, LutRequest& request) {
     request.eta_lo = t.eta_lo;
     request.eta_hi = t.eta_hi;
     request.depth = t.depth;
+}
+
+double table_estimate(const PlannedTable& t, double slowdown) {
+    return slowdown * t.idle_compute_seconds + serial_slowdown(slowdown) * t.idle_preview_seconds;
 }
 
 Plan make_plan(const Scene& scene, const Calibration* calibration) {
@@ -534,6 +553,7 @@ Plan make_plan(const Scene& scene, const Calibration* calibration) {
         finish_table(plan, figures, std::move(t), file, half, model_name);
     }
     estimate_builds_and_report(plan, figures);
+    plan.slowdown = figures.parallel;
     // Idle-core seconds times how much slower the machine runs now (calibration.h).
     if (figures.parallel > 1.0) {
         plan.samples_per_second /= figures.parallel;

@@ -133,6 +133,8 @@ struct PlannedTable {
     std::uint64_t cells = 0;             // integration cells (texels, or texels x quadrature nodes)
     std::uint64_t samples_total = 0;     // samples x cells (x integrations)
     double est_seconds = 0.0;            // integrating, writing the file and its preview
+    double idle_compute_seconds = 0.0;   // its parts on idle cores: integrating (parallel)
+    double idle_preview_seconds = 0.0;   // and the preview (one thread); table_estimate
     std::uint64_t est_memory = 0;        // bytes, host and device, while computing
     std::uint64_t file_bytes = 0;        // estimated size on disk
     std::string key;                     // canonical request text (hashed)
@@ -150,6 +152,8 @@ struct Plan {
     std::vector<std::string> warnings;
     int programs = 0;                         // kernel programs the bake builds (model x Fresnel kind)
     double build_seconds = 0.0;               // estimated kernel build time (first run; PoCL caches)
+    bool cold_builds = false;                 // PoCL's kernel cache was found cold: builds compile
+    double slowdown = 1.0;                    // how much slower than idle cores the estimates assume
     double startup_seconds = 0.0;             // process, device and folder set-up
     int report_checks = 0;                    // lobe checks of the bake report (index.html)
     double report_seconds = 0.0;              // their estimated time (bake --no-report skips them)
@@ -163,6 +167,10 @@ struct Calibration;  // scene/calibration.h
 /// The minimal set of tables for a scene. Throws Error for a lobe that cannot be tabulated.
 /// Estimates from `calibration` where it has figures for this machine, else the built-in ones.
 Plan make_plan(const Scene& scene, const Calibration* calibration = nullptr);
+
+/// A table's estimate when the machine runs `slowdown` times slower than on idle cores (the
+/// plan's is table_estimate(t, plan.slowdown); a bake re-estimates with the slowdown it measures).
+double table_estimate(const PlannedTable& t, double slowdown);
 
 /// The plan as text (--format table) or as one JSON object (--format json).
 std::string plan_text(const Plan& plan);

@@ -45,6 +45,9 @@ struct ModelTraits {
     /// Why these parameters have no roughness to sweep although the model has alpha slots
     /// (torrance-sparrow with d=blinn), or nullptr.
     const char* (*roughness_refusal)(const ParamBlock& params);
+    /// The planner's cost of one of its samples relative to GGX's (`plan`'s and `bake`'s estimates,
+    /// host/scene/calibration.h); 1 unless measured to differ by more than 1.5x.
+    double sample_cost;
 };
 
 /// Every registered model, in the order of the registry's table.
