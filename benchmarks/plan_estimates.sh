@@ -5,7 +5,8 @@
 # wall time of RUNS, default 3), wall/estimate.
 # Each bake runs with --force into a fresh folder (previews and report on, as `bake` does by
 # default), under `nice -n -20` when run as root so that other jobs on a shared machine do not
-# inflate the wall time (record the machine and its load beside the numbers: benchmarks/results/).
+# inflate the wall time (record the machine and its load beside the numbers: benchmarks/results/);
+# the plans run under the same nice, so that their probe measures what the bakes will get.
 # Not a test: timings depend on the machine. The estimates use the calibration file
 # (BRDFBAKE_CALIBRATION, docs/scenes.md "Estimates"), into which these bakes record too; the
 # column "basis" says whether the plan was calibrated. CALIBRATE=1 first bakes every scene once
@@ -47,7 +48,7 @@ for s in "${scenes[@]}"; do
   plan_env=(env)
   [ "${BUILTIN:-0}" = 1 ] && plan_env+=(BRDFBAKE_CALIBRATION="$work/none-$RANDOM.json")
   [ "${COLD:-0}" = 1 ] && plan_env+=(POCL_CACHE_DIR="$work/pocl-$RANDOM")
-  IFS=' ' read -r est tables basis < <("${plan_env[@]}" "$exe" plan "$s" "${extra[@]}" --format json | /usr/bin/python3 -c 'import json,re,sys; e = json.load(sys.stdin)["estimate"]; m = re.search(r"times ([0-9.]+)", e["basis"]); print("%.2f" % e["seconds"], "%.3f" % e["integration_seconds"], ("calibrated" if e["basis"].startswith("calibrated") else "built-in") + ", slowdown " + (m.group(1) if m else "1") + (", cold cache" if e.get("kernel_cache_cold") else ""))')
+  IFS=' ' read -r est tables basis < <("${plan_env[@]}" "${nice[@]}" "$exe" plan "$s" "${extra[@]}" --format json | /usr/bin/python3 -c 'import json,re,sys; e = json.load(sys.stdin)["estimate"]; m = re.search(r"times ([0-9.]+)", e["basis"]); print("%.2f" % e["seconds"], "%.3f" % e["integration_seconds"], ("calibrated" if e["basis"].startswith("calibrated") else "built-in") + ", slowdown " + (m.group(1) if m else "1") + (", cold cache" if e.get("kernel_cache_cold") else ""))')
   load=$(cut -d' ' -f1 /proc/loadavg)
   : >"$work/times"
   for _ in $(seq "$runs"); do

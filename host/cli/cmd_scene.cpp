@@ -157,9 +157,12 @@ Scene load_scene_with(const SceneOptions& o) {
 }
 
 /// A bake whose tables take at least this many idle-core seconds measures the slowdown before
-/// it starts (the probe's 0.2 CPU s is then under a tenth of it); a shorter one estimates its
-/// first table at the plan's idle figures and the rest at the slowdown its tables measure.
-constexpr double kProbedBakeSeconds = 2.0;
+/// it starts (the probe, 0.1 s on idle cores, is then under a sixth of its tables and a tenth of
+/// the bake with its start-up, builds and report); a shorter one estimates its first table at
+/// the plan's idle figures and the rest at the slowdown its tables measure. At 2 s, the sheen
+/// scene (1.4 idle s) and a 1024x1024 albedo table (0.9 idle s) went unmeasured: their log said
+/// a tenth of the time they took at load 20.
+constexpr double kProbedBakeSeconds = 0.75;
 
 // --- kernel build measurement ------------------------------------------------------------------
 // --- kernel build measurement ------------------------------------------------------------------

@@ -148,8 +148,9 @@ json starting_index(const Plan& plan, const BakeOptions& o, const json& old_inde
 /// A bake's progress counts estimated idle-core microseconds (at least one per stage).
 std::uint64_t progress_units(double idle_seconds) { return std::max<std::uint64_t>(1, std::uint64_t(idle_seconds * 1e6)); }
 
-/// The tables' CPU seconds from which their own measured slowdown replaces the plan's.
-constexpr double kMeasuredCpuSeconds = 0.1;
+/// The tables' CPU seconds from which their own measured slowdown replaces the plan's (the least
+/// a SlowdownClock measures).
+constexpr double kMeasuredCpuSeconds = 0.02;
 
 /// Computes one table, in tiles where its kind allows, advancing `stage` from `done` by `units`.
 Table compute_planned(Engine& engine, const PlannedTable& t, const LutRequest& r, ProgressStage& stage,
