@@ -297,7 +297,7 @@ TEST_CASE("bake: each table's logged estimate is the plan's at the same slowdown
     const double logged = std::stod(r.err.substr(est + 10));
     const double threads = std::max(1u, std::thread::hardware_concurrency());
     const double expected = 3 * (e.samples / 8e8 + 0.25) + std::max(1.0, 3 / threads) * (0.125 + 1e-6 * e.texels);
-    CHECK(logged == Approx(expected).epsilon(2e-3));  // printed to 3 significant digits
+    CHECK(logged == Approx(expected).epsilon(6e-3));  // printed to 3 significant digits
 }
 
 TEST_CASE("plan: a cold PoCL kernel cache is found and its builds estimated as compiles", "[scene][calibration][cli]") {
