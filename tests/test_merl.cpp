@@ -447,3 +447,29 @@ TEST_CASE("merl: a scene's MERL material is planned and baked as E(mu) and Eavg 
     }
     CHECK(std::system(("rm -rf '" + dir + "'").c_str()) == 0);
 }
+
+TEST_CASE("merl: a linear lookup's unmeasured share is what a Lambert file's albedo lacks", "[merl]") {
+    // Every node with theta_d >= 60 degrees unmeasured (mirror-symmetric: the share of a linear
+    // lookup counts half the cells in phi, twice). The linear lookup renormalises over measured
+    // nodes, so a Lambert file reads rho/pi wherever it reads anything: E = rho (1 - share).
+    const std::string path = tmp("holes-linear.binary");
+    const double rho = 0.8;
+    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
+        double h[3] = {o[0] + i[0], o[1] + i[1], o[2] + i[2]};
+        const double n = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        const double cos_d = (i[0] * h[0] + i[1] * h[1] + i[2] * h[2]) / n;
+        const double f = cos_d < std::cos(59.5 * kPi / 180) ? -1.0 : rho / kPi;
+        return std::array<double, 3>{f, f, f};
+    });
+    const auto r = testing::run_cli("albedo --model merl:file=" + path + ",interp=linear --mu 0.1,0.3,0.5,1 --format json --samples 262144");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    for (const auto& e : j.at("results")) {
+        const double share = e.at("unmeasured_share").get<double>(), albedo = e.at("albedo").get<double>();
+        INFO("mu " << e.at("mu").get<double>() << ": share " << share << ", albedo " << albedo);
+        CHECK(std::fabs(albedo - rho * (1 - share)) <= e.at("error").get<double>() + rho / 128);
+    }
+    CHECK(j.at("results")[0].at("unmeasured_share").get<double>() > 0.05);  // grazing wo reads large theta_d
+    CHECK(j.at("results")[3].at("unmeasured_share").get<double>() == 0.0);  // wo = n: theta_d = theta_i / 2 < 45 degrees
+    std::remove(path.c_str());
+}

@@ -290,16 +290,21 @@ double merl_unmeasured_share(int index, int interp, double mu, int n) {
     const double* t = bb_merl_host_table(index);
     const double so = std::sqrt(std::max(0.0, 1 - mu * mu));
     const bb_vec3 wo = bb_v3(so, 0.0, mu);
+    // A linear lookup of a mirror-symmetric table (bb_merl_mirror_symmetric) reads the same nodes
+    // at a pair's mirror image (y -> -y), and the cells b and n - 1 - b in phi are mirror images:
+    // half the cells, each counted twice (the nearest lookup's bins do not mirror onto bins).
+    const bool mirror = interp == BB_MERL_LINEAR && n % 2 == 0 && merl_table_info(index).mirror_symmetric;
+    const int nb = mirror ? n / 2 : n;
     long hits = 0;
     for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b) {
+        for (int b = 0; b < nb; ++b) {
             const bb_vec3 wi = bb_cosine_hemisphere((a + 0.5) / n, (b + 0.5) / n);
             if (!(wi.z > 0.0 && wo.z > 0.0)) continue;
             const bb_vec3 x = bb_merl_coords(wo, wi);
             const double v = interp == BB_MERL_LINEAR ? bb_merl_linear(t, x) : bb_merl_nearest(t, x);
             hits += v < 0.0;
         }
-    return double(hits) / (double(n) * n);
+    return double(mirror ? 2 * hits : hits) / (double(n) * n);
 }
 
 bool merl_unmeasured(const ModelConfig& model, const std::vector<double>& mus, MerlUnmeasured& out) {
