@@ -129,6 +129,18 @@ const std::set<std::string> kMaterialKeys = {"name", "model", "fresnel", "wavele
 const std::set<std::string> kSettingsKeys = {"samples", "mu_texels", "alpha_texels", "eta_step", "mu_map",
                                              "alpha_map", "precision", "format", "half"};
 
+/// The material's "tables" (a list of kinds, each checked against the lobe), when it names them.
+void read_lobe_tables(const json& m, const Where& w, const std::string& ctx, Lobe& lobe) {
+    if (!m.contains("tables")) return;
+    const json& t = m["tables"];
+    if (!t.is_array() || t.empty()) throw Error(w.at("tables") + " must be a non-empty list of table kinds");
+    lobe.kinds.clear();
+    for (const auto& k : t) {
+        const TableKind* kind = &lobe_table_kind(string_at(k, w, "tables"), lobe, ctx);
+        if (std::find(lobe.kinds.begin(), lobe.kinds.end(), kind) == lobe.kinds.end()) lobe.kinds.push_back(kind);
+    }
+}
+
 /// A material of a measured model (merl): one lobe without a roughness axis, whose tables are
 /// E(mu) and Eavg (kind_albedo.cpp), per colour when `per_colour` (channel=rgb); "tables" may name
 /// a subset of those two.
@@ -142,18 +154,11 @@ SceneMaterial measured_material(SceneMaterial& out, const ModelConfig& base, boo
     lobe.model_name = base.name;
     lobe.role = "measured";
     lobe.kinds = default_lobe_kinds(lobe);
-    if (m.contains("tables")) {
-        const json& t = m["tables"];
-        if (!t.is_array() || t.empty()) throw Error(w.at("tables") + " must be a non-empty list of table kinds");
-        lobe.kinds.clear();
-        for (const auto& k : t) {
-            const TableKind* kind = &lobe_table_kind(string_at(k, w, "tables"), lobe, ctx);
-            if (kind != &table_kind(TableKindId::Albedo) && kind != &table_kind(TableKindId::Eavg))
-                throw Error(ctx + ": a measured model's tables are albedo and eavg (no roughness axis); '" + kind->name +
-                            "' is not one");
-            if (std::find(lobe.kinds.begin(), lobe.kinds.end(), kind) == lobe.kinds.end()) lobe.kinds.push_back(kind);
-        }
-    }
+    read_lobe_tables(m, w, ctx, lobe);
+    for (const TableKind* kind : lobe.kinds)
+        if (kind != &table_kind(TableKindId::Albedo) && kind != &table_kind(TableKindId::Eavg))
+            throw Error(ctx + ": a measured model's tables are albedo and eavg (no roughness axis); '" + kind->name +
+                        "' is not one");
     out.notes.push_back(lobe.model + ": measured, no roughness axis: E(mu) and Eavg" +
                         std::string(per_colour ? " per colour channel" : ""));
     out.lobes.push_back(lobe);
@@ -301,15 +306,7 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
     if (eta) lobe.role = transmission ? "transmission" : "dielectric";
     else lobe.role = is_conductor_fresnel(fresnel) ? "metal" : "specular";
     lobe.kinds = default_lobe_kinds(lobe);
-    if (m.contains("tables")) {
-        const json& t = m["tables"];
-        if (!t.is_array() || t.empty()) throw Error(w.at("tables") + " must be a non-empty list of table kinds");
-        lobe.kinds.clear();
-        for (const auto& k : t) {
-            const TableKind* kind = &lobe_table_kind(string_at(k, w, "tables"), lobe, ctx);
-            if (std::find(lobe.kinds.begin(), lobe.kinds.end(), kind) == lobe.kinds.end()) lobe.kinds.push_back(kind);
-        }
-    }
+    read_lobe_tables(m, w, ctx, lobe);
     out.lobes.push_back(lobe);
     return out;
 }
