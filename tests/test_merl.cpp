@@ -445,6 +445,10 @@ TEST_CASE("merl: a scene's MERL material is planned and baked as E(mu) and Eavg 
         }
         CHECK(rows == (std::string(kind) == "albedo" ? 8 : 1));
     }
+    // the bake report checks the measured lobe (in luminance) like any other
+    const std::string report = testing::slurp(out + "/index.html");
+    CHECK(report.find("channel=y,interp=linear (Fresnel none)") != std::string::npos);
+    CHECK(report.find("not checked") == std::string::npos);
     CHECK(std::system(("rm -rf '" + dir + "'").c_str()) == 0);
 }
 
