@@ -424,6 +424,8 @@ TEST_CASE("merl: a scene's MERL material is planned and baked as E(mu) and Eavg 
     REQUIRE(plan.status == 0);
     CHECK(plan.out.find("albedo-merl-paint.csv") != std::string::npos);
     CHECK(plan.out.find("eavg-merl-paint.csv") != std::string::npos);
+    CHECK(plan.out.find("axes      mu 0..1 (8, linear); no roughness axis (measured)") != std::string::npos);
+    CHECK(plan.out.find("axes      one texel; no roughness axis (measured)") != std::string::npos);
     const auto bake = testing::run_cli("bake " + dir + "/scene.json -o " + out);
     INFO(bake.out << bake.err);
     REQUIRE(bake.status == 0);
