@@ -334,20 +334,20 @@ std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<dou
     return text + "\n";
 }
 
-bool merl_rgb_spec(const std::string& spec) {
+/// A merl spec's channel key: "-" for another model, "" where the spec names none.
+static std::string merl_channel_key(const std::string& spec) {
     const Spec s = parse_spec(spec);
-    if (s.name != "merl") return false;
+    if (s.name != "merl") return "-";
     for (const auto& kv : s.keys)
-        if (kv.first == "channel") return kv.second == "rgb";
-    return false;
+        if (kv.first == "channel") return kv.second;
+    return "";
 }
 
+bool merl_rgb_spec(const std::string& spec) { return merl_channel_key(spec) == "rgb"; }
+
 bool merl_per_colour(const std::string& spec) {
-    const Spec s = parse_spec(spec);
-    if (s.name != "merl") return false;
-    for (const auto& kv : s.keys)
-        if (kv.first == "channel") return kv.second == "rgb";
-    return true;
+    const std::string c = merl_channel_key(spec);
+    return c == "rgb" || c.empty();
 }
 
 std::string merl_channel_spec(const std::string& spec, const std::string& channel) {
