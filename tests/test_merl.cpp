@@ -11,12 +11,15 @@
 #include <unistd.h>
 
 #include <array>
+#include <cctype>
 #include <cmath>
 #include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 #include <vector>
 
@@ -388,5 +391,91 @@ TEST_CASE("merl: the quadrature covers the whole azimuth of a file that is not m
         CHECK(std::fabs(r.values[k].value - 1.0) <= r.values[k].error + 1e-9);
         CHECK(r.values[k].error < 0.02);
     }
+    std::remove(path.c_str());
+}
+
+TEST_CASE("merl: a file is read once per version: a file replaced at the same path is read again", "[merl][quick]") {
+    const std::string path = tmp("again.binary"), next = tmp("again-next.binary");
+    write_lambert(path, {0.5, 0.5, 0.5});
+    const int r0 = int(resolve_model("merl:file=" + path + ",channel=r").params[BB_MERL_TABLE]);
+    const int g0 = int(resolve_model("merl:file=" + path + ",channel=g").params[BB_MERL_TABLE]);
+    CHECK(r0 != g0);
+    CHECK(bb_merl_host_table(r0)[123] == Approx(0.5 / kPi).epsilon(1e-15));
+    write_lambert(next, {0.25, 0.25, 0.25});
+    REQUIRE(std::rename(next.c_str(), path.c_str()) == 0);
+    const int r1 = int(resolve_model("merl:file=" + path + ",channel=r").params[BB_MERL_TABLE]);
+    CHECK(r1 != r0);
+    CHECK(bb_merl_host_table(r1)[123] == Approx(0.25 / kPi).epsilon(1e-15));
+    CHECK(bb_merl_host_table(r0)[123] == Approx(0.5 / kPi).epsilon(1e-15));  // the first version's table stays
+    CHECK(int(resolve_model("merl:file=" + path + ",channel=r").params[BB_MERL_TABLE]) == r1);
+    std::remove(path.c_str());
+}
+
+TEST_CASE("merl: a scene's MERL material is planned and baked as E(mu) and Eavg per colour", "[merl][scene][cli]") {
+    // a Lambert file: E(mu) = Eavg = rho per channel (closed form), the file named beside the scene
+    const std::string dir = tmp("bake"), out = dir + "/out";
+    ::mkdir(dir.c_str(), 0700);
+    const std::array<double, 3> rho{0.2, 0.5, 0.8};
+    write_lambert(dir + "/paint.binary", rho);
+    std::ofstream(dir + "/scene.json") << R"({"settings": {"format": "csv", "mu_texels": 8, "samples": 4096},
+        "materials": [{"name": "paint", "model": "merl:file=paint.binary"}]})";
+    const auto plan = testing::run_cli("plan " + dir + "/scene.json");
+    INFO(plan.out << plan.err);
+    REQUIRE(plan.status == 0);
+    CHECK(plan.out.find("albedo-merl-paint.csv") != std::string::npos);
+    CHECK(plan.out.find("eavg-merl-paint.csv") != std::string::npos);
+    CHECK(plan.out.find("axes      mu 0..1 (8, linear); no roughness axis (measured)") != std::string::npos);
+    CHECK(plan.out.find("axes      one texel; no roughness axis (measured)") != std::string::npos);
+    const auto bake = testing::run_cli("bake " + dir + "/scene.json -o " + out);
+    INFO(bake.out << bake.err);
+    REQUIRE(bake.status == 0);
+    for (const char* kind : {"albedo", "eavg"}) {
+        const std::string text = testing::slurp(out + "/" + kind + "-merl-paint.csv");
+        INFO(kind << ":\n" << text);
+        CHECK(text.find("channel=rgb") != std::string::npos);
+        int rows = 0;
+        std::istringstream in(text);
+        for (std::string line; std::getline(in, line);) {
+            if (line.empty() || !std::isdigit(static_cast<unsigned char>(line[0]))) continue;  // comments, header
+            std::vector<double> v;
+            std::istringstream cells(line);
+            for (std::string cell; std::getline(cells, cell, ',');) v.push_back(std::stod(cell));
+            REQUIRE(v.size() == 5);  // coordinate, E_r, E_g, E_b, error
+            for (int c = 0; c < 3; ++c) CHECK(std::fabs(v[size_t(c) + 1] - rho[size_t(c)]) <= v[4] + 1e-6);
+            CHECK(v[4] < 0.01);
+            ++rows;
+        }
+        CHECK(rows == (std::string(kind) == "albedo" ? 8 : 1));
+    }
+    // the bake report checks the measured lobe (in luminance) like any other
+    const std::string report = testing::slurp(out + "/index.html");
+    CHECK(report.find("channel=y,interp=linear (Fresnel none)") != std::string::npos);
+    CHECK(report.find("not checked") == std::string::npos);
+    CHECK(std::system(("rm -rf '" + dir + "'").c_str()) == 0);
+}
+
+TEST_CASE("merl: a linear lookup's unmeasured share is what a Lambert file's albedo lacks", "[merl]") {
+    // Every node with theta_d >= 60 degrees unmeasured (mirror-symmetric: the share of a linear
+    // lookup counts half the cells in phi, twice). The linear lookup renormalises over measured
+    // nodes, so a Lambert file reads rho/pi wherever it reads anything: E = rho (1 - share).
+    const std::string path = tmp("holes-linear.binary");
+    const double rho = 0.8;
+    write_merl_file(path, [&](const std::array<double, 3>& o, const std::array<double, 3>& i) {
+        double h[3] = {o[0] + i[0], o[1] + i[1], o[2] + i[2]};
+        const double n = std::sqrt(h[0] * h[0] + h[1] * h[1] + h[2] * h[2]);
+        const double cos_d = (i[0] * h[0] + i[1] * h[1] + i[2] * h[2]) / n;
+        const double f = cos_d < std::cos(59.5 * kPi / 180) ? -1.0 : rho / kPi;
+        return std::array<double, 3>{f, f, f};
+    });
+    const auto r = testing::run_cli("albedo --model merl:file=" + path + ",interp=linear --mu 0.1,0.3,0.5,1 --format json --samples 262144");
+    REQUIRE(r.status == 0);
+    const auto j = nlohmann::json::parse(r.out);
+    for (const auto& e : j.at("results")) {
+        const double share = e.at("unmeasured_share").get<double>(), albedo = e.at("albedo").get<double>();
+        INFO("mu " << e.at("mu").get<double>() << ": share " << share << ", albedo " << albedo);
+        CHECK(std::fabs(albedo - rho * (1 - share)) <= e.at("error").get<double>() + rho / 128);
+    }
+    CHECK(j.at("results")[0].at("unmeasured_share").get<double>() > 0.05);  // grazing wo reads large theta_d
+    CHECK(j.at("results")[3].at("unmeasured_share").get<double>() == 0.0);  // wo = n: theta_d = theta_i / 2 < 45 degrees
     std::remove(path.c_str());
 }

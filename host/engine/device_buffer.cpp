@@ -4,14 +4,18 @@
 
 namespace brdfbake {
 
-cl::Buffer RealBuffers::input(const std::vector<double>& values) {
-    const size_t n = std::max<size_t>(values.size(), 1);
+cl::Buffer RealBuffers::input(const std::vector<double>& values) { return input(values.data(), values.size()); }
+
+cl::Buffer RealBuffers::input(const double* values, size_t count) {
+    const size_t n = std::max<size_t>(count, 1);
     if (precision_ == Precision::Double) {
-        std::vector<double> v(values);
-        v.resize(n);
-        return cl::Buffer(engine_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(double), v.data());
+        if (count > 0)
+            return cl::Buffer(engine_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(double),
+                              const_cast<double*>(values));
+        double zero = 0.0;
+        return cl::Buffer(engine_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, sizeof(double), &zero);
     }
-    std::vector<float> v(values.begin(), values.end());
+    std::vector<float> v(values, values + count);
     v.resize(n);
     return cl::Buffer(engine_.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, n * sizeof(float), v.data());
 }

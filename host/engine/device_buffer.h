@@ -13,6 +13,8 @@ public:
 
     /// A read-only device buffer holding `values` converted to the kernel's real type.
     cl::Buffer input(const std::vector<double>& values);
+    /// The same from `count` values in place (no copy on the host in double precision).
+    cl::Buffer input(const double* values, size_t count);
     /// A write-only device buffer of `count` reals.
     cl::Buffer output(size_t count);
     /// Reads `count` reals back (blocking), converted to double.

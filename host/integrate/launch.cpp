@@ -70,12 +70,21 @@ std::vector<cl_uint> NonFiniteCounts::read(Engine& engine) const {
 
 namespace {
 std::vector<double> model_data(int model) {
-    if (model == BB_MODEL_MERL) return merl_model_data();  // the tables of brdf/merl.h
+    if (model == BB_MODEL_MERL) {  // the tables of brdf/merl.h
+        MerlModelData d;
+        merl_model_data(d);
+        return d.joined.empty() ? std::vector<double>(d.data, d.data + d.size) : std::move(d.joined);
+    }
     return std::vector<double>(BB_MODEL_DATA_DUMMY_SIZE, 0.0);
 }
 }  // namespace
 
-cl::Buffer model_data_buffer(RealBuffers& buffers, int model) { return buffers.input(model_data(model)); }
+cl::Buffer model_data_buffer(RealBuffers& buffers, int model) {
+    if (model != BB_MODEL_MERL) return buffers.input(model_data(model));
+    MerlModelData d;  // the tables in place: no host copy of a 11.7 MB table per launch
+    merl_model_data(d);
+    return buffers.input(d.data, d.size);
+}
 
 FresnelBuffers fresnel_buffers(RealBuffers& buffers, int model, const FresnelConfig& fresnel) {
     std::vector<double> params(fresnel.params.begin(), fresnel.params.end());

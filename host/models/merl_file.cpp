@@ -1,6 +1,12 @@
 #include "models/merl_file.h"
 
+#include <fcntl.h>
+#include <sys/mman.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -46,21 +52,31 @@ void append_le(std::string& out, T v) {
     out.append(reinterpret_cast<const char*>(bytes), sizeof(T));
 }
 
-MerlData builtin_lambert() {
-    MerlData d;
-    for (auto& c : d.rgb) c.assign(BB_MERL_BINS, 1.0 / kPi);
-    return d;
-}
-
 const char* channel_name(MerlChannel c) {
     static const char* names[] = {"r", "g", "b", "y"};
     return names[int(c)];
 }
 
+/// A validated file, mapped read-only for the life of the process and known by its identity
+/// (device, inode, size, modification time): a file rewritten in place is a new file.
+struct MappedFile {
+    std::string path;
+    dev_t dev = 0;
+    ino_t ino = 0;
+    std::int64_t mtime_ns = 0;
+    const char* bytes = nullptr;  // kMerlFileBytes; nullptr for builtin:lambert
+};
+
 struct Store {
     std::mutex mutex;
+    std::deque<MappedFile> files;
     std::deque<std::vector<double>> tables;  // a deque: a table never moves once stored
     std::vector<MerlTableInfo> info;
+    std::vector<size_t> table_file;  // per table, its file in `files`
+    ~Store() {
+        for (const MappedFile& f : files)
+            if (f.bytes) ::munmap(const_cast<char*>(f.bytes), kMerlFileBytes);
+    }
 };
 
 /// A parsed spec written back: name:key=value,...
@@ -77,37 +93,111 @@ Store& store() {
 
 }  // namespace
 
-MerlData read_merl_file(const std::string& path) {
-    if (path == kBuiltinLambert) return builtin_lambert();
-    const std::string what = "MERL file";
-    // The size is judged before a byte is read (read_input_file refuses a larger file, a
-    // directory or a device); a smaller one is refused after the read, with its size.
+namespace {
+
+/// The dimensions of a MERL file's first 12 bytes: refused unless 90 x 90 x 180.
+void check_dims(const char* bytes, const std::string& what, const std::string& path) {
+    const std::int32_t dims[3] = {read_le<std::int32_t>(bytes), read_le<std::int32_t>(bytes + 4),
+                                  read_le<std::int32_t>(bytes + 8)};
+    if (dims[0] != BB_MERL_THETA_H || dims[1] != BB_MERL_THETA_D || dims[2] != BB_MERL_PHI_D)
+        throw Error(what + " '" + path + "' has dimensions " + std::to_string(dims[0]) + " x " +
+                    std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + "; a MERL file has 90 x 90 x 180");
+}
+
+/// Refuses a path that is not a regular file of exactly kMerlFileBytes with the error naming why.
+/// The size is judged before a byte is read (read_input_file refuses a larger file, a directory
+/// or a device); a smaller one is refused after the read, with its size.
+[[noreturn]] void refuse(const std::string& path, const std::string& what) {
     const std::string bytes = read_input_file(path, what, kMerlFileBytes);
     if (bytes.size() < 12)
         throw Error(what + " '" + path + "' is " + std::to_string(bytes.size()) +
                     " bytes: too short for the three int32 dimensions of a MERL file");
-    const std::int32_t dims[3] = {read_le<std::int32_t>(bytes.data()), read_le<std::int32_t>(bytes.data() + 4),
-                                  read_le<std::int32_t>(bytes.data() + 8)};
-    if (dims[0] != BB_MERL_THETA_H || dims[1] != BB_MERL_THETA_D || dims[2] != BB_MERL_PHI_D)
-        throw Error(what + " '" + path + "' has dimensions " + std::to_string(dims[0]) + " x " +
-                    std::to_string(dims[1]) + " x " + std::to_string(dims[2]) + "; a MERL file has 90 x 90 x 180");
-    if (bytes.size() != kMerlFileBytes)
-        throw Error(what + " '" + path + "' is " + std::to_string(bytes.size()) + " bytes; a MERL file of 90 x 90 x 180 "
-                    "bins has " + std::to_string(kMerlFileBytes) + " (truncated?)");
-    MerlData d;
-    for (int c = 0; c < 3; ++c) {
-        d.rgb[c].resize(BB_MERL_BINS);
-        const char* plane = bytes.data() + 12 + size_t(c) * BB_MERL_BINS * 8;
-        for (size_t i = 0; i < BB_MERL_BINS; ++i) {
-            const double v = read_le<double>(plane + 8 * i);
-            if (!std::isfinite(v))
-                throw Error(what + " '" + path + "' holds a non-finite value (" + std::string(std::isnan(v) ? "NaN" : "Inf") +
-                            ") in the " + channel_name(MerlChannel(c)) + " plane at bin " + std::to_string(i));
-            d.rgb[c][i] = v < 0.0 ? -1.0 : v * kMerlScale[c];
+    check_dims(bytes.data(), what, path);
+    throw Error(what + " '" + path + "' is " + std::to_string(bytes.size()) + " bytes; a MERL file of 90 x 90 x 180 "
+                "bins has " + std::to_string(kMerlFileBytes) + " (truncated?)");
+}
+
+/// Maps and validates the file at `path` (dimensions, every value finite), once per process and
+/// file: a second channel of the same file reads the same mapping. The mapping is read-only and
+/// shared with the page cache (no copy of the 35 MB).
+size_t open_file(Store& s, const std::string& path) {
+    const std::string what = "MERL file";
+    MappedFile m;
+    m.path = path;
+    if (path == kBuiltinLambert) {
+        for (size_t k = 0; k < s.files.size(); ++k)
+            if (s.files[k].path == path && !s.files[k].bytes) return k;
+        s.files.push_back(m);
+        return s.files.size() - 1;
+    }
+    const int fd = ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NONBLOCK);
+    struct stat st {};
+    if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode) || std::uintmax_t(st.st_size) != kMerlFileBytes) {
+        if (fd >= 0) ::close(fd);
+        refuse(path, what);
+    }
+    m.dev = st.st_dev;
+    m.ino = st.st_ino;
+    m.mtime_ns = std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
+    for (size_t k = 0; k < s.files.size(); ++k) {
+        const MappedFile& f = s.files[k];
+        if (f.bytes && f.path == path && f.dev == m.dev && f.ino == m.ino && f.mtime_ns == m.mtime_ns) {
+            ::close(fd);
+            return k;
         }
     }
-    return d;
+    void* map = ::mmap(nullptr, kMerlFileBytes, PROT_READ, MAP_PRIVATE, fd, 0);
+    const int err = errno;
+    ::close(fd);
+    if (map == MAP_FAILED) throw Error("cannot read " + what + " '" + path + "': " + std::strerror(err));
+    ::madvise(map, kMerlFileBytes, MADV_SEQUENTIAL);
+    m.bytes = static_cast<const char*>(map);
+    try {
+        check_dims(m.bytes, what, path);
+        for (int c = 0; c < 3; ++c) {
+            const char* plane = m.bytes + 12 + size_t(c) * BB_MERL_BINS * 8;
+            for (size_t i = 0; i < BB_MERL_BINS; ++i) {
+                const double v = read_le<double>(plane + 8 * i);
+                if (!std::isfinite(v))
+                    throw Error(what + " '" + path + "' holds a non-finite value (" +
+                                std::string(std::isnan(v) ? "NaN" : "Inf") + ") in the " +
+                                channel_name(MerlChannel(c)) + " plane at bin " + std::to_string(i));
+            }
+        }
+    } catch (...) {
+        ::munmap(map, kMerlFileBytes);
+        throw;
+    }
+    s.files.push_back(m);
+    return s.files.size() - 1;
 }
+
+/// One channel of a file, scaled ([M03]); Rec. 709 luminance for y (ITU-R BT.709-6, item 3.2),
+/// unmeasured where any colour is. Built straight from the mapping, one pass.
+std::vector<double> channel_table(const MappedFile& f, MerlChannel channel) {
+    if (!f.bytes) return std::vector<double>(BB_MERL_BINS, 1.0 / kPi);  // builtin:lambert
+    std::vector<double> t(BB_MERL_BINS);
+    const auto plane = [&](int c) { return f.bytes + 12 + size_t(c) * BB_MERL_BINS * 8; };
+    if (channel != MerlChannel::Y) {
+        const int c = int(channel);
+        const char* p = plane(c);
+        for (size_t i = 0; i < t.size(); ++i) {
+            const double v = read_le<double>(p + 8 * i);
+            t[i] = v < 0.0 ? -1.0 : v * kMerlScale[size_t(c)];
+        }
+        return t;
+    }
+    const char *pr = plane(0), *pg = plane(1), *pb = plane(2);
+    for (size_t i = 0; i < t.size(); ++i) {
+        const double r = read_le<double>(pr + 8 * i), g = read_le<double>(pg + 8 * i), b = read_le<double>(pb + 8 * i);
+        t[i] = r < 0 || g < 0 || b < 0
+                   ? -1.0
+                   : 0.2126 * (r * kMerlScale[0]) + 0.7152 * (g * kMerlScale[1]) + 0.0722 * (b * kMerlScale[2]);
+    }
+    return t;
+}
+
+}  // namespace
 
 void merl_node_dirs(int ih, int id, int ip, std::array<double, 3>& wo, std::array<double, 3>& wi) {
     // The nodes (brdf/merl.h): theta_h = (ih/90)^2 pi/2, theta_d = id pi/180, phi_d = ip pi/180.
@@ -159,25 +249,16 @@ static bool table_mirror_symmetric(const std::vector<double>& t) {
 int merl_table_index(const std::string& path, MerlChannel channel) {
     Store& s = store();
     std::lock_guard<std::mutex> lock(s.mutex);
+    const size_t file = open_file(s, path);  // once per file (path, inode, size, mtime)
     for (size_t k = 0; k < s.info.size(); ++k)
-        if (s.info[k].path == path && s.info[k].channel == channel) return int(k);
-    // Read once per path and channel: a second channel of a file reads it again (rarely asked).
-    const MerlData d = read_merl_file(path);
-    std::vector<double> t(BB_MERL_BINS);
+        if (s.table_file[k] == file && s.info[k].channel == channel) return int(k);
+    std::vector<double> t = channel_table(s.files[file], channel);
     MerlTableInfo info{path, channel, 0};
-    for (size_t i = 0; i < t.size(); ++i) {
-        const double r = d.rgb[0][i], g = d.rgb[1][i], b = d.rgb[2][i];
-        double v;
-        if (channel == MerlChannel::Y)  // Rec. 709 luminance (ITU-R BT.709-6, item 3.2)
-            v = r < 0 || g < 0 || b < 0 ? -1.0 : 0.2126 * r + 0.7152 * g + 0.0722 * b;
-        else
-            v = d.rgb[int(channel)][i];
-        t[i] = v;
-        info.unmeasured += v < 0.0;
-    }
+    for (double v : t) info.unmeasured += v < 0.0;
     info.mirror_symmetric = table_mirror_symmetric(t);
     s.tables.push_back(std::move(t));
     s.info.push_back(info);
+    s.table_file.push_back(file);
     return int(s.info.size() - 1);
 }
 
@@ -189,30 +270,41 @@ MerlTableInfo merl_table_info(int index) {
     return s.info[size_t(index)];
 }
 
-std::vector<double> merl_model_data() {
+void merl_model_data(MerlModelData& out) {
     Store& s = store();
     std::lock_guard<std::mutex> lock(s.mutex);
-    std::vector<double> all;
-    all.reserve(s.tables.size() * BB_MERL_BINS);
-    for (const auto& t : s.tables) all.insert(all.end(), t.begin(), t.end());
-    if (all.empty()) all.push_back(0.0);
-    return all;
+    out.joined.clear();
+    if (s.tables.size() == 1) {
+        out.data = s.tables.front().data();
+        out.size = s.tables.front().size();
+        return;
+    }
+    out.joined.reserve(std::max<size_t>(1, s.tables.size() * BB_MERL_BINS));
+    for (const auto& t : s.tables) out.joined.insert(out.joined.end(), t.begin(), t.end());
+    if (out.joined.empty()) out.joined.push_back(0.0);
+    out.data = out.joined.data();
+    out.size = out.joined.size();
 }
 
 double merl_unmeasured_share(int index, int interp, double mu, int n) {
     const double* t = bb_merl_host_table(index);
     const double so = std::sqrt(std::max(0.0, 1 - mu * mu));
     const bb_vec3 wo = bb_v3(so, 0.0, mu);
+    // A linear lookup of a mirror-symmetric table (bb_merl_mirror_symmetric) reads the same nodes
+    // at a pair's mirror image (y -> -y), and the cells b and n - 1 - b in phi are mirror images:
+    // half the cells, each counted twice (the nearest lookup's bins do not mirror onto bins).
+    const bool mirror = interp == BB_MERL_LINEAR && n % 2 == 0 && merl_table_info(index).mirror_symmetric;
+    const int nb = mirror ? n / 2 : n;
     long hits = 0;
     for (int a = 0; a < n; ++a)
-        for (int b = 0; b < n; ++b) {
+        for (int b = 0; b < nb; ++b) {
             const bb_vec3 wi = bb_cosine_hemisphere((a + 0.5) / n, (b + 0.5) / n);
             if (!(wi.z > 0.0 && wo.z > 0.0)) continue;
             const bb_vec3 x = bb_merl_coords(wo, wi);
             const double v = interp == BB_MERL_LINEAR ? bb_merl_linear(t, x) : bb_merl_nearest(t, x);
             hits += v < 0.0;
         }
-    return double(hits) / (double(n) * n);
+    return double(mirror ? 2 * hits : hits) / (double(n) * n);
 }
 
 bool merl_unmeasured(const ModelConfig& model, const std::vector<double>& mus, MerlUnmeasured& out) {
@@ -242,12 +334,20 @@ std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<dou
     return text + "\n";
 }
 
-bool merl_rgb_spec(const std::string& spec) {
+/// A merl spec's channel key: "-" for another model, "" where the spec names none.
+static std::string merl_channel_key(const std::string& spec) {
     const Spec s = parse_spec(spec);
-    if (s.name != "merl") return false;
+    if (s.name != "merl") return "-";
     for (const auto& kv : s.keys)
-        if (kv.first == "channel") return kv.second == "rgb";
-    return false;
+        if (kv.first == "channel") return kv.second;
+    return "";
+}
+
+bool merl_rgb_spec(const std::string& spec) { return merl_channel_key(spec) == "rgb"; }
+
+bool merl_per_colour(const std::string& spec) {
+    const std::string c = merl_channel_key(spec);
+    return c == "rgb" || c.empty();
 }
 
 std::string merl_channel_spec(const std::string& spec, const std::string& channel) {

@@ -27,15 +27,6 @@ constexpr std::array<double, 3> kMerlScale = {1.0 / 1500.0, 1.15 / 1500.0, 1.66 
 /// The file's size: three int32, three planes of doubles.
 constexpr std::uintmax_t kMerlFileBytes = 12 + 3 * std::uintmax_t(BB_MERL_BINS) * 8;
 
-/// A file's three channels, scaled (f values; negative: unmeasured).
-struct MerlData {
-    std::array<std::vector<double>, 3> rgb;
-};
-
-/// Reads and validates a MERL file; throws Error (wrong size or dimensions, NaN or Inf, not a
-/// regular file, unreadable). "builtin:lambert" is an in-memory file, f = 1/pi in every bin.
-MerlData read_merl_file(const std::string& path);
-
 /// The node directions (wo, wi) of bins (ih, id, ip): the bins' lower edges (brdf/merl.h), with
 /// phi_h = 0. Either may lie below the horizon.
 void merl_node_dirs(int ih, int id, int ip, std::array<double, 3>& wo, std::array<double, 3>& wi);
@@ -56,16 +47,25 @@ struct MerlTableInfo {
     bool mirror_symmetric = false;
 };
 
-/// The index in the process's store of the table of `channel` of the file at `path`, read once
-/// per process (the same path and channel give the same index).
+/// The index in the process's store of the table of `channel` of the file at `path`. The file is
+/// mapped and validated once per process and file (path, inode, size, modification time; a file
+/// rewritten in place is read again) and every channel is built from that one mapping; the same
+/// file and channel give the same index. Throws Error (wrong size or dimensions, NaN or Inf, not
+/// a regular file, unreadable). "builtin:lambert" is an in-memory file, f = 1/pi in every bin.
 int merl_table_index(const std::string& path, MerlChannel channel);
 
 /// Table `index`'s information; throws Error for an unknown index.
 MerlTableInfo merl_table_info(int index);
 
 /// Every table of the store, one after the other (BB_MERL_BINS values each): the model data of
-/// a launch of the merl model (brdf/merl.h reads table k at k * BB_MERL_BINS).
-std::vector<double> merl_model_data();
+/// a launch of the merl model (brdf/merl.h reads table k at k * BB_MERL_BINS). A process with
+/// one table gets that table in place (`joined` stays empty); several are joined into `joined`.
+struct MerlModelData {
+    const double* data = nullptr;
+    std::size_t size = 0;
+    std::vector<double> joined;
+};
+void merl_model_data(MerlModelData& out);
 
 /// The share of the cosine-weighted hemisphere of wi, at cos(theta_o) = mu, whose lookup (with
 /// `interp`) reads an unmeasured value in table `index`: 0 where every bin the integrand reads
@@ -88,6 +88,8 @@ std::string merl_unmeasured_line(const ModelConfig& model, const std::vector<dou
 
 /// Whether a model spec is merl with channel=rgb (a table's one channel per colour).
 bool merl_rgb_spec(const std::string& spec);
+/// Whether a model spec is merl naming no channel, or channel=rgb (a scene's tables per colour).
+bool merl_per_colour(const std::string& spec);
 /// The spec with its channel key set to `channel` (r, g, b or y).
 std::string merl_channel_spec(const std::string& spec, const std::string& channel);
 

@@ -15,6 +15,7 @@
 #include "brdfbake/brdf/microfacet.h"
 #include "brdfbake/table.h"
 #include "brdfbake/table_kinds.h"
+#include "models/merl_file.h"
 #include "scene/bake_index.h"
 #include "scene/scene.h"
 #include "plot/plot.h"
@@ -112,9 +113,10 @@ Verdict check_lobe(Engine& engine, const std::string& model, const std::string& 
         try {
             m = resolve_model(v.spec);
         } catch (const Error&) {
-            // A model without a roughness key named alpha: checked as the scene specifies it.
-            m = resolve_model(model);
-            v.spec = model;
+            // A model without a roughness key named alpha: checked as the scene specifies it (a
+            // measured file's tables per colour, channel=rgb: checked in luminance, channel=y).
+            v.spec = merl_rgb_spec(model) ? merl_channel_spec(model, "y") : model;
+            m = resolve_model(v.spec);
             note.clear();
         }
         FresnelConfig f = resolve_fresnel("none");

@@ -114,16 +114,24 @@ std::string plan_text(const Plan& p) {
         const std::string an = alpha_axis_name(r.alpha_map);
         const std::string alpha_axis = an + " " + short_num(r.alpha_lo) + ".." + short_num(r.alpha_hi) + " (" +
                                        std::to_string(kind.one_dimensional ? r.width : r.height) + ")";
-        if (kind.one_dimensional) o << alpha_axis;
+        bool measured = false;  // a measured model's table has no roughness axis (kind_albedo.cpp)
+        for (const ModelTraits& m : model_registry())
+            if (m.name == parse_spec(r.model).name) measured = m.measured;
+        if (measured) o << (kind.one_dimensional ? "one texel" : "mu 0..1 (" + std::to_string(r.width) + ", " + r.mu_map + ")")
+                        << "; no roughness axis (measured)";
+        else if (kind.one_dimensional) o << alpha_axis;
         else o << "mu 0..1 (" << r.width << ", " << r.mu_map << ") x " << alpha_axis;
         if (kind.eta_axis)
             o << " x eta " << short_num(t.eta_lo) << ".." << short_num(t.eta_hi) << " (" << t.depth << ")";
         auto range = [](Interval v) {
             return v.lo == v.hi ? short_num(v.lo) : short_num(v.lo) + ".." + short_num(v.hi);
         };
-        o << "\n      scene     alpha " << range(t.alpha);
-        if (t.eta) o << ", eta " << range(*t.eta);
-        o << " (" << centres_text(t) << ")\n";
+        if (!measured) {
+            o << "\n      scene     alpha " << range(t.alpha);
+            if (t.eta) o << ", eta " << range(*t.eta);
+            o << " (" << centres_text(t) << ")";
+        }
+        o << "\n";
         o << "      serves    " << join(t.serves) << "\n";
         o << "      estimate  " << size_text(t) << ", " << human_count(double(t.samples_total)) << " samples ("
           << r.samples << " per cell), " << human_seconds(t.est_seconds) << ", memory "

@@ -246,6 +246,23 @@ std::vector<Group> group_needs(const std::vector<SceneMaterial>& materials, Plan
     return groups;
 }
 
+/// Whether the model `name` is a measured table (no roughness axis).
+bool measured_model(const std::string& name) {
+    for (const ModelTraits& t : model_registry())
+        if (name == t.name) return t.measured;
+    return false;
+}
+
+/// A measured model's file name without folder and extension ("paint" for file=a/paint.binary).
+std::string measured_file_stem(const std::string& model) {
+    for (const auto& kv : parse_spec(model).keys)
+        if (kv.first == "file") {
+            std::string f = kv.second.substr(kv.second.find_last_of('/') + 1);
+            return f.substr(0, f.find('.'));
+        }
+    return "";
+}
+
 /// One table in `preset`'s layout for `kind` and `model`, serving the groups `take` selects.
 PlannedTable engine_table(const LutPreset& preset, const SceneSettings& s, const std::string& kind,
                           const std::string& model, const std::string& file, const std::vector<Group>& groups,
@@ -351,7 +368,9 @@ std::vector<std::string> table_names(const std::vector<Group>& groups) {
     std::vector<std::string> names;
     for (const auto& g : groups) {
         std::string n = g.kind->name + "-" + g.model_name;
-        if (g.model != model_without_alpha(g.model_name) && g.model.find(':') != std::string::npos)
+        if (measured_model(g.model_name))  // the file's name, not its folder
+            n += "-" + sanitize(measured_file_stem(g.model));
+        else if (g.model != model_without_alpha(g.model_name) && g.model.find(':') != std::string::npos)
             n += "-" + sanitize(g.model.substr(g.model.find(':') + 1));
         if (g.kind->bakes_lobe_fresnel) n += "-" + sanitize(g.fresnel) + (g.wavelength > 0 ? "-" + format_number(g.wavelength) + "nm" : "");
         names.push_back(n);
@@ -431,6 +450,11 @@ PlannedTable group_table(const Group& g, const SceneSettings& s) {
     t.eta = g.eta;
     t.serves = g.serves;
     t.materials = g.materials;
+    if (measured_model(g.model_name)) {  // E(mu) along mu, Eavg one texel (kind_albedo.cpp)
+        r.width = g.kind->one_dimensional ? 1 : s.mu_texels;
+        r.height = 1;
+        return t;
+    }
 
     // Texel centres never hold alpha below the floor (the kernels' BB_ALPHA_MIN): the scene's
     // alpha 0 is planned there, the nearest a texel centre computes to the smooth limit.

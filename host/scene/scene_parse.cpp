@@ -129,6 +129,42 @@ const std::set<std::string> kMaterialKeys = {"name", "model", "fresnel", "wavele
 const std::set<std::string> kSettingsKeys = {"samples", "mu_texels", "alpha_texels", "eta_step", "mu_map",
                                              "alpha_map", "precision", "format", "half"};
 
+/// The material's "tables" (a list of kinds, each checked against the lobe), when it names them.
+void read_lobe_tables(const json& m, const Where& w, const std::string& ctx, Lobe& lobe) {
+    if (!m.contains("tables")) return;
+    const json& t = m["tables"];
+    if (!t.is_array() || t.empty()) throw Error(w.at("tables") + " must be a non-empty list of table kinds");
+    lobe.kinds.clear();
+    for (const auto& k : t) {
+        const TableKind* kind = &lobe_table_kind(string_at(k, w, "tables"), lobe, ctx);
+        if (std::find(lobe.kinds.begin(), lobe.kinds.end(), kind) == lobe.kinds.end()) lobe.kinds.push_back(kind);
+    }
+}
+
+/// A material of a measured model (merl): one lobe without a roughness axis, whose tables are
+/// E(mu) and Eavg (kind_albedo.cpp), per colour when `per_colour` (channel=rgb); "tables" may name
+/// a subset of those two.
+SceneMaterial measured_material(SceneMaterial& out, const ModelConfig& base, bool per_colour, const json& m,
+                                const Where& w, const std::string& ctx) {
+    if (m.contains("eta") || m.contains("transmission"))
+        throw Error(ctx + ": model '" + base.name + "' is a measured reflectance; drop '" +
+                    (m.contains("eta") ? "eta" : "transmission") + "'");
+    Lobe lobe;
+    lobe.model = per_colour ? merl_channel_spec(base.canonical, "rgb") : base.canonical;
+    lobe.model_name = base.name;
+    lobe.role = "measured";
+    lobe.kinds = default_lobe_kinds(lobe);
+    read_lobe_tables(m, w, ctx, lobe);
+    for (const TableKind* kind : lobe.kinds)
+        if (kind != &table_kind(TableKindId::Albedo) && kind != &table_kind(TableKindId::Eavg))
+            throw Error(ctx + ": a measured model's tables are albedo and eavg (no roughness axis); '" + kind->name +
+                        "' is not one");
+    out.notes.push_back(lobe.model + ": measured, no roughness axis: E(mu) and Eavg" +
+                        std::string(per_colour ? " per colour channel" : ""));
+    out.lobes.push_back(lobe);
+    return out;
+}
+
 SceneMaterial parse_material(const json& m, size_t index, const std::string& file, std::vector<std::string>& warnings) {
     Where w{file, "material " + std::to_string(index + 1)};
     if (!m.is_object()) throw Error("scene '" + file + "': " + w.what + " must be an object");
@@ -142,8 +178,11 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
             throw Error("scene '" + file + "': " + w.what + ": unknown key '" + item.key() +
                         "' (known: name, model, fresnel, wavelength, alpha, roughness, eta, transmission, tables, comment)");
     if (!m.contains("model")) throw Error("scene '" + file + "': " + w.what + " has no 'model' (e.g. \"ggx\")");
-    // merl:file=FILE names a file beside the scene, as nk:FILE does
-    const std::string model_text = merl_spec_beside(string_at(m["model"], w, "model"), file);
+    // merl:file=FILE names a file beside the scene, as nk:FILE does; a file without a channel (or
+    // channel=rgb) gets tables per colour, its spec read here in red
+    const std::string given = merl_spec_beside(string_at(m["model"], w, "model"), file);
+    const bool per_colour = merl_per_colour(given);
+    const std::string model_text = per_colour ? merl_channel_spec(given, "r") : given;
     const std::string ctx = "scene '" + file + "': " + w.what;
 
     SweepSplit split;
@@ -229,6 +268,8 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
     if (transmission && !eta)
         throw Error(ctx + ": a transmissive material needs an index of refraction: fresnel \"dielectric:eta=E\" or \"eta\"");
 
+    if (!split.sweepable && split.base.traits().measured)
+        return measured_material(out, split.base, per_colour, m, w, ctx);
     if (!split.sweepable) {
         const std::string name = split.base.name;
         if (m.contains("tables"))
@@ -265,15 +306,7 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
     if (eta) lobe.role = transmission ? "transmission" : "dielectric";
     else lobe.role = is_conductor_fresnel(fresnel) ? "metal" : "specular";
     lobe.kinds = default_lobe_kinds(lobe);
-    if (m.contains("tables")) {
-        const json& t = m["tables"];
-        if (!t.is_array() || t.empty()) throw Error(w.at("tables") + " must be a non-empty list of table kinds");
-        lobe.kinds.clear();
-        for (const auto& k : t) {
-            const TableKind* kind = &lobe_table_kind(string_at(k, w, "tables"), lobe, ctx);
-            if (std::find(lobe.kinds.begin(), lobe.kinds.end(), kind) == lobe.kinds.end()) lobe.kinds.push_back(kind);
-        }
-    }
+    read_lobe_tables(m, w, ctx, lobe);
     out.lobes.push_back(lobe);
     return out;
 }

@@ -73,6 +73,8 @@ typedef int bb_mask;
 #define bb_sin sin
 #define bb_cos cos
 #define bb_atan2 atan2
+#define bb_atan atan
+#define bb_signbit signbit
 #define bb_floor floor
 #define bb_fabs fabs
 #define bb_fma fma
@@ -112,6 +114,8 @@ typedef int bb_mask;
 #define bb_sin std::sin
 #define bb_cos std::cos
 #define bb_atan2 std::atan2
+#define bb_atan std::atan
+#define bb_signbit std::signbit
 #define bb_floor std::floor
 #define bb_fabs std::fabs
 #define bb_fma std::fma

@@ -72,7 +72,10 @@ BB_FN bb_vec3 bb_merl_coords(bb_vec3 wo, bb_vec3 wi) {
     bb_real len = bb_sqrt(sx * sx + sy * sy + sz * sz);
     bb_real hx = sx / len, hy = sy / len, hz = sz / len;
     bb_real sin_h = bb_sqrt(hx * hx + hy * hy);
-    bb_real theta_h = bb_atan2(sin_h, hz);
+    /* The angles by the half-angle identity theta = 2 atan(sin / (1 + cos)) (unit vector), and
+     * atan(y/x) picked per half-plane so that no sum cancels: one atan and one division each,
+     * where atan2 spent 12.6% of a merl albedo's run in its branches (issue 34 item 7). */
+    bb_real theta_h = BB_R(2.0) * bb_atan(sin_h / (BB_R(1.0) + hz)); /* hz > 0 */
     /* R_z(-phi_h): (a, b) = (x cos phi_h + y sin phi_h, -x sin phi_h + y cos phi_h) */
     bb_real cp = BB_R(1.0), sp = BB_R(0.0);
     if (sin_h > BB_R(0.0)) {
@@ -87,9 +90,20 @@ BB_FN bb_vec3 bb_merl_coords(bb_vec3 wo, bb_vec3 wi) {
     bb_real a = v.x * cp + v.y * sp, b = -v.x * sp + v.y * cp;
     /* R_y(-theta_h): (a cos theta_h - z sin theta_h, b, a sin theta_h + z cos theta_h) */
     bb_real dx = a * hz - v.z * sin_h, dz = a * sin_h + v.z * hz;
-    bb_real theta_d = bb_atan2(bb_sqrt(dx * dx + b * b), dz);
-    bb_real phi_d = bb_atan2(b, dx);
-    if (phi_d < BB_R(0.0)) phi_d += BB_PI; /* reciprocity: phi_d and phi_d + pi are one bin */
+    /* |d| = 1 and dz = d.h >= 0: theta_d = 2 atan(sin / (1 + cos)) */
+    bb_real sin_d = bb_sqrt(dx * dx + b * b);
+    bb_real theta_d = BB_R(2.0) * bb_atan(sin_d / (BB_R(1.0) + bb_max(dz, BB_R(0.0))));
+    /* phi_d folded into [0, pi] (reciprocity: phi_d and phi_d + pi are one bin): (dx, b) taken
+     * with b >= 0, then phi = 2 atan(b / (r + dx)) for dx >= 0 and pi - 2 atan(b / (r - dx))
+     * for dx < 0, r = sin_d (0 when d is the normal: phi_d = 0). On the axis b = 0, dx < 0 the
+     * fold keeps atan2's signed zero: +0 gives pi, -0 gives 0. */
+    if (b < BB_R(0.0) || (b == BB_R(0.0) && dx < BB_R(0.0) && bb_signbit(b))) {
+        b = -b;
+        dx = -dx;
+    }
+    bb_real phi_d = BB_R(0.0);
+    if (sin_d > BB_R(0.0))
+        phi_d = dx >= BB_R(0.0) ? BB_R(2.0) * bb_atan(b / (sin_d + dx)) : BB_PI - BB_R(2.0) * bb_atan(b / (sin_d - dx));
     return bb_v3(BB_R(BB_MERL_THETA_H) * bb_sqrt(bb_max(theta_h, BB_R(0.0)) * BB_R(2.0) * BB_INV_PI),
                  BB_R(BB_MERL_THETA_D) * theta_d * BB_R(2.0) * BB_INV_PI, BB_R(BB_MERL_PHI_D) * phi_d * BB_INV_PI);
 }
