@@ -141,7 +141,9 @@ private:
 /// horizons, each weighted by the measure d wo d wi of the bins it stands for (model_fit.h);
 /// with `rotations` > 1 each pair turned about the normal to phi_h = (k + 1/2) 2 pi / rotations
 /// (the MERL nodes all have phi_h = 0: an isotropic BRDF does not depend on it), each turn
-/// carrying its share of the weight.
+/// carrying its share of the weight; with rotations = 0 each pair turned once, pair j to
+/// phi_h = 2 pi frac((j + 1/2) / golden ratio) (a low-discrepancy sequence: over the many pairs
+/// of every bin the turns cover phi_h evenly, at the cost of one turn per pair).
 struct Pairs {
     std::vector<double> values;  // BB_FIT_PAIR_VALUES per pair
     std::vector<int> bins;       // the MERL index of each pair's node
@@ -173,12 +175,13 @@ Pairs make_pairs(int sh, int sd, int sp, int rotations) {
                 Vec3 o, i;
                 merl_node_dirs(ih, id, ip, o, i);
                 if (!(o[2] > 0 && i[2] > 0)) continue;
-                for (int k = 0; k < rotations; ++k) {
-                    const double phi = rotations > 1 ? (k + 0.5) * 2 * kPi / rotations : 0.0;
+                for (int k = 0; k < std::max(rotations, 1); ++k) {
+                    const double golden = std::fmod((p.bins.size() + 0.5) * 0.6180339887498949, 1.0);
+                    const double phi = rotations > 1 ? (k + 0.5) * 2 * kPi / rotations : rotations == 0 ? 2 * kPi * golden : 0.0;
                     const double c = std::cos(phi), s = std::sin(phi);
                     const Vec3 wo = {c * o[0] - s * o[1], s * o[0] + c * o[1], o[2]};
                     const Vec3 wi = {c * i[0] - s * i[1], s * i[0] + c * i[1], i[2]};
-                    p.values.insert(p.values.end(), {wo[0], wo[1], wo[2], wi[0], wi[1], wi[2], 4 * wh * wd * wp / rotations});
+                    p.values.insert(p.values.end(), {wo[0], wo[1], wo[2], wi[0], wi[1], wi[2], 4 * wh * wd * wp / std::max(rotations, 1)});
                     p.bins.push_back(bb_merl_index(ih, id, ip));
                     p.wo.push_back(wo);
                     p.wi.push_back(wi);
@@ -483,11 +486,12 @@ ModelFitResult fit_model(Engine& engine, const ModelFitRequest& r) {
     const std::vector<Minimum> minima = minimise(objective, layout, channels.size(), r.max_evaluations);
     const std::vector<std::vector<double>> errors = parameter_errors(objective, layout, pairs, minima, r.precision);
     // The distance over every bin (stride 1): the fit's pairs are a subset, on which the minimum
-    // is biased low.
-    const Pairs all = r.stride == 1 ? Pairs() : make_pairs(1, 1, 1, rotations);
-    const Targets all_targets = r.stride == 1 ? targets : make_targets(engine, r, channels, all, metric);
-    result.all_pairs = r.stride == 1 ? result.pairs : all.bins.size();
-    Objective all_objective(engine, r, layout, r.stride == 1 ? pairs : all, all_targets, metric);
+    // is biased low. Anisotropic: each bin's pair at its own turn (make_pairs, rotations = 0).
+    const Pairs all = r.stride == 1 && rotations == 1 ? Pairs() : make_pairs(1, 1, 1, rotations == 1 ? 1 : 0);
+    const bool same = all.bins.empty();
+    const Targets all_targets = same ? targets : make_targets(engine, r, channels, all, metric);
+    result.all_pairs = same ? result.pairs : all.bins.size();
+    Objective all_objective(engine, r, layout, same ? pairs : all, all_targets, metric);
     std::vector<Candidate> finals;
     for (size_t c = 0; c < channels.size(); ++c) finals.push_back({c, minima[c].x});
     const std::vector<double> all_values = all_objective(finals);
