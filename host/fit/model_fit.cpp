@@ -27,6 +27,7 @@ constexpr FitParameter kAlpha{"alpha", 1e-3, 1.0, 0.5};  // the fitted alpha's r
 constexpr unsigned kBlock = 256;                          // pairs per work-item
 constexpr double kAlphaStarts[] = {0.01, 0.02, 0.05, 0.1, 0.15, 0.2, 0.3, 0.4, 0.6, 0.8};  // multi-start grid
 constexpr int kRotations = 8;  // anisotropic fits: the pairs turned about the normal this many times
+constexpr double kSizeTolerance = 1e-5;  // the minimiser's stop, in the logistic variables
 
 double logistic(double x) { return 1.0 / (1.0 + std::exp(-x)); }
 double logit(double p) { return std::log(p / (1.0 - p)); }
@@ -327,7 +328,7 @@ std::vector<Minimum> minimise(Objective& objective, const Layout& layout, size_t
     nm.steps.assign(layout.params().size(), 0.3);
     nm.max_evaluations = max_evaluations;
     nm.value_tolerance = HUGE_VAL;  // converged on the simplex's size alone
-    nm.size_tolerance = 1e-5;  // in the logistic variables: alpha to ~3e-6
+    nm.size_tolerance = kSizeTolerance;  // alpha to ~3e-6
     const BatchObjective f = [&](const std::vector<size_t>& problem, const std::vector<std::vector<double>>& xs) {
         std::vector<Candidate> cands;
         for (size_t i = 0; i < xs.size(); ++i) cands.push_back({problem[i], xs[i]});
@@ -374,8 +375,9 @@ std::vector<double> inverse(std::vector<double> a, size_t n) {
 /// with r_j the residual of pair j at the minimum and J_j its gradient in the minimiser's
 /// variables (central differences), mapped onto the parameters by their logistic slopes. It
 /// reads the residuals as independent errors of the pairs, of any variance: a measured file's
-/// noise. It is 0 for a target the model matches (every r_j = 0); a model's misfit is not noise,
-/// and the distance is what tells it.
+/// noise. A target the model matches has every r_j = 0: what is left is the minimiser's stop
+/// (kSizeTolerance in the logistic variables), added in quadrature. A model's misfit is not
+/// noise, and the distance is what tells it.
 std::vector<std::vector<double>> parameter_errors(Objective& objective, const Layout& layout, const Pairs& pairs,
                                                   const std::vector<Minimum>& minima, Precision precision) {
     const size_t np = layout.params().size(), n = objective.pairs();
@@ -412,7 +414,7 @@ std::vector<std::vector<double>> parameter_errors(Objective& objective, const La
             double v = 0;  // (A^-1 B A^-1)_ii
             for (size_t k = 0; k < np; ++k)
                 for (size_t l = 0; l < np; ++l) v += ai[i * np + k] * b[k * np + l] * ai[l * np + i];
-            e[i] = std::sqrt(std::max(0.0, v)) * slope_of(layout.params()[i], minima[c].x[i]);
+            e[i] = std::hypot(std::sqrt(std::max(0.0, v)), kSizeTolerance) * slope_of(layout.params()[i], minima[c].x[i]);
         }
         out.push_back(e);
     }
