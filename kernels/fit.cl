@@ -4,12 +4,13 @@
  *
  *   S(candidate) = sum_j w_j (g(f_c(wo_j, wi_j) cos theta_i) - t_j)^2,   t_j = g(f_target cos theta_i)
  *
- * with g the metric's compression (brdf/fit_metric.h, shared with the host's targets). A target value below 0
- * is an unmeasured bin and takes no part. One work-item per (candidate, block of pairs); the host
- * sums a candidate's blocks. With `residuals` set (and block = 1) each work-item writes its pair's
- * signed residual g(f_c cos theta_i) - t_j instead (0 where unmeasured): the host's parameter
- * error estimate takes their derivatives (model_fit.cpp, parameter_errors). Candidates carry their own model and Fresnel parameters and the
- * index of the channel (row of `targets`) they are fitted to.
+ * with g the metric's compression (brdf/fit_metric.h, shared with the host's targets). A target
+ * value below 0 is an unmeasured bin and takes no part. One work-item per (candidate, block of
+ * pairs); the host sums a candidate's blocks. With `residuals` set (and block = 1) each work-item
+ * writes its pair's signed residual g(f_c cos theta_i) - t_j instead (0 where unmeasured), whose
+ * derivatives the host's parameter errors take (model_fit.cpp, parameter_errors). Candidates
+ * carry their own model and Fresnel parameters and the index of the channel (row of `targets`)
+ * they are fitted to.
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE]. */
 #include "brdfbake/brdf/fit_metric.h"

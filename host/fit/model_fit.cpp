@@ -176,13 +176,15 @@ Pairs make_pairs(int sh, int sd, int sp, int rotations) {
                 Vec3 o, i;
                 merl_node_dirs(ih, id, ip, o, i);
                 if (!(o[2] > 0 && i[2] > 0)) continue;
-                for (int k = 0; k < std::max(rotations, 1); ++k) {
+                const int turns = std::max(rotations, 1);
+                for (int k = 0; k < turns; ++k) {
                     const double golden = std::fmod((p.bins.size() + 0.5) * 0.6180339887498949, 1.0);
-                    const double phi = rotations > 1 ? (k + 0.5) * 2 * kPi / rotations : rotations == 0 ? 2 * kPi * golden : 0.0;
-                    const double c = std::cos(phi), s = std::sin(phi);
+                    const double phi = rotations == 0 ? 2 * kPi * golden : (k + 0.5) * 2 * kPi / turns;
+                    const double c = turns > 1 || rotations == 0 ? std::cos(phi) : 1.0;
+                    const double s = turns > 1 || rotations == 0 ? std::sin(phi) : 0.0;
                     const Vec3 wo = {c * o[0] - s * o[1], s * o[0] + c * o[1], o[2]};
                     const Vec3 wi = {c * i[0] - s * i[1], s * i[0] + c * i[1], i[2]};
-                    p.values.insert(p.values.end(), {wo[0], wo[1], wo[2], wi[0], wi[1], wi[2], 4 * wh * wd * wp / std::max(rotations, 1)});
+                    p.values.insert(p.values.end(), {wo[0], wo[1], wo[2], wi[0], wi[1], wi[2], 4 * wh * wd * wp / turns});
                     p.bins.push_back(bb_merl_index(ih, id, ip));
                     p.wo.push_back(wo);
                     p.wi.push_back(wi);
