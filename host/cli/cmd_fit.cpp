@@ -69,7 +69,7 @@ std::string render(const FitOptions& o, const fit::ModelFitResult& r) {
         << " over the measured bins; fitted on " << r.pairs << " pairs (stride " << q.stride << "), distance on all "
         << r.all_pairs << " pairs above the horizon";
     if (r.unmeasured_bins) out << "; the file has " << r.unmeasured_bins << " unmeasured bins";
-    out << "\n# parameter +- its standard error (the sandwich estimate: the residuals read as noise)\n";
+    out << "\n# parameter +- its standard error (the sandwich estimate with the residuals read as noise, and the optimiser's stop)\n";
     out << "# channel  parameter        value        error     distance  (fit pairs)  unmeasured  evaluations\n";
     char line[256];
     for (const fit::ChannelFit& c : r.channels)
