@@ -4,30 +4,24 @@
  *
  *   S(candidate) = sum_j w_j (g(f_c(wo_j, wi_j) cos theta_i) - t_j)^2,   t_j = g(f_target cos theta_i)
  *
- * with g the metric's compression (BB_FIT_METRIC_*): the cube root of Ngan, Durand and Matusik
- * 2005 ("Experimental Analysis of BRDF Models", EGSR, sec. 4: the cosine-weighted BRDF, compressed
- * so that the specular peak does not drown the rest), log(1 + x), or none. A target value below 0
- * is an unmeasured bin and takes no part. One work-item per (candidate, block of pairs); the host
- * sums a candidate's blocks. Candidates carry their own model and Fresnel parameters and the
- * index of the channel (row of `targets`) they are fitted to.
+ * with g the metric's compression (brdf/fit_metric.h, shared with the host's targets). A target
+ * value below 0 is an unmeasured bin and takes no part. One work-item per (candidate, block of
+ * pairs); the host sums a candidate's blocks. With `residuals` set (and block = 1) each work-item
+ * writes its pair's signed residual g(f_c cos theta_i) - t_j instead (0 where unmeasured), whose
+ * derivatives the host's parameter errors take (model_fit.cpp, parameter_errors). Candidates
+ * carry their own model and Fresnel parameters and the index of the channel (row of `targets`)
+ * they are fitted to.
  *
  * Build options: -D BB_MODEL=<id> -D BB_FRESNEL=<kind> [-D BB_REAL_DOUBLE]. */
+#include "brdfbake/brdf/fit_metric.h"
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
-
-static inline bb_real bb_fit_compress(const int metric, const bb_real v) {
-    if (metric == BB_FIT_METRIC_CBRT)
-        return cbrt(v);
-    if (metric == BB_FIT_METRIC_LOG)
-        return log(BB_R(1.0) + v);
-    return v;
-}
 
 __kernel void BB_ENTRY_MODEL_FIT_OBJECTIVE(__global const bb_scalar* pairs, __global const bb_scalar* targets,
                                            const unsigned int n_pairs, __global const bb_scalar* cand_model_p,
                                            __global const bb_scalar* cand_fresnel_p,
                                            __global const unsigned int* cand_channel, const unsigned int n_cand,
-                                           const unsigned int block, const int metric,
+                                           const unsigned int block, const int metric, const int residuals,
                                            __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */,
                                            __global bb_scalar* out) {
     const unsigned int gid = (unsigned int)get_global_id(0);
@@ -52,7 +46,7 @@ __kernel void BB_ENTRY_MODEL_FIT_OBJECTIVE(__global const bb_scalar* pairs, __gl
         const bb_vec3 wo = bb_v3(q[0], q[1], q[2]), wi = bb_v3(q[3], q[4], q[5]);
         const bb_real f = bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, wi) * wi.z;
         const bb_real d = bb_fit_compress(metric, bb_max(f, BB_R(0.0))) - tj;
-        sum += q[6] * d * d;
+        sum += residuals ? d : q[6] * d * d;
     }
     out[gid] = sum;
 }

@@ -1,4 +1,4 @@
-// `brdfbake fit`: an analytic model's alpha and amplitude term fitted per colour channel to a
+// `brdfbake fit`: an analytic model's alpha (or alpha_x, alpha_y) and Fresnel parameters fitted per colour channel to a
 // target BRDF, a measured MERL file or any model spec (host/fit/model_fit.h).
 #include <cstdio>
 #include <sstream>
@@ -39,40 +39,50 @@ std::string render(const FitOptions& o, const fit::ModelFitResult& r) {
         j["all_pairs"] = r.all_pairs;
         j["unmeasured_bins"] = r.unmeasured_bins;
         j["channels"] = nlohmann::json::array();
-        for (const fit::ChannelFit& c : r.channels)
+        for (const fit::ChannelFit& c : r.channels) {
+            nlohmann::json params = nlohmann::json::object();
+            for (const fit::FittedParameter& p : c.params) params[p.name] = {{"value", p.value}, {"error", p.error}};
             j["channels"].push_back({{"channel", c.channel},
                                      {"model", c.model_spec},
                                      {"fresnel", c.fresnel_spec},
-                                     {"params", {{"alpha", c.alpha}, {"amplitude", c.amplitude}}},
+                                     {"params", params},
                                      {"distance", c.distance},
                                      {"distance_fit_pairs", c.distance_fit},
                                      {"unmeasured_share", c.unmeasured_share},
                                      {"evaluations", c.evaluations}});
+        }
         out << j.dump(2) << "\n";
         return out.str();
     }
     if (format == Format::Csv) {
-        out << "channel,alpha,amplitude,distance,distance_fit_pairs,unmeasured_share,evaluations,model,fresnel\n";
+        out << "channel,parameter,value,error,distance,distance_fit_pairs,unmeasured_share,evaluations,model,fresnel\n";
         for (const fit::ChannelFit& c : r.channels)
-            out << c.channel << "," << round_trip_text(c.alpha) << "," << round_trip_text(c.amplitude) << ","
-                << round_trip_text(c.distance) << "," << round_trip_text(c.distance_fit) << ","
-                << round_trip_text(c.unmeasured_share) << "," << c.evaluations << ",\"" << c.model_spec << "\",\""
-                << c.fresnel_spec << "\"\n";
+            for (const fit::FittedParameter& p : c.params)
+                out << c.channel << "," << p.name << "," << round_trip_text(p.value) << "," << round_trip_text(p.error)
+                    << "," << round_trip_text(c.distance) << "," << round_trip_text(c.distance_fit) << ","
+                    << round_trip_text(c.unmeasured_share) << "," << c.evaluations << ",\"" << c.model_spec << "\",\""
+                    << c.fresnel_spec << "\"\n";
         return out.str();
     }
     out << "# fit of " << q.model << " with --fresnel " << q.amplitude << " to " << q.target << "\n";
     out << "# metric " << q.metric << ": sqrt of the pair-measure-weighted mean square of g(f_fit cos) - g(f_target cos)"
         << " over the measured bins; fitted on " << r.pairs << " pairs (stride " << q.stride << "), distance on all "
-        << r.all_pairs << " bins above the horizon";
+        << r.all_pairs << " pairs above the horizon";
     if (r.unmeasured_bins) out << "; the file has " << r.unmeasured_bins << " unmeasured bins";
-    out << "\n# channel     alpha   amplitude     distance  (fit pairs)  unmeasured  evaluations\n";
+    out << "\n# parameter +- its standard error (the sandwich estimate with the residuals read as noise, and the optimiser's stop)\n";
+    out << "# channel  parameter        value        error     distance  (fit pairs)  unmeasured  evaluations\n";
     char line[256];
-    for (const fit::ChannelFit& c : r.channels) {
-        std::snprintf(line, sizeof line, "  %-7s %9.6f %11.6f %12.4e %12.4e %10.2e %12d\n",
-                      c.channel.empty() ? "-" : c.channel.c_str(), c.alpha, c.amplitude, c.distance, c.distance_fit,
-                      c.unmeasured_share, c.evaluations);
-        out << line;
-    }
+    for (const fit::ChannelFit& c : r.channels)
+        for (size_t i = 0; i < c.params.size(); ++i) {
+            const fit::FittedParameter& p = c.params[i];
+            if (i == 0)
+                std::snprintf(line, sizeof line, "  %-7s %-9s %12.6f %12.2e %12.4e %12.4e %10.2e %12d\n",
+                              c.channel.empty() ? "-" : c.channel.c_str(), p.name.c_str(), p.value, p.error,
+                              c.distance, c.distance_fit, c.unmeasured_share, c.evaluations);
+            else
+                std::snprintf(line, sizeof line, "  %-7s %-9s %12.6f %12.2e\n", "", p.name.c_str(), p.value, p.error);
+            out << line;
+        }
     for (const fit::ChannelFit& c : r.channels)
         out << (c.channel.empty() ? "" : c.channel + ": ") << "--model " << c.model_spec << " --fresnel "
             << c.fresnel_spec << "\n";
@@ -143,7 +153,7 @@ int run_fit(const FitOptions& o, const GlobalOptions& g) {
 
 void add_fit_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     const auto [cmd, o] = add_command<FitOptions>(
-        app, "fit", "fit an analytic model's alpha and amplitude per channel to a measured (MERL) or any BRDF", global,
+        app, "fit", "fit an analytic model's alpha (or alpha_x, alpha_y) and Fresnel parameters per channel, with standard errors, to a measured (MERL) or any BRDF", global,
         action, run_fit);
     cmd->add_option("--target,--data", o->request.target, "the BRDF to fit: merl:file=PATH[,channel=r|g|b|y] or any model spec")
         ->required();
@@ -154,7 +164,7 @@ void add_fit_command(CLI::App& app, const GlobalOptions& global, Action& action)
     std::string amplitudes;
     for (const fit::FitAmplitude& a : fit::fit_amplitudes())
         amplitudes += std::string(amplitudes.empty() ? "" : "; ") + a.name + ": " + a.description;
-    cmd->add_option("--fresnel", o->request.amplitude, "the fitted amplitude term: " + amplitudes)->capture_default_str();
+    cmd->add_option("--fresnel", o->request.amplitude, "the fitted Fresnel term: " + amplitudes)->capture_default_str();
     std::string metrics;
     for (const fit::FitMetric& m : fit::fit_metrics()) metrics += std::string(metrics.empty() ? "" : "; ") + m.name + ": " + m.description;
     cmd->add_option("--metric", o->request.metric, "the fit's distance: " + metrics)->capture_default_str();
@@ -162,6 +172,8 @@ void add_fit_command(CLI::App& app, const GlobalOptions& global, Action& action)
                     "fit on every N-th bin along theta_h and theta_d and every 2N-th along phi_d (the distance is "
                     "reported on all bins)")
         ->capture_default_str();
+    cmd->add_flag("--anisotropic", o->request.anisotropic,
+                  "fit alpha_x and alpha_y (automatic when the --target model is anisotropic; not for MERL files)");
     cmd->add_option("--max-evaluations", o->request.max_evaluations, "objective evaluations per start")
         ->capture_default_str();
     add_precision_option(cmd, o->precision);

@@ -1,6 +1,6 @@
 // Fitting an analytic model's free parameters to a target BRDF (`brdfbake fit`): a measured MERL
 // file (host/models/merl_file.h) or any model spec. The free parameters are the microfacet
-// roughness alpha (isotropic) and the amplitude term's parameter, per colour channel; the
+// roughness alpha (or alpha_x and alpha_y) and the Fresnel term's parameters, per colour channel; the
 // objective is evaluated on the device (kernels/fit.cl) over the MERL grid's direction pairs and
 // minimised by the batched Nelder-Mead of nelder_mead.h, every channel and start in one launch
 // per round.
@@ -32,11 +32,20 @@ struct FitMetric {
 };
 const std::vector<FitMetric>& fit_metrics();
 
-/// An amplitude term of the fitted model, a Fresnel spec with one free parameter in [0, 1]
-/// (or none): `scale` F = s (gen-schlick with f0 = f90 = s), `schlick` Schlick's f0, `none` F = 1.
+/// A free parameter of the fit: its name (in the specs and in "params"), its range (the fit
+/// maps the whole real line onto it by a logistic, so that no step leaves it) and its start.
+struct FitParameter {
+    const char* name;
+    double lo, hi, start;
+};
+
+/// The fitted Fresnel term (`--fresnel NAME`): a Fresnel spec with free parameters, written
+/// {name} where each goes (or none): `scale` F = s (gen-schlick with f0 = f90 = s), `schlick`
+/// Schlick's f0, `conductor` the exact conductor's eta and k, `none` F = 1.
 struct FitAmplitude {
     const char* name;
-    const char* spec;  // the Fresnel spec with %s where the parameter goes; no %s: no parameter
+    const char* spec;
+    std::vector<FitParameter> params;
     const char* description;
 };
 const std::vector<FitAmplitude>& fit_amplitudes();
@@ -51,12 +60,20 @@ struct ModelFitRequest {
                                          // every 2 stride-th along phi_d; the distance on all bins
     Precision precision = Precision::Double;
     int max_evaluations = 400;           // per start
+    bool anisotropic = false;            // fit alpha_x and alpha_y (automatic for an anisotropic target)
+};
+
+/// A fitted parameter and its standard error (fit_model's estimate, model_fit.cpp: the sandwich
+/// covariance of the weighted least-squares fit; 0 for a target the model matches exactly).
+struct FittedParameter {
+    std::string name;  // alpha, or alpha_x and alpha_y; then the Fresnel term's (FitParameter)
+    double value = 0;
+    double error = 0;
 };
 
 struct ChannelFit {
     std::string channel;        // r, g, b, y, or "" for an analytic target
-    double alpha = 0;
-    double amplitude = 1;       // the amplitude term's parameter (1 for none)
+    std::vector<FittedParameter> params;
     std::string model_spec;     // the fitted spec, usable as --model as it stands
     std::string fresnel_spec;   // usable as --fresnel
     double distance = 0;        // d over every bin (stride 1)
