@@ -53,15 +53,6 @@ static inline bb_ltc_texel bb_ltc_texel_of(const unsigned int cell, __global con
     return t;
 }
 
-/* x^n for a small n >= 0 by multiplication: PoCL's pown goes through exp and log (42% of a
- * 64x64 table's time in ltc_lobe_points, perf), and n is the grading power, 2 by default. */
-static inline bb_real bb_ltc_pown(const bb_real x, const unsigned int n) {
-    bb_real r = BB_R(1.0);
-    for (unsigned int i = 0; i < n; ++i)
-        r *= x;
-    return r;
-}
-
 __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __global const bb_scalar* model_p,
                                        __global const bb_scalar* fresnel_p,
                                        __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */,
@@ -78,8 +69,8 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
     /* u1 = 1 - (1 - s)^grade, s on the midpoint rule, the node weighing its cell's measure in u1
      * (n times (1 - s_lo)^grade - (1 - s_hi)^grade): the samplers send the lobe's tail to u1 near 1 */
     const bb_real s_lo = (bb_real)(k % n_side) / (bb_real)n_side, s_hi = (bb_real)(k % n_side + 1u) / (bb_real)n_side;
-    const bb_real u1 = BB_R(1.0) - bb_ltc_pown(BB_R(1.0) - (s_lo + s_hi) * BB_R(0.5), grade);
-    const bb_real cell_w = (bb_ltc_pown(BB_R(1.0) - s_lo, grade) - bb_ltc_pown(BB_R(1.0) - s_hi, grade)) * (bb_real)n_side;
+    const bb_real u1 = BB_R(1.0) - pown(BB_R(1.0) - (s_lo + s_hi) * BB_R(0.5), (int)grade);
+    const bb_real cell_w = (pown(BB_R(1.0) - s_lo, (int)grade) - pown(BB_R(1.0) - s_hi, (int)grade)) * (bb_real)n_side;
     const bb_real u2 = ((bb_real)(k / n_side) + BB_R(0.5)) / (bb_real)n_side;
     const bb_sample s = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
     const bb_real f_cos = bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, s.wi) * s.wi.z;
