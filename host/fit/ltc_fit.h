@@ -61,7 +61,7 @@ struct LtcFitOptions {
     /// the simplex's steps times refine_step and at most refine_evaluations per cell (lazy steps,
     /// NelderMeadOptions::speculative false). 64^2 and 40 keep the 64x64 GGX table's distances by
     /// the independent reference (median, mean, 90th percentile within 0.5%) of 96^2 and 100 at
-    /// 0.4x the CPU (benchmarks/results/ltc-table-amd-epyc-2c.md, branch ltc3).
+    /// about half the CPU (benchmarks/results/ltc-table-amd-epyc-2c.md, branch ltc3).
     int refine_side = 64;
     double refine_step = 0.3;
     int refine_evaluations = 40;
