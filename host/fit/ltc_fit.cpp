@@ -370,6 +370,7 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
         NelderMeadOptions polish = nm;
         for (double& s : polish.steps) s *= o.refine_step;
         polish.max_evaluations = o.refine_evaluations;
+        polish.speculative = false;  // on refine_side^2 points the evaluations cost, not the rounds
         const std::vector<Minimum> refined = minimize_batch(from, polish, scaled(fine));
         for (size_t c = 0; c < cells.size(); ++c) {
             minima[c].evaluations += refined[c].evaluations;

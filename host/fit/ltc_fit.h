@@ -58,10 +58,13 @@ struct LtcFitOptions {
     std::function<LtcMatrix(const LtcMatrix&)> as_written;
     double size_tolerance = 1e-3;
     /// The polish of each fit on refine_side^2 points (0: none), from the fit_side^2 minimum with
-    /// the simplex's steps times refine_step and at most refine_evaluations per cell.
-    int refine_side = 96;
+    /// the simplex's steps times refine_step and at most refine_evaluations per cell (lazy steps,
+    /// NelderMeadOptions::speculative false). 64^2 and 40 keep the 64x64 GGX table's distances by
+    /// the independent reference (median, mean, 90th percentile within 0.5%) of 96^2 and 100 at
+    /// about half the CPU (benchmarks/results/ltc-table-amd-epyc-2c.md, branch ltc3).
+    int refine_side = 64;
     double refine_step = 0.3;
-    int refine_evaluations = 100;
+    int refine_evaluations = 40;
 };
 
 struct LtcFit {

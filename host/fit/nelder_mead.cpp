@@ -12,12 +12,15 @@ namespace {
 
 using Point = std::vector<double>;
 
-enum class Phase { NewSimplex, Step, Shrink, Done };
+enum class Phase { NewSimplex, Step, Reflect, Follow, Shrink, Done };
 
 struct Problem {
     std::vector<Point> simplex;
     std::vector<double> values;
     std::vector<Point> pending;  // the points asked for this round
+    std::vector<Point> candidates;  // a lazy step's four candidates (ask_step) ...
+    double reflected = 0;           // ... and the reflection's value
+    int follow = 0;                 // the candidate asked after it
     Phase phase = Phase::NewSimplex;
     int evaluations = 0;
     int restarts_left = 0;
@@ -56,14 +59,16 @@ void sort_simplex(Problem& p) {
 
 /// The four candidates of a step from the sorted simplex: x_c + t (x_c - x_worst) for t = 1
 /// (reflection), 2 (expansion), 1/2 (outside contraction), -1/2 (inside contraction).
-void ask_step(Problem& p) {
+/// Lazily (options.speculative false) only the reflection is asked for.
+void ask_step(Problem& p, bool speculative) {
     const size_t n = p.simplex.size() - 1;
     Point centroid(p.simplex[0].size(), 0.0);
     for (size_t i = 0; i < n; ++i)
         for (size_t j = 0; j < centroid.size(); ++j) centroid[j] += p.simplex[i][j] / double(n);
-    p.pending.clear();
-    for (double t : {1.0, 2.0, 0.5, -0.5}) p.pending.push_back(affine(centroid, p.simplex[n], -t));
-    p.phase = Phase::Step;
+    p.candidates.clear();
+    for (double t : {1.0, 2.0, 0.5, -0.5}) p.candidates.push_back(affine(centroid, p.simplex[n], -t));
+    p.pending = speculative ? p.candidates : std::vector<Point>{p.candidates[0]};
+    p.phase = speculative ? Phase::Step : Phase::Reflect;
 }
 
 void ask_shrink(Problem& p) {
@@ -81,11 +86,11 @@ bool converged(const Problem& p, const NelderMeadOptions& o) {
 }
 
 /// Takes the step's candidate values and updates the simplex (Lagarias et al. 1998, section 2).
-void take_step(Problem& p, const std::vector<double>& f) {
+void take_step(Problem& p, const std::vector<double>& f, const std::vector<Point>& candidates) {
     const size_t n = p.simplex.size() - 1;
     const double best = p.values[0], second_worst = p.values[n - 1], worst = p.values[n];
     auto replace_worst = [&](size_t k) {
-        p.simplex[n] = p.pending[k];
+        p.simplex[n] = candidates[k];
         p.values[n] = f[k];
     };
     if (f[0] < best) {
@@ -102,9 +107,34 @@ void take_step(Problem& p, const std::vector<double>& f) {
     p.phase = Phase::Step;
 }
 
+/// A lazy step: the reflection's value decides which one candidate take_step would read next
+/// (expansion, outside or inside contraction); none when the reflection is taken as it is. Returns
+/// false while that candidate is asked for.
+bool lazy_step(Problem& p, double value) {
+    const size_t n = p.simplex.size() - 1;
+    const double inf = HUGE_VAL;
+    if (p.phase == Phase::Reflect) {
+        p.reflected = value;
+        if (value < p.values[n - 1] && !(value < p.values[0])) {
+            take_step(p, {value, inf, inf, inf}, p.candidates);
+            return true;
+        }
+        p.follow = value < p.values[0] ? 1 : value < p.values[n] ? 2 : 3;
+        p.pending = {p.candidates[size_t(p.follow)]};
+        p.phase = Phase::Follow;
+        return false;
+    }
+    std::vector<double> f = {p.reflected, inf, inf, inf};
+    f[size_t(p.follow)] = value;
+    take_step(p, f, p.candidates);
+    return p.phase != Phase::Shrink;
+}
+
 void advance(Problem& p, const std::vector<double>& f, const NelderMeadOptions& o) {
     p.evaluations += int(f.size());
-    if (p.phase == Phase::NewSimplex) {
+    if (p.phase == Phase::Reflect || p.phase == Phase::Follow) {
+        if (!lazy_step(p, f[0])) return;
+    } else if (p.phase == Phase::NewSimplex) {
         p.values = f;
     } else if (p.phase == Phase::Shrink) {
         for (size_t i = 1; i < p.simplex.size(); ++i) {
@@ -112,7 +142,7 @@ void advance(Problem& p, const std::vector<double>& f, const NelderMeadOptions& 
             p.values[i] = f[i - 1];
         }
     } else {
-        take_step(p, f);
+        take_step(p, f, p.candidates);
         if (p.phase == Phase::Shrink) return;
     }
     sort_simplex(p);
@@ -127,7 +157,7 @@ void advance(Problem& p, const std::vector<double>& f, const NelderMeadOptions& 
             p.phase = Phase::Done;
         }
     } else {
-        ask_step(p);
+        ask_step(p, o.speculative);
     }
 }
 

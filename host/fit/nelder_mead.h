@@ -18,6 +18,10 @@ struct NelderMeadOptions {
     double value_tolerance = 1e-6;   // converged: the simplex's values span less than this ...
     double size_tolerance = 1e-5;    // ... and every vertex lies this close to the best (max norm)
     int restarts = 1;                // fresh simplices around the best after convergence
+    /// true: a step asks for its four candidates at once (one round a step, 4 evaluations); false:
+    /// the reflection first, then the one candidate it calls for (1-2 rounds, 1-2 evaluations). The
+    /// same decisions either way; false spends half the evaluations where they, not rounds, cost.
+    bool speculative = true;
 };
 
 struct Minimum {
@@ -33,7 +37,8 @@ using BatchObjective =
 /// Minimises every problem from its start. Each round asks the objective once for the points of
 /// every unfinished problem: the n + 1 vertices of a new simplex, the four candidates of a step
 /// (reflection, expansion, outside and inside contraction, evaluated together so that a step is
-/// one round) or the n vertices of a shrink. Deterministic: the same starts give the same minima.
+/// one round; with options.speculative false, the reflection and then the one candidate it calls
+/// for) or the n vertices of a shrink. Deterministic: the same starts give the same minima.
 std::vector<Minimum> minimize_batch(const std::vector<std::vector<double>>& starts, const NelderMeadOptions& options,
                                     const BatchObjective& objective);
 
