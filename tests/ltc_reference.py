@@ -613,19 +613,19 @@ def check_model_table(path, verbose=True):
     channel equal to it (no Fresnel term), and the distance of the stored M recomputed here within
     the file's distance_error plus the reference's quadrature error (and 2e-3). Returns the
     failures (empty: all agree)."""
-    header, rows, model = None, [], None
+    rows, attributes = [], {}
+    header = None
     for line in open(path):
         if line.startswith("#"):
-            if line[1:].strip().startswith("model:"):
-                model = line.split(":", 1)[1].strip()
-            continue
-        cells = line.strip().split(",")
-        if header is None:
-            header = cells
+            key, _, value = line[1:].partition(":")
+            attributes[key.strip()] = value.strip()
+        elif header is None:
+            header = line.strip().split(",")
         else:
-            rows.append(dict(zip(header, map(float, cells))))
-    name, keys = model_spec_keys(model)
+            rows.append(dict(zip(header, map(float, line.strip().split(",")))))
+    name, keys = model_spec_keys(attributes["model"])
     failures = []
+    check = _checker(verbose, failures)
     for r in rows:
         lobe = ModelLobe(name, r["mu"], r["alpha"], float(keys.get("ks", 1)), keys.get("normalized", "1") == "1",
                          float(keys.get("rho", 1)))
@@ -635,13 +635,20 @@ def check_model_table(path, verbose=True):
         ok_e = abs(r["magnitude"] - e) <= r["error"] + e_err + 1e-4
         ok_f = r["fresnel"] == r["magnitude"]
         ok_d = abs(r["distance"] - d) <= r["distance_error"] + d_err + 2e-3
-        line = "%s mu %.4f alpha %.4f: E %.6f vs %.6f (+-%.1e), distance %.5f vs %.5f (+-%.1e, %.1e)" % (
-            name, r["mu"], r["alpha"], r["magnitude"], e, e_err, r["distance"], d, r["distance_error"], d_err)
-        if verbose:
-            print(("ok   " if ok_e and ok_f and ok_d else "FAIL ") + line)
-        if not (ok_e and ok_f and ok_d):
-            failures.append(line)
+        check("%s mu %.4f alpha %.4f" % (name, r["mu"], r["alpha"]), ok_e and ok_f and ok_d,
+              "E %.6f vs %.6f (+-%.1e), distance %.5f vs %.5f (+-%.1e, %.1e)" % (
+                  r["magnitude"], e, e_err, r["distance"], d, r["distance_error"], d_err))
     return failures
+
+
+def _checker(verbose, failures):
+    """check(name, ok, detail): prints `ok`/`FAIL` lines when verbose, appends failed names."""
+    def check(name, ok, detail):
+        if verbose:
+            print(("ok   " if ok else "FAIL ") + name + ": " + detail)
+        if not ok:
+            failures.append(name)
+    return check
 
 
 def model_self_checks(verbose=True):
@@ -649,13 +656,7 @@ def model_self_checks(verbose=True):
     the normalised Phong lobe at normal incidence integrates to 1 ([L94]); the sampler-based E
     and L1 agree with a plain solid-angle grid for a smooth lobe of each model."""
     failures = []
-
-    def check(name, ok, detail):
-        if verbose:
-            print(("ok   " if ok else "FAIL ") + name + ": " + detail)
-        if not ok:
-            failures.append(name)
-
+    check = _checker(verbose, failures)
     for mu in (0.2, 0.7, 1.0):
         e = model_albedo(ModelLobe("oren-nayar", mu, 0.0))[0]
         check("oren-nayar sigma 0 is Lambert (mu %g)" % mu, abs(e - 1) < 1e-9, "%.12f" % e)
