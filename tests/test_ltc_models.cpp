@@ -18,10 +18,12 @@
 
 namespace {
 
-/// The directory of tests/ltc_reference.py (this file's own).
+/// The directory of tests/ltc_reference.py (this file's own). __FILE__ is as the compiler was
+/// given it: absolute, or relative to the build directory it ran in, where BRDFBAKE_EXE lies.
 std::string tests_dir() {
-    const std::string f = __FILE__;
-    return f.substr(0, f.find_last_of('/'));
+    const std::string f = __FILE__, exe = BRDFBAKE_EXE;
+    const std::string dir = f.substr(0, f.find_last_of('/'));
+    return dir.front() == '/' ? dir : exe.substr(0, exe.find_last_of('/')) + "/" + dir;
 }
 
 bool have_numpy() { return std::system("/usr/bin/python3 -c 'import numpy' >/dev/null 2>&1") == 0; }
