@@ -462,6 +462,218 @@ def self_checks(verbose=True):
     return failures
 
 
+
+# ------------------------------------------- the isotropic models without alpha (issue 33 item 1)
+# Closed forms written from the papers, not from brdfbake's headers:
+#   [ON94]  Oren, Nayar 1994, "Generalization of Lambert's Reflectance Model", eq. 30 (the
+#           qualitative model), in angles: f = rho/pi (A + B max(0, cos(phi_i - phi_o)) sin a tan b).
+#   [L94]   Lewis 1994, "Making Shaders More Physically Plausible": the reciprocal Phong lobe
+#           ks max(0, R(wo).wi)^n, normalised by (n + 2)/(2 pi).
+#   [B77]   Blinn 1977: the half-vector lobe ks (n.h)^n, its normalisation (n + 2)/(2 pi) [WMLT07 eq. 30].
+# A table's alpha sets the key (docs/ltc_presets.md, "Models without alpha"): oren-nayar's
+# sigma = alpha (radians), the Phong lobes' n = 2/alpha^2 - 2 [WMLT07 sec. 5.2].
+
+
+def model_key_of_alpha(model, alpha):
+    """the key value a table's alpha stands for: sigma = alpha, or n = 2/alpha^2 - 2."""
+    return alpha if model == "oren-nayar" else max(0.0, 2.0 / (alpha * alpha) - 2.0)
+
+
+def oren_nayar_fcos(wo, wi, sigma, rho=1.0):
+    """f cos theta_i of [ON94] eq. 30 written with the angles themselves (theta, phi by arctan2)."""
+    wo = np.broadcast_to(wo, wi.shape)
+    ti = np.arccos(np.clip(wi[..., 2], -1.0, 1.0))
+    to = np.arccos(np.clip(wo[..., 2], -1.0, 1.0))
+    dphi = np.arctan2(wi[..., 1], wi[..., 0]) - np.arctan2(wo[..., 1], wo[..., 0])
+    s2 = sigma * sigma
+    a = 1.0 - 0.5 * s2 / (s2 + 0.33)
+    b = 0.45 * s2 / (s2 + 0.09)
+    big, small = np.maximum(ti, to), np.minimum(ti, to)
+    ok = (wo[..., 2] > 0) & (wi[..., 2] > 0)
+    f = rho / math.pi * (a + b * np.maximum(0.0, np.cos(dphi)) * np.sin(big) * np.tan(np.where(ok, small, 0.0)))
+    return np.where(ok, f * wi[..., 2], 0.0)
+
+
+def phong_fcos(wo, wi, n, ks=1.0, normalized=True):
+    """f cos theta_i of [L94]'s reciprocal Phong lobe, R(wo) the mirror direction of wo."""
+    r = np.array([-wo[0], -wo[1], wo[2]])
+    k = ks * ((n + 2.0) / (2.0 * math.pi) if normalized else 1.0)
+    c = np.maximum(wi @ r, 0.0)
+    ok = (wo[2] > 0) & (wi[..., 2] > 0)
+    return np.where(ok, k * c ** n * wi[..., 2], 0.0)
+
+
+def blinn_phong_fcos(wo, wi, n, ks=1.0, normalized=True):
+    """f cos theta_i of [B77]'s half-vector lobe ks (n.h)^n, normalised by (n + 2)/(2 pi)."""
+    h = wo + wi
+    h = h / np.maximum(np.linalg.norm(h, axis=-1, keepdims=True), 1e-300)
+    k = ks * ((n + 2.0) / (2.0 * math.pi) if normalized else 1.0)
+    ok = (wo[2] > 0) & (wi[..., 2] > 0) & (h[..., 2] > 0)
+    return np.where(ok, k * np.maximum(h[..., 2], 0.0) ** n * wi[..., 2], 0.0)
+
+
+def _frame_around(axis, local):
+    """local directions (z = axis) turned into the world frame of a unit axis."""
+    t = np.cross([0.0, 1.0, 0.0], axis) if abs(axis[1]) < 0.99 else np.cross([1.0, 0.0, 0.0], axis)
+    t /= np.linalg.norm(t)
+    b = np.cross(axis, t)
+    return local[..., :1] * t + local[..., 1:2] * b + local[..., 2:] * axis
+
+
+def _cos_power(n, u1, u2):
+    """directions about +z with density (n + 1)/(2 pi) cos^n, and that density."""
+    z = (1.0 - u1) ** (1.0 / (n + 1.0))
+    s = np.sqrt(np.maximum(1.0 - z * z, 0.0))
+    phi = 2.0 * math.pi * u2
+    return np.stack([s * np.cos(phi), s * np.sin(phi), z], axis=-1), (n + 1.0) / (2.0 * math.pi) * z ** n
+
+
+class ModelLobe:
+    """one texel's lobe of oren-nayar, phong or blinn-phong (keys as the table's `model` line), with
+    a sampler for the quadratures: the cosine ([ON94]), cos^n about the mirror direction ([L94]) or
+    cos^n half vectors reflected about wo ([B77]); `pdf(w)` the sampler's density of w."""
+
+    def __init__(self, model, mu, alpha, ks=1.0, normalized=True, rho=1.0):
+        self.model, self.wo = model, view(mu)
+        self.k = model_key_of_alpha(model, alpha)
+        self.ks, self.normalized, self.rho = ks, normalized, rho
+
+    def fcos(self, w):
+        if self.model == "oren-nayar":
+            return oren_nayar_fcos(self.wo, w, self.k, self.rho)
+        if self.model == "phong":
+            return phong_fcos(self.wo, w, self.k, self.ks, self.normalized)
+        return blinn_phong_fcos(self.wo, w, self.k, self.ks, self.normalized)
+
+    def sample(self, u1, u2):
+        wo = self.wo
+        if self.model == "oren-nayar":
+            return ltc_sample(np.eye(3), u1, u2)
+        local, _ = _cos_power(self.k, u1, u2)
+        if self.model == "phong":
+            return _frame_around(np.array([-wo[0], -wo[1], wo[2]]), local)
+        return 2.0 * (local @ wo)[..., None] * local - wo
+
+    def pdf(self, w):
+        wo = self.wo
+        if self.model == "oren-nayar":
+            return np.maximum(w[..., 2], 0.0) / math.pi
+        if self.model == "phong":
+            c = np.maximum(w @ np.array([-wo[0], -wo[1], wo[2]]), 0.0)
+            return (self.k + 1.0) / (2.0 * math.pi) * c ** self.k
+        h = wo + w
+        h = h / np.maximum(np.linalg.norm(h, axis=-1, keepdims=True), 1e-300)
+        c = np.maximum(h[..., 2], 0.0)
+        return np.where(h @ wo > 0, (self.k + 1.0) / (2.0 * math.pi) * c ** self.k / (4.0 * np.maximum(h @ wo, 1e-300)), 0.0)
+
+
+def model_albedo(lobe, n=512):
+    """E = integral of f cos by the lobe's sampler on the graded n x n midpoint rule, with its error
+    |E(n) - E(n/2)|."""
+    def at(k):
+        u1, u2, qw = graded_grid(k)
+        w = lobe.sample(u1, u2)
+        q = lobe.pdf(w)
+        g = np.where((w[:, 2] > 0) & (q > 0), lobe.fcos(w) / np.where(q > 0, q, 1.0), 0.0)
+        return float(np.sum(g * qw))
+    fine = at(n)
+    return fine, abs(fine - at(n // 2))
+
+
+def model_l1_distance(lobe, m, e, n=256):
+    """integral over the upper hemisphere of |p - D|, p = f cos / E, as l1_distance writes it
+    (c - 1 + 2 integral of max(p - D, 0)) with the balance heuristic over the lobe's sampler and
+    the LTC's; returns (distance, |L(n) - L(n/2)|)."""
+    def at(k):
+        total = 0.0
+        for sampler in ("lobe", "ltc"):
+            u1, u2, qw = graded_grid(k)
+            w = lobe.sample(u1, u2) if sampler == "lobe" else ltc_sample(m, u1, u2)
+            up = w[:, 2] > 0
+            w = np.where(up[:, None], w, np.array([0.0, 0.0, 1.0]))
+            p = lobe.fcos(w) / e
+            d = ltc_density(m, w)
+            q = lobe.pdf(w)
+            g = np.where(up, np.maximum(p - d, 0.0) / np.maximum(q + d, 1e-300), 0.0)
+            total += float(np.sum(g * qw))
+        return ltc_upper_mass(m) - 1.0 + 2.0 * total
+    fine = at(n)
+    return fine, abs(fine - at(n // 2))
+
+
+def model_spec_keys(canonical):
+    """(name, {key: value}) of a canonical spec such as `phong:ks=1,normalized=0`."""
+    name, _, rest = canonical.partition(":")
+    return name, dict(kv.split("=") for kv in rest.split(",") if kv)
+
+
+def check_model_table(path, verbose=True):
+    """`brdfbake lut ltc --model oren-nayar|phong|blinn-phong` CSV against the closed forms above:
+    per texel the magnitude within the file's error plus the reference's (and 1e-4), the fresnel
+    channel equal to it (no Fresnel term), and the distance of the stored M recomputed here within
+    the file's distance_error plus the reference's quadrature error (and 2e-3). Returns the
+    failures (empty: all agree)."""
+    rows, attributes = [], {}
+    header = None
+    for line in open(path):
+        if line.startswith("#"):
+            key, _, value = line[1:].partition(":")
+            attributes[key.strip()] = value.strip()
+        elif header is None:
+            header = line.strip().split(",")
+        else:
+            rows.append(dict(zip(header, map(float, line.strip().split(",")))))
+    name, keys = model_spec_keys(attributes["model"])
+    failures = []
+    check = _checker(verbose, failures)
+    for r in rows:
+        lobe = ModelLobe(name, r["mu"], r["alpha"], float(keys.get("ks", 1)), keys.get("normalized", "1") == "1",
+                         float(keys.get("rho", 1)))
+        e, e_err = model_albedo(lobe)
+        m = matrix_from_channels(r["m00"], r["m02"], r["m11"], r["m20"], r["m22"])
+        d, d_err = model_l1_distance(lobe, m, e)
+        ok_e = abs(r["magnitude"] - e) <= r["error"] + e_err + 1e-4
+        ok_f = r["fresnel"] == r["magnitude"]
+        ok_d = abs(r["distance"] - d) <= r["distance_error"] + d_err + 2e-3
+        check("%s mu %.4f alpha %.4f" % (name, r["mu"], r["alpha"]), ok_e and ok_f and ok_d,
+              "E %.6f vs %.6f (+-%.1e), distance %.5f vs %.5f (+-%.1e, %.1e)" % (
+                  r["magnitude"], e, e_err, r["distance"], d, r["distance_error"], d_err))
+    return failures
+
+
+def _checker(verbose, failures):
+    """check(name, ok, detail): prints `ok`/`FAIL` lines when verbose, appends failed names."""
+    def check(name, ok, detail):
+        if verbose:
+            print(("ok   " if ok else "FAIL ") + name + ": " + detail)
+        if not ok:
+            failures.append(name)
+    return check
+
+
+def model_self_checks(verbose=True):
+    """the closed forms above against known values: Oren-Nayar at sigma = 0 is Lambert (E = 1);
+    the normalised Phong lobe at normal incidence integrates to 1 ([L94]); the sampler-based E
+    and L1 agree with a plain solid-angle grid for a smooth lobe of each model."""
+    failures = []
+    check = _checker(verbose, failures)
+    for mu in (0.2, 0.7, 1.0):
+        e = model_albedo(ModelLobe("oren-nayar", mu, 0.0))[0]
+        check("oren-nayar sigma 0 is Lambert (mu %g)" % mu, abs(e - 1) < 1e-9, "%.12f" % e)
+    e = model_albedo(ModelLobe("phong", 1.0, 0.3))[0]
+    check("normalised phong at normal incidence", abs(e - 1) < 1e-6, "%.9f" % e)
+    m = matrix_from_channels(0.8, 0.1, 0.85, -0.2, 1.0)
+    for name, alpha in (("oren-nayar", 0.9), ("phong", 0.6), ("blinn-phong", 0.6)):
+        lobe = ModelLobe(name, 0.5, alpha)
+        e = model_albedo(lobe)[0]
+        e_grid = l1_densities(lobe.fcos, lambda w: 0 * w[:, 0], 800)
+        check("%s E by its sampler = E on a grid" % name, abs(e - e_grid) < 2e-4, "%.6f vs %.6f" % (e, e_grid))
+        d = model_l1_distance(lobe, m, e)[0]
+        d_grid = l1_densities(lambda w: lobe.fcos(w) / e, lambda w: ltc_density(m, w), 800)
+        check("%s L1 by MIS = L1 on a grid" % name, abs(d - d_grid) < 2e-3, "%.5f vs %.5f" % (d, d_grid))
+    return failures
+
+
 if __name__ == "__main__":
     if "--check" in sys.argv:
         bad = self_checks()

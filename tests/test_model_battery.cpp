@@ -52,6 +52,8 @@ TEST_CASE("battery: every registered model resolves its example spec", "[battery
         CHECK((t.alpha_x_slot >= 0) == (t.alpha_y_slot >= 0));
         if (t.alpha_x_slot >= 0)
             CHECK(roughness_slots(m) == std::vector<int>{t.alpha_x_slot, t.alpha_y_slot});
+        else if (t.roughness_axis.key)  // a mapped key (oren-nayar's sigma, the Phong lobes' n)
+            CHECK(roughness_slots(m) == std::vector<int>{t.roughness_axis.slot});
         else
             CHECK_THROWS_WITH(roughness_slots(m), Catch::Contains("has no roughness alpha to sweep"));
     }

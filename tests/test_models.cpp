@@ -514,7 +514,12 @@ TEST_CASE("roughness_slots: the swept alpha slots of the registry, and the refus
     CHECK_THROWS_WITH(roughness_slots(resolve_model("torrance-sparrow:d=blinn,n=30")),
                       "torrance-sparrow with d=blinn has an exponent, not alpha, to sweep; use d=beckmann or d=ggx");
     CHECK_THROWS_WITH(roughness_slots(resolve_model("lambert")),
-                      "model 'lambert' has no roughness alpha to sweep; tables need a microfacet model");
-    CHECK_THROWS_WITH(roughness_slots(resolve_model("blinn-phong:n=20")),
-                      "model 'blinn-phong' has no roughness alpha to sweep; tables need a microfacet model");
+                      "model 'lambert' has no roughness alpha to sweep; tables need a model with a roughness axis "
+                      "(alpha, oren-nayar's sigma or the Phong lobes' n)");
+    // The models without alpha whose key the registry maps (issue 33): sigma = alpha, and the
+    // exponent n = 2/alpha^2 - 2 of Walter et al. 2007 sec. 5.2 (alpha 0.5: n = 6; alpha 0.1: n = 198).
+    CHECK(roughness_slots(resolve_model("blinn-phong:n=20")) == std::vector<int>{BB_BLINN_PHONG_N});
+    CHECK(with_roughness(resolve_model("blinn-phong:n=20"), {}, 0.5)[BB_BLINN_PHONG_N] == Approx(6.0).epsilon(1e-15));
+    CHECK(with_roughness(resolve_model("phong:n=20"), {}, 0.1)[BB_PHONG_N] == Approx(198.0).epsilon(1e-14));
+    CHECK(with_roughness(resolve_model("oren-nayar:sigma=0"), {}, 0.7)[BB_OREN_NAYAR_SIGMA] == 0.7);
 }

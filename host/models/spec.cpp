@@ -7,6 +7,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <algorithm>
+#include <utility>
+#include <vector>
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/random_walk.h"
@@ -331,6 +334,45 @@ const char* (*roughness_refusal_of(int id))(const ParamBlock&) {
 /// albedo at 65536 samples ran at 4.7e7 samples/s against GGX's 2.1e9 in idle-core seconds (the
 /// Charlie distribution is sampled uniformly and its visibility term is costly).
 double sample_cost_of(int id) { return id == BB_MODEL_SHEEN ? 45.0 : 1.0; }
+/// The Phong lobes' exponent at a table alpha: n = 2/alpha^2 - 2, the exponent whose Blinn-Phong
+/// distribution matches Beckmann's of width alpha (Walter, Marschner, Li and Torrance 2007,
+/// "Microfacet Models for Refraction through Rough Surfaces", sec. 5.2: alpha_p = 2 alpha_b^-2 - 2);
+/// n = 1e4 (kExponent's top) at alpha = sqrt(2/10002) = 0.01414, n = 0 at alpha = 1.
+double phong_exponent_of_alpha(double alpha) { return std::max(0.0, 2.0 / (alpha * alpha) - 2.0); }
+
+/// Oren-Nayar's sigma at a table alpha: sigma = alpha in radians (the slope-angle deviation of
+/// [ON94], which Cycles' Oren-Nayar roughness and OpenPBR's base_diffuse_roughness take directly).
+double oren_nayar_sigma_of_alpha(double alpha) { return alpha; }
+
+constexpr const char* kPhongAxisText =
+    "n = 2/alpha^2 - 2 (the exponent matched to Beckmann's alpha, Walter et al. 2007 sec. 5.2); "
+    "alpha from 0.01414 (n = 1e4) to 1 (n = 0)";
+
+/// The roughness axis of a registry row: its alpha slots, or the mapped keys of the models without
+/// (a table, not a switch: one row per model that has one).
+RoughnessAxis roughness_axis_of(int id, int alpha_slot) {
+    if (alpha_slot >= 0) {
+        RoughnessAxis a;
+        a.key = "alpha";
+        a.mapping = "alpha";
+        a.alpha_lo = BB_ALPHA_MIN;
+        a.alpha_hi = kAlpha.hi;
+        a.slot = alpha_slot;
+        return a;
+    }
+    static const double kPhongLo = std::sqrt(2.0 / (kExponent.hi + 2.0));
+    static const std::vector<std::pair<int, RoughnessAxis>> mapped = {
+        {BB_MODEL_OREN_NAYAR,
+         {"sigma", "sigma = alpha (radians, the facet slope-angle deviation of Oren and Nayar 1994); alpha from 0 to pi/2",
+          oren_nayar_sigma_of_alpha, kSigma.lo, kSigma.hi, BB_OREN_NAYAR_SIGMA}},
+        {BB_MODEL_PHONG, {"n", kPhongAxisText, phong_exponent_of_alpha, kPhongLo, 1.0, BB_PHONG_N}},
+        {BB_MODEL_PHONG_ORIGINAL, {"n", kPhongAxisText, phong_exponent_of_alpha, kPhongLo, 1.0, BB_PHONG_N}},
+        {BB_MODEL_BLINN_PHONG, {"n", kPhongAxisText, phong_exponent_of_alpha, kPhongLo, 1.0, BB_BLINN_PHONG_N}},
+    };
+    for (const auto& e : mapped)
+        if (e.first == id) return e.second;
+    return {};
+}
 
 using Resolver = ModelConfig (*)(KeyReader&);
 
@@ -347,7 +389,8 @@ struct ModelEntry {
                  ((TRAITS) & BB_TRAIT_RECIPROCAL) != 0, AX, AY, EX, ((TRAITS) & BB_TRAIT_KINKED) != 0,             \
                  ((TRAITS) & BB_TRAIT_FURNACE) != 0, ((TRAITS) & BB_TRAIT_STOCHASTIC) != 0,                        \
                  ((TRAITS) & BB_TRAIT_MEASURED) != 0,                                                               \
-                 roughness_refusal_of(BB_MODEL_##NAME), sample_cost_of(BB_MODEL_##NAME)},                           \
+                 roughness_refusal_of(BB_MODEL_##NAME), sample_cost_of(BB_MODEL_##NAME),                            \
+                 roughness_axis_of(BB_MODEL_##NAME, AX)},                                                           \
      resolve_##name},
 
 const std::vector<ModelEntry>& registry() {
@@ -374,11 +417,27 @@ const ModelTraits& model_traits(int id) {
 
 std::vector<int> roughness_slots(const ModelConfig& model) {
     const ModelTraits& t = model.traits();
-    if (t.alpha_x_slot < 0)
-        throw Error("model '" + model.name + "' has no roughness alpha to sweep; tables need a microfacet model");
+    if (!t.roughness_axis.key)
+        throw Error("model '" + model.name + "' has no roughness alpha to sweep; tables need a model with a roughness "
+                    "axis (alpha, oren-nayar's sigma or the Phong lobes' n)");
     if (t.roughness_refusal)
         if (const char* why = t.roughness_refusal(model.params)) throw Error(why);
+    if (t.alpha_x_slot < 0) return {t.roughness_axis.slot};
     return {t.alpha_x_slot, t.alpha_y_slot};
+}
+
+ParamBlock with_roughness(const ModelConfig& model, ParamBlock params, double alpha) {
+    const RoughnessAxis& axis = model.traits().roughness_axis;
+    const double v = axis.value ? axis.value(alpha) : alpha;
+    for (int s : roughness_slots(model)) params[size_t(s)] = v;
+    return params;
+}
+
+RoughnessAxis roughness_axis_of_spec(const std::string& spec_text) {
+    const std::string name = parse_spec(spec_text).name;
+    for (const auto& e : registry())
+        if (name == e.traits.name) return e.traits.roughness_axis;
+    return {};
 }
 
 std::vector<std::string> model_names() {

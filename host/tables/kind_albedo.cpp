@@ -88,7 +88,7 @@ Table eavg_table(Engine& engine, const LutRequest& r, const ModelConfig& m, cons
     const MuAverage avg = average_over_mu(n_alpha, tolerance, [&](const std::vector<double>& mus) {
         std::vector<AlbedoCell> cells;
         for (double alpha : t.x.parameter)
-            for (double mu : mus) cells.push_back({mu, 0.0, with_alpha(m.params, slots, alpha)});
+            for (double mu : mus) cells.push_back({mu, 0.0, with_alpha(m, m.params, slots, alpha)});
         const AlbedoResult res = integrate(engine, r, m, f, cells, tolerance > 0.0 ? 0.5 : 1.0);
         return MuSamples{res.values, res.method, res.samples_per_cell};
     });

@@ -146,7 +146,10 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
     // E and the Schlick split's term B = integral of f cos (1 - wo.h)^5 (Schlick with f0 = 0), each
     // to the tolerance: the table's error is the larger of their errors.
     const AlbedoResult albedo = integrate(engine, r, m, f, g.cells);
-    const AlbedoResult fresnel = integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), g.cells);
+    // A model without a Fresnel term (oren-nayar, the Phong lobes) has none to split: B = E, so
+    // that the engines' f0 E + (1 - f0) B gives its lobe's E for every f0.
+    const AlbedoResult fresnel =
+        m.uses_fresnel ? integrate(engine, r, m, resolve_fresnel("schlick:f0=0"), g.cells) : albedo;
     std::vector<size_t> order;
     const std::vector<std::vector<fit::LtcCell>> rows = fit_rows(g, m, albedo, order);
     fit::LtcFitOptions options;
@@ -188,6 +191,9 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
                               std::to_string(options.fit_grade) + "), steps relative to the lobe's width, rows from rough "
                               "to smooth, each started from the row before; then polished on " +
                               std::to_string(options.refine_side) + "x" + std::to_string(options.refine_side) + " points";
+    if (!m.uses_fresnel)
+        t.attributes["fresnel_channel"] = "the magnitude: " + m.name + " has no Fresnel term to split "
+                                          "(f0 E + (1 - f0) B = E for every f0)";
     if (has_mirror_limit(m)) {
         std::ostringstream s;
         s << "texels below alpha = " << kLtcAlphaFloor << " are fitted at " << kLtcAlphaFloor;

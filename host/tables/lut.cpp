@@ -75,11 +75,12 @@ Axis alpha_axis(const LutRequest& r, int size, bool& clamped) {
     a.parameter_name = "alpha";
     const std::optional<ModelConfig> m = try_sweep_model(r.model);
     const bool zero_is_limit = m && has_mirror_limit(*m);
+    const double floor = m ? alpha_floor(*m) : double(BB_ALPHA_MIN);
     clamped = false;
     for (double v : a.coordinate) {
         double alpha = rough ? v * v : v;
-        if (alpha < BB_ALPHA_MIN && !(alpha == 0.0 && zero_is_limit)) {
-            alpha = BB_ALPHA_MIN;
+        if (alpha < floor && !(alpha == 0.0 && zero_is_limit)) {
+            alpha = floor;
             clamped = true;
         }
         a.parameter.push_back(alpha);
@@ -130,9 +131,13 @@ Axis eta_axis(const LutRequest& r, int size) {
     return a;
 }
 
-ParamBlock with_alpha(ParamBlock p, const std::vector<int>& slots, double alpha) {
-    for (int s : slots) p[s] = alpha;
-    return p;
+ParamBlock with_alpha(const ModelConfig& m, ParamBlock p, const std::vector<int>& slots, double alpha) {
+    return slots.empty() ? p : with_roughness(m, p, alpha);
+}
+
+double alpha_floor(const ModelConfig& m) {
+    const RoughnessAxis& axis = m.traits().roughness_axis;
+    return axis.value ? axis.alpha_lo : double(BB_ALPHA_MIN);
 }
 
 MuAlphaGrid mu_alpha_grid(const LutRequest& r, const ModelConfig& m) {
@@ -142,7 +147,7 @@ MuAlphaGrid mu_alpha_grid(const LutRequest& r, const ModelConfig& m) {
     g.table.y = alpha_axis(r, r.height, g.clamped);
     const std::vector<int> slots = roughness_slots(m);
     for (double alpha : g.table.y.parameter)
-        for (double mu : g.table.x.parameter) g.cells.push_back({mu, 0.0, with_alpha(m.params, slots, alpha)});
+        for (double mu : g.table.x.parameter) g.cells.push_back({mu, 0.0, with_alpha(m, m.params, slots, alpha)});
     return g;
 }
 
@@ -225,11 +230,13 @@ void describe(Table& t, const LutRequest& r, const ModelConfig& m, const std::st
     }
     if (clamped) {
         std::ostringstream s;
-        s << "alpha below " << BB_ALPHA_MIN << " was computed at " << BB_ALPHA_MIN;
+        s << "alpha below " << alpha_floor(m) << " was computed at " << alpha_floor(m);
         t.attributes["alpha_floor"] = s.str();
     }
+    const RoughnessAxis& axis = m.traits().roughness_axis;
+    if (axis.value) t.attributes["roughness_axis"] = std::string("alpha sets ") + axis.key + ": " + axis.mapping;
     for (const Axis* a : {&t.x, &t.y})
-        if (a->parameter_name == "alpha" &&
+        if (a->parameter_name == "alpha" && has_mirror_limit(m) &&
             std::find(a->parameter.begin(), a->parameter.end(), 0.0) != a->parameter.end())
             t.attributes["alpha_zero"] =
                 "texels at alpha = 0 hold the model's delta limit, a mirror (Walter et al. 2007, D -> delta, G -> 1): "
@@ -276,9 +283,14 @@ ModelConfig swept_model(const LutRequest& r) {
     if (!sweeps_roughness(r))  // a merl spec's channel=rgb: the red channel's (kind_albedo.cpp makes all three)
         return resolve_model(merl_rgb_spec(r.model) ? merl_channel_spec(r.model, "r") : r.model);
     const Spec spec = parse_spec(r.model);
-    for (const auto& kv : spec.keys)
+    const RoughnessAxis axis = roughness_axis_of_spec(r.model);
+    for (const auto& kv : spec.keys) {
         if (kv.first == "alpha" || kv.first == "roughness" || kv.first == "alpha_x" || kv.first == "alpha_y")
             throw Error("leave " + kv.first + " out of --model: the table sweeps alpha (see --alpha-map, --alpha-range)");
+        if (axis.value && kv.first == axis.key)
+            throw Error("leave " + kv.first + " out of --model: the table's alpha axis sets it (" + axis.mapping +
+                        "; see --alpha-map, --alpha-range)");
+    }
     return sweep_model(r.model);
 }
 
@@ -307,8 +319,13 @@ void validate_lut(const LutRequest& r) {
     if (sweeps_roughness(r)) {
         // The largest alpha the table sweeps must be one the model takes (sheen's fit ends at 1).
         const double top = r.alpha_map == "roughness" ? r.alpha_hi * r.alpha_hi : r.alpha_hi;
+        const RoughnessAxis& axis = m.traits().roughness_axis;
+        if (axis.value && top > axis.alpha_hi)
+            throw Error("--alpha-range reaches alpha = " + format_number(top) + ", beyond " + m.name +
+                        "'s roughness axis (" + axis.mapping + ")");
         try {
-            resolve_model(r.model + (r.model.find(':') == std::string::npos ? ":" : ",") + "alpha=" + format_number(top));
+            resolve_model(r.model + (r.model.find(':') == std::string::npos ? ":" : ",") + axis.key + "=" +
+                          format_number(axis.value ? axis.value(top) : top));
         } catch (const Error& e) {
             throw Error("--alpha-range reaches alpha = " + format_number(top) + ", which " + m.name +
                         " does not take: " + e.what());

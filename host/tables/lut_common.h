@@ -54,8 +54,12 @@ struct MuAlphaGrid {
 };
 MuAlphaGrid mu_alpha_grid(const LutRequest& r, const ModelConfig& swept_model);
 
-/// The model's parameters with the swept alpha set.
-ParamBlock with_alpha(ParamBlock p, const std::vector<int>& slots, double alpha);
+/// The model's parameters with the swept alpha set through its roughness axis (none where `slots`,
+/// roughness_slots(m) or empty for a model without roughness, is empty).
+ParamBlock with_alpha(const ModelConfig& m, ParamBlock p, const std::vector<int>& slots, double alpha);
+
+/// The smallest alpha a table computes the model at: BB_ALPHA_MIN, or a mapped axis' alpha_lo.
+double alpha_floor(const ModelConfig& m);
 
 /// The albedo of every cell, with the request's method and samples, or to its tolerance times
 /// `share` (the split-sum table adds two integrals' errors: each gets half). A cell at alpha = 0

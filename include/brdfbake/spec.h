@@ -22,6 +22,20 @@ Spec parse_spec(const std::string& text);
 /// Parameters as the shared BRDF headers take them (bb_params): BB_MAX_PARAMS slots.
 using ParamBlock = std::array<double, 8>;
 
+/// What a table's roughness axis (its alpha) sets in a model (ModelTraits::roughness_axis): a
+/// microfacet model's alpha itself, in the registry's ALPHA_X and ALPHA_Y slots; a model without
+/// them may name one key that a stated mapping of alpha drives (oren-nayar's sigma, the Phong
+/// lobes' exponent n: host/models/spec.cpp, roughness_axis_of). Tables state a mapped axis in
+/// their header (attribute roughness_axis).
+struct RoughnessAxis {
+    const char* key = nullptr;                // the spec key the axis sets; nullptr: no roughness axis
+    const char* mapping = "";                 // the mapping with its source, as table headers state it
+    double (*value)(double alpha) = nullptr;  // the key's value at a table alpha; nullptr: alpha itself
+    double alpha_lo = 0.0, alpha_hi = 0.0;    // the alphas the mapping covers (a mapped axis: tables
+                                              // compute alpha below lo at lo, refuse above hi)
+    int slot = -1;                            // the mapped key's parameter slot
+};
+
 /// A model's entry in the model registry (brdf/model_registry.h, one row of its table), as the
 /// host sees it.
 struct ModelTraits {
@@ -48,6 +62,8 @@ struct ModelTraits {
     /// The planner's cost of one of its samples relative to GGX's (`plan`'s and `bake`'s estimates,
     /// host/scene/calibration.h); 1 unless measured to differ by more than 1.5x.
     double sample_cost;
+    /// What a table's roughness axis sets (RoughnessAxis; key nullptr: the model has none).
+    RoughnessAxis roughness_axis;
 };
 
 /// Every registered model, in the order of the registry's table.
@@ -81,6 +97,13 @@ struct ModelConfig {
 /// The parameter slots that a roughness axis (a table's alpha) sweeps: alpha_x's and alpha_y's.
 /// Throws Error when the model has none ("model 'lambert' has no roughness alpha to sweep; ...").
 std::vector<int> roughness_slots(const ModelConfig& model);
+
+/// The parameters with a table's roughness alpha set through the model's roughness axis (its
+/// alpha slots, or its mapped key at value(alpha)); throws Error as roughness_slots does.
+ParamBlock with_roughness(const ModelConfig& model, ParamBlock params, double alpha);
+
+/// The roughness axis of the model a spec names (its registry entry's; key nullptr for an unknown name).
+RoughnessAxis roughness_axis_of_spec(const std::string& spec_text);
 
 /// A Fresnel spec resolved against the registry.
 struct FresnelConfig {
