@@ -13,6 +13,7 @@
 #include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
 #include "integrate/launch.h"
+#include "integrate/random_walk.h"
 
 namespace brdfbake {
 
@@ -67,6 +68,7 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
     if (o.directions < 1 || o.directions > 4096) throw Error("--directions must be 1 to 4096");
     if (o.phis < 1 || o.phis > 360) throw Error("--phis must be 1 to 360");
     if (!(o.energy_tolerance >= 0) || !(o.reciprocity_tolerance >= 0)) throw Error("tolerances must be >= 0");
+    if (model.simulated) return run_check_walk(engine, model, fresnel, o);  // integrate/check_walk.cpp
     CheckReport r;
     r.options = o;
     r.model = model.canonical;
@@ -155,6 +157,14 @@ std::string check_report_text(const CheckReport& r) {
     if (r.scan_nonfinite > 0)
         std::snprintf(line, sizeof line, "  reciprocity  n/a   the scan met %llu NaN or Inf values (%llu pairs)\n",
                       (unsigned long long)r.scan_nonfinite, (unsigned long long)r.pairs);
+    else if (r.reciprocity_noise)
+        std::snprintf(line, sizeof line,
+                      "  reciprocity  %s  max |f(wo,wi) - f(wi,wo)| = %.2f standard errors (relative %.2e) at theta_i = "
+                      "%.1f, theta_o = %.1f, dphi = %.1f deg (%llu pairs of walk estimates, tolerance %.0f standard "
+                      "errors + %.0e)\n",
+                      r.reciprocity_violation ? "FAIL" : "pass", r.reciprocity_sigmas, r.max_rel, r.max_rel_theta_i * kDeg,
+                      r.max_rel_theta_o * kDeg, r.max_rel_dphi * kDeg, (unsigned long long)r.pairs, kReciprocitySigmas,
+                      r.reciprocity_tolerance);
     else if (r.max_rel == 0.0)
         std::snprintf(line, sizeof line, "  reciprocity  pass  f(wo,wi) = f(wi,wo) exactly at every pair (%llu pairs)\n",
                       (unsigned long long)r.pairs);

@@ -11,6 +11,7 @@
 #include "engine/device_buffer.h"
 #include "integrate/distributed_compute.h"
 #include "integrate/launch.h"
+#include "integrate/refine.h"
 #include "integrate/replicas.h"
 #include "models/key_reader.h"
 
@@ -151,6 +152,35 @@ WalkEvalResult walk_eval(Engine& engine, const WalkEvalRequest& req) {
         result.single.push_back(single);
     }
     return result;
+}
+
+AlbedoResult walk_albedo_result(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance,
+                                double share) {
+    WalkResult w;
+    if (tolerance.tolerance > 0.0) {
+        ToleranceRequest t = tolerance;
+        t.tolerance *= share;
+        try {
+            w = walk_albedo_to_tolerance(engine, req, t);
+        } catch (const ToleranceNotMet& e) {
+            throw e.restated(tolerance.tolerance, "");
+        }
+    } else {
+        w = walk_albedo(engine, req);
+    }
+    AlbedoResult out;
+    out.method = w.method;
+    out.samples_per_cell = w.walks_per_cell;
+    out.kernel_seconds = w.kernel_seconds;
+    out.total_samples = w.total_walks;
+    out.rounds = w.rounds;
+    out.tolerance = tolerance.tolerance > 0.0 ? tolerance.tolerance * share : 0.0;
+    for (const WalkAlbedo& v : w.values) {
+        AlbedoValue e = v.energy;
+        e.error += v.cutoff.value + v.cutoff.error;
+        out.values.push_back(e);
+    }
+    return out;
 }
 
 }  // namespace brdfbake

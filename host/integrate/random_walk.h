@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/check.h"
 #include "brdfbake/evaluate.h"
 
 namespace brdfbake {
@@ -73,5 +74,19 @@ struct WalkEvalResult {
 /// phase function towards wi times the masking of wi from that height; each value with its error
 /// (3 standard errors of the replicas). Throws NonFiniteError if a walk met NaN.
 WalkEvalResult walk_eval(Engine& engine, const WalkEvalRequest& req);
+
+/// `check` of a simulated model (integrate/check_walk.cpp; run_check calls it): the furnace by
+/// walk_albedo, reciprocity by walk_eval from both ends of each pair (a violation: a difference above
+/// kReciprocitySigmas standard errors plus the relative tolerance), the values over the same pairs.
+constexpr double kReciprocitySigmas = 6.0;
+CheckReport run_check_walk(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
+                           const CheckOptions& o);
+
+/// The walks' albedo E of `req`'s cells as an AlbedoResult (lut albedo of a scattering=multiple
+/// spec): walk_albedo, or walk_albedo_to_tolerance at `share` of tolerance.tolerance when that is > 0
+/// (ToleranceNotMet names the user's tolerance). The energy the bounce limit cut off is added to
+/// each value's error (it is not in E).
+AlbedoResult walk_albedo_result(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance,
+                                double share);
 
 }  // namespace brdfbake

@@ -4,10 +4,11 @@
 
 namespace brdfbake {
 
-ModelConfig sweep_model(const std::string& spec_text) {
+ModelConfig sweep_model(const std::string& spec_text, bool simulated) {
     const Spec spec = parse_spec(spec_text);
-    ModelConfig m = resolve_model(spec_text + (spec.keys.empty() && spec_text.find(':') == std::string::npos ? ":" : ",") +
-                                  "alpha=0.5");
+    const std::string text =
+        spec_text + (spec.keys.empty() && spec_text.find(':') == std::string::npos ? ":" : ",") + "alpha=0.5";
+    ModelConfig m = simulated ? resolve_model_simulated(text) : resolve_model(text);
     roughness_slots(m);
     // Canonical spec without the placeholder.
     const size_t p = m.canonical.find("alpha=0.5");
