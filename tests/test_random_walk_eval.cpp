@@ -9,6 +9,7 @@
 
 #include <cmath>
 #include <random>
+#include <sstream>
 
 #include "brdfbake/brdf/random_walk.h"
 #include "integrate/random_walk.h"
@@ -132,4 +133,50 @@ TEST_CASE("walk eval: reciprocity f(wo, wi) = f(wi, wo) within the estimates' no
             CHECK(std::hypot(a.error, b.error) < 0.25 * a.value);  // the comparison can see a 33% asymmetry
         }
     }
+}
+
+TEST_CASE("walk eval: check, lobe and lut albedo take scattering=multiple", "[random-walk]") {
+    // check: reciprocity of the walk estimates passes for GGX (conductor and dielectric), and a
+    // scattering=multiple furnace is E <= 1; lobe: the CSV's f against the textbook single lobe
+    // (multiple scattering only adds) with an f_error column; lut albedo: a walk table whose E with
+    // F = 1 is 1 less the cut-off (within its error, which holds the cut-off).
+    for (const std::string& spec : {std::string("ggx:alpha=0.6,scattering=multiple"),
+                                    std::string("ggx:alpha=0.4,scattering=multiple,eta=1.5")}) {
+        const auto r = testing::run_cli("check --model " + spec + " --directions 8 --samples 16384");
+        INFO(r.out << r.err);
+        CHECK(r.status == 0);
+        CHECK(r.out.find("standard errors") != std::string::npos);
+        CHECK(r.out.find("verdict: PASS") != std::string::npos);
+    }
+    const auto lobe = testing::run_cli(
+        "lobe --model ggx:alpha=0.5,scattering=multiple --theta-i 40 --resolution 7 --walks 4096 --data -");
+    REQUIRE(lobe.status == 0);
+    std::istringstream in(lobe.out);
+    std::string line;
+    int rows = 0;
+    while (std::getline(in, line)) {
+        if (line.empty() || line[0] == '#') continue;
+        if (line.rfind("model,", 0) == 0) {
+            CHECK(line == "model,theta_i_deg,theta_o_deg,f,f_cos_theta_i,f_error");
+            continue;
+        }
+        std::vector<double> v;
+        std::stringstream cells(line.substr(line.rfind('"') + 2));
+        for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+        REQUIRE(v.size() == 5);
+        if (std::fabs(v[1]) > 80) continue;  // near the horizon f's error is large (divided by cos)
+        const double t = v[1] * M_PI / 180, ti = 40 * M_PI / 180;
+        const ref::Dir wi = ref::dir(ti, M_PI), wo = ref::dir(std::fabs(t), t < 0 ? M_PI : 0.0);
+        const double single = double(ref::ggx_f(wo, wi, 0.5, 0.5, true));
+        INFO(line);
+        CHECK(v[2] >= single - v[4]);
+        CHECK(v[4] < 0.05 * v[2]);
+        ++rows;
+    }
+    CHECK(rows >= 5);
+    const std::string exr = "/tmp/brdfbake-walk3-albedo.exr";
+    const auto lut = testing::run_cli("lut albedo --model ggx:scattering=multiple --size 4x4 --samples 16384 -o " + exr);
+    INFO(lut.err);
+    CHECK(lut.status == 0);
+    CHECK(lut.err.find("scattering=multiple") != std::string::npos);
 }
