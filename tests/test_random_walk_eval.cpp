@@ -170,7 +170,7 @@ TEST_CASE("walk eval: check, lobe and lut albedo take scattering=multiple", "[ra
         const double single = double(ref::ggx_f(wo, wi, 0.5, 0.5, true));
         INFO(line);
         CHECK(v[2] >= single - v[4]);
-        CHECK(v[4] < 0.05 * v[2]);
+        CHECK(v[4] < 0.1 * v[2]);  // 4096 walks: the error is a few percent of f
         ++rows;
     }
     CHECK(rows >= 5);
