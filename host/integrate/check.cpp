@@ -64,6 +64,19 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     return m;
 }
 
+AlbedoRequest furnace_request(const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o) {
+    AlbedoRequest req;
+    req.model = model.id;
+    req.fresnel = fresnel;
+    req.samples = o.samples;
+    req.precision = o.precision;
+    const int nphi = model.anisotropic ? o.phis : 1;
+    for (int p = 0; p < nphi; ++p)
+        for (int k = 0; k < o.directions; ++k)
+            req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
+    return req;
+}
+
 CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o) {
     if (o.directions < 1 || o.directions > 4096) throw Error("--directions must be 1 to 4096");
     if (o.phis < 1 || o.phis > 360) throw Error("--phis must be 1 to 360");
@@ -99,15 +112,7 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
     r.reciprocity_violation = r.max_rel > r.reciprocity_tolerance;
 
     // White furnace over theta_o (and phi_o for anisotropic models).
-    AlbedoRequest req;
-    req.model = model.id;
-    req.fresnel = fresnel;
-    req.samples = o.samples;
-    req.precision = o.precision;
-    const int nphi = model.anisotropic ? o.phis : 1;
-    for (int p = 0; p < nphi; ++p)
-        for (int k = 0; k < o.directions; ++k)
-            req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
+    const AlbedoRequest req = furnace_request(model, fresnel, o);
     r.furnace_directions = int(req.cells.size());
     stage.update(1, "white furnace of " + std::to_string(req.cells.size()) + " directions", 1);
     try {

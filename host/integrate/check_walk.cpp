@@ -80,15 +80,7 @@ CheckReport run_check_walk(Engine& engine, const ModelConfig& model, const Fresn
     stage.update(0, "reciprocity and values by walk estimates", 1);
     scan_walk_reciprocity(engine, model, fresnel, o, r);
 
-    AlbedoRequest req;
-    req.model = model.id;
-    req.fresnel = fresnel;
-    req.samples = o.samples;
-    req.precision = o.precision;
-    const int nphi = model.anisotropic ? o.phis : 1;
-    for (int p = 0; p < nphi; ++p)
-        for (int k = 0; k < o.directions; ++k)
-            req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
+    const AlbedoRequest req = furnace_request(model, fresnel, o);
     r.furnace_directions = int(req.cells.size());
     stage.update(1, "white furnace by walks of " + std::to_string(req.cells.size()) + " directions", 1);
     try {

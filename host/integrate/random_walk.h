@@ -79,6 +79,9 @@ WalkEvalResult walk_eval(Engine& engine, const WalkEvalRequest& req);
 /// walk_albedo, reciprocity by walk_eval from both ends of each pair (a violation: a difference above
 /// kReciprocitySigmas standard errors plus the relative tolerance), the values over the same pairs.
 constexpr double kReciprocitySigmas = 6.0;
+/// The white furnace's directions of `check` (check.cpp; both checks): o.directions theta_o texel
+/// centres, times o.phis azimuths for an anisotropic model, o.samples each.
+AlbedoRequest furnace_request(const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o);
 CheckReport run_check_walk(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
                            const CheckOptions& o);
 
