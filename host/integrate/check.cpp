@@ -77,6 +77,19 @@ AlbedoRequest furnace_request(const ModelConfig& model, const FresnelConfig& fre
     return req;
 }
 
+void record_furnace(CheckReport& r, const std::vector<AlbedoValue>& values, const AlbedoRequest& req) {
+    for (size_t c = 0; c < values.size(); ++c) {
+        const AlbedoValue& v = values[c];
+        if (c == 0 || v.value - v.error > r.max_albedo - r.max_albedo_error) {
+            r.max_albedo = v.value;
+            r.max_albedo_error = v.error;
+            r.max_albedo_mu = req.cells[c].mu;
+            r.max_albedo_phi = req.cells[c].phi;
+        }
+    }
+    r.energy_violation = r.max_albedo - r.max_albedo_error > 1.0 + r.options.energy_tolerance;
+}
+
 CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o) {
     if (o.directions < 1 || o.directions > 4096) throw Error("--directions must be 1 to 4096");
     if (o.phis < 1 || o.phis > 360) throw Error("--phis must be 1 to 360");
@@ -120,16 +133,7 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
                                                             : compute_albedo(engine, req);
         r.furnace_samples = res.samples_per_cell;
         r.furnace_analytic = res.samples_per_cell == 0;
-        for (size_t c = 0; c < res.values.size(); ++c) {
-            const AlbedoValue& v = res.values[c];
-            if (c == 0 || v.value - v.error > r.max_albedo - r.max_albedo_error) {
-                r.max_albedo = v.value;
-                r.max_albedo_error = v.error;
-                r.max_albedo_mu = req.cells[c].mu;
-                r.max_albedo_phi = req.cells[c].phi;
-            }
-        }
-        r.energy_violation = r.max_albedo - r.max_albedo_error > 1.0 + o.energy_tolerance;
+        record_furnace(r, res.values, req);
     } catch (const NonFiniteError& e) {
         r.nonfinite += e.count;
         std::ostringstream w;

@@ -86,16 +86,9 @@ CheckReport run_check_walk(Engine& engine, const ModelConfig& model, const Fresn
     try {
         const WalkResult w = walk_albedo(engine, req);
         r.furnace_samples = w.walks_per_cell;
-        for (size_t c = 0; c < w.values.size(); ++c) {
-            const AlbedoValue& v = w.values[c].total;  // R + T of the dielectric, E of the conductor
-            if (c == 0 || v.value - v.error > r.max_albedo - r.max_albedo_error) {
-                r.max_albedo = v.value;
-                r.max_albedo_error = v.error;
-                r.max_albedo_mu = req.cells[c].mu;
-                r.max_albedo_phi = req.cells[c].phi;
-            }
-        }
-        r.energy_violation = r.max_albedo - r.max_albedo_error > 1.0 + o.energy_tolerance;
+        std::vector<AlbedoValue> total;  // R + T of the dielectric, E of the conductor
+        for (const WalkAlbedo& v : w.values) total.push_back(v.total);
+        record_furnace(r, total, req);
     } catch (const NonFiniteError& e) {
         r.nonfinite += e.count;
         r.nonfinite_where = "random walks at mu = " + std::to_string(req.cells[e.cell].mu);

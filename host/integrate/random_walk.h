@@ -82,6 +82,9 @@ constexpr double kReciprocitySigmas = 6.0;
 /// The white furnace's directions of `check` (check.cpp; both checks): o.directions theta_o texel
 /// centres, times o.phis azimuths for an anisotropic model, o.samples each.
 AlbedoRequest furnace_request(const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o);
+/// The furnace's worst direction (the largest E less its error) of `values` (one per req.cells)
+/// into r, and its verdict against r.options.energy_tolerance (check.cpp; both checks).
+void record_furnace(CheckReport& r, const std::vector<AlbedoValue>& values, const AlbedoRequest& req);
 CheckReport run_check_walk(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
                            const CheckOptions& o);
 
