@@ -10,6 +10,8 @@
  * The host (host/integrate/random_walk.cpp) turns the replicas into means and error estimates.
  * A walk that meets a non-finite number is counted in bad_count and adds nothing.
  *
+ * A second entry, BB_ENTRY_WALK_EVAL (below), estimates f(wo, wi) by next-event estimation.
+ *
  * Build options: -D BB_MODEL=<BB_MODEL_GGX or BB_MODEL_BECKMANN> -D BB_FRESNEL=<kind>
  * [-D BB_REAL_DOUBLE] -D BB_PHILOX -I <Random123's include directory>. */
 #include "brdfbake/brdf/kernel_abi.h"
@@ -42,6 +44,7 @@ __kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global c
         ok &= (unsigned int)(isfinite(p.v[k]) && isfinite(fp.v[k]));
     }
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], (bb_real)cell_phi[cell]);
+    const bb_vec3 none = bb_v3(BB_R(0.0), BB_R(0.0), BB_R(0.0)); /* no next-event target */
     const int bounces = (int)p.v[BB_SMITH_BOUNCES];
     philox4x32_key_t key = {{seed_lo, seed_hi}};
     const int dielectric = p.v[BB_SMITH_WALK_ETA] > BB_R(0.0);
@@ -50,8 +53,9 @@ __kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global c
     unsigned int bad = 0;
     for (unsigned int i = 0; i < n_walks && ok; ++i) {
         const bb_walk_result r =
-            dielectric ? bb_walk_dielectric(BB_WALK_DIST, p, wo, bounces, key, i, rep, cell_stream[cell])
-                       : bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, bounces, key, i, rep, cell_stream[cell]);
+            dielectric ? bb_walk_dielectric(BB_WALK_DIST, p, wo, none, bounces, key, i, rep, cell_stream[cell])
+                       : bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, none, bounces, key, i, rep,
+                                           cell_stream[cell]);
         bad += (unsigned int)r.bad;
         BB_KAHAN_ADD(sum[0], comp[0], r.energy);
         BB_KAHAN_ADD(sum[1], comp[1], r.single);
@@ -61,5 +65,49 @@ __kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global c
     }
     const bb_real n = (bb_real)n_walks;
     for (int k = 0; k < BB_WALK_SUMS; ++k) sums[BB_WALK_SUMS * gid + k] = sum[k] / n;
+    bad_count[gid] = ok ? bad : n_walks;
+}
+
+/* f(wo, wi) wi.z by the walks' next-event estimation (brdf/random_walk.h): each work-item runs one
+ * replica of one pair, `n_walks` walks from the pair's wo towards its wi (both unit vectors above
+ * the surface, xyz in `dirs`, six per pair), and writes BB_WALK_EVAL_SUMS replica means: the
+ * estimate of every order up to the bounce limit and its first order. Reflection only (the
+ * dielectric's too). */
+__kernel void BB_ENTRY_WALK_EVAL(__global const bb_scalar* dirs, __global const bb_scalar* model_p,
+                                 __global const bb_scalar* fresnel_p, const unsigned int n_walks,
+                                 const unsigned int n_replicas, const unsigned int n_pairs, const unsigned int seed_lo,
+                                 const unsigned int seed_hi, __global const unsigned int* pair_stream,
+                                 __global bb_scalar* sums, __global unsigned int* bad_count) {
+    const unsigned int gid = (unsigned int)get_global_id(0);
+    if (gid >= n_pairs * n_replicas) return;
+    const unsigned int pair = gid / n_replicas, rep = gid - pair * n_replicas;
+    bb_params p, fp;
+    unsigned int ok = 1;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
+        p.v[k] = (bb_real)model_p[pair * BB_MAX_PARAMS + k];
+        fp.v[k] = (bb_real)fresnel_p[k];
+        ok &= (unsigned int)(isfinite(p.v[k]) && isfinite(fp.v[k]));
+    }
+    __global const bb_scalar* d = dirs + 6 * pair;
+    const bb_vec3 wo = bb_v3((bb_real)d[0], (bb_real)d[1], (bb_real)d[2]);
+    const bb_vec3 wi = bb_v3((bb_real)d[3], (bb_real)d[4], (bb_real)d[5]);
+    const int bounces = (int)p.v[BB_SMITH_BOUNCES];
+    philox4x32_key_t key = {{seed_lo, seed_hi}};
+    const int dielectric = p.v[BB_SMITH_WALK_ETA] > BB_R(0.0);
+    bb_real sum[BB_WALK_EVAL_SUMS], comp[BB_WALK_EVAL_SUMS];
+    for (int k = 0; k < BB_WALK_EVAL_SUMS; ++k) sum[k] = comp[k] = BB_R(0.0);
+    unsigned int bad = 0;
+    for (unsigned int i = 0; i < n_walks && ok && wo.z > BB_R(0.0) && wi.z > BB_R(0.0); ++i) {
+        const bb_walk_result r =
+            dielectric ? bb_walk_dielectric(BB_WALK_DIST, p, wo, wi, bounces, key, i, rep, pair_stream[pair])
+                       : bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, wi, bounces, key, i, rep,
+                                           pair_stream[pair]);
+        const int finite = bb_isfinite(r.f_cos) && !r.bad;
+        bad += (unsigned int)!finite;
+        BB_KAHAN_ADD(sum[0], comp[0], finite ? r.f_cos : BB_R(0.0));
+        BB_KAHAN_ADD(sum[1], comp[1], finite ? r.f_cos_single : BB_R(0.0));
+    }
+    const bb_real n = (bb_real)n_walks;
+    for (int k = 0; k < BB_WALK_EVAL_SUMS; ++k) sums[BB_WALK_EVAL_SUMS * gid + k] = sum[k] / n;
     bad_count[gid] = ok ? bad : n_walks;
 }

@@ -189,9 +189,9 @@ TEST_CASE("walk: the command prints E, its single-scattering part and the cut-of
          {std::string("albedo --model ggx:alpha=0.5,scattering=multiple --method quadrature"),
           std::string("albedo --model ggx:alpha=0.5,bounces=10"),
           std::string("albedo --model beckmann:alpha=0.5,scattering=multiple,shadowing=separable"),
-          std::string("lut albedo --model ggx:scattering=multiple --size 4x4 -o /tmp/walk-refused.exr"),
-          std::string("check --model beckmann:alpha=0.5,scattering=multiple"),
-          std::string("lobe --model ggx:alpha=0.5,scattering=multiple --theta-i 60 -o /tmp/walk-refused.png"),
+          std::string("lut dfg --model ggx:scattering=multiple --size 4x4 -o /tmp/walk-refused.exr"),
+          std::string("lut albedo --model ggx:scattering=multiple,eta=1.5 --size 4x4 -o /tmp/walk-refused.exr"),
+          std::string("reciprocity --model beckmann:alpha=0.5,scattering=multiple -o /tmp/walk-refused.exr"),
           std::string("furnace --model ggx:alpha=0.5,scattering=multiple -o /tmp/walk-refused.png")}) {
         const auto e = testing::run_cli(args);
         INFO(args << "\n" << e.err);

@@ -53,6 +53,7 @@ std::string render(const CheckReport& r, Format format) {
                             {"pairs", r.pairs},
                             {"nonfinite", r.scan_nonfinite},
                             {"violation", r.reciprocity_violation}};
+        if (r.reciprocity_noise) j["reciprocity"]["standard_errors"] = r.reciprocity_sigmas;
         if (r.scan_nonfinite > 0) j["reciprocity"]["violation"] = nullptr;  // unknown
         j["values"] = {{"nonfinite", r.nonfinite},
                        {"min_value", r.min_value},
@@ -66,7 +67,7 @@ std::string render(const CheckReport& r, Format format) {
 }
 
 int run_check_command(const CheckArgs& a, const GlobalOptions& g) {
-    const ModelConfig model = resolve_model(a.model);
+    const ModelConfig model = resolve_model_simulated(a.model);  // scattering=multiple: by walk estimates
     const FresnelConfig fresnel = resolve_fresnel(a.fresnel, a.wavelength_nm);
     if (fresnel.kind != 0 && !model.uses_fresnel)
         throw Error("model '" + model.name + "' has no Fresnel term; drop --fresnel");

@@ -4,16 +4,21 @@
 // F = 1, E_F(mu) with Schlick's F, and their cosine-weighted average Eavg, tables/mu_average.h) and
 // compared, per alpha and mu, with the random walk of Heitz, Hanika, d'Eon and Dachsbacher 2016
 // (brdf/random_walk.h) under the same Schlick term at every bounce: the difference in albedo, with
-// the walk's error estimate plus the integrals'.
+// the walk's error estimate plus the integrals', and the L1 distance between each scheme's lobe and
+// the walk's (f by next-event estimation, walk_eval), integral of |f_scheme - f_walk| cos over wi.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <memory>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 
 #include "brdfbake/albedo.h"
 #include "brdfbake/analytic.h"
+#include "brdfbake/brdf/microfacet.h"
+#include "brdfbake/evaluate.h"
 #include "brdfbake/error.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
@@ -35,11 +40,20 @@ struct SchemeInputs {
     double f_avg; // Favg = 2 int F(mu) mu dmu = f0 + (1 - f0)/21 for Schlick [KC17]
 };
 
-/// A compensation scheme: its name, its source, and the compensated albedo it predicts.
+/// What a scheme's lobe adds at one wi: the single-scattering lobe f_ss(wo, wi) (with Schlick's F)
+/// and E(mu_i), beside the inputs at wo.
+struct LobePoint {
+    double f_ss;  // the height-correlated lobe with Schlick's F at (wo, wi)
+    double e_i;   // E(mu_i), F = 1
+};
+
+/// A compensation scheme: its name, its source, the compensated albedo it predicts and its lobe
+/// f(wo, wi) (whose integral of f cos over wi is that albedo).
 struct Scheme {
     const char* name;
     const char* source;
     double (*albedo)(const SchemeInputs&);
+    double (*lobe)(const SchemeInputs&, const LobePoint&);
 };
 
 /// The registry of schemes (one row each).
@@ -51,19 +65,29 @@ const std::vector<Scheme>& schemes() {
         {"kulla-conty", "Kulla and Conty 2017 (E, Eavg)",
          [](const SchemeInputs& x) {
              return x.e_f + (1.0 - x.e) * x.f_avg * x.f_avg * x.e_avg / (1.0 - x.f_avg * (1.0 - x.e_avg));
+         },
+         [](const SchemeInputs& x, const LobePoint& p) {
+             return p.f_ss + (1.0 - x.e) * (1.0 - p.e_i) / (M_PI * (1.0 - x.e_avg)) * x.f_avg * x.f_avg * x.e_avg /
+                                 (1.0 - x.f_avg * (1.0 - x.e_avg));
          }},
         // [FA19] Fdez-Aguera 2019, "A Multiple-Scattering Microfacet Model for Real-Time Image-based
         // Lighting": Ess = A + B, FssEss = F0 A + B (the split sum), Ems = 1 - Ess,
-        // Fms = FssEss Favg / (1 - Ems Favg); albedo FssEss + Fms Ems.
+        // Fms = FssEss Favg / (1 - Ems Favg); albedo FssEss + Fms Ems, the added part a uniform
+        // (cosine-weighted) lobe Fms Ems / pi, as its irradiance term is.
         {"fdez-aguera", "Fdez-Aguera 2019 (split-sum multiple scattering)",
          [](const SchemeInputs& x) {
              const double ems = 1.0 - x.e;
              return x.e_f + ems * x.e_f * x.f_avg / (1.0 - ems * x.f_avg);
+         },
+         [](const SchemeInputs& x, const LobePoint& p) {
+             const double ems = 1.0 - x.e;
+             return p.f_ss + ems * x.e_f * x.f_avg / (1.0 - ems * x.f_avg) / M_PI;
          }},
         // [T19] Turquin 2019, "Practical multiple scattering compensation for microfacet models":
         // the single-scattering lobe scaled by 1 + F0 (1/E(mu_o) - 1).
         {"turquin", "Turquin 2019 (1 + F0 (1/E - 1))",
-         [](const SchemeInputs& x) { return x.e_f * (1.0 + x.f0 * (1.0 / x.e - 1.0)); }},
+         [](const SchemeInputs& x) { return x.e_f * (1.0 + x.f0 * (1.0 / x.e - 1.0)); },
+         [](const SchemeInputs& x, const LobePoint& p) { return p.f_ss * (1.0 + x.f0 * (1.0 / x.e - 1.0)); }},
     };
     return s;
 }
@@ -75,6 +99,8 @@ struct CompensationOptions {
     std::string mu = "0.1,0.3,0.5,0.7,1";
     double f0 = 0.5;
     std::int64_t walks = std::int64_t(1) << 18;
+    int lobe_directions = 256;          // directions wi of the lobe distance (0: none)
+    std::int64_t lobe_walks = 1024;     // walks per direction
     std::string format = "table";
     std::string output;
     std::string plot;
@@ -87,6 +113,9 @@ struct Row {
     SchemeInputs in;
     double input_error;  // the integrals' error, carried into every scheme's
     std::vector<double> scheme;
+    std::vector<double> lobe_l1;  // per scheme: integral of |f_scheme - f_walk| cos over wi
+    double l1_error = 0.0;        // 3 standard errors of that integral (the largest over the schemes)
+    double l1_noise = 0.0;        // what the walk's noise alone adds to it (expected |noise|)
 };
 
 std::vector<AlbedoValue> single_albedo(Engine& engine, const ModelConfig& m, const FresnelConfig& f,
@@ -99,6 +128,78 @@ std::vector<AlbedoValue> single_albedo(Engine& engine, const ModelConfig& m, con
     ToleranceRequest tol;
     tol.tolerance = tolerance;
     return albedo_of_model(engine, m, f, req, tol).values;
+}
+
+/// E(mu) with F = 1 at kEGrid mu texel centres, linear between them (clamped at the ends): E(mu_i)
+/// of Kulla and Conty's lobe.
+constexpr int kEGrid = 64;
+double e_at(const std::vector<AlbedoValue>& grid, double mu) {
+    const double x = std::clamp(mu * kEGrid - 0.5, 0.0, double(kEGrid - 1));
+    const int k = std::min(int(x), kEGrid - 2);
+    return grid[k].value + (x - k) * (grid[k + 1].value - grid[k].value);
+}
+
+/// The models and terms of one alpha that the lobe distance reads.
+struct LobeInputs {
+    const ModelConfig &single, &walk;
+    const FresnelConfig &none, &schlick;
+    std::vector<AlbedoValue> e_grid;
+};
+
+/// Each scheme's lobe against the walk's at (alpha, mu) (Row::lobe_l1): integral of
+/// |f_scheme - f_walk| cos over wi by o.lobe_directions directions, half cosine-weighted and half
+/// the single-scattering lobe's visible-normal sample (sample_on_device), weighted by the mixture's
+/// density (the visible normals' p(wi) = f wi.z G1(wo) / G2(wo, wi) with F = 1, Lambda from
+/// brdf/microfacet.h); f_walk by next-event estimation on o.lobe_walks walks per direction.
+void lobe_distance(Engine& engine, const CompensationOptions& o, const LobeInputs& in, Row& r) {
+    const int n = o.lobe_directions;
+    const Vec3 wo{std::sqrt(1.0 - r.mu * r.mu), 0.0, r.mu};
+    std::mt19937_64 rng(std::uint64_t(r.alpha * 1e6) * 1000003u + std::uint64_t(r.mu * 1e6));
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    std::vector<Vec3> wis;
+    for (int k = 0; k < n / 2; ++k) {  // cosine-weighted
+        const double z = std::sqrt(u(rng)), p = 2 * M_PI * u(rng), s = std::sqrt(1 - z * z);
+        wis.push_back({s * std::cos(p), s * std::sin(p), z});
+    }
+    std::vector<std::array<double, 2>> us;
+    for (int k = n / 2; k < n; ++k) us.push_back({u(rng), u(rng)});
+    for (const DeviceSample& d : sample_on_device(engine, in.single, in.none, Precision::Double,
+                                                  std::vector<Vec3>(us.size(), wo), us))
+        if (d.wi[2] > 0.0 && std::isfinite(d.weight)) wis.push_back(d.wi);  // one below the horizon adds 0
+    const std::vector<Vec3> wos(wis.size(), wo);
+    const std::vector<double> f1 = evaluate_on_device(engine, in.single, in.none, Precision::Double, wos, wis);
+    const std::vector<double> f_ss = evaluate_on_device(engine, in.single, in.schlick, Precision::Double, wos, wis);
+    WalkEvalRequest req;
+    req.model = in.walk.id;
+    req.fresnel = in.schlick;
+    req.samples = std::uint64_t(o.lobe_walks);
+    for (const Vec3& wi : wis) req.pairs.push_back({wo, wi, in.walk.params});
+    const WalkEvalResult walk = walk_eval(engine, req);
+    const bool beckmann = in.single.name == "beckmann";
+    const auto lambda = [&](const Vec3& w) {
+        const bb_vec3 v = bb_v3(w[0], w[1], w[2]);
+        return beckmann ? bb_beckmann_lambda(v, r.alpha, r.alpha) : bb_ggx_lambda(v, r.alpha, r.alpha);
+    };
+    const double lo = lambda(wo);
+    std::vector<double> sum(schemes().size(), 0.0), sum2(schemes().size(), 0.0);
+    double noise = 0.0;
+    for (size_t k = 0; k < wis.size(); ++k) {
+        const double z = wis[k][2];
+        const double p = 0.5 * z / M_PI + 0.5 * f1[k] * z * (1.0 + lo + lambda(wis[k])) / (1.0 + lo);
+        const LobePoint at{f_ss[k], e_at(in.e_grid, z)};
+        for (size_t s = 0; s < schemes().size(); ++s) {
+            const double d = std::fabs(schemes()[s].lobe(r.in, at) - walk.f[k].value) * z / p;
+            sum[s] += d;
+            sum2[s] += d * d;
+        }
+        noise += walk.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z / p;
+    }
+    for (size_t s = 0; s < schemes().size(); ++s) {
+        const double mean = sum[s] / n;
+        r.lobe_l1.push_back(mean);
+        r.l1_error = std::max(r.l1_error, 3.0 * std::sqrt(std::max(0.0, sum2[s] / n - mean * mean) / (n - 1)));
+    }
+    r.l1_noise = noise / n;
 }
 
 std::vector<Row> compute(Engine& engine, const CompensationOptions& o, const std::vector<double>& alphas,
@@ -123,10 +224,16 @@ std::vector<Row> compute(Engine& engine, const CompensationOptions& o, const std
         req.samples = std::uint64_t(o.walks);
         req.cells = cells_for(mus, 0.0, walk_model.params);
         const WalkResult walk = walk_albedo(engine, req);
+        std::vector<double> grid;
+        for (int k = 0; k < kEGrid; ++k) grid.push_back((k + 0.5) / kEGrid);
+        const LobeInputs lobe{single, walk_model, none, schlick,
+                              o.lobe_directions > 0 ? single_albedo(engine, single, none, grid, 1e-4)
+                                                    : std::vector<AlbedoValue>{}};
         for (size_t k = 0; k < mus.size(); ++k) {
             Row r{a, mus[k], walk.values[k].energy, {e[k].value, e_f[k].value, avg.value[0], o.f0, o.f0 + (1 - o.f0) / 21},
-                  e[k].error + e_f[k].error + avg.error[0], {}};
+                  e[k].error + e_f[k].error + avg.error[0], {}, {}, 0.0, 0.0};
             for (const Scheme& s : schemes()) r.scheme.push_back(s.albedo(r.in));
+            if (o.lobe_directions > 0) lobe_distance(engine, o, lobe, r);
             rows.push_back(r);
         }
     }
@@ -152,6 +259,11 @@ std::string render(const CompensationOptions& o, const std::vector<size_t>& pick
                 e[all[s].name] = r.scheme[s];
                 e[std::string(all[s].name) + "_difference"] = r.scheme[s] - r.walk.value;
                 e[std::string(all[s].name) + "_error"] = r.walk.error + r.input_error;
+                if (!r.lobe_l1.empty()) e[std::string(all[s].name) + "_lobe_l1"] = r.lobe_l1[s];
+            }
+            if (!r.lobe_l1.empty()) {
+                e["lobe_l1_error"] = r.l1_error;
+                e["lobe_l1_noise"] = r.l1_noise;
             }
             j["results"].push_back(e);
         }
@@ -165,10 +277,20 @@ std::string render(const CompensationOptions& o, const std::vector<size_t>& pick
             << "# walk: the multiple-scattering albedo; single: E_F, the height-correlated lobe's; per scheme its "
                "albedo minus the walk's (error: the walk's plus the integrals')\n";
         for (size_t s : picked) out << "# " << all[s].name << ": " << all[s].source << "\n";
+        if (o.lobe_directions > 0)
+            out << "# l1 (per scheme): integral of |f_scheme - f_walk| cos over wi, " << o.lobe_directions
+                << " directions x " << o.lobe_walks << " walks (next-event estimation); l1_err: 3 standard errors; "
+                   "noise: what the walk's noise alone adds\n";
     }
+    const bool lobe = o.lobe_directions > 0;
     out << (csv ? "alpha,mu,walk,walk_error,single" : "   alpha      mu       walk      error     single");
     for (size_t s : picked) out << (csv ? "," : " ") << all[s].name << (csv ? "_difference" : "");
-    out << (csv ? ",error\n" : "      error\n");
+    out << (csv ? ",error" : "      error");
+    if (lobe) {
+        for (size_t s : picked) out << (csv ? "," : " ") << all[s].name << "_l1";
+        out << (csv ? ",l1_error,l1_noise" : "     l1_err      noise");
+    }
+    out << "\n";
     char cell[96];
     for (const Row& r : rows) {
         std::snprintf(cell, sizeof cell, csv ? "%.17g,%.17g,%.17g,%.3e,%.17g" : "%8.4f %7.4f %10.6f %10.2e %10.6f",
@@ -181,8 +303,20 @@ std::string render(const CompensationOptions& o, const std::vector<size_t>& pick
                 std::snprintf(cell, sizeof cell, " %*.6f", int(std::strlen(all[s].name)), r.scheme[s] - r.walk.value);
             out << cell;
         }
-        std::snprintf(cell, sizeof cell, csv ? ",%.3e\n" : " %10.2e\n", r.walk.error + r.input_error);
+        std::snprintf(cell, sizeof cell, csv ? ",%.3e" : " %10.2e", r.walk.error + r.input_error);
         out << cell;
+        if (lobe) {
+            for (size_t s : picked) {
+                if (csv)
+                    std::snprintf(cell, sizeof cell, ",%.17g", r.lobe_l1[s]);
+                else
+                    std::snprintf(cell, sizeof cell, " %*.5f", int(std::strlen(all[s].name)) + 3, r.lobe_l1[s]);
+                out << cell;
+            }
+            std::snprintf(cell, sizeof cell, csv ? ",%.3e,%.3e" : " %10.2e %10.2e", r.l1_error, r.l1_noise);
+            out << cell;
+        }
+        out << "\n";
     }
     return out.str();
 }
@@ -211,6 +345,23 @@ void plot_rows(const std::string& path, const CompensationOptions& o, const std:
         p.lines.push_back(RefLine{'y', 0.0, ""});
         fig.panels.push_back(p);
     }
+    if (o.lobe_directions > 0)  // a second row: each scheme's lobe L1 distance from the walk's
+        for (size_t s : picked) {
+            PlotSpec p;
+            p.title = std::string(schemes()[s].name) + ": lobe L1 distance from the walk's";
+            p.x.label = "\\mu = cos \\theta_o";
+            p.y.label = "\\int |f - f_{walk}| cos \\theta_i d\\omega_i";
+            p.x.lo = 0.0;
+            p.x.hi = 1.0;
+            for (const Row& r : rows) {
+                if (p.curves.empty() || p.curves.back().label != "\\alpha = " + format_number(r.alpha))
+                    p.curves.push_back(Curve{"\\alpha = " + format_number(r.alpha), {}, {}, ""});
+                p.curves.back().x.push_back(r.mu);
+                p.curves.back().y.push_back(r.lobe_l1[s]);
+            }
+            fig.panels.push_back(p);
+        }
+    fig.columns = int(picked.size());
     fig.caption = "random walk (Heitz et al. 2016) against each scheme, " + o.model + ", Schlick f_0 = " +
                   format_number(o.f0) + " at every bounce";
     write_figure(path, fig);
@@ -227,8 +378,12 @@ int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
         if (o.scheme == "all" || o.scheme == schemes()[s].name) picked.push_back(s);
     }
     if (picked.empty()) throw Error("--scheme: unknown scheme '" + o.scheme + "'; known: all, " + names);
-    if (o.model != "ggx" && o.model != "beckmann")
-        throw Error("--model: '" + o.model + "' is not a distribution of the random walk; use ggx or beckmann");
+    // The random walk's resolver names what it does not take (a model without scattering=multiple).
+    if (resolve_model_simulated(o.model + ":alpha=0.5,scattering=multiple").dielectric_walk)
+        throw Error("--model: give the distribution's name (ggx or beckmann): the schemes compensate a conductor");
+    if (o.lobe_directions < 0 || o.lobe_directions == 1 || o.lobe_directions > 1 << 20)
+        throw Error("--lobe-directions must be 0 or 2 to 2^20");
+    if (o.lobe_walks < 32) throw Error("--lobe-walks must be at least 32");
     if (!(o.f0 >= 0.0 && o.f0 <= 1.0)) throw Error("--f0: " + format_number(o.f0) + " must lie in [0, 1]");
     if (o.walks < 16) throw Error("--walks must be at least 16");
     const std::vector<double> alphas = parse_number_list(o.alpha, "--alpha");
@@ -256,6 +411,10 @@ void add_compensation_command(CLI::App& app, const GlobalOptions& global, Action
     cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
     cmd->add_option("--f0", o->f0, "Schlick's normal reflectance at every bounce")->capture_default_str();
     cmd->add_option("--walks", o->walks, "random walks per direction")->capture_default_str();
+    cmd->add_option("--lobe-directions", o->lobe_directions,
+                    "directions wi of each lobe's L1 distance from the walk's (0: albedo only)")
+        ->capture_default_str();
+    cmd->add_option("--lobe-walks", o->lobe_walks, "walks per direction wi of the lobe distance")->capture_default_str();
     add_format_option(cmd, o->format, {"table", "json", "csv"});
     cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
     cmd->add_option("--plot", o->plot, "draw each scheme's difference from the walk against mu into FILE.png or .svg");

@@ -15,6 +15,7 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
+#include "integrate/random_walk.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"
 
@@ -35,7 +36,29 @@ struct LobeOptions {
     std::string output;  // picture
     std::string data;    // CSV of the numbers
     std::string view = "plane";  // plane: the polar plot in the plane of incidence; 3d: the lobe in 3D
+    std::int64_t walks = 1 << 14;  // a simulated model (scattering=multiple): walks per direction pair
 };
+
+/// f(wo[k], wis[k]) of a model: the eval kernel, or for a simulated model (scattering=multiple) the
+/// walks' next-event estimate (integrate/random_walk.h), its error estimate in *error.
+std::vector<double> lobe_values(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
+                                Precision precision, const std::vector<Vec3>& wo, const std::vector<Vec3>& wis,
+                                std::int64_t walks, std::vector<double>* error) {
+    if (!model.simulated) return evaluate_on_device(engine, model, fresnel, precision, wo, wis);
+    WalkEvalRequest req;
+    req.model = model.id;
+    req.fresnel = fresnel;
+    req.samples = std::uint64_t(walks);
+    req.precision = precision;
+    for (size_t k = 0; k < wo.size(); ++k) req.pairs.push_back({wis[k], wo[k], model.params});  // walks from wi
+    const WalkEvalResult r = walk_eval(engine, req);
+    std::vector<double> f;
+    for (const AlbedoValue& v : r.f) {
+        f.push_back(v.value);
+        if (error) error->push_back(v.error);
+    }
+    return f;
+}
 
 /// A direction at angle t (degrees, signed) from the normal in the plane of azimuth phi (degrees):
 /// positive t lies on the phi side, negative t on the opposite side.
@@ -48,6 +71,7 @@ struct LobeCurve {
     std::string model;
     double theta_i = 0.0;
     std::vector<double> theta_o, f, f_cos;  // signed outgoing angle (+: the mirror side)
+    std::vector<double> f_error;            // a simulated model's error estimate of f (else empty)
     double delta_weight = -1.0;             // a delta lobe: its reflectance (else -1)
 };
 
@@ -114,7 +138,7 @@ void write_lobe_3d(Engine& engine, const LobeOptions& o, const std::vector<Model
                         wo.push_back({d[0], d[1], d[2]});
                         wis.push_back(wi);
                     }
-                const std::vector<double> f = evaluate_on_device(engine, model, fresnel, precision, wo, wis);
+                const std::vector<double> f = lobe_values(engine, model, fresnel, precision, wo, wis, o.walks, nullptr);
                 double peak = 0.0;
                 for (double v : f) {
                     if (!std::isfinite(v)) throw Error("the model produced NaN or Inf; run `brdfbake check`");
@@ -161,13 +185,14 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
     if (!o.data.empty()) check_text_output(o.data);
     if (o.resolution < 3 || o.resolution > 100000) throw Error("--resolution must be 3 to 100000");
     if (!std::isfinite(o.phi_i)) throw Error("--phi-i must be a finite angle");
+    if (o.walks < 32 || o.walks > (std::int64_t(1) << 36)) throw Error("--walks must be 32 to 2^36");
     const std::vector<double> thetas = parse_number_list(o.theta_i, "--theta-i");
     for (double t : thetas)
         if (!(t >= 0.0 && t < 90.0)) throw Error("--theta-i: " + format_number(t) + " must lie in [0, 90) degrees");
     const FresnelConfig fresnel = resolve_fresnel(o.fresnel, o.wavelength_nm);
     std::vector<ModelConfig> models;
     for (const auto& spec : o.models) {
-        models.push_back(resolve_model(spec));
+        models.push_back(resolve_model_simulated(spec));
         if (fresnel.kind != 0 && !models.back().uses_fresnel)
             throw Error("model '" + models.back().name + "' has no Fresnel term; drop --fresnel");
     }
@@ -203,7 +228,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
                     wis.push_back(wi);
                 }
                 // f(wo, wi) in brdfbake's convention: light arriving from wi leaves towards wo.
-                c.f = evaluate_on_device(engine, model, fresnel, precision, wo, wis);
+                c.f = lobe_values(engine, model, fresnel, precision, wo, wis, o.walks, &c.f_error);
                 for (double f : c.f)
                     if (!std::isfinite(f))
                         throw Error("the model produced NaN or Inf in the plane of incidence; run `brdfbake check`");
@@ -217,8 +242,11 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         csv << "# lobe: f(wi, wo) cos(theta_i) in the plane of incidence at phi = " << format_number(o.phi_i)
             << " deg; theta_o > 0 on the mirror side; a delta lobe is one row at theta_o = theta_i with no f (a "
                "delta function) and its reflectance as f_cos_theta_i\n";
-        csv << "# fresnel: " << fresnel.canonical << "\nmodel,theta_i_deg,theta_o_deg,f,f_cos_theta_i\n";
-        char line[128];
+        bool simulated = false;  // a walk's estimate: one more column, f's error (3 standard errors)
+        for (const LobeCurve& c : curves) simulated = simulated || !c.f_error.empty();
+        csv << "# fresnel: " << fresnel.canonical << "\nmodel,theta_i_deg,theta_o_deg,f,f_cos_theta_i"
+            << (simulated ? ",f_error\n" : "\n");
+        char line[160];
         for (const LobeCurve& c : curves) {
             if (c.delta_weight >= 0.0) {
                 std::snprintf(line, sizeof line, ",%.17g,%.17g,,%.17g\n", c.theta_i, c.theta_i, c.delta_weight);
@@ -226,8 +254,10 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
                 continue;
             }
             for (size_t k = 0; k < c.theta_o.size(); ++k) {
-                std::snprintf(line, sizeof line, ",%.17g,%.17g,%.17g,%.17g\n", c.theta_i, c.theta_o[k], c.f[k], c.f_cos[k]);
+                std::snprintf(line, sizeof line, ",%.17g,%.17g,%.17g,%.17g", c.theta_i, c.theta_o[k], c.f[k], c.f_cos[k]);
                 csv << '"' << c.model << '"' << line;
+                if (simulated) csv << (c.f_error.empty() ? std::string(",") : "," + format_number(c.f_error[k]));
+                csv << "\n";
             }
         }
         emit(o.data, csv.str());
@@ -321,6 +351,8 @@ void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("--view", o->view, "plane: polar plot in the plane of incidence; 3d: the lobe over the hemisphere")
         ->capture_default_str();
     add_precision_option(cmd, o->precision, "evaluation arithmetic");
+    cmd->add_option("--walks", o->walks, "simulated models (scattering=multiple): walks per direction")
+        ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "the picture: .png or .svg");
     cmd->add_option("--data", o->data, "the numbers behind it as CSV (- for standard output)");
 }

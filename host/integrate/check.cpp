@@ -13,6 +13,7 @@
 #include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
 #include "integrate/launch.h"
+#include "integrate/random_walk.h"
 
 namespace brdfbake {
 
@@ -63,10 +64,37 @@ ReciprocityMap scan_reciprocity(Engine& engine, const ModelConfig& model, const 
     return m;
 }
 
+AlbedoRequest furnace_request(const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o) {
+    AlbedoRequest req;
+    req.model = model.id;
+    req.fresnel = fresnel;
+    req.samples = o.samples;
+    req.precision = o.precision;
+    const int nphi = model.anisotropic ? o.phis : 1;
+    for (int p = 0; p < nphi; ++p)
+        for (int k = 0; k < o.directions; ++k)
+            req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
+    return req;
+}
+
+void record_furnace(CheckReport& r, const std::vector<AlbedoValue>& values, const AlbedoRequest& req) {
+    for (size_t c = 0; c < values.size(); ++c) {
+        const AlbedoValue& v = values[c];
+        if (c == 0 || v.value - v.error > r.max_albedo - r.max_albedo_error) {
+            r.max_albedo = v.value;
+            r.max_albedo_error = v.error;
+            r.max_albedo_mu = req.cells[c].mu;
+            r.max_albedo_phi = req.cells[c].phi;
+        }
+    }
+    r.energy_violation = r.max_albedo - r.max_albedo_error > 1.0 + r.options.energy_tolerance;
+}
+
 CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel, const CheckOptions& o) {
     if (o.directions < 1 || o.directions > 4096) throw Error("--directions must be 1 to 4096");
     if (o.phis < 1 || o.phis > 360) throw Error("--phis must be 1 to 360");
     if (!(o.energy_tolerance >= 0) || !(o.reciprocity_tolerance >= 0)) throw Error("tolerances must be >= 0");
+    if (model.simulated) return run_check_walk(engine, model, fresnel, o);  // integrate/check_walk.cpp
     CheckReport r;
     r.options = o;
     r.model = model.canonical;
@@ -97,15 +125,7 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
     r.reciprocity_violation = r.max_rel > r.reciprocity_tolerance;
 
     // White furnace over theta_o (and phi_o for anisotropic models).
-    AlbedoRequest req;
-    req.model = model.id;
-    req.fresnel = fresnel;
-    req.samples = o.samples;
-    req.precision = o.precision;
-    const int nphi = model.anisotropic ? o.phis : 1;
-    for (int p = 0; p < nphi; ++p)
-        for (int k = 0; k < o.directions; ++k)
-            req.cells.push_back({std::cos((k + 0.5) / o.directions * M_PI / 2), p * M_PI / nphi, model.params});
+    const AlbedoRequest req = furnace_request(model, fresnel, o);
     r.furnace_directions = int(req.cells.size());
     stage.update(1, "white furnace of " + std::to_string(req.cells.size()) + " directions", 1);
     try {
@@ -113,16 +133,7 @@ CheckReport run_check(Engine& engine, const ModelConfig& model, const FresnelCon
                                                             : compute_albedo(engine, req);
         r.furnace_samples = res.samples_per_cell;
         r.furnace_analytic = res.samples_per_cell == 0;
-        for (size_t c = 0; c < res.values.size(); ++c) {
-            const AlbedoValue& v = res.values[c];
-            if (c == 0 || v.value - v.error > r.max_albedo - r.max_albedo_error) {
-                r.max_albedo = v.value;
-                r.max_albedo_error = v.error;
-                r.max_albedo_mu = req.cells[c].mu;
-                r.max_albedo_phi = req.cells[c].phi;
-            }
-        }
-        r.energy_violation = r.max_albedo - r.max_albedo_error > 1.0 + o.energy_tolerance;
+        record_furnace(r, res.values, req);
     } catch (const NonFiniteError& e) {
         r.nonfinite += e.count;
         std::ostringstream w;
@@ -155,6 +166,14 @@ std::string check_report_text(const CheckReport& r) {
     if (r.scan_nonfinite > 0)
         std::snprintf(line, sizeof line, "  reciprocity  n/a   the scan met %llu NaN or Inf values (%llu pairs)\n",
                       (unsigned long long)r.scan_nonfinite, (unsigned long long)r.pairs);
+    else if (r.reciprocity_noise)
+        std::snprintf(line, sizeof line,
+                      "  reciprocity  %s  max |f(wo,wi) - f(wi,wo)| = %.2f standard errors (relative %.2e) at theta_i = "
+                      "%.1f, theta_o = %.1f, dphi = %.1f deg (%llu pairs of walk estimates, tolerance %.0f standard "
+                      "errors + %.0e)\n",
+                      r.reciprocity_violation ? "FAIL" : "pass", r.reciprocity_sigmas, r.max_rel, r.max_rel_theta_i * kDeg,
+                      r.max_rel_theta_o * kDeg, r.max_rel_dphi * kDeg, (unsigned long long)r.pairs, kReciprocitySigmas,
+                      r.reciprocity_tolerance);
     else if (r.max_rel == 0.0)
         std::snprintf(line, sizeof line, "  reciprocity  pass  f(wo,wi) = f(wi,wo) exactly at every pair (%llu pairs)\n",
                       (unsigned long long)r.pairs);

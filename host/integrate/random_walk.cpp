@@ -2,6 +2,7 @@
 // replicas' summary (integrate/replicas.h).
 #include "integrate/random_walk.h"
 
+#include <cmath>
 #include <sstream>
 
 #include "brdfbake/brdf/kernel_abi.h"
@@ -10,6 +11,7 @@
 #include "engine/device_buffer.h"
 #include "integrate/distributed_compute.h"
 #include "integrate/launch.h"
+#include "integrate/refine.h"
 #include "integrate/replicas.h"
 #include "models/key_reader.h"
 
@@ -63,26 +65,122 @@ WalkResult walk_albedo(Engine& engine, const AlbedoRequest& req) {
     // The five replica means of each item, and R + T, one summary each; a non-finite walk
     // refuses the cell.
     constexpr int kParts = BB_WALK_SUMS + 1;
-    std::vector<std::vector<double>> parts(kParts, std::vector<double>(n_items));
+    std::vector<double> parts;
     for (size_t i = 0; i < n_items; ++i) {
-        for (int k = 0; k < BB_WALK_SUMS; ++k) parts[k][i] = sums[BB_WALK_SUMS * i + k];
-        parts[BB_WALK_SUMS][i] = sums[BB_WALK_SUMS * i] + sums[BB_WALK_SUMS * i + 3];
+        parts.insert(parts.end(), sums.begin() + BB_WALK_SUMS * i, sums.begin() + BB_WALK_SUMS * (i + 1));
+        parts.push_back(sums[BB_WALK_SUMS * i] + sums[BB_WALK_SUMS * i + 3]);
     }
     const auto where = [&](size_t c) {
         return "a random walk met NaN or Inf at mu = " + format_number(req.cells[c].mu);
     };
-    std::vector<std::vector<AlbedoValue>> summary;
-    for (int k = 0; k < kParts; ++k)
-        summary.push_back(summarize(parts[k], bad, req.replicas, result.walks_per_cell, req.precision, where));
-    for (size_t c = 0; c < n_cells; ++c) {
-        WalkAlbedo w{summary[0][c], summary[1][c], summary[2][c], summary[3][c], summary[4][c], summary[5][c]};
-        for (AlbedoValue* v : {&w.energy, &w.single, &w.cutoff, &w.transmitted, &w.single_t, &w.total}) {
-            v->samples = result.walks_per_cell;
-            v->method = Method::MonteCarlo;
+    const auto s = summarize_columns(parts, kParts, bad, req.replicas, result.walks_per_cell, req.precision, where);
+    for (size_t c = 0; c < n_cells; ++c) result.values.push_back({s[0][c], s[1][c], s[2][c], s[3][c], s[4][c], s[5][c]});
+    return result;
+}
+
+namespace {
+
+/// A pair's Philox stream from its content (both directions and the parameters, in that order:
+/// f(a, b) and f(b, a) walk on different streams), never its place in the launch.
+cl_uint pair_stream(const WalkEvalPair& p) {
+    const auto id = [&](const Vec3& w) { return cell_identity(AlbedoCell{w[2], std::atan2(w[1], w[0]), p.params}); };
+    const std::uint64_t h = id(p.wo) * 0x9e3779b97f4a7c15ull + id(p.wi);
+    return cl_uint(h ^ (h >> 32));
+}
+
+}  // namespace
+
+WalkEvalResult walk_eval(Engine& engine, const WalkEvalRequest& req) {
+    check_sampling(req.samples, req.replicas);
+    const std::uint64_t walks = req.samples / req.replicas;
+    const size_t n_pairs = req.pairs.size(), n_items = n_pairs * req.replicas;
+    check_memory(launch_bytes(n_pairs, n_items * BB_WALK_EVAL_SUMS, 0.0, 1, req.precision),
+                 "walk evaluations of " + std::to_string(n_pairs) + " direction pairs");
+    BuildRequest build;
+    build.kernel_file = "random_walk.cl";
+    build.precision = req.precision;
+    build.model = req.model;
+    build.fresnel = req.fresnel.kind;
+    build.random123 = true;
+    cl::Program& program = engine.program(build);
+
+    std::vector<double> dirs, params;
+    std::vector<cl_uint> streams;
+    for (const WalkEvalPair& p : req.pairs) {
+        dirs.insert(dirs.end(), p.wo.begin(), p.wo.end());
+        dirs.insert(dirs.end(), p.wi.begin(), p.wi.end());
+        params.insert(params.end(), p.params.begin(), p.params.end());
+        streams.push_back(pair_stream(p));
+    }
+    const std::vector<double> fparams(req.fresnel.params.begin(), req.fresnel.params.end());
+    RealBuffers bufs(engine, req.precision);
+    cl::Buffer b_dirs = bufs.input(dirs), b_p = bufs.input(params), b_fp = bufs.input(fparams);
+    cl::Buffer b_stream(engine.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, streams.size() * sizeof(cl_uint),
+                        streams.data());
+    cl::Buffer b_sums = bufs.output(n_items * BB_WALK_EVAL_SUMS);
+    const NonFiniteCounts bad_counts(engine, n_items);
+    cl::Kernel kernel(program, BB_ENTRY_NAME(BB_ENTRY_WALK_EVAL));
+    set_args(kernel, 0, b_dirs, b_p, b_fp, cl_uint(walks), cl_uint(req.replicas), cl_uint(n_pairs), cl_uint(req.seed),
+             cl_uint(req.seed >> 32), b_stream, b_sums, bad_counts.buffer);
+
+    WalkEvalResult result;
+    result.kernel_seconds = run_items(engine, kernel, n_items, double(walks),
+                                      "walk evaluations of " + std::to_string(n_pairs) + " direction pairs, " +
+                                          std::to_string(req.samples) + " walks each");
+    const std::vector<double> sums = bufs.read(b_sums, n_items * BB_WALK_EVAL_SUMS);
+    result.walks_per_pair = walks * req.replicas;
+    std::ostringstream m;
+    m << "next-event estimation on random walks on the Smith microsurface (Heitz et al. 2016), Philox4x32-10, "
+      << req.replicas << " replicas x " << walks << " walks";
+    result.method = m.str();
+    const auto where = [&](size_t c) {
+        const WalkEvalPair& p = req.pairs[c];
+        return "a walk evaluation met NaN or Inf at wo.z = " + format_number(p.wo[2]) +
+               ", wi.z = " + format_number(p.wi[2]);
+    };
+    const auto s = summarize_columns(sums, BB_WALK_EVAL_SUMS, bad_counts.read(engine), req.replicas,
+                                     result.walks_per_pair, req.precision, where);
+    // The walks estimate f(wo, wi) wi.z: f is that over wi.z (0 below the horizon).
+    for (size_t c = 0; c < n_pairs; ++c) {
+        const double z = req.pairs[c].wi[2];
+        AlbedoValue f = s[0][c], single = s[1][c];
+        for (AlbedoValue* v : {&f, &single}) {
+            v->value = z > 0.0 ? v->value / z : 0.0;
+            v->error = z > 0.0 ? v->error / z : 0.0;
         }
-        result.values.push_back(w);
+        result.f.push_back(f);
+        result.single.push_back(single);
     }
     return result;
+}
+
+AlbedoResult walk_albedo_result(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance,
+                                double share) {
+    WalkResult w;
+    if (tolerance.tolerance > 0.0) {
+        ToleranceRequest t = tolerance;
+        t.tolerance *= share;
+        try {
+            w = walk_albedo_to_tolerance(engine, req, t);
+        } catch (const ToleranceNotMet& e) {
+            throw e.restated(tolerance.tolerance, "");
+        }
+    } else {
+        w = walk_albedo(engine, req);
+    }
+    AlbedoResult out;
+    out.method = w.method;
+    out.samples_per_cell = w.walks_per_cell;
+    out.kernel_seconds = w.kernel_seconds;
+    out.total_samples = w.total_walks;
+    out.rounds = w.rounds;
+    out.tolerance = tolerance.tolerance > 0.0 ? tolerance.tolerance * share : 0.0;
+    for (const WalkAlbedo& v : w.values) {
+        AlbedoValue e = v.energy;
+        e.error += v.cutoff.value + v.cutoff.error;
+        out.values.push_back(e);
+    }
+    return out;
 }
 
 }  // namespace brdfbake

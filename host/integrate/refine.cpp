@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdio>
 #include <iostream>
+#include <iterator>
 #include <sstream>
 
 #include "brdfbake/error.h"
@@ -20,6 +21,19 @@ double cell_error(const std::vector<AlbedoValue>& channels) {
     for (const auto& v : channels) e = std::max(e, v.error);
     return e;
 }
+
+/// The missed cell (outcome.missed, not empty) whose largest error is the largest.
+size_t worst_missed(const RefineOutcome& outcome) {
+    size_t worst = outcome.missed.front();
+    for (size_t c : outcome.missed)
+        if (cell_error(outcome.values[c]) > cell_error(outcome.values[worst])) worst = c;
+    return worst;
+}
+
+/// A walk's values as refine_to_tolerance's channels, in one order both ways.
+constexpr AlbedoValue WalkAlbedo::*kWalkChannels[] = {&WalkAlbedo::energy,      &WalkAlbedo::single,
+                                                      &WalkAlbedo::cutoff,      &WalkAlbedo::transmitted,
+                                                      &WalkAlbedo::single_t,    &WalkAlbedo::total};
 
 }  // namespace
 
@@ -235,9 +249,7 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
     result.method = tolerance_method_text(tol.tolerance, o);
 
     if (!o.missed.empty()) {
-        size_t worst = o.missed.front();
-        for (size_t c : o.missed)
-            if (result.values[c].error > result.values[worst].error) worst = c;
+        const size_t worst = worst_missed(o);
         throw ToleranceNotMet({tol.tolerance, 0.0, o.missed.size(), req.cells.size(), "cells", "", cell_text(req, worst),
                                result.values[worst].error, tol.max_samples, req.precision == Precision::Float});
     }
@@ -276,15 +288,12 @@ DielectricResult compute_dielectric_to_tolerance(Engine& engine, const Dielectri
     }
     out.method = tolerance_method_text(tol.tolerance, o);
     if (!o.missed.empty()) {
-        size_t worst = o.missed.front();
-        auto error_of = [&](size_t c) { return std::max(out.reflected[c].error, out.transmitted[c].error); };
-        for (size_t c : o.missed)
-            if (error_of(c) > error_of(worst)) worst = c;
+        const size_t worst = worst_missed(o);
         const DielectricCell& w = req.cells[worst];
         std::ostringstream cell;
         cell << "mu = " << w.mu << ", alpha = " << w.alpha << ", eta = " << w.eta;
         throw ToleranceNotMet({tol.tolerance, 0.0, o.missed.size(), req.cells.size(), "dielectric cells", "", cell.str(),
-                               error_of(worst), tol.max_samples, req.precision == Precision::Float});
+                               cell_error(o.values[worst]), tol.max_samples, req.precision == Precision::Float});
     }
     return out;
 }
@@ -305,8 +314,10 @@ WalkResult walk_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, co
             const WalkResult part = walk_albedo(engine, round_request(req, step, todo));
             out.method = part.method;
             RefineRound round;
-            for (const WalkAlbedo& w : part.values)
-                round.values.push_back({w.total, w.energy, w.transmitted, w.single, w.single_t, w.cutoff});
+            for (const WalkAlbedo& w : part.values) {
+                round.values.emplace_back();
+                for (auto channel : kWalkChannels) round.values.back().push_back(w.*channel);
+            }
             round.method = part.method;
             round.kernel_seconds = part.kernel_seconds;
             return round;
@@ -315,22 +326,16 @@ WalkResult walk_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, co
     out.rounds = o.rounds;
     out.total_walks = o.total_samples;
     for (size_t c = 0; c < req.cells.size(); ++c) {
-        const std::vector<AlbedoValue>& v = o.values[c];
-        out.values.push_back({v[1], v[3], v[5], v[2], v[4], v[0]});
+        WalkAlbedo w;
+        for (size_t k = 0; k < std::size(kWalkChannels); ++k) w.*kWalkChannels[k] = o.values[c][k];
+        out.values.push_back(w);
         out.walks_per_cell = std::max(out.walks_per_cell, o.spent[c]);
     }
     out.method = tolerance_method_text(tol.tolerance, o) + "; " + out.method;
     if (!o.missed.empty()) {
-        size_t worst = o.missed.front();
-        auto error_of = [&](size_t c) {
-            double e = 0.0;
-            for (const AlbedoValue& v : o.values[c]) e = std::max(e, v.error);
-            return e;
-        };
-        for (size_t c : o.missed)
-            if (error_of(c) > error_of(worst)) worst = c;
+        const size_t worst = worst_missed(o);
         throw ToleranceNotMet({tol.tolerance, 0.0, o.missed.size(), req.cells.size(), "cells", "", cell_text(req, worst),
-                               error_of(worst), tol.max_samples, req.precision == Precision::Float});
+                               cell_error(o.values[worst]), tol.max_samples, req.precision == Precision::Float});
     }
     return out;
 }

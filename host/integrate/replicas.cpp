@@ -90,6 +90,24 @@ std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::
     return out;
 }
 
+std::vector<std::vector<AlbedoValue>> summarize_columns(const std::vector<double>& sums, int width,
+                                                        const std::vector<cl_uint>& bad, unsigned replicas,
+                                                        std::uint64_t samples_per_cell, Precision precision,
+                                                        const std::function<std::string(size_t)>& where) {
+    const size_t n_items = sums.size() / size_t(width);
+    std::vector<std::vector<AlbedoValue>> out;
+    std::vector<double> column(n_items);
+    for (int k = 0; k < width; ++k) {
+        for (size_t i = 0; i < n_items; ++i) column[i] = sums[size_t(width) * i + size_t(k)];
+        out.push_back(summarize(column, bad, replicas, samples_per_cell, precision, where));
+        for (AlbedoValue& v : out.back()) {
+            v.samples = samples_per_cell;
+            v.method = Method::MonteCarlo;
+        }
+    }
+    return out;
+}
+
 void check_sampling(std::uint64_t samples, unsigned replicas) {
     if (replicas < 2) throw Error("at least 2 replicas are needed for an error estimate");
     if (samples < replicas) throw Error("--samples must be at least " + std::to_string(replicas));

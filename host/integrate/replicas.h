@@ -64,4 +64,12 @@ std::vector<AlbedoValue> summarize(const std::vector<double>& means, const std::
                                    unsigned replicas, std::uint64_t samples_per_cell, Precision precision,
                                    const std::function<std::string(size_t)>& where);
 
+/// The replica means of a walk kernel (random_walk.cl, sheen_volume.cl): `width` numbers per item,
+/// items = cells x replicas (replicas consecutive), as one summary per column and cell
+/// ([column][cell], summarize's), each marked Method::MonteCarlo with `samples_per_cell`.
+std::vector<std::vector<AlbedoValue>> summarize_columns(const std::vector<double>& sums, int width,
+                                                        const std::vector<cl_uint>& bad, unsigned replicas,
+                                                        std::uint64_t samples_per_cell, Precision precision,
+                                                        const std::function<std::string(size_t)>& where);
+
 }  // namespace brdfbake

@@ -450,8 +450,8 @@ ModelConfig resolve_model(const std::string& text) {
     ModelConfig m = resolve_model_simulated(text);
     if (m.simulated)
         throw Error("model '" + m.name +
-                    "': scattering=multiple (a random-walk estimate) is supported only by `brdfbake albedo` so far; "
-                    "tables, check, lobe, furnace, scenes and the library API do not support it yet");
+                    "': scattering=multiple (a random-walk estimate) is supported by albedo, check, lobe (plane and 3d), "
+                    "lut albedo and compensation; this command does not support it");
     return m;
 }
 

@@ -13,6 +13,7 @@
 #include "brdfbake/progress.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/table_kinds.h"
+#include "integrate/random_walk.h"
 #include "integrate/refine.h"
 #include "models/key_reader.h"
 #include "models/params.h"
@@ -171,7 +172,9 @@ AlbedoResult integrate(Engine& engine, const LutRequest& r, const ModelConfig& m
     req.precision = r.precision;
     for (size_t c : rest) req.cells.push_back(cells[c]);
     AlbedoResult integrated;
-    if (!req.cells.empty()) {
+    if (!req.cells.empty() && m.simulated) {
+        integrated = walk_albedo_result(engine, req, r.tolerance, share);  // lut albedo of scattering=multiple
+    } else if (!req.cells.empty()) {
         if (r.tolerance.tolerance > 0.0) {
             ToleranceRequest t = r.tolerance;
             t.tolerance *= share;
@@ -291,7 +294,11 @@ ModelConfig swept_model(const LutRequest& r) {
             throw Error("leave " + kv.first + " out of --model: the table's alpha axis sets it (" + axis.mapping +
                         "; see --alpha-map, --alpha-range)");
     }
-    return sweep_model(r.model);
+    const ModelConfig m = sweep_model(r.model, table_kind(r.kind).id == TableKindId::Albedo);
+    if (m.dielectric_walk)
+        throw Error("lut albedo: model '" + m.canonical + "' is the rough dielectric's walk (eta=E), whose R and T "
+                    "`brdfbake albedo` gives; the table takes the conductor's walk (no eta)");
+    return m;
 }
 
 }  // namespace
@@ -324,8 +331,8 @@ void validate_lut(const LutRequest& r) {
             throw Error("--alpha-range reaches alpha = " + format_number(top) + ", beyond " + m.name +
                         "'s roughness axis (" + axis.mapping + ")");
         try {
-            resolve_model(r.model + (r.model.find(':') == std::string::npos ? ":" : ",") + axis.key + "=" +
-                          format_number(axis.value ? axis.value(top) : top));
+            resolve_model_simulated(r.model + (r.model.find(':') == std::string::npos ? ":" : ",") + axis.key + "=" +
+                                    format_number(axis.value ? axis.value(top) : top));
         } catch (const Error& e) {
             throw Error("--alpha-range reaches alpha = " + format_number(top) + ", which " + m.name +
                         " does not take: " + e.what());

@@ -13,8 +13,9 @@ namespace brdfbake {
 
 /// A model spec without its roughness, resolved with a placeholder alpha that a table overwrites
 /// per texel; `canonical` leaves the placeholder out ("ggx" -> "ggx:shadowing=correlated").
-/// Throws Error for an unknown model or key, or a model without a roughness to sweep.
-ModelConfig sweep_model(const std::string& spec_without_alpha);
+/// Throws Error for an unknown model or key, or a model without a roughness to sweep. `simulated`:
+/// a scattering=multiple spec is taken (lut albedo's walks), else refused (resolve_model).
+ModelConfig sweep_model(const std::string& spec_without_alpha, bool simulated = false);
 
 /// sweep_model, or nothing where it throws (a model without a roughness to sweep, or a bad spec).
 std::optional<ModelConfig> try_sweep_model(const std::string& spec_without_alpha);

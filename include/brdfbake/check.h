@@ -54,6 +54,10 @@ struct CheckReport {
     double max_rel = 0.0, max_rel_theta_i = 0.0, max_rel_theta_o = 0.0, max_rel_dphi = 0.0;
     bool reciprocity_violation = false;
     double reciprocity_tolerance = 0.0;
+    /// A simulated model's (scattering=multiple): f(a, b) and f(b, a) are walk estimates, and the
+    /// worst difference is also given in standard errors of the two (reciprocity_sigmas).
+    bool reciprocity_noise = false;
+    double reciprocity_sigmas = 0.0;
     std::uint64_t pairs = 0;
     std::uint64_t scan_nonfinite = 0;  // NaN or Inf values met by the scan: reciprocity is then unknown
     // values

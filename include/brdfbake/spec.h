@@ -120,7 +120,8 @@ double fresnel_value(const FresnelConfig& f, double cos_theta);
 /// Resolves a model spec; throws Error naming the problem (unknown model or key, value out of
 /// range, not a finite number).
 /// A simulated configuration (ModelConfig::simulated: scattering=multiple) is refused with one
-/// line naming it: only `brdfbake albedo` computes one so far, through resolve_model_simulated.
+/// line naming it: albedo, check, lobe, lut albedo and compensation take one, through
+/// resolve_model_simulated.
 ModelConfig resolve_model(const std::string& text);
 
 /// Resolves as resolve_model, simulated configurations included.

@@ -92,6 +92,8 @@
 
 #define BB_ENTRY_WALK_ALBEDO walk_albedo /* one replica of walks per work-item (brdf/random_walk.h) */
 #define BB_WALK_SUMS 5 /* per item: escaped above, its first order, cut-off, escaped below, its first order */
+#define BB_ENTRY_WALK_EVAL walk_eval /* one replica of next-event walks per work-item: f(wo, wi) wi.z */
+#define BB_WALK_EVAL_SUMS 2 /* per item: f(wo, wi) wi.z (every order up to the limit), its first order */
 
 /* ---------------------------------------------------------- kernels/sheen_volume.cl */
 

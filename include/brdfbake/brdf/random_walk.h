@@ -103,23 +103,76 @@ typedef struct {
     bb_real cutoff; /* the weight still inside after `bounces` scatterings */
     bb_real transmitted; /* dielectric: the weight that escaped below the surface (0 for a conductor) */
     bb_real single_t;    /* dielectric: the part of it transmitted after one scattering */
+    bb_real f_cos;        /* next-event estimate of f(wo, target) target.z (every order; 0 without a target) */
+    bb_real f_cos_single; /* its first order */
     int bad;        /* 1 if the walk met a non-finite number (its weights are then 0) */
 } bb_walk_result;
 
 /* A walk's result before it ends: nothing escaped, nothing cut off. */
 BB_FN bb_walk_result bb_walk_result_zero(void) {
     bb_walk_result r;
-    r.energy = r.single = r.cutoff = r.transmitted = r.single_t = BB_R(0.0);
+    r.energy = r.single = r.cutoff = r.transmitted = r.single_t = r.f_cos = r.f_cos_single = BB_R(0.0);
     r.bad = 0;
     return r;
+}
+
+/* The evaluation of f by the walk [HHdD16 sec. 4.2 and its eval(): next-event estimation]: at each
+ * intersection (height lc = log C1(h), the ray's direction w, v = -w) the walk adds its weight times
+ * the phase function towards the target t (t.z > 0) times the probability that t leaves the
+ * microsurface from that height unoccluded, C1(h)^Lambda(t) = exp(Lambda(t) lc) (the height sampling
+ * above). The sum's expectation is the density of the directions the walks leave by, per solid
+ * angle: f(wo, t) t.z (light from wo, its flux leaving towards t). Its first term alone is the
+ * height-correlated Smith lobe's f t.z (the first intersection's height has density
+ * (1 + Lambda(wo)) C1^Lambda(wo) in C1, so that E[C1^Lambda(t)] = (1 + Lambda(wo)) / (1 + Lambda(wo) + Lambda(t))).
+ *
+ * The projected area of the microsurface seen from v (either hemisphere) [HHdD16 eq. 3 and the
+ * Lambda of a downward direction]: sigma(v) = integral of <v, m>+ D(m) dm = v.z (1 + Lambda(v)),
+ * Lambda signed (bb_walk_lambda); the visible normals' density is D_v(m) = <v, m>+ D(m) / sigma(v). */
+BB_FN bb_real bb_walk_sigma(int dist, bb_vec3 v, bb_real ax, bb_real ay) {
+    return v.z * (BB_R(1.0) + bb_walk_lambda(dist, v, ax, ay));
+}
+
+/* The reflection phase function without its Fresnel factor, from v towards t [HHdD16 eq. 16 (the
+ * conductor's microflake phase function)]: D_v(h) / (4 <v, h>) = D(h) / (4 sigma(v)), h the half
+ * vector of v and t, 0 unless h lies above the mean surface; with <v, h>, which the caller's Fresnel
+ * term takes, in *vh. */
+BB_FN bb_real bb_walk_reflect_phase(int dist, bb_vec3 v, bb_vec3 t, bb_real ax, bb_real ay, bb_real* vh) {
+    bb_vec3 s = bb_add(v, t);
+    bb_real n2 = bb_dot(s, s);
+    bb_vec3 h = bb_scale(s, BB_R(1.0) / bb_sqrt(bb_select(BB_R(1.0), n2, n2 > BB_R(0.0))));
+    *vh = bb_dot(v, h);
+    bb_real sigma = bb_walk_sigma(dist, v, ax, ay);
+    bb_real ph = bb_smith_d(dist, h, ax, ay) / (BB_R(4.0) * bb_select(BB_R(1.0), sigma, sigma > BB_R(0.0)));
+    return bb_select(BB_R(0.0), ph, n2 > BB_R(0.0) && h.z > BB_R(0.0) && *vh > BB_R(0.0) && sigma > BB_R(0.0));
+}
+
+/* The refraction phase function without its (1 - F) factor, from v (the near side) to o (the far
+ * side, o.z < 0) through an interface of relative index e (far over near) [HHdD16 sec. 5;
+ * WMLT07 eq. 16 and 17]: D_v(h) times the Jacobian e^2 |<o, h>| / (<v, h> + e <o, h>)^2, h the
+ * generalized half vector +-(v + e o) turned above the mean surface, 0 unless <v, h> > 0 > <o, h>;
+ * <v, h> in *vh. */
+BB_FN bb_real bb_walk_refract_phase(int dist, bb_vec3 v, bb_vec3 o, bb_real e, bb_real ax, bb_real ay, bb_real* vh) {
+    bb_vec3 s = bb_add(v, bb_scale(o, e));
+    bb_real n2 = bb_dot(s, s);
+    bb_vec3 h = bb_scale(s, bb_select(BB_R(1.0), BB_R(-1.0), s.z < BB_R(0.0)) /
+                                bb_sqrt(bb_select(BB_R(1.0), n2, n2 > BB_R(0.0))));
+    *vh = bb_dot(v, h);
+    bb_real oh = bb_dot(o, h), den = *vh + e * oh;
+    bb_real sigma = bb_walk_sigma(dist, v, ax, ay);
+    bb_real ph = bb_smith_d(dist, h, ax, ay) * *vh / bb_select(BB_R(1.0), sigma, sigma > BB_R(0.0)) * e * e *
+                 bb_fabs(oh) / bb_select(BB_R(1.0), den * den, den != BB_R(0.0));
+    return bb_select(BB_R(0.0), ph,
+                     n2 > BB_R(0.0) && h.z > BB_R(0.0) && *vh > BB_R(0.0) && oh < BB_R(0.0) && sigma > BB_R(0.0) &&
+                         den != BB_R(0.0));
 }
 
 /* One random walk from the view wo (wo.z > 0) on the microsurface of the Smith lobe `dist` with
  * parameters p (alpha in BB_SMITH_ALPHA_X/Y), the Fresnel term (fkind, fp) at every scattering and
  * at most `bounces` scatterings; its random numbers from Philox with `key` and the counter words
- * (walk, rep, stream). */
-BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, int bounces,
-                                       philox4x32_key_t key, unsigned int walk, unsigned int rep,
+ * (walk, rep, stream). With target.z > 0 it also estimates f(wo, target) target.z (r.f_cos, the
+ * next-event estimation above: the phase function with this intersection's Fresnel term). */
+BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 target,
+                                       int bounces, philox4x32_key_t key, unsigned int walk, unsigned int rep,
                                        unsigned int stream) {
     bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
     bb_walk_result r = bb_walk_result_zero();
@@ -142,8 +195,16 @@ BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_para
             break;
         }
         lc = lc - l / lambda;
-        /* direction sampling: a visible normal of -w, reflection, the Fresnel term */
         bb_vec3 v = bb_scale(w, BB_R(-1.0));
+        if (target.z > BB_R(0.0)) { /* next-event estimation towards the target */
+            bb_real vh;
+            bb_real ph = bb_walk_reflect_phase(dist, v, target, ax, ay, &vh);
+            bb_real nee = weight * ph * bb_fresnel_eval(fkind, fp, bb_clamp_cos(vh)) *
+                          bb_exp(bb_walk_lambda(dist, target, ax, ay) * lc);
+            r.f_cos += nee;
+            r.f_cos_single += k == 0 ? nee : BB_R(0.0);
+        }
+        /* direction sampling: a visible normal of -w, reflection, the Fresnel term */
         bb_vec3 m = bb_walk_sample_vndf(dist, v, ax, ay, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
         bb_real c = bb_dot(v, m);
         weight = weight * bb_fresnel_eval(fkind, fp, bb_clamp_cos(c));
@@ -175,9 +236,12 @@ BB_FN bb_real bb_walk_flip_height(bb_real lc) {
  * refraction turns the frame over: w -> -w_t, C1(h) -> 1 - C1(h) (bb_walk_flip_height). A walk
  * that escapes upward from the upper side is reflected (r.energy), from the lower side
  * transmitted (r.transmitted). Four Philox words per scattering: height, two for the normal and
- * the Fresnel choice. */
-BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, int bounces, philox4x32_key_t key,
-                                        unsigned int walk, unsigned int rep, unsigned int stream) {
+ * the Fresnel choice. With target.z > 0 it also estimates the reflection f(wo, target) target.z
+ * (r.f_cos): from the upper side the reflection phase function times F, from the lower side the
+ * refraction phase function out towards the target times 1 - F, masked at the height seen from
+ * above (bb_walk_flip_height). */
+BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, bb_vec3 target, int bounces,
+                                        philox4x32_key_t key, unsigned int walk, unsigned int rep, unsigned int stream) {
     bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
     bb_real eta_out = p.v[BB_SMITH_WALK_ETA], eta_m1_out = p.v[BB_SMITH_WALK_ETA_M1];
     bb_real eta_in = BB_R(1.0) / eta_out, eta_m1_in = -eta_m1_out / eta_out; /* 1/eta - 1 = -(eta - 1)/eta */
@@ -204,9 +268,23 @@ BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, int b
         }
         lc = lc - l / lambda;
         bb_vec3 v = bb_scale(w, BB_R(-1.0));
+        bb_real e = outside ? eta_out : eta_in, em1 = outside ? eta_m1_out : eta_m1_in;
+        if (target.z > BB_R(0.0)) { /* next-event estimation towards the target (reflection: above) */
+            bb_real vh, ph, lt = bb_walk_lambda(dist, target, ax, ay), nee;
+            if (outside) { /* reflected towards the target from the upper side */
+                ph = bb_walk_reflect_phase(dist, v, target, ax, ay, &vh);
+                bb_fresnel_sp fr = bb_fresnel_dielectric_sp_m1(bb_clamp_cos(vh), e, em1);
+                nee = ph * BB_R(0.5) * (fr.rs + fr.rp) * bb_exp(lt * lc);
+            } else { /* refracted out: the target is -target in this side's frame; masked from above */
+                ph = bb_walk_refract_phase(dist, v, bb_scale(target, BB_R(-1.0)), e, ax, ay, &vh);
+                bb_fresnel_sp fr = bb_fresnel_dielectric_sp_m1(bb_clamp_cos(vh), e, em1);
+                nee = ph * (BB_R(1.0) - BB_R(0.5) * (fr.rs + fr.rp)) * bb_exp(lt * bb_walk_flip_height(lc));
+            }
+            r.f_cos += nee;
+            r.f_cos_single += k == 0 ? nee : BB_R(0.0);
+        }
         bb_vec3 m = bb_walk_sample_vndf(dist, v, ax, ay, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
         bb_real c = bb_clamp_cos(bb_dot(v, m));
-        bb_real e = outside ? eta_out : eta_in, em1 = outside ? eta_m1_out : eta_m1_in;
         bb_fresnel_sp f = bb_fresnel_dielectric_sp_m1(c, e, em1);
         if (bb_unit_from_bits(u.v[3]) < BB_R(0.5) * (f.rs + f.rp)) {
             w = bb_reflect(v, m);
