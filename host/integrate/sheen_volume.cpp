@@ -3,13 +3,13 @@
 #include "integrate/sheen_volume.h"
 
 #include <cmath>
-#include <cstring>
 #include <sstream>
 
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/sheen_volume.h"
 #include "brdfbake/memory_limit.h"
 #include "engine/device_buffer.h"
+#include "engine/hash.h"
 #include "integrate/launch.h"
 #include "integrate/replicas.h"
 #include "models/key_reader.h"
@@ -38,14 +38,7 @@ namespace {
 
 // A cell's Philox stream from its content (FNV-1a over its numbers), never its place in a launch.
 cl_uint cell_stream(const SheenVolumeCell& c) {
-    std::uint64_t h = 1469598103934665603ull;
-    const auto mix = [&h](const void* p, size_t n) {
-        const unsigned char* b = static_cast<const unsigned char*>(p);
-        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    };
-    mix(&c.mu, sizeof c.mu);
-    mix(&c.alpha, sizeof c.alpha);
-    mix(&c.bounces, sizeof c.bounces);
+    const std::uint64_t h = Fnv1a().add(c.mu).add(c.alpha).add(c.bounces).h;
     return cl_uint(h ^ (h >> 32));
 }
 
