@@ -5,10 +5,10 @@
 // inverse matrix is M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]] in the frame where the viewer is at
 // (sin theta_o, 0, cos theta_o) ([ZBC22] eq. 1: f cos(theta_i) = R D_o(M^-1 w / |M^-1 w|) |det M^-1| /
 // |M^-1 w|^3, D_o = max(0, z)/pi, Heitz et al. 2016 eq. 1 and sec. 3.1), fitted by the fitting
-// layer's Nelder-Mead (fit/nelder_mead.h) to the layer's reflected lobe, a histogram of the walks'
-// exits through the top. Channels a, b, R, distance (the L1 distance between the normalised lobe
-// and the LTC, both averaged over the histogram's bins), distance_error (the histogram's noise
-// floor in it) and error (R's).
+// layer's Nelder-Mead (fit/nelder_mead.h) to the layer's reflected lobe: the first order in closed
+// form (sheen_single_density) plus a histogram of the exits through the top after two or more
+// scatterings. Channels a, b, R, distance (the L1 distance between the normalised lobe and the LTC
+// at the fit's points), distance_error (the histogram's noise floor in it) and error (R's).
 #include <algorithm>
 #include <array>
 #include <cmath>
