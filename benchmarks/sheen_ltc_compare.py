@@ -4,7 +4,7 @@ table_sheen_ltc (intern/cycles/scene/shader.tables), a subset of whose rows the 
 into a Python file (never into this repository) defining dicts A, B, R: row j -> 32 values (row j is
 roughness j/31, column i is mu i/31, both floored at 0.01).
 
-Per texel with mu and roughness >= 0.1: |R - R_cycles| and the L1 distance between the two LTC
+Per texel with mu and roughness >= 0.1 (texels Cycles left unfitted, A = 0, skipped for the lobes): |R - R_cycles| and the L1 distance between the two LTC
 densities (Heitz et al. 2016, M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]]) over the upper hemisphere,
 by a 512 x 512 midpoint rule in (theta, phi) (phi over [0, pi], doubled: both are symmetric).
 Usage: sheen_ltc_compare.py TABLE.npy CYCLES_SUBSET.py"""
@@ -56,6 +56,16 @@ def main():
     ok = ~np.isnan(l1)
     print(f"LTC lobes within L1 0.1: {np.mean(l1[ok] <= 0.1) * 100:.1f}% of {ok.sum()} (target 90%), "
           f"median L1 {np.median(l1[ok]):.3f}")
+    print()
+    print("| j (roughness) | texels | R within 0.01 | lobes within L1 0.1 | median L1 | max L1 |")
+    print("|---|---|---|---|---|---|")
+    for j in sorted(ref["R"]):
+        sel = [x for x in rows if x[0] == j and not np.isnan(x[10])]
+        if not sel:
+            continue
+        d = np.array([x[10] for x in sel])
+        print(f"| {j} ({j/31:.3f}) | {len(sel)} | {sum(x[5] <= 0.01 for x in sel)} | {int(np.sum(d <= 0.1))} "
+              f"| {np.median(d):.3f} | {d.max():.3f} |")
 
 
 if __name__ == "__main__":

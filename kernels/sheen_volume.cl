@@ -6,9 +6,10 @@
  *   2  T, through the bottom,
  *   3  T0, through the bottom without scattering,
  *   4  the share the bounce limit cut off,
- * and, when n_bins > 0, the counts of the top exits in BB_SHEEN_LOBE_THETA x BB_SHEEN_LOBE_PHI bins
- * (theta in [0, pi/2] and |phi| in [0, pi] uniform; the lobe is symmetric about phi = 0), the
- * outgoing lobe's histogram. The host (host/integrate/sheen_volume.cpp) turns the replicas into
+ * and, when n_bins > 0, the counts of the top exits after two or more scatterings in
+ * BB_SHEEN_LOBE_THETA x BB_SHEEN_LOBE_PHI bins (theta in [0, pi/2] and |phi| in [0, pi] uniform; the
+ * lobe is symmetric about phi = 0): the multiple-scattering part of the outgoing lobe's histogram
+ * (the first order has a closed form, integrate/sheen_volume.h sheen_single_density). The host (host/integrate/sheen_volume.cpp) turns the replicas into
  * means and error estimates. A walk that meets a non-finite number is counted in bad_count.
  *
  * Build options: [-D BB_REAL_DOUBLE] -D BB_PHILOX -I <Random123's include directory>. */
@@ -45,7 +46,7 @@ __kernel void BB_ENTRY_SHEEN_VOLUME(__global const bb_scalar* cell_mu, __global 
         count[2] += (unsigned int)(r.exit == BB_SHEEN_EXIT_BOTTOM);
         count[3] += (unsigned int)(r.exit == BB_SHEEN_EXIT_BOTTOM && r.scatterings == 0);
         count[4] += (unsigned int)(r.exit == BB_SHEEN_EXIT_CUTOFF);
-        if (n_bins > 0 && r.exit == BB_SHEEN_EXIT_TOP) {
+        if (n_bins > 0 && r.exit == BB_SHEEN_EXIT_TOP && r.scatterings >= 2) {
             const bb_real theta = acos(bb_clamp(r.w.z, BB_R(0.0), BB_R(1.0)));
             const bb_real phi = bb_atan2(bb_fabs(r.w.y), r.w.x);
             const int it = min((int)(theta * (BB_R(2.0) / BB_PI) * BB_SHEEN_LOBE_THETA), BB_SHEEN_LOBE_THETA - 1);

@@ -184,3 +184,37 @@ TEST_CASE("lut sheen-ltc: R at roughness 1 is the isotropic slab's, the LTC's lo
         CHECK(e.err.find("sheen-ltc") != std::string::npos);
     }
 }
+
+TEST_CASE("sheen volume: the histogram holds the higher orders, the first order's density is its quadrature's",
+          "[sheen-volume]") {
+    // One cell whose higher orders leave the top often (roughness 0.6, mu 0.5): the histogram of
+    // the exits after two or more scatterings integrates to R - R1, the walks' own counts.
+    const double mu = 0.5, alpha = 0.6;
+    SheenVolumeRequest req = request({{mu, alpha}}, 1 << 18);
+    req.lobe = true;
+    const SheenVolumeValue v = sheen_volume_walks(testing::engine(), req).values[0];
+    REQUIRE(v.lobe.size() == size_t(SheenLobeBins::theta() * SheenLobeBins::phi()));
+    double integral = 0;
+    for (size_t b = 0; b < v.lobe.size(); ++b)
+        integral += 2 * SheenLobeBins::solid_angle(int(b) / SheenLobeBins::phi()) * v.lobe[b];
+    const double higher = v.reflectance.value - v.single.value;
+    INFO("higher orders: walks " << higher << ", histogram " << integral);
+    CHECK(higher > 0.05);  // the case has higher orders
+    CHECK(integral == Approx(higher).epsilon(1e-5));
+
+    // The first order's density in closed form against the quadrature integrand written here, and
+    // its integral against the quadrature of the first order.
+    const long double s = alpha * alpha;
+    const ref::Dir wo = ref::dir_mu(mu, 0);
+    for (double th : {0.1, 0.7, 1.3, 1.55})
+        for (double ph : {0.0, 1.0, 2.5}) {
+            const ref::Dir w = ref::dir(th, ph);
+            ref::Dir h{wo.x + w.x, wo.y + w.y, wo.z + w.z};
+            const long double n = std::sqrt(ref::dot(h, h));
+            h = {h.x / n, h.y / n, h.z / n};
+            const long double ko = sggx_sigma(wo, s) / mu, k = sggx_sigma(w, s) / w.z;
+            const double want = double(sggx_d(h, s) / (4 * sggx_sigma(wo, s)) * ko * -std::expm1(-(ko + k)) / (ko + k));
+            CHECK(sheen_single_density(mu, alpha, double(w.x), double(w.y), double(w.z)) == Approx(want).epsilon(1e-9));
+        }
+    CHECK(std::fabs(v.single.value - first_order(mu, alpha)) <= v.single.error + 1e-6);
+}

@@ -3,13 +3,13 @@
 #include "integrate/sheen_volume.h"
 
 #include <cmath>
-#include <cstring>
 #include <sstream>
 
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/sheen_volume.h"
 #include "brdfbake/memory_limit.h"
 #include "engine/device_buffer.h"
+#include "engine/hash.h"
 #include "integrate/launch.h"
 #include "integrate/replicas.h"
 #include "models/key_reader.h"
@@ -23,18 +23,22 @@ double SheenLobeBins::solid_angle(int row) {
     return (std::cos(row * dt) - std::cos((row + 1) * dt)) * M_PI / phi();
 }
 
+double sheen_single_density(double mu, double alpha, double x, double y, double z) {
+    if (z <= 0.0) return 0.0;
+    const double s = bb_sheen_volume_sigma(alpha);
+    const bb_vec3 wo = bb_v3(std::sqrt(std::max(0.0, 1.0 - mu * mu)), 0.0, mu), w = bb_v3(x, y, z);
+    const bb_vec3 h = bb_normalize(bb_add(wo, w));
+    const double q = h.x * h.x + h.y * h.y + h.z * h.z / (s * s);
+    const double d = 1.0 / (M_PI * s * q * q);  // SGGX D(h) [HDCD15 eq. 8]
+    const double ko = bb_sggx_fiber_area(wo, s) / mu, k = bb_sggx_fiber_area(w, s) / z;
+    return d / (4.0 * bb_sggx_fiber_area(wo, s)) * ko * -std::expm1(-(ko + k)) / (ko + k);
+}
+
 namespace {
 
 // A cell's Philox stream from its content (FNV-1a over its numbers), never its place in a launch.
 cl_uint cell_stream(const SheenVolumeCell& c) {
-    std::uint64_t h = 1469598103934665603ull;
-    const auto mix = [&h](const void* p, size_t n) {
-        const unsigned char* b = static_cast<const unsigned char*>(p);
-        for (size_t i = 0; i < n; ++i) h = (h ^ b[i]) * 1099511628211ull;
-    };
-    mix(&c.mu, sizeof c.mu);
-    mix(&c.alpha, sizeof c.alpha);
-    mix(&c.bounces, sizeof c.bounces);
+    const std::uint64_t h = Fnv1a().add(c.mu).add(c.alpha).add(c.bounces).h;
     return cl_uint(h ^ (h >> 32));
 }
 

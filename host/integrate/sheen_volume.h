@@ -43,10 +43,18 @@ struct SheenVolumeValue {
     AlbedoValue direct;         // the part of T without scattering
     AlbedoValue cutoff;         // still inside after `bounces` scatterings (R + T + cutoff = 1)
     /// With SheenVolumeRequest::lobe: per bin (row-major, SheenLobeBins), the mean over the bin
-    /// of the reflected density f cos(theta_o) per solid angle (over both sides of phi = 0), and
-    /// its error (3 standard errors of the replicas).
+    /// of the reflected density f cos(theta_o) per solid angle (over both sides of phi = 0) of the
+    /// walks that scattered two or more times, and its error (3 standard errors of the replicas).
+    /// The first order's density is sheen_single_density (closed form, no noise).
     std::vector<double> lobe, lobe_error;
 };
+
+/// The first scattering order's reflected density per solid angle, f1 cos(theta_i), at the unit
+/// exit direction (x, y, z), z > 0, the view at (sqrt(1 - mu^2), 0, mu), roughness alpha: the
+/// specular microflake phase function D(h) / (4 sigma(wo)) [HDCD15 eq. 13] times the slab's depth
+/// integral k_o (1 - exp(-(k_o + k))) / (k_o + k), k_o = sigma(wo)/mu, k = sigma(w)/z
+/// (brdf/sheen_volume.h). Integrated over the hemisphere it is the walks' `single`.
+double sheen_single_density(double mu, double alpha, double x, double y, double z);
 
 struct SheenVolumeResult {
     std::vector<SheenVolumeValue> values;  // one per cell

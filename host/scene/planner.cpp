@@ -15,6 +15,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
 #include "brdfbake/version.h"
+#include "engine/hash.h"
 #include "models/key_reader.h"
 #include "scene/calibration.h"
 #include "scene/scene.h"
@@ -133,15 +134,6 @@ std::string hex64(std::uint64_t v) {
     char b[17];
     std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(v));
     return b;
-}
-
-std::uint64_t fnv1a(const std::string& s) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : s) {
-        h ^= c;
-        h *= 1099511628211ull;
-    }
-    return h;
 }
 
 std::string g17(double v) {

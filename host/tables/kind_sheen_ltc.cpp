@@ -5,10 +5,10 @@
 // inverse matrix is M^-1 = [[a, 0, b], [0, a, 0], [0, 0, 1]] in the frame where the viewer is at
 // (sin theta_o, 0, cos theta_o) ([ZBC22] eq. 1: f cos(theta_i) = R D_o(M^-1 w / |M^-1 w|) |det M^-1| /
 // |M^-1 w|^3, D_o = max(0, z)/pi, Heitz et al. 2016 eq. 1 and sec. 3.1), fitted by the fitting
-// layer's Nelder-Mead (fit/nelder_mead.h) to the layer's reflected lobe, a histogram of the walks'
-// exits through the top. Channels a, b, R, distance (the L1 distance between the normalised lobe
-// and the LTC, both averaged over the histogram's bins), distance_error (the histogram's noise
-// floor in it) and error (R's).
+// layer's Nelder-Mead (fit/nelder_mead.h) to the layer's reflected lobe: the first order in closed
+// form (sheen_single_density) plus a histogram of the exits through the top after two or more
+// scatterings. Channels a, b, R, distance (the L1 distance between the normalised lobe and the LTC
+// at the fit's points), distance_error (the histogram's noise floor in it) and error (R's).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -31,9 +31,11 @@ namespace {
 constexpr double kSheenFloor = 0.01;
 /// The layer's roughness r of a texel is sqrt of the sheen axis' alpha: sigma = r^2 = alpha, so
 /// that --alpha-map roughness puts r (Cycles' roughness) on the axis.
-/// The fewest top exits a texel's fit uses; below it the texel holds the cosine (a = 1, b = 0).
+/// The higher orders' top exits a texel's histogram should hold: a texel with fewer, whose higher
+/// orders are at least kMinShare of its R, is walked again with kRewalk times the walks when that
+/// reaches kMinExits (the first order is in closed form: a texel is fitted whatever it reflects).
 constexpr double kMinExits = 1000;
-/// A texel with fewer exits than kMinExits is walked again with this many times the walks.
+constexpr double kMinShare = 0.05;
 constexpr std::uint64_t kRewalk = 16;
 /// Sub-points per bin side for the LTC's bin averages.
 constexpr int kSub = 3;
@@ -86,23 +88,37 @@ const SubPoints& sub_points() {
     return pts;
 }
 
-/// Per bin (SheenLobeBins), the LTC's mean density over the bin (one side of phi = 0).
-std::vector<double> ltc_bins(double a, double b) {
-    const SubPoints& s = sub_points();
-    std::vector<double> out(s.p.size() / (kSub * kSub), 0.0);
-    for (size_t k = 0; k < s.p.size(); ++k) {
-        const auto& q = s.p[k];
-        out[k / (kSub * kSub)] += q[3] * ltc_d(a, b, q[0], q[1], q[2]);
-    }
-    return out;
+/// The solid angle of sub-point k (both sides of phi = 0): its bin's times its weight.
+double sub_solid_angle(size_t k) {
+    const int bin = int(k / (kSub * kSub));
+    return 2.0 * SheenLobeBins::solid_angle(bin / SheenLobeBins::phi()) * sub_points().p[k][3];
 }
 
-/// integral over the upper hemisphere of |p - D| at bin resolution: p the lobe normalised by R.
-double bin_distance(const std::vector<double>& lobe, double r, const std::vector<double>& d) {
-    const int np = SheenLobeBins::phi();
+/// A texel's lobe normalised by its integral, at the sub-points: the first order in closed form
+/// (sheen_single_density) plus the walks' histogram of the higher orders (constant over a bin).
+/// Empty when nothing is reflected; `total` the integral before normalising.
+std::vector<double> texel_target(const SheenVolumeCell& cell, const SheenVolumeValue& v, double& total) {
+    const SubPoints& s = sub_points();
+    std::vector<double> t(s.p.size());
+    total = 0.0;
+    for (size_t k = 0; k < s.p.size(); ++k) {
+        const auto& q = s.p[k];
+        t[k] = sheen_single_density(cell.mu, cell.alpha, q[0], q[1], q[2]) + v.lobe[k / (kSub * kSub)];
+        total += sub_solid_angle(k) * t[k];
+    }
+    if (!(total > 0.0) || !std::isfinite(total)) return {};
+    for (double& x : t) x /= total;
+    return t;
+}
+
+/// integral over the upper hemisphere of |p - D| at the sub-points: p the normalised lobe.
+double point_distance(const std::vector<double>& target, double a, double b) {
+    const SubPoints& s = sub_points();
     double sum = 0.0;
-    for (size_t k = 0; k < lobe.size(); ++k)
-        sum += 2.0 * SheenLobeBins::solid_angle(int(k) / np) * std::abs(lobe[k] / r - d[k]);
+    for (size_t k = 0; k < s.p.size(); ++k) {
+        const auto& q = s.p[k];
+        sum += sub_solid_angle(k) * std::abs(target[k] - ltc_d(a, b, q[0], q[1], q[2]));
+    }
     return sum;
 }
 
@@ -111,9 +127,21 @@ struct TexelFit {
     bool fitted = false;
 };
 
+/// The histogram's noise floor in a texel's distance: where the lobe equals D, a bin's |p - D|
+/// averages sqrt(2/pi) of its standard error (lobe_error holds 3 of them); summed over the bins,
+/// relative to the lobe's integral `total` (the first order, in closed form, adds no noise).
+double noise_floor(const SheenVolumeValue& v, double total) {
+    double sum = 0.0;
+    for (size_t b = 0; b < v.lobe.size(); ++b)
+        sum += 2.0 * SheenLobeBins::solid_angle(int(b) / SheenLobeBins::phi()) * std::sqrt(2.0 / M_PI) *
+               v.lobe_error[b] / 3.0;
+    return sum / total;
+}
+
 /// Fits the texels row by row from rough to smooth, each row's texels started from the row fitted
 /// before (as [ZBC22]'s fit runs from high to low roughness), a row's texels in one batch.
-std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const SheenVolumeResult& walks) {
+std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const std::vector<SheenVolumeCell>& cells,
+                                 const SheenVolumeResult& walks) {
     const size_t w = g.table.x.parameter.size(), h = g.table.y.parameter.size();
     std::vector<size_t> order(h);
     for (size_t j = 0; j < h; ++j) order[j] = j;
@@ -130,34 +158,31 @@ std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const SheenVolumeResult& 
     for (size_t k = 0; k < h; ++k) {
         const size_t j = order[k];
         std::vector<size_t> texels;
-        std::vector<std::vector<double>> starts;
+        std::vector<std::vector<double>> starts, targets;
+        std::vector<double> totals;
         for (size_t i = 0; i < w; ++i) {
-            const SheenVolumeValue& v = walks.values[j * w + i];
-            if (v.reflectance.value * double(v.reflectance.samples) < kMinExits) continue;
+            double total = 0.0;
+            std::vector<double> t = texel_target(cells[j * w + i], walks.values[j * w + i], total);
+            if (t.empty()) continue;
             texels.push_back(j * w + i);
+            totals.push_back(total);
             starts.push_back(start[i]);
+            targets.push_back(std::move(t));
         }
         const auto objective = [&](const std::vector<size_t>& problem, const std::vector<std::vector<double>>& x) {
             std::vector<double> out(x.size());
-            for (size_t p = 0; p < x.size(); ++p) {
-                const SheenVolumeValue& v = walks.values[texels[problem[p]]];
-                out[p] = bin_distance(v.lobe, v.reflectance.value, ltc_bins(std::exp(x[p][0]), x[p][1]));
-            }
+            for (size_t p = 0; p < x.size(); ++p)
+                out[p] = point_distance(targets[problem[p]], std::exp(x[p][0]), x[p][1]);
             return out;
         };
         const std::vector<fit::Minimum> mins = fit::minimize_batch(starts, options, objective);
         for (size_t t = 0; t < texels.size(); ++t) {
             const size_t c = texels[t];
-            const SheenVolumeValue& v = walks.values[c];
             TexelFit& f = fits[c];
             f.a = double(float(std::exp(mins[t].x[0])));  // as written (float32)
             f.b = double(float(mins[t].x[1]));
-            f.distance = bin_distance(v.lobe, v.reflectance.value, ltc_bins(f.a, f.b));
-            // the histogram's noise floor: where the lobe equals D, a bin's |p - D| averages
-            // sqrt(2/pi) of its standard error (lobe_error holds 3 of them); summed over the bins
-            for (size_t b = 0; b < v.lobe.size(); ++b)
-                f.distance_error += 2.0 * SheenLobeBins::solid_angle(int(b) / SheenLobeBins::phi()) *
-                                    std::sqrt(2.0 / M_PI) * v.lobe_error[b] / 3.0 / v.reflectance.value;
+            f.distance = point_distance(targets[t], f.a, f.b);
+            f.distance_error = noise_floor(walks.values[c], totals[t]);
             f.fitted = true;
             start[c % w] = mins[t].x;
         }
@@ -182,17 +207,18 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
                              BB_SHEEN_VOLUME_DEFAULT_BOUNCES});
     progress_next_pass();
     SheenVolumeResult walks = sheen_volume_walks(engine, req);
-    // Texels that reflect few walks (smooth layers seen from above) are walked again, kRewalk times
-    // as many, when that gives them kMinExits: those that reflected at least kMinExits / kRewalk.
-    // (Rewalking those that reflect almost nothing, the smoothest row at grazing views, where a walk
-    // scatters ~1/mu times before it crosses, took hours.)
+    // Texels whose higher orders left few walks through the top (smooth layers seen from above) are
+    // walked again, kRewalk times as many, when that gives them kMinExits and those orders matter
+    // (kMinShare of R). (Rewalking those that reflect almost nothing, the smoothest row at grazing
+    // views, where a walk scatters ~1/mu times before it crosses, took hours.)
     SheenVolumeRequest again = req;
     again.cells.clear();
     again.walks = req.walks * kRewalk;
     std::vector<size_t> rewalked;
     for (size_t c = 0; c < req.cells.size(); ++c) {
-        const double exits = walks.values[c].reflectance.value * double(walks.walks_per_cell);
-        if (exits < kMinExits && exits * double(kRewalk) >= kMinExits) {
+        const SheenVolumeValue& v = walks.values[c];
+        const double higher = v.reflectance.value - v.single.value, exits = higher * double(walks.walks_per_cell);
+        if (exits < kMinExits && exits * double(kRewalk) >= kMinExits && higher >= kMinShare * v.reflectance.value) {
             again.cells.push_back(req.cells[c]);
             rewalked.push_back(c);
         }
@@ -201,7 +227,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
         const SheenVolumeResult more = sheen_volume_walks(engine, again);
         for (size_t k = 0; k < rewalked.size(); ++k) walks.values[rewalked[k]] = more.values[k];
     }
-    const std::vector<TexelFit> fits = fit_texels(g, walks);
+    const std::vector<TexelFit> fits = fit_texels(g, req.cells, walks);
     const size_t n = g.cells.size();
     t.channels = {"a", "b", "R", "distance", "distance_error"};
     t.values.assign(t.channels.size(), std::vector<double>(n));
@@ -229,18 +255,20 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.attributes["model"] = "sheen-volume: the fiber SGGX layer of Zeltner et al. 2022, sigma = the axis' alpha "
                             "(roughness^2 with --alpha-map roughness)";
     t.attributes["floors"] = "mu and roughness below 0.01 are computed at 0.01 (Zeltner et al. 2022's fit)";
-    t.attributes["distance"] = "integral over the upper hemisphere of |lobe / R - D_ltc|, both averaged over " +
+    t.attributes["distance"] = "integral over the upper hemisphere of |lobe / R - D_ltc| at " +
+                               std::to_string(kSub) + " x " + std::to_string(kSub) + " points in each of " +
                                std::to_string(SheenLobeBins::theta()) + " x " + std::to_string(SheenLobeBins::phi()) +
-                               " bins (theta, |phi|): " + min_median_max_text(distance);
+                               " bins (theta, |phi|); the first order in closed form, the higher orders the walks' "
+                               "histogram: " + min_median_max_text(distance);
     t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
                                     std::to_string(rewalked.size()) + " texels with " +
                                     std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
-                                    std::to_string(int(kMinExits)) + " reflected walks walked again with " +
+                                    std::to_string(int(kMinExits)) +
+                                    " walks reflected after two or more scatterings walked again with " +
                                     std::to_string(kRewalk) + " times as many)";
-    t.attributes["distance_error"] = "the histogram's noise floor in the distance: sqrt(2/pi) standard errors per "
-                                     "bin, summed: " + min_median_max_text(distance_error);
-    t.attributes["unfitted"] = std::to_string(unfitted) + " texels with fewer than " +
-                               std::to_string(int(kMinExits)) + " reflected walks hold the cosine (a = 1, b = 0)";
+    t.attributes["distance_error"] = "the higher orders' histogram's noise floor in the distance: sqrt(2/pi) "
+                                     "standard errors per bin, summed: " + min_median_max_text(distance_error);
+    t.attributes["unfitted"] = std::to_string(unfitted) + " texels that reflect nothing hold the cosine (a = 1, b = 0)";
     t.attributes["cutoff"] = "share of walks still inside after " + std::to_string(BB_SHEEN_VOLUME_DEFAULT_BOUNCES) +
                              " scatterings: " + min_median_max_text(cutoff);
     return std::move(g.table);
