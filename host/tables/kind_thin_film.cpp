@@ -43,8 +43,12 @@ Axis thickness_axis(const LutRequest& r) {
     return a;
 }
 
+/// The term at the range's upper thickness (at 550 nm without --wavelength); another term as it
+/// is, for validate_thin_film to refuse.
 FresnelConfig film_fresnel(const LutRequest& r) {
-    return resolve_fresnel(thin_film_at(r.fresnel, r.thickness_hi), r.wavelength_nm == 0.0 ? 550.0 : r.wavelength_nm);
+    const double nm = r.wavelength_nm == 0.0 ? 550.0 : r.wavelength_nm;
+    if (r.fresnel.rfind("thin-film:", 0) != 0) return resolve_fresnel(r.fresnel, fresnel_needs_wavelength(r.fresnel) ? nm : 0.0);
+    return resolve_fresnel(thin_film_at(r.fresnel, r.thickness_hi), nm);
 }
 
 std::vector<std::string> film_program(const LutRequest& r) { return {"albedo|" + r.model + "|thin-film"}; }
