@@ -19,6 +19,7 @@
 #include "models/spectrum.h"
 #include "scene/scene.h"
 #include "scene_support.h"
+#include "spectral_checks.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -50,29 +51,6 @@ LutRequest conductor_request(const LutRequest& film, const std::string& fresnel)
     return c;
 }
 
-/// max over cos of |F_c at 1 nm - F_c at 5 nm| per channel, on the host in double.
-std::array<double, 3> step_difference(const std::string& fresnel) {
-    const SpectralWeights& fine = srgb_weights(1);
-    const SpectralWeights& coarse = srgb_weights(5);
-    std::array<double, 3> worst{};
-    const auto at = fresnel_over_wavelengths(fresnel);
-    std::vector<FresnelConfig> f;
-    for (double nm : fine.nm) f.push_back(at(nm));
-    for (int i = 0; i <= 200; ++i) {
-        const double c = i / 200.0;
-        std::array<double, 3> a{}, b{};
-        for (size_t k = 0; k < fine.nm.size(); ++k) {
-            const double v = fresnel_value(f[k], c);
-            for (int ch = 0; ch < 3; ++ch) {
-                a[ch] += fine.rgb[k][ch] * v;
-                if ((k % 5) == 0) b[ch] += coarse.rgb[k / 5][ch] * v;
-            }
-        }
-        for (int ch = 0; ch < 3; ++ch) worst[ch] = std::max(worst[ch], std::fabs(a[ch] - b[ch]));
-    }
-    return worst;
-}
-
 }  // namespace
 
 TEST_CASE("thin-film table: each thickness slice is the colour of single-wavelength tables summed at 5 nm",
@@ -97,7 +75,7 @@ TEST_CASE("thin-film table: each thickness slice is the colour of single-wavelen
             for (size_t i = 0; i < slice; ++i)
                 for (int ch = 0; ch < 3; ++ch) sum[i][ch] += w.rgb[k][ch] * e.values[0][i];
         }
-        const std::array<double, 3> step = step_difference(film);
+        const std::array<double, 3> step = testing::step_difference(film);
         for (size_t i = 0; i < slice; ++i)
             for (int ch = 0; ch < 3; ++ch) {
                 const double v = t.values[size_t(ch)][size_t(z) * slice + i];
