@@ -14,6 +14,7 @@
 #include "brdfbake/spec.h"
 #include "checks.h"
 #include "models/spectrum.h"
+#include "spectral_checks.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -32,30 +33,6 @@ LutRequest small_request(const std::string& kind, const std::string& fresnel) {
     r.samples = 1u << 12;
     r.precision = Precision::Double;
     return r;
-}
-
-/// max over cos in [0, 1] of |F_c at 1 nm - F_c at 5 nm| for each channel, F evaluated on the
-/// host in double: how far a 5 nm brute-force sum may be from the 1 nm colour.
-std::array<double, 3> step_difference(const std::string& fresnel) {
-    const SpectralWeights& fine = srgb_weights(1);
-    const SpectralWeights& coarse = srgb_weights(5);
-    std::array<double, 3> worst{};
-    const auto at = fresnel_over_wavelengths(fresnel);
-    std::vector<FresnelConfig> f;
-    for (double nm : fine.nm) f.push_back(at(nm));
-    for (int i = 0; i <= 200; ++i) {
-        const double c = i / 200.0;
-        std::array<double, 3> a{}, b{};
-        for (size_t k = 0; k < fine.nm.size(); ++k) {
-            const double v = fresnel_value(f[k], c);
-            for (int ch = 0; ch < 3; ++ch) {
-                a[ch] += fine.rgb[k][ch] * v;
-                if ((k % 5) == 0) b[ch] += coarse.rgb[k / 5][ch] * v;
-            }
-        }
-        for (int ch = 0; ch < 3; ++ch) worst[ch] = std::max(worst[ch], std::fabs(a[ch] - b[ch]));
-    }
-    return worst;
 }
 
 }  // namespace
@@ -77,7 +54,7 @@ TEST_CASE("spectral conductor table: the colour of single-wavelength tables summ
             for (size_t i = 0; i < sum.size(); ++i)
                 for (int ch = 0; ch < 3; ++ch) sum[i][ch] += w.rgb[k][ch] * e.values[0][i];
         }
-        const std::array<double, 3> step = step_difference(fresnel);
+        const std::array<double, 3> step = testing::step_difference(fresnel);
         for (size_t i = 0; i < sum.size(); ++i)
             for (int ch = 0; ch < 3; ++ch) {
                 INFO("texel " << i << " channel " << ch << ": " << t.values[ch][i] << " vs " << sum[i][ch]);

@@ -26,6 +26,7 @@
 #include "cli/cli.h"
 #include "fit/f82_tint.h"
 #include "models/key_reader.h"
+#include "models/spectrum.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
@@ -405,10 +406,7 @@ Precision precision_of(const FresnelOptions& o) { return o.precision == "double"
 /// `fresnel --rgb`: the reflectance's colour in linear sRGB per angle (fresnel_rgb_on_device).
 std::string render_rgb(const FresnelOptions& o, Precision precision, const std::vector<double>& thetas,
                        const std::vector<double>& cosines, const FresnelColour& c, const Engine& engine) {
-    const std::string space = std::string(o.colour_space == "acescg"
-                                              ? "ACEScg (AP1 primaries, ACES white by Bradford from D65; white = 1, 1, 1)"
-                                              : "linear sRGB (D65 white = 1, 1, 1)") +
-                              ", CIE 1931 2-degree observer, illuminant D65, 380-780 nm summed at 1 nm";
+    const std::string space = colour_space_text(o.colour_space);
     std::ostringstream out;
     char line[240];
     const Format format = parse_format(o.format);
@@ -512,7 +510,7 @@ std::string render_f82_fit(const FresnelOptions& o, const fit::F82TintFit& r) {
         j["command"] = "fresnel";
         j["fit"] = "f82-tint";
         j["fresnel"] = o.fresnel;
-        j["colour_space"] = "linear sRGB (D65), CIE 1931 2-degree observer, 380-780 nm at 1 nm";
+        j["colour_space"] = colour_space_text("srgb");
         j["f0"] = r.f0;
         j["tint"] = r.tint;
         j["max_error"] = r.max_error;

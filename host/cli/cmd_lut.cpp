@@ -30,7 +30,7 @@ struct LutOptions {
     bool rgb_wavelengths = false;
     std::string size;
     std::string mu_map, alpha_map, eta_map, texels;
-    std::string alpha_range, eta_range, mu_range;
+    std::string alpha_range, eta_range, mu_range, thickness_range;
     double mu_floor = 0.0;
     std::string axes, flip;
     MethodOptions integration;
@@ -113,6 +113,7 @@ LutSettings given_settings(const LutOptions& o) {
     if (given("--alpha-range")) s.alpha_range = parse_number_list(o.alpha_range, "--alpha-range");
     if (given("--eta-range")) s.eta_range = parse_number_list(o.eta_range, "--eta-range");
     if (given("--mu-range")) s.mu_range = parse_number_list(o.mu_range, "--mu-range");
+    if (given("--thickness-range")) s.thickness_range = parse_number_list(o.thickness_range, "--thickness-range");
     s.mu_floor = number("--mu-floor", o.mu_floor);
     if (given("--axes")) s.axes = parse_names(o.axes, "--axes");
     if (given("--flip")) s.flip = parse_names(o.flip, "--flip");
@@ -208,6 +209,7 @@ LutOptions default_options() {
     o.alpha_range = range(d.alpha_lo, d.alpha_hi);
     o.eta_range = range(d.eta_lo, d.eta_hi);
     o.mu_range = range(d.mu_lo, d.mu_hi);
+    o.thickness_range = range(d.thickness_lo, d.thickness_hi);
     o.mu_floor = d.mu_floor;
     o.precision = precision_name(d.precision);
     return o;
@@ -263,6 +265,9 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->capture_default_str();
     cmd->add_option("--alpha-range", o->alpha_range, "LO,HI of the roughness axis coordinate")->capture_default_str();
     cmd->add_option("--eta-range", o->eta_range, "LO,HI of eta (0 < LO < HI <= 100; below 1: from the denser side)")
+        ->capture_default_str();
+    cmd->add_option("--thickness-range", o->thickness_range,
+                    "LO,HI of the film thickness in nm (the thin-film table's z axis; KHR_materials_iridescence's 100,400)")
         ->capture_default_str();
     cmd->add_option("--eta-map", o->eta_map,
                     "eta axis coordinate: linear (w = eta), f0 (w = ((eta-1)/(eta+1))^2) or cycles "

@@ -109,11 +109,27 @@ Matrix xyz_to_acescg(const std::array<double, 3>& white_xyz) {
     return product(xyz_to_rgb(ap1, aces_white), adapt);
 }
 
-SpectralWeights make_weights(int step_nm, Matrix (*to_rgb)(const std::array<double, 3>&)) {
-    const auto cmf = read_embedded_csv("cie/cie1931_2deg_1nm.csv");
-    const auto d65 = read_embedded_csv("cie/cie_d65.csv");
+/// The observer's colour-matching functions by wavelength and D65, parsed once from the embedded
+/// CSVs (every colour space and step reads them).
+struct ObserverData {
     std::map<int, std::array<double, 3>> xyz_bar;
-    for (const auto& r : cmf) xyz_bar[int(std::lround(r[0]))] = {r[1], r[2], r[3]};
+    std::vector<std::vector<double>> d65;
+};
+
+const ObserverData& observer_data() {
+    static const ObserverData data = [] {
+        ObserverData o;
+        for (const auto& r : read_embedded_csv("cie/cie1931_2deg_1nm.csv"))
+            o.xyz_bar[int(std::lround(r[0]))] = {r[1], r[2], r[3]};
+        o.d65 = read_embedded_csv("cie/cie_d65.csv");
+        return o;
+    }();
+    return data;
+}
+
+SpectralWeights make_weights(int step_nm, Matrix (*to_rgb)(const std::array<double, 3>&)) {
+    const auto& xyz_bar = observer_data().xyz_bar;
+    const auto& d65 = observer_data().d65;
     SpectralWeights w;
     std::vector<std::array<double, 3>> xyz;
     double y_sum = 0.0;
@@ -160,6 +176,22 @@ const SpectralWeights& colour_weights(const std::string& colour_space, int step_
     const auto it = all.find({colour_space, step_nm});
     if (it == all.end()) throw Error("spectral weights exist at 1, 2, 4 and 5 nm steps, not " + std::to_string(step_nm));
     return it->second;
+}
+
+const std::vector<std::array<double, 4>>& cie_observer() {
+    static const std::vector<std::array<double, 4>> rows = [] {
+        std::vector<std::array<double, 4>> r;
+        for (const auto& kv : observer_data().xyz_bar) r.push_back({double(kv.first), kv.second[0], kv.second[1], kv.second[2]});
+        return r;
+    }();
+    return rows;
+}
+
+std::string colour_space_text(const std::string& colour_space) {
+    return std::string(colour_space == "acescg" ? "ACEScg (AP1 primaries, ACES white (about D60) by Bradford from D65; "
+                                                  "white = 1, 1, 1)"
+                                                : "linear sRGB (D65 white = 1, 1, 1)") +
+           ", CIE 1931 2-degree observer, illuminant D65, 380-780 nm summed at 1 nm";
 }
 
 const SpectralWeights& srgb_weights(int step_nm) { return colour_weights("srgb", step_nm); }

@@ -35,6 +35,13 @@ const SpectralWeights& srgb_weights(int step_nm);
 /// The weights of a colour space by name: "srgb" or "acescg" (throws Error for another).
 const SpectralWeights& colour_weights(const std::string& colour_space, int step_nm);
 
+/// How colour_weights(colour_space, 1) makes its colour, in words for headers and outputs: the
+/// space ("linear sRGB" or "ACEScg ..."), its white, the observer, the illuminant and the sums.
+std::string colour_space_text(const std::string& colour_space);
+
+/// The embedded CIE 1931 2-degree observer (data/cie/cie1931_2deg_1nm.csv): nm, x-bar, y-bar, z-bar.
+const std::vector<std::array<double, 4>>& cie_observer();
+
 /// The 3x3 XYZ -> linear-sRGB matrix for the white point `white_xyz` (rows: R, G, B).
 std::array<std::array<double, 3>, 3> xyz_to_linear_srgb(const std::array<double, 3>& white_xyz);
 

@@ -12,7 +12,8 @@ const std::set<std::string> kModelled = {"KHR_materials_ior",          "KHR_mate
                                          "KHR_materials_transmission", "KHR_materials_volume",
                                          "KHR_materials_clearcoat",    "KHR_materials_anisotropy",
                                          "KHR_materials_unlit",        "KHR_materials_sheen",
-                                         "KHR_materials_variants"};
+                                         "KHR_materials_variants",
+                                         "KHR_materials_iridescence"};
 
 /// Extensions known not to change any table (geometry, textures, lights): reported once, nothing else.
 const std::map<std::string, std::string> kNoTableEffect = {
@@ -32,7 +33,6 @@ const std::map<std::string, std::string> kNoTableEffect = {
 
 /// Material extensions that need tables brdfbake does not compute.
 const std::map<std::string, std::string> kNotModelled = {
-    {"KHR_materials_iridescence", "thin-film interference changes the Fresnel term; tables are computed without it"},
     {"KHR_materials_dispersion", "the index of refraction varies with wavelength; only the base ior is tabulated"},
     {"KHR_materials_diffuse_transmission", "diffuse transmission needs no microfacet table and is not modelled"},
     {"KHR_materials_pbrSpecularGlossiness", "the specular-glossiness workflow is not modelled; the material is "

@@ -569,6 +569,48 @@ void add_sheen_lobe(MaterialReader& m, const json* s) {
     m.out.lobes.push_back(l);
 }
 
+/// KHR_materials_iridescence (KhronosGroup/glTF extensions/2.0/Khronos/KHR_materials_iridescence):
+/// a film of index iridescenceIor (default 1.3) on the base, thickness
+/// mix(iridescenceThicknessMinimum, iridescenceThicknessMaximum, iridescenceThicknessTexture.g)
+/// (defaults 100 and 400 nm; iridescenceThicknessMaximum without the texture), and
+/// F = mix(F_base, F_iridescence, iridescenceFactor x iridescenceTexture.r). The albedo is linear in
+/// F, so the film's table (the thin-film kind, over the thickness range) serves every factor. The
+/// film's substrate is the dielectric base at the material's ior; a metallic base has only a
+/// colour (the Sample Viewer turns baseColor into a real index per channel, k = 0), no spectrum.
+void add_iridescence_lobe(MaterialReader& m, const BaseInputs& in, const json* e) {
+    if (!e) return;
+    const std::string ip = "KHR_materials_iridescence";
+    const double factor = m.number(e, "iridescenceFactor", 0.0, ip);
+    check_factor(m.where, "KHR_materials_iridescence: iridescenceFactor", factor, 0, 1);
+    if (!(m.textured(e, "iridescenceTexture", factor, 0, "iridescence", ip).hi > 0.0)) {
+        m.out.notes.push_back("KHR_materials_iridescence: iridescenceFactor 0, no film, no table");
+        return;
+    }
+    const double ior = m.number(e, "iridescenceIor", 1.3, ip);
+    const double lo = m.number(e, "iridescenceThicknessMinimum", 100.0, ip);
+    const double hi = m.number(e, "iridescenceThicknessMaximum", 400.0, ip);
+    if (!(ior >= 1.0 && ior <= 10.0))
+        throw Error(m.where + ": KHR_materials_iridescence: iridescenceIor " + fmt(ior) + " is out of range [1, 10]");
+    if (!(lo >= 0.0 && hi >= 0.0 && lo <= 100000.0 && hi <= 100000.0))
+        throw Error(m.where + ": KHR_materials_iridescence: thickness " + fmt(lo) + ", " + fmt(hi) +
+                    " nm is out of range [0, 100000]");
+    const Interval g = m.has_texture(e, "iridescenceThicknessTexture", ip)
+                           ? m.textured(e, "iridescenceThicknessTexture", 1.0, 1, "iridescence thickness ratio", ip)
+                           : Interval{1.0, 1.0};
+    const Interval d{std::min(lo + (hi - lo) * g.lo, lo + (hi - lo) * g.hi), std::max(lo + (hi - lo) * g.lo, lo + (hi - lo) * g.hi)};
+    if (in.metallic.hi > 0.0)
+        m.out.notes.push_back("KHR_materials_iridescence: over the metallic base the film's substrate is baseColor "
+                              "(no spectrum), not tabulated; the film's table is for the dielectric base");
+    if (in.metallic.lo >= 1.0) return;
+    Lobe l = lobe_of("iridescence", "ggx", "thin-film:eta=" + fmt(ior) + ",base_eta=" + fmt(in.ior), in.alpha);
+    l.thickness = d;
+    l.kinds = {&table_kind(TableKindId::ThinFilm)};
+    m.out.notes.push_back("KHR_materials_iridescence: film ior " + fmt(ior) + " on the base's ior " + fmt(in.ior) +
+                          ", thickness " + range_text(d) + " nm; F = mix(F_base, F_film, iridescence) with the "
+                          "film's albedo from the thin-film table (colour in linear sRGB)");
+    m.out.lobes.push_back(l);
+}
+
 SceneMaterial map_material(Document& d, const json& mat, const std::string& name, std::vector<std::string>& warnings) {
     SceneMaterial out;
     out.name = name;
@@ -590,6 +632,7 @@ SceneMaterial map_material(Document& d, const json& mat, const std::string& name
     if (in.metallic.lo < 1.0) add_dielectric_lobe(m, in, ext("KHR_materials_volume"));
     add_clearcoat_lobe(m, ext("KHR_materials_clearcoat"));
     add_sheen_lobe(m, ext("KHR_materials_sheen"));
+    add_iridescence_lobe(m, in, ext("KHR_materials_iridescence"));
     if (out.lobes.empty() && out.notes.empty()) out.notes.push_back("no lobe needs a table");
     return out;
 }

@@ -121,7 +121,9 @@ std::string plan_text(const Plan& p) {
                         << "; no roughness axis (measured)";
         else if (kind.one_dimensional) o << alpha_axis;
         else o << "mu 0..1 (" << r.width << ", " << r.mu_map << ") x " << alpha_axis;
-        if (kind.eta_axis)
+        if (kind.id == TableKindId::ThinFilm)
+            o << " x thickness_nm " << short_num(r.thickness_lo) << ".." << short_num(r.thickness_hi) << " (" << t.depth << ")";
+        else if (kind.eta_axis)
             o << " x eta " << short_num(t.eta_lo) << ".." << short_num(t.eta_hi) << " (" << t.depth << ")";
         auto range = [](Interval v) {
             return v.lo == v.hi ? short_num(v.lo) : short_num(v.lo) + ".." + short_num(v.hi);
@@ -195,7 +197,10 @@ std::string plan_json(const Plan& p) {
                      {"lo", r.alpha_lo},
                      {"hi", r.alpha_hi},
                      {"size", kind.one_dimensional ? r.width : r.height}});
-        if (kind.eta_axis)
+        if (kind.id == TableKindId::ThinFilm)
+            a.push_back({{"name", "thickness_nm"}, {"mapping", "thickness_nm = w"}, {"lo", r.thickness_lo},
+                         {"hi", r.thickness_hi}, {"size", t.depth}});
+        else if (kind.eta_axis)
             a.push_back({{"name", "eta"}, {"mapping", "eta = e"}, {"lo", t.eta_lo}, {"hi", t.eta_hi}, {"size", t.depth}});
         nlohmann::ordered_json e = {{"file", t.file},
                   {"kind", r.kind},

@@ -180,6 +180,7 @@ struct Group {
     double wavelength = 0.0;
     Interval alpha;
     std::optional<Interval> eta;
+    std::optional<Interval> thickness;  // thin-film tables: the lobes' film thickness range (nm)
     std::vector<std::string> serves, materials;
     std::unordered_set<std::string> serves_seen, materials_seen;  // for adding each once, fast
     bool transmission = false;  // serves a lobe that transmits
@@ -218,6 +219,7 @@ std::vector<Group> group_needs(const std::vector<SceneMaterial>& materials, Plan
                     g.wavelength = wl;
                     g.alpha = lobe.alpha;
                     if (kind->eta_axis) g.eta = lobe.eta;
+                    g.thickness = lobe.thickness;
                     groups.push_back(std::move(g));
                 }
                 Group& g = groups[at->second];
@@ -228,6 +230,9 @@ std::vector<Group> group_needs(const std::vector<SceneMaterial>& materials, Plan
                         g.eta->lo = std::min(g.eta->lo, lobe.eta->lo);
                         g.eta->hi = std::max(g.eta->hi, lobe.eta->hi);
                     }
+                    if (g.thickness && lobe.thickness)
+                        g.thickness = Interval{std::min(g.thickness->lo, lobe.thickness->lo),
+                                               std::max(g.thickness->hi, lobe.thickness->hi)};
                 }
                 g.transmission = g.transmission || lobe.role == "transmission";
                 add_once(g.serves, g.serves_seen, m.name + " (" + lobe.role + ")");
@@ -402,6 +407,7 @@ void finish_table(Plan& plan, const Figures& figures, PlannedTable t, const std:
     k << "brdfbake " << BRDFBAKE_VERSION << "; kind=" << r.kind << "; model=" << r.model << "; fresnel=" << r.fresnel
       << "; wavelength_nm=" << g17(r.wavelength_nm) << "; size=" << r.width << "x" << r.height;
     if (kind.eta_axis) k << "x" << t.depth << "; eta_range=" << g17(t.eta_lo) << "," << g17(t.eta_hi);
+    if (kind.id == TableKindId::ThinFilm) k << "; thickness_range=" << g17(r.thickness_lo) << "," << g17(r.thickness_hi);
     k << "; mu_map=" << r.mu_map << "; alpha_map=" << r.alpha_map << "; alpha_range=" << g17(r.alpha_lo) << ","
       << g17(r.alpha_hi) << "; samples=" << r.samples << "; precision=" << precision_name(r.precision)
       << "; format=" << ext << (half ? "-half" : "");
@@ -473,7 +479,12 @@ PlannedTable group_table(const Group& g, const SceneSettings& s) {
         r.width = s.mu_texels;
         r.height = a.n;
     }
-    if (g.kind->eta_axis) {
+    if (g.kind->eta_axis && g.thickness) {  // the thin-film table: 16 slices over the film's range, or one
+        r.thickness_lo = g.thickness->lo;
+        r.thickness_hi = g.thickness->hi;
+        t.depth = g.thickness->lo == g.thickness->hi ? 1 : 16;
+        apply_eta_axis(t, r);
+    } else if (g.kind->eta_axis) {
         const AxisPlan e = plan_axis(g.eta->lo, g.eta->hi, 1, s.eta_step, 1.0, kEtaAxisMax, 64);
         t.eta_lo = e.lo;
         t.eta_hi = e.hi;

@@ -38,6 +38,7 @@ struct Lobe {
     double wavelength_nm = 0.0;      // for measured metals (metal:Au, nk:FILE)
     Interval alpha;                  // alpha (= roughness^2) range the material uses
     std::optional<Interval> eta;     // relative index of refraction range (dielectric lobes)
+    std::optional<Interval> thickness;  // film thickness range in nm (thin-film lobes: KHR_materials_iridescence)
     std::vector<const TableKind*> kinds;  // table kinds the lobe needs (registry entries)
 };
 

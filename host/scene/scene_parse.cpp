@@ -202,12 +202,22 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
             // A measured metal without a wavelength is checked at 550 nm; its conductor tables then
             // hold its colour R, G, B (tables/spectral_fresnel.h), and albedo and eavg tables do not depend on it.
             std::string text = string_at(m["fresnel"], w, "fresnel");
-            // nk:FILE names a file beside the scene (a relative path is read from the scene's folder).
-            const size_t colon = text.find(':');
-            if (fresnel_reads_file(text) && colon != std::string::npos && colon + 1 < text.size() && text[colon + 1] != '/') {
-                const size_t slash = file.find_last_of('/');
-                if (slash != std::string::npos)
-                    text = text.substr(0, colon + 1) + file.substr(0, slash + 1) + text.substr(colon + 1);
+            // nk:FILE names a file beside the scene (a relative path is read from the scene's folder),
+            // and so does a film's substrate, thin-film:...,base=nk:FILE.
+            const size_t slash = file.find_last_of('/');
+            const std::string folder = slash == std::string::npos ? "" : file.substr(0, slash + 1);
+            auto beside = [&](const std::string& spec) {
+                const size_t colon = spec.find(':');
+                if (fresnel_reads_file(spec) && colon != std::string::npos && colon + 1 < spec.size() && spec[colon + 1] != '/')
+                    return spec.substr(0, colon + 1) + folder + spec.substr(colon + 1);
+                return spec;
+            };
+            text = beside(text);
+            const size_t base = text.find("base=nk:");
+            if (text.rfind("thin-film:", 0) == 0 && base != std::string::npos) {
+                const size_t end = text.find(',', base);
+                const std::string nk = text.substr(base + 5, end == std::string::npos ? std::string::npos : end - base - 5);
+                text = text.substr(0, base + 5) + beside(nk) + (end == std::string::npos ? "" : text.substr(end));
             }
             const bool measured = fresnel_needs_wavelength(text);
             resolve_fresnel(text, measured && wavelength == 0.0 ? 550.0 : wavelength);

@@ -105,6 +105,11 @@ TableKind gen_schlick_ior_kind();
 TableKind dfg_f82_kind();
 TableKind ltc_kind();
 TableKind sheen_ltc_kind();
+TableKind thin_film_kind();
+
+/// A thin-film Fresnel spec with its thickness set to `thickness_nm` (replacing any thickness key):
+/// one z slice of the thin-film table (kind_thin_film.cpp).
+std::string thin_film_at(const std::string& fresnel_spec, double thickness_nm);
 
 }  // namespace tables
 }  // namespace brdfbake

@@ -319,6 +319,7 @@ LutSetup apply_preset(const LutSettings& given) {
     if (given.alpha_range) std::tie(r.alpha_lo, r.alpha_hi) = range_of(*given.alpha_range, "--alpha-range");
     if (given.eta_range) std::tie(r.eta_lo, r.eta_hi) = range_of(*given.eta_range, "--eta-range");
     if (given.mu_range) std::tie(r.mu_lo, r.mu_hi) = range_of(*given.mu_range, "--mu-range");
+    if (given.thickness_range) std::tie(r.thickness_lo, r.thickness_hi) = range_of(*given.thickness_range, "--thickness-range");
     if (given.mu_floor) r.mu_floor = *given.mu_floor;
     if (given.texels) r.texels = parse_texels(*given.texels);
     if (given.axes) r.axes = *given.axes;

@@ -15,7 +15,8 @@ const std::vector<const TableKind*>& table_kinds() {
                                                    tables::dielectric_eavg_kind(), tables::gen_schlick_kind(), tables::gen_schlick_ior_kind(),
                                                    tables::dfg_f82_kind(),        tables::sheen_viewer_kind(),
                                                    tables::ltc_kind(),
-                                                   tables::sheen_ltc_kind()};
+                                                   tables::sheen_ltc_kind(),
+                                                   tables::thin_film_kind()};
     static const std::vector<const TableKind*> kinds = [] {
         std::vector<const TableKind*> list;
         for (const TableKind& k : entries) list.push_back(&k);

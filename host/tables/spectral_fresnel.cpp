@@ -11,6 +11,7 @@
 #include "brdfbake/fresnel_curve.h"
 #include "brdfbake/fresnel_terms.h"
 #include "models/key_reader.h"
+#include "models/spectrum.h"
 #include "tables/lut_common.h"
 
 namespace brdfbake {
@@ -29,11 +30,6 @@ double curve_id(const std::vector<double>& values) {
         for (int b = 0; b < 8; ++b) h = (h ^ ((bits >> (8 * b)) & 0xffu)) * 1099511628211ull;
     }
     return double(h & ((std::uint64_t(1) << 52) - 1));
-}
-
-std::string colour_description(const std::string& colour) {
-    const std::string space = colour == "acescg" ? "ACEScg (AP1, D60 white by Bradford)" : "linear sRGB";
-    return space + " from 380-780 nm at 1 nm (CIE 1931 2-degree observer under D65)";
 }
 
 }  // namespace
@@ -60,7 +56,7 @@ SpectralCurves spectral_curves(Engine& engine, const std::string& fresnel_spec, 
     const Precision p = engine.device().fp64 ? Precision::Double : precision;
     const FresnelColour c = fresnel_rgb_on_device(engine, fresnel_spec, p, cosines, colour);
     SpectralCurves s;
-    s.colour = colour_description(colour);
+    s.colour = colour_space_text(colour);
     for (int ch = 0; ch < 3; ++ch) {
         FresnelConfig& f = s.channel[size_t(ch)];
         f.kind = BB_FRESNEL_TABLE;

@@ -32,6 +32,9 @@ struct LutRequest {
     /// at normal incidence) or cycles (w = sqrt((eta - 1)/(eta + 1)) = F0^(1/4), Cycles' glass
     /// tables); f0 and cycles need eta >= 1 (the inside view is the kind's 1/eta channels).
     std::string eta_map = "linear";
+    /// Film thickness range in nanometres of the thin-film table's z axis (KHR_materials_iridescence's
+    /// defaults 100 and 400): 0 <= lo <= hi <= 100000 (lo = hi with one texel).
+    double thickness_lo = 100.0, thickness_hi = 400.0;
     /// Where the texels sit on every axis: centres ((i + 0.5)/N) or edges (i/(N - 1)).
     Texels texels = Texels::Centre;
     double mu_lo = 0.0, mu_hi = 1.0;  // range of the mu-axis coordinate (u of the mu mapping)
@@ -122,6 +125,7 @@ struct LutSettings {
     std::optional<std::string> method, precision;
     std::optional<bool> half;
     std::optional<std::string> colour;  // --colour-space, or "wavelengths" for --rgb-wavelengths
+    std::optional<std::vector<double>> thickness_range;  // LO, HI nm: the thin-film table's z axis
 };
 
 /// Texels on every axis of a table without --size or a preset.

@@ -15,7 +15,7 @@
 
 namespace brdfbake {
 
-enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs, SheenAlbedo, DielectricEavg, GenSchlick, GenSchlickIor, DfgF82, SheenViewer, Ltc, SheenLtc };
+enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs, SheenAlbedo, DielectricEavg, GenSchlick, GenSchlickIor, DfgF82, SheenViewer, Ltc, SheenLtc, ThinFilm };
 
 /// 1 whatever the request: the value channels and integrations per cell of most kinds.
 int one_per_request(const LutRequest&);

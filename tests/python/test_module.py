@@ -407,6 +407,7 @@ LUT_OPTION_VALUES = {
     "--alpha-map": (["--alpha-map", "roughness"], {"alpha_map": "roughness"}),
     "--alpha-range": (["--alpha-range", "0.1,0.9"], {"alpha_range": [0.1, 0.9]}),
     "--eta-range": (["--eta-range", "1.2,2"], {"eta_range": [1.2, 2.0]}),
+    "--thickness-range": (["--thickness-range", "0,300"], {"thickness_range": [0.0, 300.0]}),
     "--eta-map": (["--eta-map", "f0"], {"eta_map": "f0"}),
     "--texels": (["--texels", "edge"], {"texels": "edge"}),
     "--mu-range": (["--mu-range", "0.2,1"], {"mu_range": [0.2, 1.0]}),
