@@ -166,7 +166,7 @@ TEST_CASE("EXR through Imf::RgbaInputFile: every table kind shows non-zero, docu
         r.height = k->one_dimensional ? 1 : 2;
         r.depth = 2;
         r.samples = 1024;
-        if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        if (!k->example_fresnel.empty()) r.fresnel = k->example_fresnel;
         if (!k->required_model.empty()) r.model = k->required_model;  // a kind of one model only (sheen)
         INFO(k->name);
         const Table t = compute_lut(testing::engine(), r);

@@ -40,6 +40,8 @@ const std::map<std::string, std::string> kNotSwept = {
     {"ltc", "tests/python/test_ltc_reference.py checks it against numpy"},
     {"sheen-ltc", "random walks (minutes for a table): tests/test_sheen_volume.cpp checks the walk's R, first order "
                   "and transmission against closed forms and quadrature"},
+    {"thin-film", "each thickness slice is the spectral conductor table (swept) at that thickness: "
+                  "tests/test_thin_film_table.cpp checks slices against single-wavelength tables summed at 5 nm"},
 };
 
 /// Reference allowance: what the references' own error may add (their tolerances 1e-9 to 1e-10).

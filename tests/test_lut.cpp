@@ -57,7 +57,7 @@ std::string tmp_path(const std::string& name) { return "/tmp/brdfbake-lut-" + st
 TEST_CASE("the table-kind registry: every kind once, found by name and id, unknown names listed", "[lut][quick]") {
     const std::vector<std::string> expected = {"albedo", "eavg", "dfg", "dielectric", "conductor", "dfg-ms",
                                                "sheen-albedo", "dielectric-eavg", "gen-schlick", "gen-schlick-ior",
-                                               "dfg-f82", "sheen-viewer", "ltc", "sheen-ltc"};
+                                               "dfg-f82", "sheen-viewer", "ltc", "sheen-ltc", "thin-film"};
     REQUIRE(table_kinds().size() == expected.size());
     for (size_t i = 0; i < expected.size(); ++i) {
         const TableKind* k = table_kinds()[i];
@@ -76,7 +76,7 @@ TEST_CASE("the table-kind registry: every kind once, found by name and id, unkno
     CHECK(find_table_kind("sheen") == nullptr);
     CHECK_THROWS_WITH(table_kind("sheen"),
                       "unknown table kind 'sheen'; known: albedo, eavg, dfg, dielectric, conductor, dfg-ms, "
-                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82, sheen-viewer, ltc, sheen-ltc");
+                      "sheen-albedo, dielectric-eavg, gen-schlick, gen-schlick-ior, dfg-f82, sheen-viewer, ltc, sheen-ltc, thin-film");
 }
 
 TEST_CASE("refine driver: rounds over the cells above the tolerance only, best or latest estimate kept", "[lut][quick]") {
@@ -184,6 +184,7 @@ TEST_CASE("each kind's computed table has the axes and channels the README docum
         {"sheen-viewer", {{"E"}, "mu", false, false}},
         {"ltc", {{"m00", "m02", "m11", "m20", "m22", "magnitude", "fresnel", "distance", "distance_error"}, "mu", false, false}},
         {"sheen-ltc", {{"a", "b", "R", "distance", "distance_error"}, "mu", false, false}},
+        {"thin-film", {{"R", "G", "B"}, "mu", false, true}},  // a film without --wavelength: colour per slice
     };
     for (const TableKind* k : table_kinds()) {
         INFO(k->name);
@@ -191,7 +192,7 @@ TEST_CASE("each kind's computed table has the axes and channels the README docum
         const Documented& doc = readme.at(k->name);
         LutRequest r = request(k->name, 3, doc.one_dimensional ? 1 : 2, 1024);
         r.depth = 2;
-        if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        if (!k->example_fresnel.empty()) r.fresnel = k->example_fresnel;
         if (k->required_model == "sheen") r.model = "sheen";  // the kinds of the sheen model only
         const Table t = compute_lut(testing::engine(), r);
         CHECK(t.kind == k->name);
@@ -633,7 +634,7 @@ TEST_CASE("every kind takes the grid conventions: edge texels, a flipped and reo
     for (const TableKind* k : table_kinds()) {
         LutRequest r = request(k->name, 3, k->one_dimensional ? 1 : 2, 1024);
         r.depth = 2;
-        if (k->needs_conductor_fresnel) r.fresnel = "metal:Au";
+        if (!k->example_fresnel.empty()) r.fresnel = k->example_fresnel;
         if (k->required_model == "sheen") r.model = "sheen";  // the kinds of the sheen model only
         r.texels = Texels::Edge;
         r.alpha_map = "roughness";

@@ -211,10 +211,12 @@ double texel_count(const LutRequest& r, const TableKind& k) {
 }
 
 /// A request of kind `k` that the registry's own checks accept: the first model of
-/// model_names() and Fresnel term (none, then a conductor's) that validate_lut takes, so that
+/// model_names() and Fresnel term (none, a conductor's, the kind's example_fresnel) that validate_lut takes, so that
 /// every kind, a new one too, gets a row without a list here. Empty kind when none fits.
 LutRequest kind_request(const TableKind& k, double texels, double tolerance, Precision p) {
-    for (const char* fresnel : {"none", "conductor:eta=0.2,k=3"})
+    std::vector<std::string> fresnels = {"none", "conductor:eta=0.2,k=3"};
+    if (!k.example_fresnel.empty()) fresnels.push_back(k.example_fresnel);
+    for (const std::string& fresnel : fresnels)
         for (const std::string& model : model_names()) {
             LutRequest r;
             r.kind = k.name;

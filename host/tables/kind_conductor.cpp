@@ -97,6 +97,7 @@ TableKind conductor_kind() {
     k.bakes_lobe_fresnel = true;
     k.spectral_colour = true;
     k.needs_conductor_fresnel = true;
+    k.example_fresnel = "metal:Au";
     k.lobe_requirement = "a conductor table needs a conductor Fresnel (conductor:, metal:, nk:)";
     k.value_channels = channels;
     k.integrations = channels;  // one per colour channel

@@ -138,6 +138,7 @@ TableKind thin_film_kind() {
     k.own_z_axis = kThicknessAxis;
     k.bakes_lobe_fresnel = true;
     k.spectral_colour = true;
+    k.example_fresnel = "thin-film:eta=1.3,base_eta=1.5";
     k.lobe_requirement = "a thin-film table needs a thin-film Fresnel (thin-film:)";
     k.value_channels = film_channels;
     k.integrations = film_integrations;

@@ -61,6 +61,8 @@ struct TableKind {
     // What a lobe must have for this kind: an index of refraction (every kind with an eta axis),
     // a conductor Fresnel term; lobe_requirement says it (a scene's "tables" error).
     bool needs_conductor_fresnel = false;
+    /// A Fresnel term this kind takes, for the tests and the bench that run every kind; empty: "none".
+    std::string example_fresnel;
     /// The one model whose lobes this kind serves (a scene lobe of that model takes this kind by
     /// default, and only such lobes can take it); empty: any model.
     std::string required_model;
