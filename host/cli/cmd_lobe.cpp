@@ -178,6 +178,35 @@ void write_lobe_3d(Engine& engine, const LobeOptions& o, const std::vector<Model
     write_figure(o.output, fig);
 }
 
+/// The plane of incidence as CSV: one row per theta_o (a delta lobe: one row at theta_i), with f's
+/// error column when a walk drew any of the curves.
+void write_lobe_csv(const std::string& path, const std::vector<LobeCurve>& curves, const FresnelConfig& fresnel,
+                    double phi_i) {
+    std::ostringstream csv;
+    csv << "# lobe: f(wi, wo) cos(theta_i) in the plane of incidence at phi = " << format_number(phi_i)
+        << " deg; theta_o > 0 on the mirror side; a delta lobe is one row at theta_o = theta_i with no f (a "
+           "delta function) and its reflectance as f_cos_theta_i\n";
+    bool simulated = false;  // a walk's estimate: one more column, f's error (3 standard errors)
+    for (const LobeCurve& c : curves) simulated = simulated || !c.f_error.empty();
+    csv << "# fresnel: " << fresnel.canonical << "\nmodel,theta_i_deg,theta_o_deg,f,f_cos_theta_i"
+        << (simulated ? ",f_error\n" : "\n");
+    char line[160];
+    for (const LobeCurve& c : curves) {
+        if (c.delta_weight >= 0.0) {
+            std::snprintf(line, sizeof line, ",%.17g,%.17g,,%.17g\n", c.theta_i, c.theta_i, c.delta_weight);
+            csv << '"' << c.model << '"' << line;
+            continue;
+        }
+        for (size_t k = 0; k < c.theta_o.size(); ++k) {
+            std::snprintf(line, sizeof line, ",%.17g,%.17g,%.17g,%.17g", c.theta_i, c.theta_o[k], c.f[k], c.f_cos[k]);
+            csv << '"' << c.model << '"' << line;
+            if (simulated) csv << (c.f_error.empty() ? std::string(",") : "," + format_number(c.f_error[k]));
+            csv << "\n";
+        }
+    }
+    emit(path, csv.str());
+}
+
 int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
     if (o.models.empty()) throw Error("give --model SPEC (repeatable)");
     if (o.output.empty() && o.data.empty()) throw Error("give -o FILE.png|.svg and/or --data FILE.csv");
@@ -237,31 +266,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
             curves.push_back(std::move(c));
         }
 
-    if (!o.data.empty()) {
-        std::ostringstream csv;
-        csv << "# lobe: f(wi, wo) cos(theta_i) in the plane of incidence at phi = " << format_number(o.phi_i)
-            << " deg; theta_o > 0 on the mirror side; a delta lobe is one row at theta_o = theta_i with no f (a "
-               "delta function) and its reflectance as f_cos_theta_i\n";
-        bool simulated = false;  // a walk's estimate: one more column, f's error (3 standard errors)
-        for (const LobeCurve& c : curves) simulated = simulated || !c.f_error.empty();
-        csv << "# fresnel: " << fresnel.canonical << "\nmodel,theta_i_deg,theta_o_deg,f,f_cos_theta_i"
-            << (simulated ? ",f_error\n" : "\n");
-        char line[160];
-        for (const LobeCurve& c : curves) {
-            if (c.delta_weight >= 0.0) {
-                std::snprintf(line, sizeof line, ",%.17g,%.17g,,%.17g\n", c.theta_i, c.theta_i, c.delta_weight);
-                csv << '"' << c.model << '"' << line;
-                continue;
-            }
-            for (size_t k = 0; k < c.theta_o.size(); ++k) {
-                std::snprintf(line, sizeof line, ",%.17g,%.17g,%.17g,%.17g", c.theta_i, c.theta_o[k], c.f[k], c.f_cos[k]);
-                csv << '"' << c.model << '"' << line;
-                if (simulated) csv << (c.f_error.empty() ? std::string(",") : "," + format_number(c.f_error[k]));
-                csv << "\n";
-            }
-        }
-        emit(o.data, csv.str());
-    }
+    if (!o.data.empty()) write_lobe_csv(o.data, curves, fresnel, o.phi_i);
     if (!o.output.empty()) {
         PlotSpec p;
         p.title = "lobe f(\\omega_i, \\omega_o) cos\\theta_i in the plane of incidence" +

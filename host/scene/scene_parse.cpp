@@ -165,18 +165,24 @@ SceneMaterial measured_material(SceneMaterial& out, const ModelConfig& base, boo
     return out;
 }
 
-SceneMaterial parse_material(const json& m, size_t index, const std::string& file, std::vector<std::string>& warnings) {
+/// A material's name, checked, with its unknown keys refused: what every later error names it by.
+std::string material_name(const json& m, size_t index, const std::string& file) {
     Where w{file, "material " + std::to_string(index + 1)};
     if (!m.is_object()) throw Error("scene '" + file + "': " + w.what + " must be an object");
     if (!m.contains("name")) throw Error("scene '" + file + "': " + w.what + " has no 'name'");
-    SceneMaterial out;
-    out.name = string_at(m["name"], w, "name");
-    if (out.name.empty()) throw Error("scene '" + file + "': " + w.what + " has an empty 'name'");
-    w.what = "material '" + out.name + "'";
+    const std::string name = string_at(m["name"], w, "name");
+    if (name.empty()) throw Error("scene '" + file + "': " + w.what + " has an empty 'name'");
     for (const auto& item : m.items())
         if (!kMaterialKeys.count(item.key()))
-            throw Error("scene '" + file + "': " + w.what + ": unknown key '" + item.key() +
+            throw Error("scene '" + file + "': material '" + name + "': unknown key '" + item.key() +
                         "' (known: name, model, fresnel, wavelength, alpha, roughness, eta, transmission, tables, comment)");
+    return name;
+}
+
+SceneMaterial parse_material(const json& m, size_t index, const std::string& file, std::vector<std::string>& warnings) {
+    SceneMaterial out;
+    out.name = material_name(m, index, file);
+    Where w{file, "material '" + out.name + "'"};
     if (!m.contains("model")) throw Error("scene '" + file + "': " + w.what + " has no 'model' (e.g. \"ggx\")");
     // merl:file=FILE names a file beside the scene, as nk:FILE does; a file without a channel (or
     // channel=rgb) gets tables per colour, its spec read here in red
