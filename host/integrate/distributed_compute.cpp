@@ -7,23 +7,11 @@
 #include <utility>
 
 #include "engine/distributed.h"
+#include "engine/hash.h"
 #include "models/key_reader.h"
 
 namespace brdfbake {
 namespace {
-
-// FNV-1a over the bytes of the values added (Fowler, Noll, Vo; 64-bit offset basis and prime).
-struct Hasher {
-    std::uint64_t h = 1469598103934665603ull;
-    void bytes(const void* data, size_t n) {
-        const unsigned char* p = static_cast<const unsigned char*>(data);
-        for (size_t i = 0; i < n; ++i) h = (h ^ p[i]) * 1099511628211ull;
-    }
-    template <typename T>
-    void add(const T& v) {
-        bytes(&v, sizeof v);
-    }
-};
 
 // Packed numbers, bit for bit (the ranks of a job and a shard's reader run the same binary).
 struct Packer {
@@ -115,7 +103,7 @@ void apply_summary(DielectricResult& r, const CallSummary& s) {
 // field is added to the struct: a new field cannot be left out of the key by oversight.
 template <typename... Fields>
 std::uint64_t hash_settings(char tag, const Fields&... fields) {
-    Hasher h;
+    Fnv1a h;
     h.add(tag);
     (h.add(fields), ...);
     return h.h;
@@ -137,7 +125,7 @@ std::uint64_t settings_key(const DielectricRequest& q) {
 }
 
 std::string record_key(std::uint64_t settings, std::uint64_t cell) {
-    Hasher h;
+    Fnv1a h;
     h.add(settings);
     h.add(cell);
     static const char* digits = "0123456789abcdef";
@@ -356,7 +344,7 @@ std::optional<Result> share(const Request& request, Compute compute) {
 }  // namespace
 
 std::uint64_t cell_identity(const AlbedoCell& cell) {
-    Hasher h;
+    Fnv1a h;
     h.add(cell.mu);
     h.add(cell.phi);
     h.add(cell.params);
@@ -364,7 +352,7 @@ std::uint64_t cell_identity(const AlbedoCell& cell) {
 }
 
 std::uint64_t cell_identity(const DielectricCell& cell) {
-    Hasher h;
+    Fnv1a h;
     h.add(cell.mu);
     h.add(cell.alpha);
     h.add(cell.eta);

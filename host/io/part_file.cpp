@@ -10,6 +10,7 @@
 #include "brdfbake/output.h"
 #include "brdfbake/version.h"
 #include "engine/embedded_sources.h"
+#include "engine/hash.h"
 #include "models/input_file.h"
 
 namespace brdfbake {
@@ -24,8 +25,7 @@ constexpr const char* kOldFormat = "brdfbake part file 1";  // without a checksu
 // FNV-1a, 64 bits, of `text`, as 16 hex digits: a checksum that catches any change to a part
 // file by accident (a bit flip, an edit, a copy cut short), not a signature against forgery.
 std::string fnv1a_hex(const std::string& text) {
-    std::uint64_t h = 1469598103934665603ull;
-    for (unsigned char c : text) h = (h ^ c) * 1099511628211ull;
+    const std::uint64_t h = fnv1a(text);
     char b[17];
     std::snprintf(b, sizeof b, "%016llx", static_cast<unsigned long long>(h));
     return b;
@@ -64,10 +64,9 @@ std::string from_hex(const std::string& hex, const std::string& path) {
 }  // namespace
 
 std::string source_digest() {
-    std::uint64_t h = 1469598103934665603ull;  // FNV-1a, 64 bits
+    Fnv1a hash;
     auto add = [&](const std::string& s) {
-        for (unsigned char c : s) h = (h ^ c) * 1099511628211ull;
-        h = (h ^ 0xffu) * 1099511628211ull;  // a separator
+        hash.add(s).add(static_cast<unsigned char>(0xff));  // a separator
     };
     add(BRDFBAKE_VERSION);
     for (const std::string& name : embedded_source_names()) {
@@ -78,7 +77,7 @@ std::string source_digest() {
     o << std::hex;
     o.width(16);
     o.fill('0');
-    o << h;
+    o << hash.h;
     return o.str();
 }
 
