@@ -169,20 +169,20 @@ WalkEvalResult walk_eval(Engine& engine, const WalkEvalRequest& req) {
     return result;
 }
 
+WalkResult walk_albedo_at(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance, double share) {
+    if (tolerance.tolerance <= 0.0) return walk_albedo(engine, req);
+    ToleranceRequest t = tolerance;
+    t.tolerance *= share;
+    try {
+        return walk_albedo_to_tolerance(engine, req, t);
+    } catch (const ToleranceNotMet& e) {
+        throw e.restated(tolerance.tolerance, "");
+    }
+}
+
 AlbedoResult walk_albedo_result(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance,
                                 double share) {
-    WalkResult w;
-    if (tolerance.tolerance > 0.0) {
-        ToleranceRequest t = tolerance;
-        t.tolerance *= share;
-        try {
-            w = walk_albedo_to_tolerance(engine, req, t);
-        } catch (const ToleranceNotMet& e) {
-            throw e.restated(tolerance.tolerance, "");
-        }
-    } else {
-        w = walk_albedo(engine, req);
-    }
+    const WalkResult w = walk_albedo_at(engine, req, tolerance, share);
     AlbedoResult out;
     out.method = w.method;
     out.samples_per_cell = w.walks_per_cell;

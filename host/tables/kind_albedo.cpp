@@ -7,7 +7,6 @@
 #include "brdfbake/brdf/random_walk.h"
 #include "brdfbake/error.h"
 #include "integrate/random_walk.h"
-#include "integrate/refine.h"
 #include "models/key_reader.h"
 #include "models/merl_file.h"
 #include "tables/lut_common.h"
@@ -90,16 +89,7 @@ Table dielectric_walk_table(Engine& engine, const LutRequest& r, const ModelConf
             }
             req.cells.push_back(c);
         }
-    WalkResult w;
-    if (r.tolerance.tolerance > 0.0) {
-        try {
-            w = walk_albedo_to_tolerance(engine, req, r.tolerance);
-        } catch (const ToleranceNotMet& e) {
-            throw e.restated(r.tolerance.tolerance, "");
-        }
-    } else {
-        w = walk_albedo(engine, req);
-    }
+    const WalkResult w = walk_albedo_at(engine, req, r.tolerance, 1.0);
     const size_t n = g.cells.size();
     t.channels = {"R", "T", "R_below", "T_below"};
     t.values.assign(4, {});
