@@ -24,6 +24,31 @@
 #define BB_WALK_DIST BB_SMITH_GGX
 #endif
 
+/* What both entries read first: work-item gid's unit (a cell, or a pair) and replica, the unit's
+ * parameters and the Fresnel term's (ok = 0 if one is not finite), its bounce limit and whether it
+ * is the dielectric walk. */
+typedef struct {
+    unsigned int unit, rep, ok;
+    bb_params p, fp;
+    int bounces, dielectric;
+} bb_walk_item;
+
+bb_walk_item bb_walk_item_load(unsigned int gid, unsigned int n_replicas, __global const bb_scalar* model_p,
+                               __global const bb_scalar* fresnel_p) {
+    bb_walk_item it;
+    it.unit = gid / n_replicas;
+    it.rep = gid - it.unit * n_replicas;
+    it.ok = 1;
+    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
+        it.p.v[k] = (bb_real)model_p[it.unit * BB_MAX_PARAMS + k];
+        it.fp.v[k] = (bb_real)fresnel_p[k];
+        it.ok &= (unsigned int)(isfinite(it.p.v[k]) && isfinite(it.fp.v[k]));
+    }
+    it.bounces = (int)it.p.v[BB_SMITH_BOUNCES];
+    it.dielectric = it.p.v[BB_SMITH_WALK_ETA] > BB_R(0.0);
+    return it;
+}
+
 __kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global const bb_scalar* cell_phi,
                                    __global const bb_scalar* model_p, __global const bb_scalar* fresnel_p,
                                    const unsigned int n_walks,    /* walks per replica */
@@ -35,27 +60,19 @@ __kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global c
                                    __global unsigned int* bad_count) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     if (gid >= n_cells * n_replicas) return;
-    const unsigned int cell = gid / n_replicas, rep = gid - cell * n_replicas;
-    bb_params p, fp;
-    unsigned int ok = 1;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
-        p.v[k] = (bb_real)model_p[cell * BB_MAX_PARAMS + k];
-        fp.v[k] = (bb_real)fresnel_p[k];
-        ok &= (unsigned int)(isfinite(p.v[k]) && isfinite(fp.v[k]));
-    }
+    const bb_walk_item it = bb_walk_item_load(gid, n_replicas, model_p, fresnel_p);
+    const unsigned int cell = it.unit, rep = it.rep, ok = it.ok;
     const bb_vec3 wo = bb_dir_from_mu_phi((bb_real)cell_mu[cell], (bb_real)cell_phi[cell]);
     const bb_vec3 none = bb_v3(BB_R(0.0), BB_R(0.0), BB_R(0.0)); /* no next-event target */
-    const int bounces = (int)p.v[BB_SMITH_BOUNCES];
     philox4x32_key_t key = {{seed_lo, seed_hi}};
-    const int dielectric = p.v[BB_SMITH_WALK_ETA] > BB_R(0.0);
     bb_real sum[BB_WALK_SUMS], comp[BB_WALK_SUMS];
     for (int k = 0; k < BB_WALK_SUMS; ++k) sum[k] = comp[k] = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int i = 0; i < n_walks && ok; ++i) {
         const bb_walk_result r =
-            dielectric ? bb_walk_dielectric(BB_WALK_DIST, p, wo, none, bounces, key, i, rep, cell_stream[cell])
-                       : bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, none, bounces, key, i, rep,
-                                           cell_stream[cell]);
+            it.dielectric ? bb_walk_dielectric(BB_WALK_DIST, it.p, wo, none, it.bounces, key, i, rep, cell_stream[cell])
+                          : bb_walk_conductor(BB_WALK_DIST, it.p, BB_FRESNEL, it.fp, wo, none, it.bounces, key, i, rep,
+                                              cell_stream[cell]);
         bad += (unsigned int)r.bad;
         BB_KAHAN_ADD(sum[0], comp[0], r.energy);
         BB_KAHAN_ADD(sum[1], comp[1], r.single);
@@ -80,28 +97,20 @@ __kernel void BB_ENTRY_WALK_EVAL(__global const bb_scalar* dirs, __global const 
                                  __global bb_scalar* sums, __global unsigned int* bad_count) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     if (gid >= n_pairs * n_replicas) return;
-    const unsigned int pair = gid / n_replicas, rep = gid - pair * n_replicas;
-    bb_params p, fp;
-    unsigned int ok = 1;
-    for (int k = 0; k < BB_MAX_PARAMS; ++k) {
-        p.v[k] = (bb_real)model_p[pair * BB_MAX_PARAMS + k];
-        fp.v[k] = (bb_real)fresnel_p[k];
-        ok &= (unsigned int)(isfinite(p.v[k]) && isfinite(fp.v[k]));
-    }
+    const bb_walk_item it = bb_walk_item_load(gid, n_replicas, model_p, fresnel_p);
+    const unsigned int pair = it.unit, rep = it.rep, ok = it.ok;
     __global const bb_scalar* d = dirs + 6 * pair;
     const bb_vec3 wo = bb_v3((bb_real)d[0], (bb_real)d[1], (bb_real)d[2]);
     const bb_vec3 wi = bb_v3((bb_real)d[3], (bb_real)d[4], (bb_real)d[5]);
-    const int bounces = (int)p.v[BB_SMITH_BOUNCES];
     philox4x32_key_t key = {{seed_lo, seed_hi}};
-    const int dielectric = p.v[BB_SMITH_WALK_ETA] > BB_R(0.0);
     bb_real sum[BB_WALK_EVAL_SUMS], comp[BB_WALK_EVAL_SUMS];
     for (int k = 0; k < BB_WALK_EVAL_SUMS; ++k) sum[k] = comp[k] = BB_R(0.0);
     unsigned int bad = 0;
     for (unsigned int i = 0; i < n_walks && ok && wo.z > BB_R(0.0) && wi.z > BB_R(0.0); ++i) {
         const bb_walk_result r =
-            dielectric ? bb_walk_dielectric(BB_WALK_DIST, p, wo, wi, bounces, key, i, rep, pair_stream[pair])
-                       : bb_walk_conductor(BB_WALK_DIST, p, BB_FRESNEL, fp, wo, wi, bounces, key, i, rep,
-                                           pair_stream[pair]);
+            it.dielectric ? bb_walk_dielectric(BB_WALK_DIST, it.p, wo, wi, it.bounces, key, i, rep, pair_stream[pair])
+                          : bb_walk_conductor(BB_WALK_DIST, it.p, BB_FRESNEL, it.fp, wo, wi, it.bounces, key, i, rep,
+                                              pair_stream[pair]);
         const int finite = bb_isfinite(r.f_cos) && !r.bad;
         bad += (unsigned int)!finite;
         BB_KAHAN_ADD(sum[0], comp[0], finite ? r.f_cos : BB_R(0.0));

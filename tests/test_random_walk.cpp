@@ -190,7 +190,7 @@ TEST_CASE("walk: the command prints E, its single-scattering part and the cut-of
           std::string("albedo --model ggx:alpha=0.5,bounces=10"),
           std::string("albedo --model beckmann:alpha=0.5,scattering=multiple,shadowing=separable"),
           std::string("lut dfg --model ggx:scattering=multiple --size 4x4 -o /tmp/walk-refused.exr"),
-          std::string("lut albedo --model ggx:scattering=multiple,eta=1.5 --size 4x4 -o /tmp/walk-refused.exr"),
+          std::string("lut eavg --model ggx:scattering=multiple,eta=1.5 --size 4 -o /tmp/walk-refused.exr"),
           std::string("reciprocity --model beckmann:alpha=0.5,scattering=multiple -o /tmp/walk-refused.exr"),
           std::string("furnace --model ggx:alpha=0.5,scattering=multiple -o /tmp/walk-refused.png")}) {
         const auto e = testing::run_cli(args);

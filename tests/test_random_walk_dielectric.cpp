@@ -12,6 +12,8 @@
 #include <nlohmann/json.hpp>
 
 #include "brdfbake/brdf/random_walk.h"
+#include "brdfbake/lut.h"
+#include "brdfbake/table.h"
 #include "integrate/random_walk.h"
 #include "model_refs.h"
 #include "support.h"
@@ -191,5 +193,47 @@ TEST_CASE("compensation: every scheme conserves energy in the white furnace, as 
         CHECK(e.status == 2);
         CHECK(testing::count_lines(e.err) == 1);
         CHECK(e.out.empty());
+    }
+}
+
+TEST_CASE("dielectric walk table: lut albedo's R + T = 1 from both sides, T_avg below = T_avg above / eta^2",
+          "[random-walk]") {
+    // The white furnace of the interface [HHdD16 sec. 5]: what enters is reflected or transmitted,
+    // the bounce limit's cut-off inside each texel's error; and from below (the table's 1/eta
+    // channels) the transmitted energy averaged over the cosine is that from above over eta^2
+    // (d'Eon 2016, as the walk test above), by the midpoint rule over the table's 16 mu texels.
+    // ggx and beckmann, eta 1.5 and 1.2, alpha 0.2 to 1.
+    struct Case {
+        std::string model;
+        double eta;
+    };
+    for (const Case& c : {Case{"ggx:scattering=multiple,eta=1.5", 1.5}, Case{"beckmann:scattering=multiple,eta=1.2", 1.2}}) {
+        LutRequest r;
+        r.kind = "albedo";
+        r.model = c.model;
+        set_lut_size(r, {16, 3});
+        r.alpha_lo = 0.2;
+        r.samples = 1 << 14;
+        const Table t = compute_lut(testing::engine(), r);
+        REQUIRE(t.channels == std::vector<std::string>{"R", "T", "R_below", "T_below"});
+        REQUIRE(t.values[0].size() == 48);
+        for (int y = 0; y < 3; ++y) {
+            double above = 0, below = 0, err = 0;
+            for (int x = 0; x < 16; ++x) {
+                const size_t i = size_t(y * 16 + x);
+                INFO(c.model << " texel " << x << ", " << y << ": R " << t.values[0][i] << " T " << t.values[1][i]
+                             << " R_below " << t.values[2][i] << " T_below " << t.values[3][i] << " error " << t.error[i]);
+                CHECK(std::fabs(t.values[0][i] + t.values[1][i] - 1) <= t.error[i]);
+                CHECK(std::fabs(t.values[2][i] + t.values[3][i] - 1) <= t.error[i]);
+                CHECK(t.error[i] < 0.02);
+                const double mu = t.x.parameter[size_t(x)];
+                above += 2 * mu * t.values[1][i] / 16;
+                below += 2 * mu * t.values[3][i] / 16;
+                err += 2 * mu * t.error[i] / 16;
+            }
+            INFO(c.model << " alpha " << t.y.parameter[size_t(y)] << ": T_avg below " << below << ", above / eta^2 "
+                         << above / (c.eta * c.eta) << " +- " << err);
+            CHECK(std::fabs(below - above / (c.eta * c.eta)) <= err + 3e-3);  // 3e-3: the midpoint rule
+        }
     }
 }

@@ -88,6 +88,10 @@ void record_furnace(CheckReport& r, const std::vector<AlbedoValue>& values, cons
 CheckReport run_check_walk(Engine& engine, const ModelConfig& model, const FresnelConfig& fresnel,
                            const CheckOptions& o);
 
+/// walk_albedo, or walk_albedo_to_tolerance at `share` of tolerance.tolerance when that is > 0
+/// (ToleranceNotMet names the user's tolerance).
+WalkResult walk_albedo_at(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance, double share);
+
 /// The walks' albedo E of `req`'s cells as an AlbedoResult (lut albedo of a scattering=multiple
 /// spec): walk_albedo, or walk_albedo_to_tolerance at `share` of tolerance.tolerance when that is > 0
 /// (ToleranceNotMet names the user's tolerance). The energy the bounce limit cut off is added to

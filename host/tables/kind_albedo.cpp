@@ -4,7 +4,9 @@
 #include <cmath>
 #include <functional>
 
+#include "brdfbake/brdf/random_walk.h"
 #include "brdfbake/error.h"
+#include "integrate/random_walk.h"
 #include "models/key_reader.h"
 #include "models/merl_file.h"
 #include "tables/lut_common.h"
@@ -62,9 +64,54 @@ Table per_colour(const LutRequest& r, const ModelConfig& m, const std::function<
     return t;
 }
 
+/// The rough dielectric's walk (ggx or beckmann with scattering=multiple and eta=E, [HHdD16] sec. 5):
+/// R and T lit from above (relative index eta) and from below (1/eta) on the mu x alpha grid; each
+/// texel's error the largest over the four channels of the replicas' error plus the weight the
+/// bounce limit cut off on that side (value and error): the energy that is in neither R nor T. (Its
+/// Fresnel term is the interface's own: validation refuses --fresnel for the model.)
+Table dielectric_walk_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
+    MuAlphaGrid g = mu_alpha_grid(r, m);
+    Table& t = g.table;
+    t.quantity = "rough dielectric interface by random walk: reflectance R(mu_o, alpha) and transmittance T lit "
+                 "from above (relative index eta), R_below and T_below lit from below (1/eta); R + T = 1 less the "
+                 "bounce limit's cut-off";
+    AlbedoRequest req;
+    req.model = m.id;
+    req.fresnel = f;
+    req.samples = r.samples;
+    req.precision = r.precision;
+    const double eta = m.params[BB_SMITH_WALK_ETA];
+    for (int below = 0; below < 2; ++below)
+        for (AlbedoCell c : g.cells) {
+            if (below) {  // the same interface seen from the other side: 1/eta, 1/eta - 1 = -(eta - 1)/eta
+                c.params[BB_SMITH_WALK_ETA] = 1.0 / eta;
+                c.params[BB_SMITH_WALK_ETA_M1] = -m.params[BB_SMITH_WALK_ETA_M1] / eta;
+            }
+            req.cells.push_back(c);
+        }
+    const WalkResult w = walk_albedo_at(engine, req, r.tolerance, 1.0);
+    const size_t n = g.cells.size();
+    t.channels = {"R", "T", "R_below", "T_below"};
+    t.values.assign(4, {});
+    for (size_t c = 0; c < n; ++c) {
+        double err = 0.0;
+        for (int below = 0; below < 2; ++below) {
+            const WalkAlbedo& v = w.values[below * n + c];
+            t.values[2 * below].push_back(v.energy.value);
+            t.values[2 * below + 1].push_back(v.transmitted.value);
+            const double cut = v.cutoff.value + v.cutoff.error;
+            err = std::max({err, v.energy.error + cut, v.transmitted.error + cut});
+        }
+        t.error.push_back(err);
+    }
+    describe(t, r, m, f.canonical, w.method, w.walks_per_cell, g.clamped);
+    return std::move(g.table);
+}
+
 Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     if (without_roughness(m))
         return per_colour(r, m, [&](const ModelConfig& c) { return albedo_table_1d(engine, r, c, f); });
+    if (m.dielectric_walk) return dielectric_walk_table(engine, r, m, f);
     return directional_albedo_table(engine, r, m, f,
                                     "directional albedo E(mu_o, alpha) = integral of f(wo, wi) cos(theta_i) dwi");
 }

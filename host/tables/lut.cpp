@@ -295,9 +295,9 @@ ModelConfig swept_model(const LutRequest& r) {
                         "; see --alpha-map, --alpha-range)");
     }
     const ModelConfig m = sweep_model(r.model, table_kind(r.kind).id == TableKindId::Albedo);
-    if (m.dielectric_walk)
-        throw Error("lut albedo: model '" + m.canonical + "' is the rough dielectric's walk (eta=E), whose R and T "
-                    "`brdfbake albedo` gives; the table takes the conductor's walk (no eta)");
+    if (m.dielectric_walk && table_kind(r.kind).id != TableKindId::Albedo)
+        throw Error("lut " + r.kind + ": model '" + m.canonical + "' is the rough dielectric's walk (eta=E), whose R "
+                    "and T `lut albedo` tabulates; this kind takes the conductor's walk (no eta)");
     return m;
 }
 
