@@ -188,7 +188,7 @@ void add_fit_command(CLI::App& app, const GlobalOptions& global, Action& action)
     cmd->add_flag("--diffuse", o->request.diffuse,
                   "fit a Lambert weight kd beside the lobe (the model's diffuse=KD: f = f_spec + kd/pi; ggx, beckmann)");
     cmd->add_option("--max-evaluations", o->request.max_evaluations,
-                    "objective evaluations per start (default 0: 250 (n + 1) for n free parameters); a fit the budget "
+                    "objective evaluations per start (default 0: 200 + 100 n^2 for n free parameters); a fit the budget "
                     "stops says so")
         ->capture_default_str();
     add_precision_option(cmd, o->precision);
