@@ -4,6 +4,7 @@
 
   scripts/make_merl.py lambert --rho 0.5 lambert.binary
   scripts/make_merl.py ggx --alpha 0.3 --f0 0.9,0.6,0.3 ggx.binary
+  scripts/make_merl.py ggx --alpha 0.2 --f0 0.04 --kd 0.5,0.2,0.1 plastic.binary
 
 The format: three int32 dimensions (90, 90, 180), then the red, green and blue planes of
 90*90*180 little-endian doubles, stored as f * 1500, f * 1500/1.15 and f * 1500/1.66. Bin
@@ -15,7 +16,8 @@ unmeasured as ggx does).
 
 ggx is the textbook GGX (Walter et al. 2007 eq. 33) with height-correlated Smith shadowing (Heitz
 2014 eq. 99) and Schlick's Fresnel per channel, f0 = 1 (no Fresnel) by default: brdfbake's
-`ggx:alpha=A` with `--fresnel none`.
+`ggx:alpha=A` with `--fresnel none`. --kd adds a Lambert base kd/pi per channel (not multiplied
+by the Fresnel term): brdfbake's `ggx:alpha=A,diffuse=KD`.
 """
 import argparse
 import struct
@@ -73,6 +75,7 @@ def main():
     ap.add_argument("--rho", default="1", help="lambert: albedo, one value or r,g,b")
     ap.add_argument("--alpha", type=float, default=0.3, help="ggx: roughness alpha")
     ap.add_argument("--f0", default="1", help="ggx: Schlick f0, one value or r,g,b")
+    ap.add_argument("--kd", default="0", help="ggx: a Lambert base kd/pi, one value or r,g,b")
     ap.add_argument("--holes", action="store_true", help="lambert: mark nodes below the horizon unmeasured")
     a = ap.parse_args()
     wo, wi = node_dirs()
@@ -87,7 +90,8 @@ def main():
         with np.errstate(all="ignore"):
             f, oh = ggx(wo, wi, a.alpha)
             fresnel = f0[:, None, None, None] + (1 - f0[:, None, None, None]) * (1 - oh) ** 5  # Schlick 1994
-        rgb = np.where(below, -1.0, f * fresnel)
+        kd = np.broadcast_to(np.array([float(v) for v in a.kd.split(",")]), (3,))
+        rgb = np.where(below, -1.0, f * fresnel + kd[:, None, None, None] / np.pi)
     if not np.all(np.isfinite(rgb)):
         sys.exit("make_merl.py: error: non-finite values")
     write(a.output, rgb)

@@ -7,10 +7,12 @@
 // the energy verdict of `check`; hostile files refused with one line and exit status 2.
 #include <catch2/catch.hpp>
 
+#include <fcntl.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
 #include <array>
+#include <atomic>
 #include <cctype>
 #include <cmath>
 #include <cstdint>
@@ -21,6 +23,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "brdfbake/albedo.h"
@@ -411,6 +414,75 @@ TEST_CASE("merl: a file is read once per version: a file replaced at the same pa
     std::remove(path.c_str());
 }
 
+TEST_CASE("merl: a file rewritten in place with the same inode, size and mtime is read again", "[merl][quick]") {
+    const std::string path = tmp("inplace.binary"), next = tmp("inplace-next.binary");
+    write_lambert(path, {0.5, 0.5, 0.5});
+    struct stat before {};
+    REQUIRE(::stat(path.c_str(), &before) == 0);
+    const int r0 = int(resolve_model("merl:file=" + path + ",channel=r").params[BB_MERL_TABLE]);
+    CHECK(bb_merl_host_table(r0)[123] == Approx(0.5 / kPi).epsilon(1e-15));
+    // the new bytes written over the old ones (no truncation, no new inode), the old mtime put back
+    write_lambert(next, {0.25, 0.25, 0.25});
+    const std::string bytes = testing::slurp(next);
+    std::FILE* f = std::fopen(path.c_str(), "r+b");
+    REQUIRE(f);
+    REQUIRE(std::fwrite(bytes.data(), 1, bytes.size(), f) == bytes.size());
+    REQUIRE(std::fclose(f) == 0);
+    const struct timespec times[2] = {before.st_atim, before.st_mtim};
+    REQUIRE(::utimensat(AT_FDCWD, path.c_str(), times, 0) == 0);
+    struct stat after {};
+    REQUIRE(::stat(path.c_str(), &after) == 0);
+    REQUIRE(after.st_ino == before.st_ino);
+    REQUIRE(after.st_size == before.st_size);
+    REQUIRE(after.st_mtim.tv_sec == before.st_mtim.tv_sec);
+    REQUIRE(after.st_mtim.tv_nsec == before.st_mtim.tv_nsec);
+    const int r1 = int(resolve_model("merl:file=" + path + ",channel=r").params[BB_MERL_TABLE]);
+    CHECK(r1 != r0);
+    CHECK(bb_merl_host_table(r1)[123] == Approx(0.25 / kPi).epsilon(1e-15));
+    CHECK(bb_merl_host_table(r0)[123] == Approx(0.5 / kPi).epsilon(1e-15));  // the first version's table stays
+    std::remove(path.c_str());
+    std::remove(next.c_str());
+}
+
+TEST_CASE("merl: a file truncated after its first use: the next use is one error, never a crash", "[merl][quick]") {
+    const std::string path = tmp("truncated.binary");
+    write_lambert(path, {0.5, 0.5, 0.5});
+    const int r0 = int(resolve_model("merl:file=" + path + ",channel=r").params[BB_MERL_TABLE]);
+    REQUIRE(::truncate(path.c_str(), 4096) == 0);
+    // a channel not yet read, of the file now truncated
+    CHECK_THROWS_AS(resolve_model("merl:file=" + path + ",channel=g"), Error);
+    CHECK(bb_merl_host_table(r0)[BB_MERL_BINS - 1] == Approx(0.5 / kPi).epsilon(1e-15));  // what was read stays
+    const auto r = testing::run_cli("albedo --model merl:file=" + path + " --mu 0.5");
+    CHECK(r.status == 2);
+    CHECK(testing::count_lines(r.err) == 1);
+    CHECK(r.err.find("truncated?") != std::string::npos);
+    // Truncated and grown again while being read: every use is an error or data the file held
+    // (zeros where it was cut, 0.5/pi elsewhere), never SIGBUS (as a mapping's lost pages give).
+    write_lambert(path, {0.5, 0.5, 0.5});
+    std::atomic<bool> stop{false};
+    std::thread cutter([&] {
+        while (!stop) {
+            if (::truncate(path.c_str(), 1 << 20) != 0 || ::truncate(path.c_str(), off_t(kMerlFileBytes)) != 0) break;
+        }
+    });
+    int errors = 0, reads = 0;
+    for (int k = 0; k < 6; ++k) {
+        try {
+            const int t = int(resolve_model("merl:file=" + path + ",channel=b").params[BB_MERL_TABLE]);
+            const double* v = bb_merl_host_table(t);
+            ++reads;
+            for (size_t i = 0; i < BB_MERL_BINS; i += 997) CHECK((v[i] == 0.0 || v[i] == Approx(0.5 / kPi).epsilon(1e-15)));
+        } catch (const Error&) {
+            ++errors;
+        }
+    }
+    stop = true;
+    cutter.join();
+    INFO("reads " << reads << ", errors " << errors);
+    CHECK(reads + errors == 6);
+    std::remove(path.c_str());
+}
+
 TEST_CASE("merl: a scene's MERL material is planned and baked as E(mu) and Eavg per colour", "[merl][scene][cli]") {
     // a Lambert file: E(mu) = Eavg = rho per channel (closed form), the file named beside the scene
     const std::string dir = tmp("bake"), out = dir + "/out";
@@ -426,6 +498,19 @@ TEST_CASE("merl: a scene's MERL material is planned and baked as E(mu) and Eavg 
     CHECK(plan.out.find("eavg-merl-paint.csv") != std::string::npos);
     CHECK(plan.out.find("axes      mu 0..1 (8, linear); no roughness axis (measured)") != std::string::npos);
     CHECK(plan.out.find("axes      one texel; no roughness axis (measured)") != std::string::npos);
+    {  // the estimate counts the three colours the bake integrates and writes: per table cells x
+       // samples x 3 (albedo: 8 mu cells; eavg: its 48 mu nodes, table_kinds)
+        const auto pj = testing::run_cli("plan " + dir + "/scene.json --format json");
+        REQUIRE(pj.status == 0);
+        const auto j = nlohmann::json::parse(pj.out);
+        for (const auto& t : j["tables"]) {
+            INFO(t.dump());
+            const std::uint64_t cells = t["kind"] == "albedo" ? 8 : 48;
+            CHECK(t["cells"].get<std::uint64_t>() == cells);
+            CHECK(t["samples_total"].get<std::uint64_t>() == cells * 4096 * 3);
+        }
+        CHECK(j["tables"].size() == 2);
+    }
     const auto bake = testing::run_cli("bake " + dir + "/scene.json -o " + out);
     INFO(bake.out << bake.err);
     REQUIRE(bake.status == 0);

@@ -49,7 +49,9 @@ std::string render(const FitOptions& o, const fit::ModelFitResult& r) {
                                      {"distance", c.distance},
                                      {"distance_fit_pairs", c.distance_fit},
                                      {"unmeasured_share", c.unmeasured_share},
-                                     {"evaluations", c.evaluations}});
+                                     {"evaluations", c.evaluations},
+                                     {"budget", c.budget},
+                                     {"converged", c.converged}});
         }
         out << j.dump(2) << "\n";
         return out.str();
@@ -83,6 +85,10 @@ std::string render(const FitOptions& o, const fit::ModelFitResult& r) {
                 std::snprintf(line, sizeof line, "  %-7s %-9s %12.6f %12.2e\n", "", p.name.c_str(), p.value, p.error);
             out << line;
         }
+    for (const fit::ChannelFit& c : r.channels)
+        if (!c.converged)
+            out << "# " << (c.channel.empty() ? "the fit" : "channel " + c.channel) << " stopped at its budget of "
+                << c.budget << " evaluations per start before the minimiser converged (raise --max-evaluations)\n";
     for (const fit::ChannelFit& c : r.channels)
         out << (c.channel.empty() ? "" : c.channel + ": ") << "--model " << c.model_spec << " --fresnel "
             << c.fresnel_spec << "\n";
@@ -146,6 +152,11 @@ int run_fit(const FitOptions& o, const GlobalOptions& g) {
     const fit::ModelFitResult result = fit::fit_model(engine, request);
     if (!o.plot.empty()) plot_fit(engine, o, result);
     emit(o.output, render(o, result));
+    for (const fit::ChannelFit& c : result.channels)  // every format: never a silent stop
+        if (!c.converged)
+            std::fprintf(stderr, "brdfbake: warning: the fit%s stopped at its budget of %d evaluations per start before "
+                         "converging (--max-evaluations)\n", c.channel.empty() ? "" : (" of channel " + c.channel).c_str(),
+                         c.budget);
     return kExitOk;
 }
 
@@ -174,7 +185,11 @@ void add_fit_command(CLI::App& app, const GlobalOptions& global, Action& action)
         ->capture_default_str();
     cmd->add_flag("--anisotropic", o->request.anisotropic,
                   "fit alpha_x and alpha_y (automatic when the --target model is anisotropic; not for MERL files)");
-    cmd->add_option("--max-evaluations", o->request.max_evaluations, "objective evaluations per start")
+    cmd->add_flag("--diffuse", o->request.diffuse,
+                  "fit a Lambert weight kd beside the lobe (the model's diffuse=KD: f = f_spec + kd/pi; ggx, beckmann)");
+    cmd->add_option("--max-evaluations", o->request.max_evaluations,
+                    "objective evaluations per start (default 0: 200 + 100 n^2 for n free parameters); a fit the budget "
+                    "stops says so")
         ->capture_default_str();
     add_precision_option(cmd, o->precision);
     add_format_option(cmd, o->format, {"table", "json", "csv"});

@@ -59,14 +59,19 @@ struct ModelFitRequest {
     int stride = 2;                      // fit on every stride-th bin along theta_h and theta_d,
                                          // every 2 stride-th along phi_d; the distance on all bins
     Precision precision = Precision::Double;
-    int max_evaluations = 400;           // per start
+    int max_evaluations = 0;             // per start; 0: evaluation_budget(free parameters)
     bool anisotropic = false;            // fit alpha_x and alpha_y (automatic for an anisotropic target)
+    bool diffuse = false;                // fit a Lambert weight kd beside the lobe (the model's diffuse=KD)
 };
+
+/// The default budget of objective evaluations per start for a fit of n free parameters
+/// (model_fit.cpp measures what the fits need).
+int evaluation_budget(size_t n);
 
 /// A fitted parameter and its standard error (fit_model's estimate, model_fit.cpp: the sandwich
 /// covariance of the weighted least-squares fit; 0 for a target the model matches exactly).
 struct FittedParameter {
-    std::string name;  // alpha, or alpha_x and alpha_y; then the Fresnel term's (FitParameter)
+    std::string name;  // alpha, or alpha_x and alpha_y; diffuse (--diffuse); then the Fresnel term's (FitParameter)
     double value = 0;
     double error = 0;
 };
@@ -80,6 +85,8 @@ struct ChannelFit {
     double distance_fit = 0;    // d over the fit's pairs (what was minimised)
     double unmeasured_share = 0;  // the share of the pair measure whose target is unmeasured
     int evaluations = 0;
+    int budget = 0;             // the minimiser's budget (evaluations per start)
+    bool converged = true;      // false: the budget stopped the minimiser before it converged
 };
 
 struct ModelFitResult {

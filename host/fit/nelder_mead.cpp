@@ -24,6 +24,7 @@ struct Problem {
     Phase phase = Phase::NewSimplex;
     int evaluations = 0;
     int restarts_left = 0;
+    bool out_of_budget = false;  // stopped by max_evaluations before converging
 };
 
 Point affine(const Point& a, const Point& b, double t) {  // a + t (b - a)
@@ -148,6 +149,7 @@ void advance(Problem& p, const std::vector<double>& f, const NelderMeadOptions& 
     sort_simplex(p);
     const bool out_of_budget = p.evaluations + 4 > o.max_evaluations;
     if (out_of_budget) {
+        p.out_of_budget = !converged(p, o);
         p.phase = Phase::Done;
     } else if (converged(p, o)) {
         if (p.restarts_left-- > 0 && p.evaluations + int(p.simplex.size()) + 4 <= o.max_evaluations) {
@@ -196,7 +198,7 @@ std::vector<Minimum> minimize_batch(const std::vector<std::vector<double>>& star
         }
     }
     std::vector<Minimum> out;
-    for (const Problem& p : problems) out.push_back({p.simplex[0], p.values[0], p.evaluations});
+    for (const Problem& p : problems) out.push_back({p.simplex[0], p.values[0], p.evaluations, !p.out_of_budget});
     return out;
 }
 

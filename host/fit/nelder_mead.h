@@ -28,6 +28,7 @@ struct Minimum {
     std::vector<double> x;
     double value = 0.0;
     int evaluations = 0;
+    bool converged = true;  // false: max_evaluations stopped it before the simplex converged
 };
 
 /// Values of a batch of points: point i is a point of problem `problem[i]`.

@@ -271,6 +271,23 @@ double azimuth_from_degrees(double degrees) {
     return reduce_azimuth(turn * (M_PI / 180.0));
 }
 
+// The Lambert part of a Smith lobe's diffuse=KD (brdf/smith.h): per cell its kd, taken out of
+// the cell's parameters (the kernels integrate the specular lobe) and added back in closed form,
+// the albedo of kd/pi being kd at every direction (no error of its own).
+namespace {
+std::vector<double> take_diffuse(AlbedoRequest& req) {
+    std::vector<double> kd(req.cells.size(), 0.0);
+    if (req.model != BB_MODEL_GGX && req.model != BB_MODEL_BECKMANN) return kd;
+    for (size_t c = 0; c < req.cells.size(); ++c) {
+        ParamBlock& p = req.cells[c].params;
+        if (p[BB_SMITH_SCATTERING] != BB_SCATTERING_SINGLE) continue;
+        kd[c] = p[BB_SMITH_DIFFUSE];
+        p[BB_SMITH_DIFFUSE] = 0.0;
+    }
+    return kd;
+}
+}  // namespace
+
 AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
     if (auto shared = shared_albedo(engine, request)) return std::move(*shared);  // MPI ranks, shards
     if (request.cells.empty()) throw Error("no directions to integrate");
@@ -280,7 +297,9 @@ AlbedoResult compute_albedo(Engine& engine, const AlbedoRequest& request) {
         if (!(c.mu > 0.0 && c.mu <= 1.0)) throw Error("mu must lie in (0, 1]; got " + format_number(c.mu));
         c.phi = reduce_azimuth(c.phi);
     }
+    const std::vector<double> kd = take_diffuse(req);
     AlbedoResult result = req.method == Method::Quadrature ? compute_quadrature(engine, req) : compute_sampled(engine, req);
+    for (size_t c = 0; c < result.values.size(); ++c) result.values[c].value += kd[c];
     // The kernels count non-finite samples; this catches what the reduction of their sums could
     // still overflow (a finite BRDF whose integral exceeds the precision's range).
     for (size_t c = 0; c < result.values.size(); ++c)

@@ -1,7 +1,7 @@
 #include "models/merl_file.h"
 
 #include <fcntl.h>
-#include <sys/mman.h>
+#include <time.h>
 #include <sys/stat.h>
 #include <unistd.h>
 
@@ -57,26 +57,28 @@ const char* channel_name(MerlChannel c) {
     return names[int(c)];
 }
 
-/// A validated file, mapped read-only for the life of the process and known by its identity
-/// (device, inode, size, modification time): a file rewritten in place is a new file.
-struct MappedFile {
+/// A validated file version, read into memory (pread: a file truncated or rewritten while in use
+/// changes nothing here, where a mapping would raise SIGBUS on the lost pages) and known by its
+/// identity (device, inode, size, modification time): a file rewritten in place is a new version.
+/// A file rewritten within one timestamp tick of its read keeps its identity: such a version is
+/// "racy" (git's word for it, Documentation/technical/racy-git.txt) and its bytes are compared
+/// again at the next use, until a read starts a tick after the modification time.
+struct FileVersion {
     std::string path;
     dev_t dev = 0;
     ino_t ino = 0;
     std::int64_t mtime_ns = 0;
-    const char* bytes = nullptr;  // kMerlFileBytes; nullptr for builtin:lambert
+    std::int64_t read_ns = 0;  // the wall clock when its last read began
+    bool builtin = false;      // builtin:lambert (no bytes)
+    std::vector<char> bytes;   // kMerlFileBytes
 };
 
 struct Store {
     std::mutex mutex;
-    std::deque<MappedFile> files;
+    std::deque<FileVersion> files;
     std::deque<std::vector<double>> tables;  // a deque: a table never moves once stored
     std::vector<MerlTableInfo> info;
     std::vector<size_t> table_file;  // per table, its file in `files`
-    ~Store() {
-        for (const MappedFile& f : files)
-            if (f.bytes) ::munmap(const_cast<char*>(f.bytes), kMerlFileBytes);
-    }
 };
 
 /// A parsed spec written back: name:key=value,...
@@ -117,16 +119,59 @@ void check_dims(const char* bytes, const std::string& what, const std::string& p
                 "bins has " + std::to_string(kMerlFileBytes) + " (truncated?)");
 }
 
-/// Maps and validates the file at `path` (dimensions, every value finite), once per process and
-/// file: a second channel of the same file reads the same mapping. The mapping is read-only and
-/// shared with the page cache (no copy of the 35 MB).
+/// The coarsest modification-time tick of the file systems in use (FAT's 2 s; ext4 and tmpfs stamp
+/// from the kernel's coarse clock, a few ms): a version whose mtime lies within it of its read is
+/// racy (FileVersion).
+constexpr std::int64_t kTimestampTickNs = 2000000000;
+
+std::int64_t wall_ns() {
+    struct timespec t {};
+    ::clock_gettime(CLOCK_REALTIME, &t);
+    return std::int64_t(t.tv_sec) * 1000000000 + t.tv_nsec;
+}
+
+/// Every byte of the open file `fd` (kMerlFileBytes), by pread; a file that shrinks meanwhile is
+/// an Error naming it.
+std::vector<char> read_all(int fd, const std::string& what, const std::string& path) {
+    std::vector<char> out(kMerlFileBytes);
+    size_t got = 0;
+    while (got < out.size()) {
+        const ssize_t n = ::pread(fd, out.data() + got, out.size() - got, off_t(got));
+        if (n < 0 && errno == EINTR) continue;
+        if (n < 0) throw Error("cannot read " + what + " '" + path + "': " + std::strerror(errno));
+        if (n == 0)
+            throw Error(what + " '" + path + "' was truncated while it was read (" + std::to_string(got) + " of " +
+                        std::to_string(kMerlFileBytes) + " bytes)");
+        got += size_t(n);
+    }
+    return out;
+}
+
+/// Refuses bytes whose dimensions are not 90 x 90 x 180 or that hold a NaN or an Inf.
+void validate(const std::vector<char>& bytes, const std::string& what, const std::string& path) {
+    check_dims(bytes.data(), what, path);
+    for (int c = 0; c < 3; ++c) {
+        const char* plane = bytes.data() + 12 + size_t(c) * BB_MERL_BINS * 8;
+        for (size_t i = 0; i < BB_MERL_BINS; ++i) {
+            const double v = read_le<double>(plane + 8 * i);
+            if (!std::isfinite(v))
+                throw Error(what + " '" + path + "' holds a non-finite value (" + std::string(std::isnan(v) ? "NaN" : "Inf") +
+                            ") in the " + channel_name(MerlChannel(c)) + " plane at bin " + std::to_string(i));
+        }
+    }
+}
+
+/// Reads and validates the file at `path` (dimensions, every value finite), once per process and
+/// file version: a second channel of the same version reads the same bytes; a racy version
+/// (FileVersion) is read again and compared, a changed one stored as a new version.
 size_t open_file(Store& s, const std::string& path) {
     const std::string what = "MERL file";
-    MappedFile m;
+    FileVersion m;
     m.path = path;
     if (path == kBuiltinLambert) {
         for (size_t k = 0; k < s.files.size(); ++k)
-            if (s.files[k].path == path && !s.files[k].bytes) return k;
+            if (s.files[k].path == path && s.files[k].builtin) return k;
+        m.builtin = true;
         s.files.push_back(m);
         return s.files.size() - 1;
     }
@@ -139,45 +184,42 @@ size_t open_file(Store& s, const std::string& path) {
     m.dev = st.st_dev;
     m.ino = st.st_ino;
     m.mtime_ns = std::int64_t(st.st_mtim.tv_sec) * 1000000000 + st.st_mtim.tv_nsec;
-    for (size_t k = 0; k < s.files.size(); ++k) {
-        const MappedFile& f = s.files[k];
-        if (f.bytes && f.path == path && f.dev == m.dev && f.ino == m.ino && f.mtime_ns == m.mtime_ns) {
-            ::close(fd);
-            return k;
-        }
+    m.read_ns = wall_ns();
+    size_t same = s.files.size();  // the stored version of this identity, if any
+    for (size_t k = 0; k < s.files.size() && same == s.files.size(); ++k) {
+        const FileVersion& f = s.files[k];
+        if (!f.bytes.empty() && f.path == path && f.dev == m.dev && f.ino == m.ino && f.mtime_ns == m.mtime_ns) same = k;
     }
-    void* map = ::mmap(nullptr, kMerlFileBytes, PROT_READ, MAP_PRIVATE, fd, 0);
-    const int err = errno;
-    ::close(fd);
-    if (map == MAP_FAILED) throw Error("cannot read " + what + " '" + path + "': " + std::strerror(err));
-    ::madvise(map, kMerlFileBytes, MADV_SEQUENTIAL);
-    m.bytes = static_cast<const char*>(map);
+    if (same < s.files.size() && s.files[same].mtime_ns + kTimestampTickNs < s.files[same].read_ns) {
+        ::close(fd);
+        return same;
+    }
     try {
-        check_dims(m.bytes, what, path);
-        for (int c = 0; c < 3; ++c) {
-            const char* plane = m.bytes + 12 + size_t(c) * BB_MERL_BINS * 8;
-            for (size_t i = 0; i < BB_MERL_BINS; ++i) {
-                const double v = read_le<double>(plane + 8 * i);
-                if (!std::isfinite(v))
-                    throw Error(what + " '" + path + "' holds a non-finite value (" +
-                                std::string(std::isnan(v) ? "NaN" : "Inf") + ") in the " +
-                                channel_name(MerlChannel(c)) + " plane at bin " + std::to_string(i));
-            }
-        }
+        m.bytes = read_all(fd, what, path);
     } catch (...) {
-        ::munmap(map, kMerlFileBytes);
+        ::close(fd);
         throw;
     }
-    s.files.push_back(m);
+    ::close(fd);
+    if (same < s.files.size() && m.bytes == s.files[same].bytes) {  // racy, and unchanged
+        s.files[same].read_ns = m.read_ns;
+        return same;
+    }
+    validate(m.bytes, what, path);
+    // One version's bytes per path: an older version's tables stay, its bytes go (a later use of
+    // that identity, were it to come back, reads the file again).
+    for (FileVersion& f : s.files)
+        if (f.path == path) std::vector<char>().swap(f.bytes);
+    s.files.push_back(std::move(m));
     return s.files.size() - 1;
 }
 
 /// One channel of a file, scaled ([M03]); Rec. 709 luminance for y (ITU-R BT.709-6, item 3.2),
-/// unmeasured where any colour is. Built straight from the mapping, one pass.
-std::vector<double> channel_table(const MappedFile& f, MerlChannel channel) {
-    if (!f.bytes) return std::vector<double>(BB_MERL_BINS, 1.0 / kPi);  // builtin:lambert
+/// unmeasured where any colour is. Built straight from the file's bytes, one pass.
+std::vector<double> channel_table(const FileVersion& f, MerlChannel channel) {
+    if (f.builtin) return std::vector<double>(BB_MERL_BINS, 1.0 / kPi);  // builtin:lambert
     std::vector<double> t(BB_MERL_BINS);
-    const auto plane = [&](int c) { return f.bytes + 12 + size_t(c) * BB_MERL_BINS * 8; };
+    const auto plane = [&](int c) { return f.bytes.data() + 12 + size_t(c) * BB_MERL_BINS * 8; };
     if (channel != MerlChannel::Y) {
         const int c = int(channel);
         const char* p = plane(c);

@@ -48,9 +48,11 @@ struct MerlTableInfo {
 };
 
 /// The index in the process's store of the table of `channel` of the file at `path`. The file is
-/// mapped and validated once per process and file (path, inode, size, modification time; a file
-/// rewritten in place is read again) and every channel is built from that one mapping; the same
-/// file and channel give the same index. Throws Error (wrong size or dimensions, NaN or Inf, not
+/// read into memory (pread) and validated once per process and file version (path, inode, size,
+/// modification time; a file rewritten in place is read again, and so is one whose modification
+/// time lies within a timestamp tick of its read, compared byte for byte) and every channel is
+/// built from those bytes; the same version and channel give the same index. A file truncated or
+/// rewritten after its read leaves the tables read from it as they were. Throws Error (wrong size or dimensions, NaN or Inf, not
 /// a regular file, unreadable). "builtin:lambert" is an in-memory file, f = 1/pi in every bin.
 int merl_table_index(const std::string& path, MerlChannel channel);
 

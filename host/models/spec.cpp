@@ -175,6 +175,12 @@ ModelConfig resolve_smith_microfacet(KeyReader& keys, const std::string& name, i
     m.params[shadowing_slot] = read_shadowing(keys, m.canonical);
     m.smith_shadowing_slot = shadowing_slot;
     read_scattering(keys, m);
+    // diffuse=KD: a Lambert base kd/pi beside the lobe (brdf/smith.h, BB_SMITH_DIFFUSE)
+    if (const auto kd = keys.optional_number("diffuse", {0.0, 1.0})) {
+        if (m.simulated) throw Error("model '" + name + "': diffuse=KD is a sum with the single-scattering lobe; it takes scattering=single only");
+        m.params[BB_SMITH_DIFFUSE] = *kd;
+        m.canonical += ",diffuse=" + format_number(*kd);
+    }
     return m;
 }
 

@@ -108,6 +108,10 @@ Table dielectric_walk_table(Engine& engine, const LutRequest& r, const ModelConf
     return std::move(g.table);
 }
 
+/// The colours of a request: 3 for a merl spec with channel=rgb (per_colour integrates and
+/// writes each), else 1; the planner's sample and channel counts (planner.cpp, finish_table).
+int colours(const LutRequest& r) { return merl_rgb_spec(r.model) ? 3 : 1; }
+
 Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     if (without_roughness(m))
         return per_colour(r, m, [&](const ModelConfig& c) { return albedo_table_1d(engine, r, c, f); });
@@ -159,6 +163,8 @@ TableKind albedo_kind() {
                 albedo_program, compute_albedo_table);
     k.plan_fresnel = "none (F = 1: each lobe's Fresnel enters at render time)";
     k.tileable = true;
+    k.value_channels = colours;
+    k.integrations = colours;
     return k;
 }
 

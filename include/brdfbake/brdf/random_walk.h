@@ -48,13 +48,11 @@
 /* Random123's Philox (a kernel that includes this header is built with -D BB_PHILOX and its -I). */
 #include <Random123/philox.h>
 
-/* Parameter slots of a Smith lobe used by the walk (beside smith.h's 0-2 and ggx.h's 3). */
-#define BB_SMITH_SCATTERING 4 /* BB_SCATTERING_SINGLE or BB_SCATTERING_MULTIPLE */
+/* Parameter slots of a Smith lobe used by the walk (beside smith.h's 0-2 and ggx.h's 3; smith.h
+ * names slot 4, BB_SMITH_SCATTERING, and BB_SCATTERING_SINGLE/MULTIPLE). */
 #define BB_SMITH_BOUNCES 5    /* the walk's bounce limit (scatterings per walk) */
 #define BB_SMITH_WALK_ETA 6   /* 0: a conductor walk; > 0: the dielectric walk's relative index eta */
 #define BB_SMITH_WALK_ETA_M1 7 /* eta - 1, from the host in double (its digits near eta = 1) */
-#define BB_SCATTERING_SINGLE 0
-#define BB_SCATTERING_MULTIPLE 1
 #define BB_WALK_DEFAULT_BOUNCES 100
 #define BB_WALK_MAX_BOUNCES 100000
 

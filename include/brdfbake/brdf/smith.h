@@ -39,6 +39,25 @@
 #define BB_SMITH_ALPHA_X 0
 #define BB_SMITH_ALPHA_Y 1
 #define BB_SMITH_SHADOWING 2 /* the reflection's G2: one of BB_SHADOWING_* */
+/* Slot 3 is ggx.h's transmission shadowing; slots 4-7 the random walk's (random_walk.h) under
+ * scattering=multiple. Under scattering=single slot 7 holds the Lambert weight kd of the spec's
+ * diffuse=KD (the host refuses diffuse with scattering=multiple):
+ *   f = f_spec + kd / pi,
+ * the specular lobe plus a Lambertian base, the sum Ngan, Durand and Matusik 2005 fit to the MERL
+ * materials (sec. 4: every model they fit carries a Lambert term). The kd/pi is not multiplied by
+ * the Fresnel term. Only the evaluation adds it: the albedo of the Lambert part is kd exactly (the
+ * integral of kd/pi cos theta_i over the hemisphere), which the host adds in closed form
+ * (host/integrate/albedo.cpp, compute_albedo) while the kernels integrate the specular lobe with
+ * the slot set to 0; the sampler and the quadrature weights below are those of the specular lobe. */
+#define BB_SMITH_SCATTERING 4 /* BB_SCATTERING_SINGLE or BB_SCATTERING_MULTIPLE */
+#define BB_SMITH_DIFFUSE 7
+#define BB_SCATTERING_SINGLE 0
+#define BB_SCATTERING_MULTIPLE 1
+
+/* kd of diffuse=KD: slot 7 under scattering=single, else 0. */
+BB_FN bb_real bb_smith_diffuse(bb_params p) {
+    return bb_select(BB_R(0.0), p.v[BB_SMITH_DIFFUSE], p.v[BB_SMITH_SCATTERING] == BB_R(BB_SCATTERING_SINGLE));
+}
 
 /* The shadowing slot holds one of microfacet.h's BB_SHADOWING_* (the spec's
  * shadowing=separable|correlated|masking). The rough dielectric's transmitted lobe has a choice
@@ -81,14 +100,16 @@ BB_FN bb_real bb_smith_g2(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
     return bb_select(g2, masking, p.v[BB_SMITH_SHADOWING] == BB_R(BB_SHADOWING_MASKING));
 }
 
-/* f(wo, wi) without the cosine; 0 unless wo, wi and wh are above the horizon. */
+/* f(wo, wi) without the cosine, the Lambert part kd/pi of diffuse=KD included; 0 unless wo and wi
+ * are above the horizon (the specular part also unless wh is). */
 BB_FN bb_real bb_smith_eval(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_vec3 wi) {
     bb_vec3 wh = bb_normalize(bb_add(wo, wi));
     bb_real d = bb_smith_d(dist, wh, p.v[BB_SMITH_ALPHA_X], p.v[BB_SMITH_ALPHA_Y]);
     bb_real f = bb_fresnel_eval(fkind, fp, bb_clamp_cos(bb_dot(wo, wh)));
     bb_real den = BB_R(4.0) * wo.z * wi.z;
     bb_real v = d * bb_smith_g2(dist, p, wo, wi) * f / bb_select(BB_R(1.0), den, den > BB_R(0.0));
-    return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0) && wh.z > BB_R(0.0));
+    v = bb_select(BB_R(0.0), v, wh.z > BB_R(0.0)) + bb_smith_diffuse(p) * BB_INV_PI;
+    return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0));
 }
 
 /* The visible-normal importance sample and its weight F(wo.wh) G2(wo, wi) / G1(wo). */
