@@ -17,6 +17,7 @@
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
 #include "models/merl_file.h"
+#include "models/sheen_ltc_table.h"
 
 namespace brdfbake {
 
@@ -314,6 +315,29 @@ ModelConfig resolve_merl(KeyReader& keys) {
     m.params[BB_MERL_INTERP] = interp == "linear" ? BB_MERL_LINEAR : BB_MERL_NEAREST;
     m.params[BB_MERL_MIRROR] = interp == "linear" && merl_table_info(int(m.params[BB_MERL_TABLE])).mirror_symmetric;
     m.canonical = "merl:file=" + *file + ",channel=" + channel + ",interp=" + interp;
+    return m;
+}
+
+// sheen-ltc: the LTC sheen (brdf/sheen_ltc.h), roughness=R or alpha=A (= R^2, the layer's sigma, as
+// sheen's; the canonical spec spells alpha for a table's roughness sweep), and the table (a, b, R):
+// table=FILE, a CSV of `lut sheen-ltc`, or the embedded default (data/sheen_ltc/).
+ModelConfig resolve_sheen_ltc(KeyReader& keys) {
+    ModelConfig m;
+    if (keys.has("alpha") && keys.has("roughness"))
+        throw Error("model 'sheen-ltc': give roughness=R or alpha = R^2, not both");
+    double alpha;
+    if (auto r = keys.optional_number("roughness", kSheenRoughness))
+        alpha = *r * *r;
+    else
+        alpha = keys.required_number("alpha", kSheenAlpha, "or roughness=R with alpha = R^2");
+    const std::string file = keys.optional_string("table").value_or(kSheenLtcBuiltin);
+    keys.finish();
+    const SheenLtcTablePlace t = sheen_ltc_table(file);
+    m.params[BB_SHEEN_LTC_ALPHA] = alpha;
+    m.params[BB_SHEEN_LTC_OFFSET] = double(t.offset);
+    m.params[BB_SHEEN_LTC_NX] = t.nx;
+    m.params[BB_SHEEN_LTC_NY] = t.ny;
+    m.canonical = "sheen-ltc:alpha=" + format_number(alpha) + (file == kSheenLtcBuiltin ? "" : ",table=" + file);
     return m;
 }
 
