@@ -159,7 +159,18 @@ TEST_CASE("sheen-ltc: lobe and lut albedo run on it", "[sheen-ltc][cli]") {
     auto r = testing::run_cli("lobe --model sheen-ltc:roughness=0.5 --theta-i 60 --resolution 37 --data " + csv);
     INFO(r.err);
     CHECK(r.status == 0);
-    r = testing::run_cli("lobe --view 3d --model sheen-ltc:roughness=0.5 --theta-i 60 --resolution 19 --data " + csv);
+    std::ifstream rows(csv);
+    int n = 0;
+    for (std::string line; std::getline(rows, line);) {
+        if (line.empty() || line[0] == '#' || line[0] == 'm') continue;
+        const double f = std::stod(line.substr(line.rfind(',') + 1));
+        CHECK(std::isfinite(f));
+        CHECK(f >= 0.0);
+        ++n;
+    }
+    CHECK(n == 37);
+    const std::string png = "/tmp/brdfbake-test-sheen-ltc-" + std::to_string(::getpid()) + "-lobe.png";
+    r = testing::run_cli("lobe --view 3d --model sheen-ltc:roughness=0.5 --theta-i 60 --resolution 19 -o " + png);
     CHECK(r.status == 0);
     const std::string lut = "/tmp/brdfbake-test-sheen-ltc-" + std::to_string(::getpid()) + "-albedo.csv";
     r = testing::run_cli("lut albedo --model sheen-ltc:table=" + table +
