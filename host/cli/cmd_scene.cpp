@@ -49,6 +49,7 @@ struct SceneOptions {
     std::string table_format;
     bool half = false;
     std::string size;                 // MUxALPHA or N
+    std::string sheen_model;          // the sheen lobes' tables: charlie or ltc
     std::vector<std::string> tables;  // table kinds replacing every lobe's
     std::string mu_map, alpha_map;
     double eta_step = 0.0;
@@ -89,6 +90,10 @@ void add_scene_options(CLI::App* cmd, SceneOptions& o) {
     cmd->add_option("--tables", o.tables, "table kinds for every lobe, replacing the scene's and the defaults "
                                           "(each lobe takes those it can; comma-separated)")
         ->delimiter(',');
+    cmd->add_option("--sheen-model", o.sheen_model,
+                    "the sheen lobes' tables: charlie (its albedo, the default) or ltc (the sheen-ltc table of "
+                    "Zeltner et al. 2022: a, b, R)")
+        ->check(CLI::IsMember({"charlie", "ltc"}));
     cmd->add_option("--mu-map", o.mu_map, "mu axis coordinate (default linear)")->check(CLI::IsMember({"linear", "sqrt"}));
     cmd->add_option("--alpha-map", o.alpha_map, "roughness axis coordinate (default roughness)")
         ->check(CLI::IsMember({"alpha", "roughness"}));
@@ -147,6 +152,7 @@ Scene load_scene_with(const SceneOptions& o) {
     if (o.half) s.half = true;
     if (!o.size.empty()) parse_scene_size(o.size, s);
     if (!o.tables.empty()) s.tables = o.tables;
+    if (!o.sheen_model.empty()) s.sheen_model = o.sheen_model;
     if (!o.mu_map.empty()) s.mu_map = o.mu_map;
     if (!o.alpha_map.empty()) s.alpha_map = o.alpha_map;
     if (o.eta_step > 0) s.eta_step = o.eta_step;

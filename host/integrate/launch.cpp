@@ -9,6 +9,7 @@
 #include "brdfbake/progress.h"
 #include "engine/device_buffer.h"
 #include "models/merl_file.h"
+#include "models/sheen_ltc_table.h"
 
 namespace brdfbake {
 
@@ -75,6 +76,7 @@ std::vector<double> model_data(int model) {
         merl_model_data(d);
         return d.joined.empty() ? std::vector<double>(d.data, d.data + d.size) : std::move(d.joined);
     }
+    if (model == BB_MODEL_SHEEN_LTC) return sheen_ltc_model_data();  // the tables of brdf/sheen_ltc.h
     return std::vector<double>(BB_MODEL_DATA_DUMMY_SIZE, 0.0);
 }
 }  // namespace

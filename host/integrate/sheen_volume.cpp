@@ -116,24 +116,16 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
       << " replicas x " << walks << " walks";
     result.method = m.str();
 
-    std::vector<std::vector<double>> parts(BB_SHEEN_SUMS, std::vector<double>(n_items));
-    for (size_t i = 0; i < n_items; ++i)
-        for (int k = 0; k < BB_SHEEN_SUMS; ++k) parts[k][i] = sums[BB_SHEEN_SUMS * i + k];
     const auto where = [&](size_t c) {
         return "a sheen layer walk met NaN or Inf at mu = " + format_number(req.cells[c].mu) +
                ", roughness = " + format_number(req.cells[c].alpha);
     };
-    std::vector<std::vector<AlbedoValue>> summary;
-    for (int k = 0; k < BB_SHEEN_SUMS; ++k)
-        summary.push_back(summarize(parts[k], bad, req.replicas, result.walks_per_cell, req.precision, where));
+    const std::vector<std::vector<AlbedoValue>> summary =
+        summarize_columns(sums, BB_SHEEN_SUMS, bad, req.replicas, result.walks_per_cell, req.precision, where);
     for (size_t c = 0; c < n_cells; ++c) {
         SheenVolumeValue v;
         AlbedoValue* slots[BB_SHEEN_SUMS] = {&v.reflectance, &v.single, &v.transmittance, &v.direct, &v.cutoff};
-        for (int k = 0; k < BB_SHEEN_SUMS; ++k) {
-            *slots[k] = summary[k][c];
-            slots[k]->samples = result.walks_per_cell;
-            slots[k]->method = Method::MonteCarlo;
-        }
+        for (int k = 0; k < BB_SHEEN_SUMS; ++k) *slots[k] = summary[k][c];
         result.values.push_back(v);
     }
     if (n_bins > 0) {

@@ -17,6 +17,7 @@
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
 #include "models/merl_file.h"
+#include "models/sheen_ltc_table.h"
 
 namespace brdfbake {
 
@@ -285,15 +286,17 @@ ModelConfig resolve_dielectric_specular(KeyReader& keys) {
 constexpr Range kSheenAlpha{BB_ALPHA_MIN, 1.0};
 constexpr Range kSheenRoughness{0.01, 1.0};  // roughness^2 within kSheenAlpha
 
+/// The alpha of a sheen spec (sheen, sheen-ltc): roughness=R (alpha = R^2) or alpha=A.
+double read_sheen_alpha(KeyReader& keys, const std::string& model) {
+    if (keys.has("alpha") && keys.has("roughness"))
+        throw Error("model '" + model + "': give roughness (glTF's sheenRoughness) or alpha = roughness^2, not both");
+    if (auto r = keys.optional_number("roughness", kSheenRoughness)) return *r * *r;
+    return keys.required_number("alpha", kSheenAlpha, "or roughness=R, glTF's sheenRoughness, with alpha = R^2");
+}
+
 ModelConfig resolve_sheen(KeyReader& keys) {
     ModelConfig m;
-    if (keys.has("alpha") && keys.has("roughness"))
-        throw Error("model 'sheen': give roughness (glTF's sheenRoughness) or alpha = roughness^2, not both");
-    double alpha;
-    if (auto r = keys.optional_number("roughness", kSheenRoughness))
-        alpha = *r * *r;
-    else
-        alpha = keys.required_number("alpha", kSheenAlpha, "or roughness=R, glTF's sheenRoughness, with alpha = R^2");
+    const double alpha = read_sheen_alpha(keys, "sheen");
     const std::string v = keys.choice("visibility", "charlie", {"charlie", "ashikhmin"});
     m.params[BB_SHEEN_ALPHA] = alpha;
     m.params[BB_SHEEN_VISIBILITY] = v == "charlie" ? BB_SHEEN_V_CHARLIE : BB_SHEEN_V_ASHIKHMIN;
@@ -320,6 +323,23 @@ ModelConfig resolve_merl(KeyReader& keys) {
     m.params[BB_MERL_INTERP] = interp == "linear" ? BB_MERL_LINEAR : BB_MERL_NEAREST;
     m.params[BB_MERL_MIRROR] = interp == "linear" && merl_table_info(int(m.params[BB_MERL_TABLE])).mirror_symmetric;
     m.canonical = "merl:file=" + *file + ",channel=" + channel + ",interp=" + interp;
+    return m;
+}
+
+// sheen-ltc: the LTC sheen (brdf/sheen_ltc.h), roughness=R or alpha=A (= R^2, the layer's sigma, as
+// sheen's; the canonical spec spells alpha for a table's roughness sweep), and the table (a, b, R):
+// table=FILE, a CSV of `lut sheen-ltc`, or the embedded default (data/sheen_ltc/).
+ModelConfig resolve_sheen_ltc(KeyReader& keys) {
+    ModelConfig m;
+    const double alpha = read_sheen_alpha(keys, "sheen-ltc");
+    const std::string file = keys.optional_string("table").value_or(kSheenLtcBuiltin);
+    keys.finish();
+    const SheenLtcTablePlace t = sheen_ltc_table(file);
+    m.params[BB_SHEEN_LTC_ALPHA] = alpha;
+    m.params[BB_SHEEN_LTC_OFFSET] = double(t.offset);
+    m.params[BB_SHEEN_LTC_NX] = t.nx;
+    m.params[BB_SHEEN_LTC_NY] = t.ny;
+    m.canonical = "sheen-ltc:alpha=" + format_number(alpha) + (file == kSheenLtcBuiltin ? "" : ",table=" + file);
     return m;
 }
 

@@ -567,6 +567,14 @@ Plan make_plan(const Scene& scene, const Calibration* calibration) {
     if (calibration && !calibration->warning.empty()) plan.warnings.push_back(calibration->warning);
 
     plan.materials = scene.materials;
+    if (s.sheen_model == "ltc")  // the sheen lobes' table is the LTC sheen's (docs/sheen_ltc.md, "Scenes")
+        for (auto& m : plan.materials)
+            for (auto& l : m.lobes)
+                if (l.model_name == table_kind(TableKindId::SheenLtc).required_model) {
+                    l.kinds = {&table_kind(TableKindId::SheenLtc)};
+                    m.notes.push_back("sheen_model ltc: the sheen's table is sheen-ltc (a, b, R of the LTC sheen of "
+                                      "Zeltner et al. 2022), not its Charlie albedo");
+                }
     if (!s.tables.empty()) override_lobe_kinds(plan.materials, s.tables, plan.warnings);
     std::vector<Group> groups = group_needs(plan.materials, plan);
     std::vector<PlannedTable> engine_tables = plan_engine_tables(s, groups, plan);

@@ -58,6 +58,9 @@ struct SceneSettings {
     double eta_step = 0.05;            // eta-axis spacing for a range of indices
     std::string mu_map = "linear";     // see LutRequest
     std::string alpha_map = "roughness";
+    /// The sheen lobes' tables: "charlie" (the Charlie albedo, the default) or "ltc" (the LTC sheen of
+    /// Zeltner et al. 2022: the sheen-ltc table, a, b and R per mu and roughness; docs/sheen_ltc.md).
+    std::string sheen_model = "charlie";
     Precision precision = Precision::Float;
     std::string table_format = "exr";  // exr, csv or h
     bool half = false;                 // half-float EXR channels

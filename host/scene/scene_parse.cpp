@@ -127,7 +127,7 @@ SweepSplit split_model(const std::string& text, const std::string& where) {
 const std::set<std::string> kMaterialKeys = {"name", "model", "fresnel", "wavelength", "alpha", "roughness",
                                              "eta", "transmission", "tables", "comment"};
 const std::set<std::string> kSettingsKeys = {"samples", "mu_texels", "alpha_texels", "eta_step", "mu_map",
-                                             "alpha_map", "precision", "format", "half"};
+                                             "alpha_map", "precision", "format", "half", "sheen_model"};
 
 /// The material's "tables" (a list of kinds, each checked against the lobe), when it names them.
 void read_lobe_tables(const json& m, const Where& w, const std::string& ctx, Lobe& lobe) {
@@ -335,7 +335,7 @@ void parse_settings(const json& s, const std::string& file, SceneSettings& out) 
         const json& v = item.value();
         if (!kSettingsKeys.count(k))
             throw Error(w.at(k) + " is not a setting (known: samples, mu_texels, alpha_texels, eta_step, mu_map, "
-                                  "alpha_map, precision, format, half)");
+                                  "alpha_map, precision, format, half, sheen_model)");
         auto integer = [&] {
             const double x = number_at(v, w, k);
             if (x != std::floor(x) || x < 1 || x > 1e12) throw Error(w.at(k) + " must be a positive whole number");
@@ -347,6 +347,7 @@ void parse_settings(const json& s, const std::string& file, SceneSettings& out) 
         else if (k == "eta_step") out.eta_step = number_at(v, w, k);
         else if (k == "mu_map") out.mu_map = string_at(v, w, k);
         else if (k == "alpha_map") out.alpha_map = string_at(v, w, k);
+        else if (k == "sheen_model") out.sheen_model = string_at(v, w, k);
         else if (k == "precision") {
             const std::string p = string_at(v, w, k);
             if (p != "float" && p != "double") throw Error(w.at(k) + " must be \"float\" or \"double\"");
@@ -372,6 +373,7 @@ void check_settings(const SceneSettings& s) {
     if (s.alpha_texels < 1 || s.alpha_texels > 4096) throw Error("alpha_texels must lie in 1..4096");
     if (!(s.eta_step > 0.0 && s.eta_step <= 10.0)) throw Error("eta_step must lie in (0, 10]");
     if (s.mu_map != "linear" && s.mu_map != "sqrt") throw Error("mu_map must be \"linear\" or \"sqrt\"");
+    if (s.sheen_model != "charlie" && s.sheen_model != "ltc") throw Error("sheen_model must be \"charlie\" or \"ltc\"");
     if (s.alpha_map != "alpha" && s.alpha_map != "roughness")
         throw Error("alpha_map must be \"alpha\" or \"roughness\"");
     if (s.table_format != "exr" && s.table_format != "csv" && s.table_format != "h")

@@ -96,6 +96,12 @@
 #define BB_COMPILED_MERL ~, 1
 #endif
 
+#define BB_MODEL_SHEEN_LTC 13
+#if BB_HAS_MODEL(BB_MODEL_SHEEN_LTC)
+#include "brdfbake/brdf/sheen_ltc.h"
+#define BB_COMPILED_SHEEN_LTC ~, 1
+#endif
+
 /* ---------------------------------------------------------------------------- the table
  * X(NAME, name, SPEC, ARGS, QUAD, TRAITS, ALPHA_X, ALPHA_Y, EXPONENT, EXAMPLE), one row per model:
  *   NAME, name  its id is BB_MODEL_<NAME>; its functions are bb_<name>_eval and
@@ -180,7 +186,9 @@
       BB_SHEEN_ALPHA, BB_SHEEN_ALPHA, -1, "sheen:roughness=0.5")                                                 \
     X(MERL,                 merl,                "merl",                PLAIN,   SAMPLER,                         \
       BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_RECIPROCAL | BB_TRAIT_KINKED | BB_TRAIT_FURNACE | BB_TRAIT_MEASURED,     \
-      -1, -1, -1, "merl:file=builtin:lambert")
+      -1, -1, -1, "merl:file=builtin:lambert")                                                                   \
+    X(SHEEN_LTC,            sheen_ltc,           "sheen-ltc",           PLAIN,   SAMPLER,                         \
+      BB_TRAIT_FURNACE, BB_SHEEN_LTC_ALPHA, BB_SHEEN_LTC_ALPHA, -1, "sheen-ltc:roughness=0.5")
 
 /* The values of the QUAD column. */
 #define BB_QUAD_SPACE_SAMPLER 0
