@@ -195,6 +195,42 @@ std::string material_name(const json& m, size_t index, const std::string& file) 
     return name;
 }
 
+/// A material's roughness: in the model spec, or as "alpha" / "roughness" (a value or a range),
+/// once; range-checked against the model's roughness axis (alpha, or the key a mapped axis sets).
+std::optional<Interval> material_alpha(const json& m, const Where& w, const std::string& ctx, const SweepSplit& split,
+                                       SceneMaterial& out) {
+    const RoughnessAxis& axis = split.base.traits().roughness_axis;
+    std::optional<Interval> alpha = split.alpha;
+    for (const char* key : {"alpha", "roughness"}) {
+        if (!m.contains(key)) continue;
+        if (alpha) throw Error(ctx + ": give the roughness once (model spec, 'alpha' or 'roughness')");
+        Interval r = interval_at(m[key], w, key);
+        if (!split.sweepable)
+            throw Error(ctx + ": model '" + split.base.name + "' has no roughness; drop '" + key + "'");
+        if (!(r.lo >= 0.0)) throw Error(w.at(key) + " must not be negative");
+        if (std::string(key) == "roughness") r = {r.lo * r.lo, r.hi * r.hi};
+        alpha = r;
+    }
+    if (alpha && split.sweepable) {
+        // The same range check as a model spec's alpha (or the key a mapped axis sets), for the
+        // largest value; values below the alpha floor are planned at it (alpha 0 is the smooth
+        // limit of a microfacet lobe), as in a glTF scene.
+        if (axis.value && alpha->hi > axis.alpha_hi)
+            throw Error(ctx + ": roughness: alpha " + format_number(alpha->hi) + " is beyond " + split.base.name +
+                        "'s roughness axis (" + axis.mapping + ")");
+        const double top = std::max(alpha->hi, axis.value ? axis.alpha_lo : double(BB_ALPHA_MIN));
+        try {
+            resolve_model(split.canonical + (split.canonical.find(':') == std::string::npos ? ":" : ",") + axis.key +
+                          "=" + format_number(axis.value ? axis.value(top) : top));
+        } catch (const Error& e) {
+            throw Error(ctx + ": roughness: " + e.what());
+        }
+        if (!axis.value && alpha->lo < double(BB_ALPHA_MIN)) out.notes.push_back(alpha_floor_note(alpha->lo));
+    }
+
+    return alpha;
+}
+
 SceneMaterial parse_material(const json& m, size_t index, const std::string& file, std::vector<std::string>& warnings) {
     SceneMaterial out;
     out.name = material_name(m, index, file);
@@ -255,35 +291,8 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
         return m["transmission"].get<bool>();
     }();
 
-    // Roughness: in the spec, or as "alpha" / "roughness" (a value or a range), once.
-    std::optional<Interval> alpha = split.alpha;
-    for (const char* key : {"alpha", "roughness"}) {
-        if (!m.contains(key)) continue;
-        if (alpha) throw Error(ctx + ": give the roughness once (model spec, 'alpha' or 'roughness')");
-        Interval r = interval_at(m[key], w, key);
-        if (!split.sweepable)
-            throw Error(ctx + ": model '" + split.base.name + "' has no roughness; drop '" + key + "'");
-        if (!(r.lo >= 0.0)) throw Error(w.at(key) + " must not be negative");
-        if (std::string(key) == "roughness") r = {r.lo * r.lo, r.hi * r.hi};
-        alpha = r;
-    }
+    const std::optional<Interval> alpha = material_alpha(m, w, ctx, split, out);
     const RoughnessAxis& axis = split.base.traits().roughness_axis;
-    if (alpha && split.sweepable) {
-        // The same range check as a model spec's alpha (or the key a mapped axis sets), for the
-        // largest value; values below the alpha floor are planned at it (alpha 0 is the smooth
-        // limit of a microfacet lobe), as in a glTF scene.
-        if (axis.value && alpha->hi > axis.alpha_hi)
-            throw Error(ctx + ": roughness: alpha " + format_number(alpha->hi) + " is beyond " + split.base.name +
-                        "'s roughness axis (" + axis.mapping + ")");
-        const double top = std::max(alpha->hi, axis.value ? axis.alpha_lo : double(BB_ALPHA_MIN));
-        try {
-            resolve_model(split.canonical + (split.canonical.find(':') == std::string::npos ? ":" : ",") + axis.key +
-                          "=" + format_number(axis.value ? axis.value(top) : top));
-        } catch (const Error& e) {
-            throw Error(ctx + ": roughness: " + e.what());
-        }
-        if (!axis.value && alpha->lo < double(BB_ALPHA_MIN)) out.notes.push_back(alpha_floor_note(alpha->lo));
-    }
 
     // Index of refraction: from a dielectric Fresnel spec, or "eta" (a value or a range).
     std::optional<Interval> eta;
