@@ -3,10 +3,11 @@
  * (host/fit/ltc_fit.cpp).
  *
  *   ltc_lobe_points  one work-item per (texel, point): the model's importance sample of the
- *                    point (u1, u2) = ((i + 1/2)/n, (j + 1/2)/n) of an n x n grid, with its weight
- *                    w = f cos(theta_i) / pdf and the inverse pdf 1/pdf = w / (f cos(theta_i))
- *                    (the grid graded in u1 towards the lobe's tail). Fixed points: the
- *                    objective is a deterministic function of the matrix.
+ *                    point (u1, u2) of an n x n grid, u2 = (j + 1/2)/n and u1 graded towards the
+ *                    lobe's tail (the nodes and their weights computed once on the host: the same
+ *                    bits whatever the kernel's build), with its weight w = f cos(theta_i) / pdf
+ *                    times the node's weight and the inverse pdf 1/pdf = w / (f cos(theta_i)).
+ *                    Fixed points: the objective is a deterministic function of the matrix.
  *   ltc_objective    one work-item per candidate matrix: S = (1/N) sum_k min(p_k, D(w_k)) / pdf_k,
  *                    the estimate of integral over the upper hemisphere of min(p, D) with the
  *                    lobe's own points, where p = f cos / E_s (E_s: the mean weight of the same
@@ -57,7 +58,7 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
                                        __global const bb_scalar* fresnel_p,
                                        __global const bb_scalar* model_data /* BB_MODEL_DATA_ARG */,
                                        const unsigned int n_cells, const unsigned int n_side,
-                                       const unsigned int grade, __global bb_scalar* points) {
+                                       __global const bb_scalar* nodes, __global bb_scalar* points) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     const unsigned int per_cell = n_side * n_side;
     if (gid >= n_cells * per_cell)
@@ -66,11 +67,10 @@ __kernel void BB_ENTRY_LTC_LOBE_POINTS(__global const bb_scalar* cell_mu, __glob
     const bb_ltc_texel tx = bb_ltc_texel_of(cell, cell_mu, model_p, fresnel_p, model_data);
     const bb_params p = tx.p, fp = tx.fp;
     const bb_vec3 wo = tx.wo;
-    /* u1 = 1 - (1 - s)^grade, s on the midpoint rule, the node weighing its cell's measure in u1
-     * (n times (1 - s_lo)^grade - (1 - s_hi)^grade): the samplers send the lobe's tail to u1 near 1 */
-    const bb_real s_lo = (bb_real)(k % n_side) / (bb_real)n_side, s_hi = (bb_real)(k % n_side + 1u) / (bb_real)n_side;
-    const bb_real u1 = BB_R(1.0) - pown(BB_R(1.0) - (s_lo + s_hi) * BB_R(0.5), (int)grade);
-    const bb_real cell_w = (pown(BB_R(1.0) - s_lo, (int)grade) - pown(BB_R(1.0) - s_hi, (int)grade)) * (bb_real)n_side;
+    /* nodes[2 i], nodes[2 i + 1]: column i's u1 and the weight of its cell's measure in u1
+     * (host/fit/ltc_fit.cpp, graded_nodes) */
+    const unsigned int i = k % n_side;
+    const bb_real u1 = nodes[2u * i], cell_w = nodes[2u * i + 1u];
     const bb_real u2 = ((bb_real)(k / n_side) + BB_R(0.5)) / (bb_real)n_side;
     const bb_sample s = bb_model_sample(BB_MODEL, p, BB_FRESNEL, fp, wo, u1, u2);
     const bb_real f_cos = bb_model_eval(BB_MODEL, p, BB_FRESNEL, fp, wo, s.wi) * s.wi.z;

@@ -306,11 +306,51 @@ TEST_CASE("ltc --preset three: three.js's axes and packing, the plain table's M 
             CHECK(three.values[5][c3] == plain.values[6][cp]);  // fresnel
             CHECK(three.values[6][c3] == 0.0);
             CHECK(three.values[7][c3] == 0.0);
-            CHECK(three.values[8][c3] == Approx(plain.values[7][cp]).margin(three.values[9][c3] + plain.values[8][cp]));
+            // The distance is that of the M each table's float32 values denote. At the floored alpha
+            // 1e-4 (a = 0) the lobe is 1e-4 wide and the float32 steps of ltc_1's O(1) entries move
+            // it by ~1e-4 of its width, which moves L1 by ~1e-4: by the numpy reference
+            // (tests/ltc_reference.py, l1_distance_converged) one fit's plain M lay at 7.3e-5 and
+            // its three.js form at 1.58e-4 (branch ltc4). There the packing's own resolution bounds it.
+            if (a == 0)
+                CHECK(three.values[8][c3] < plain.values[7][cp] + plain.values[8][cp] + 2e-4);
+            else
+                CHECK(three.values[8][c3] == Approx(plain.values[7][cp]).margin(three.values[9][c3] + plain.values[8][cp]));
         }
     // normal incidence (t = 0) of the roughest column: M = diag(m, m, 1) up to scale, so ltc_1 = (1, 0, 0, m/1)
     // with the lobe symmetric about the normal: G and B vanish, R = 1 (Minv00 = Minv11).
     CHECK(three.values[0][5] == Approx(1.0).epsilon(2e-2));
     CHECK(std::abs(three.values[1][5]) < 2e-2);
     CHECK(std::abs(three.values[2][5]) < 2e-2);
+}
+
+TEST_CASE("ltc --preset three: the same bits whether fitted first or after other LTC fits in one process",
+          "[ltc][presets]") {
+    // The fit follows its lobe points' last bits (a texel at alpha 1e-4 moved from distance 2.2e-4
+    // to 2.9e-4 when the points' grading was computed on the device by multiplication and other
+    // tests had run before: benchmarks/results/ltc-table-amd-epyc-2c.md, branch ltc3). The points
+    // must be the same whatever ran before: the preset's table again after fits of other sizes,
+    // models and precisions holds the same values to the bit.
+    LutSettings s;
+    s.kind = "ltc";
+    s.preset = "three";
+    s.size = std::vector<int>{5, 6};
+    const LutSetup setup = apply_preset(s);
+    const Table first = compute_lut(testing::engine(), setup.request);
+    LutRequest other;
+    other.kind = "ltc";
+    other.model = "ggx";
+    other.width = 7;
+    other.height = 3;
+    compute_lut(testing::engine(), other);
+    other.model = "oren-nayar";
+    other.width = 3;
+    compute_lut(testing::engine(), other);
+    fit_one("ggx:alpha=0.02", 0.3);
+    const Table again = compute_lut(testing::engine(), setup.request);
+    REQUIRE(again.channels == first.channels);
+    for (size_t ch = 0; ch < first.channels.size(); ++ch)
+        for (size_t c = 0; c < first.values[ch].size(); ++c) {
+            INFO(first.channels[ch] << " texel " << c);
+            CHECK(again.values[ch][c] == first.values[ch][c]);
+        }
 }

@@ -15,6 +15,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <fstream>
 #include <set>
 
 #include "brdfbake/error.h"
@@ -137,7 +138,7 @@ TEST_CASE("materials that can share a table share it, model, shadowing and kind 
     CHECK(plan.warnings.empty());
 }
 
-TEST_CASE("delta lobes need no table, models without a roughness axis are named in a warning", "[scene][quick]") {
+TEST_CASE("delta lobes need no table, oren-nayar's sigma is its roughness axis", "[scene][quick]") {
     const auto names = model_names();
     for (const char* needed : {"mirror", "oren-nayar"})
         if (std::find(names.begin(), names.end(), needed) == names.end()) {
@@ -150,11 +151,60 @@ TEST_CASE("delta lobes need no table, models without a roughness axis are named 
         {"name": "gold", "model": "ggx", "fresnel": "metal:Au", "alpha": 0.2}]})",
                                          "inline.json");
     const Plan plan = make_plan(scene);
-    CHECK(plan.tables.size() == 2);
-    CHECK(plan.models == std::vector<std::string>{"ggx"});
-    CHECK(plan.no_table.size() == 2);
+    // skin: albedo and eavg of oren-nayar over the table alpha that sets sigma = 0.3 (sigma = alpha,
+    // the registry's RoughnessAxis), gold: those of ggx; the mirror none
+    CHECK(plan.tables.size() == 4);
+    CHECK(plan.models == std::vector<std::string>{"oren-nayar", "ggx"});  // in the order of the materials
+    CHECK(plan.no_table.size() == 1);
     CHECK(contains(plan.no_table, "mirror (mirror: delta lobe"));
-    CHECK(contains(plan.warnings, "material 'skin': model 'oren-nayar' is not modelled"));
+    CHECK(plan.warnings.empty());
+    size_t on = 0;
+    for (const auto& t : plan.tables)
+        if (t.materials == std::vector<std::string>{"skin"}) {
+            ++on;
+            CHECK(t.alpha.lo == Approx(0.3).epsilon(1e-12));
+            CHECK(t.alpha.hi == Approx(0.3).epsilon(1e-12));
+        }
+    CHECK(on == 2);
+}
+
+TEST_CASE("scenes: oren-nayar and Phong lobes plan over their mapped roughness axes, or name the key they need",
+          "[scene][quick]") {
+    // The table alpha sets oren-nayar's sigma = alpha and Phong's n = 2/alpha^2 - 2 (Walter et al.
+    // 2007 sec. 5.2): n = 100 is alpha = sqrt(2/102), a range of alpha is the tables' axis.
+    const Scene scene = parse_scene_json(R"({"materials": [
+        {"name": "felt", "model": "oren-nayar", "alpha": [0.1, 0.5]},
+        {"name": "plastic", "model": "phong:n=100"},
+        {"name": "paint", "model": "blinn-phong", "roughness": 0.5}]})",
+                                         "inline.json");
+    const Plan plan = make_plan(scene);
+    CHECK(plan.warnings.empty());
+    CHECK(plan.models == std::vector<std::string>{"oren-nayar", "phong", "blinn-phong"});
+    CHECK(plan.tables.size() == 6);
+    for (const auto& t : plan.tables) {
+        INFO(t.file);
+        REQUIRE(t.materials.size() == 1);
+        const std::string& m = t.materials[0];
+        const double lo = m == "felt" ? 0.1 : m == "plastic" ? std::sqrt(2.0 / 102.0) : 0.25;
+        const double hi = m == "felt" ? 0.5 : lo;
+        CHECK(t.alpha.lo == Approx(lo).epsilon(1e-9));
+        CHECK(t.alpha.hi == Approx(hi).epsilon(1e-9));
+    }
+    // without it: one line naming the key, or the range the axis covers
+    for (const auto& [material, needle] : std::vector<std::pair<std::string, std::string>>{
+             {R"({"name": "felt", "model": "oren-nayar"})", "or sigma=S in the model spec"},
+             {R"({"name": "plastic", "model": "phong"})", "or n=N in the model spec"},
+             {R"({"name": "felt", "model": "oren-nayar", "alpha": 2})", "beyond oren-nayar's roughness axis"},
+             {R"({"name": "plastic", "model": "phong", "alpha": [0.1, 1.5]})", "beyond phong's roughness axis"}}) {
+        INFO(material);
+        try {
+            make_plan(parse_scene_json(R"({"materials": [)" + material + "]}", "inline.json"));
+            FAIL("accepted");
+        } catch (const Error& e) {
+            CHECK(std::string(e.what()).find(needle) != std::string::npos);
+            CHECK(std::string(e.what()).find('\n') == std::string::npos);
+        }
+    }
 }
 
 TEST_CASE("glTF: metals, glass with ior and volume, clear coat, specular colour and anisotropy map to tables, "
@@ -389,4 +439,27 @@ TEST_CASE("grouped_warnings: a warning several materials share is one line namin
     CHECK(out[0] == "KHR_materials_dispersion is not modelled (3 materials: a, b, d)");
     CHECK(out[1] == in[1]);
     CHECK(out[2] == in[3]);  // one material: as it was
+}
+
+TEST_CASE("bake: oren-nayar and Phong materials bake their tables over the mapped axes", "[scene][device]") {
+    const std::string out = fresh_tmp_dir("bake_mapped");
+    std::system(("mkdir -p " + out).c_str());
+    const std::string scene = out + "/scene.json";
+    std::ofstream(scene) << R"({"settings": {"samples": 256, "mu_texels": 8, "alpha_texels": 4},
+        "materials": [{"name": "skin", "model": "oren-nayar:sigma=0.3"},
+                      {"name": "plastic", "model": "phong", "alpha": [0.1, 0.4]}]})";
+    const auto r = run_cli("bake " + scene + " -o " + out + "/tables");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    const auto index = nlohmann::json::parse(testing::slurp(out + "/tables/index.json"));
+    REQUIRE(index.at("tables").size() == 4);
+    std::set<std::string> models;
+    for (const auto& t : index["tables"]) {
+        const std::string model = t.at("model").get<std::string>();
+        models.insert(model.substr(0, model.find(':')));
+        CHECK(t.at("max_error").get<double>() > 0);
+        CHECK(t.at("max_error").get<double>() < 0.05);
+    }
+    CHECK(models == std::set<std::string>{"oren-nayar", "phong"});
+    std::system(("rm -rf " + out).c_str());
 }

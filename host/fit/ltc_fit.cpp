@@ -58,6 +58,22 @@ void run_range(Engine& engine, cl::Kernel& kernel, size_t n) {
                                         cl::NDRange(kLocalSize));
 }
 
+/// The graded nodes of the lobe points' u1 (kernels/ltc.cl, ltc_lobe_points): per column i of a
+/// side x side grid, u1 = 1 - (1 - s)^grade at the midpoint s = (i + 1/2)/side, and the weight
+/// side ((1 - s_lo)^grade - (1 - s_hi)^grade) of its cell's measure in u1 (s_lo = i/side, s_hi =
+/// (i + 1)/side): the samplers send the lobe's tail to u1 near 1. Computed here in double, once,
+/// so that the points' bits do not depend on how the device compiles powers (PoCL's pown went
+/// through exp and log; a multiplication's rounding followed the build).
+std::vector<double> graded_nodes(int side, int grade) {
+    std::vector<double> nodes;
+    for (int i = 0; i < side; ++i) {
+        const double lo = double(i) / side, hi = double(i + 1) / side, mid = (i + 0.5) / side;
+        nodes.push_back(1.0 - std::pow(1.0 - mid, grade));
+        nodes.push_back((std::pow(1.0 - lo, grade) - std::pow(1.0 - hi, grade)) * side);
+    }
+    return nodes;
+}
+
 LobePoints lobe_points(Engine& engine, const ModelConfig& model, Precision precision, const std::vector<LtcCell>& cells,
                        int side, int grade) {
     RealBuffers bufs(engine, precision);
@@ -70,12 +86,13 @@ LobePoints lobe_points(Engine& engine, const ModelConfig& model, Precision preci
     cl::Buffer b_mu = bufs.input(mu), b_p = bufs.input(params);
     cl::Buffer b_fp = bufs.input({none.params.begin(), none.params.end()});
     cl::Buffer b_data = model_data_buffer(bufs, model.id);
+    cl::Buffer b_nodes = bufs.input(graded_nodes(side, grade));
     const size_t n = cells.size() * size_t(side) * size_t(side);
     LobePoints out;
     out.side = side;
     out.buffer = bufs.output(n * BB_LTC_POINT_VALUES);
     cl::Kernel k(ltc_program(engine, model, precision), BB_ENTRY_NAME(BB_ENTRY_LTC_LOBE_POINTS));
-    set_args(k, 0, b_mu, b_p, b_fp, b_data, cl_uint(cells.size()), cl_uint(side), cl_uint(grade), out.buffer);
+    set_args(k, 0, b_mu, b_p, b_fp, b_data, cl_uint(cells.size()), cl_uint(side), b_nodes, out.buffer);
     run_range(engine, k, n);
     out.host = bufs.read(out.buffer, n * BB_LTC_POINT_VALUES);
     for (double v : out.host)

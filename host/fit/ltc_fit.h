@@ -46,7 +46,7 @@ struct LtcCell {
 struct LtcFitOptions {
     Precision precision = Precision::Float;
     int fit_side = 24;      // the objective's points per cell: fit_side^2 (the lobe's sampler)
-    int fit_grade = 2;      // u1 = 1 - (1 - s)^fit_grade, s on the midpoint rule (kernels/ltc.cl)
+    int fit_grade = 2;      // u1 = 1 - (1 - s)^fit_grade, s on the midpoint rule (graded_nodes, ltc_fit.cpp)
     int distance_grids = 16; // the reported distance: the mean over this many independent jittered
     int distance_side = 24;  // grids of distance_side^2 points; its error: distance_sigmas standard
     double distance_sigmas = 5;  // errors of that mean (the grids' spread)

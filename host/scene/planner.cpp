@@ -78,6 +78,8 @@ AxisPlan plan_axis(double c_lo, double c_hi, int n_full_range, double full_width
 /// The largest alpha `model` takes (sheen's fit ends at 1, GGX goes to 10), tried at a few values
 /// from the top; 0 when none is taken.
 double largest_alpha(const std::string& model) {
+    const RoughnessAxis axis = roughness_axis_of_spec(model);
+    if (axis.value) return axis.alpha_hi;  // a mapped axis (oren-nayar's sigma, Phong's n) ends there
     for (double a : {10.0, 9.0, 4.0, 1.0}) {
         try {
             resolve_model(model + (model.find(':') == std::string::npos ? ":" : ",") + "alpha=" + format_number(a));

@@ -8,6 +8,7 @@
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cctype>
 #include <cstring>
 #include <fstream>
 #include <map>
@@ -86,15 +87,30 @@ struct SweepSplit {
     bool anisotropic = false;
 };
 
+/// The table alpha at which a mapped roughness axis (oren-nayar's sigma, the Phong lobes' n:
+/// RoughnessAxis) gives the key `value`: the mapping is monotonic on [alpha_lo, alpha_hi], bisected.
+double alpha_of_axis_value(const RoughnessAxis& axis, double value) {
+    double lo = axis.alpha_lo, hi = axis.alpha_hi;
+    const bool rising = axis.value(hi) > axis.value(lo);
+    for (int i = 0; i < 200 && lo < hi; ++i) {
+        const double mid = 0.5 * (lo + hi);
+        if (mid <= lo || mid >= hi) break;
+        ((axis.value(mid) < value) == rising ? lo : hi) = mid;
+    }
+    return 0.5 * (lo + hi);
+}
+
 SweepSplit split_model(const std::string& text, const std::string& where) {
     SweepSplit s;
     const Spec spec = parse_spec(text);
+    const RoughnessAxis axis = roughness_axis_of_spec(text);
     Spec rest;
     rest.name = spec.name;
     std::optional<double> alpha, rough, ax, ay;
     for (const auto& kv : spec.keys) {
         auto num = [&] { return parse_number(kv.second, where + ": model key " + kv.first); };
         if (kv.first == "alpha") alpha = num();
+        else if (axis.value && kv.first == axis.key) alpha = alpha_of_axis_value(axis, num());  // range-checked below
         else if (kv.first == "roughness") rough = num();
         else if (kv.first == "alpha_x") ax = num();
         else if (kv.first == "alpha_y") ay = num();
@@ -179,6 +195,42 @@ std::string material_name(const json& m, size_t index, const std::string& file) 
     return name;
 }
 
+/// A material's roughness: in the model spec, or as "alpha" / "roughness" (a value or a range),
+/// once; range-checked against the model's roughness axis (alpha, or the key a mapped axis sets).
+std::optional<Interval> material_alpha(const json& m, const Where& w, const std::string& ctx, const SweepSplit& split,
+                                       SceneMaterial& out) {
+    const RoughnessAxis& axis = split.base.traits().roughness_axis;
+    std::optional<Interval> alpha = split.alpha;
+    for (const char* key : {"alpha", "roughness"}) {
+        if (!m.contains(key)) continue;
+        if (alpha) throw Error(ctx + ": give the roughness once (model spec, 'alpha' or 'roughness')");
+        Interval r = interval_at(m[key], w, key);
+        if (!split.sweepable)
+            throw Error(ctx + ": model '" + split.base.name + "' has no roughness; drop '" + key + "'");
+        if (!(r.lo >= 0.0)) throw Error(w.at(key) + " must not be negative");
+        if (std::string(key) == "roughness") r = {r.lo * r.lo, r.hi * r.hi};
+        alpha = r;
+    }
+    if (alpha && split.sweepable) {
+        // The same range check as a model spec's alpha (or the key a mapped axis sets), for the
+        // largest value; values below the alpha floor are planned at it (alpha 0 is the smooth
+        // limit of a microfacet lobe), as in a glTF scene.
+        if (axis.value && alpha->hi > axis.alpha_hi)
+            throw Error(ctx + ": roughness: alpha " + format_number(alpha->hi) + " is beyond " + split.base.name +
+                        "'s roughness axis (" + axis.mapping + ")");
+        const double top = std::max(alpha->hi, axis.value ? axis.alpha_lo : double(BB_ALPHA_MIN));
+        try {
+            resolve_model(split.canonical + (split.canonical.find(':') == std::string::npos ? ":" : ",") + axis.key +
+                          "=" + format_number(axis.value ? axis.value(top) : top));
+        } catch (const Error& e) {
+            throw Error(ctx + ": roughness: " + e.what());
+        }
+        if (!axis.value && alpha->lo < double(BB_ALPHA_MIN)) out.notes.push_back(alpha_floor_note(alpha->lo));
+    }
+
+    return alpha;
+}
+
 SceneMaterial parse_material(const json& m, size_t index, const std::string& file, std::vector<std::string>& warnings) {
     SceneMaterial out;
     out.name = material_name(m, index, file);
@@ -239,30 +291,8 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
         return m["transmission"].get<bool>();
     }();
 
-    // Roughness: in the spec, or as "alpha" / "roughness" (a value or a range), once.
-    std::optional<Interval> alpha = split.alpha;
-    for (const char* key : {"alpha", "roughness"}) {
-        if (!m.contains(key)) continue;
-        if (alpha) throw Error(ctx + ": give the roughness once (model spec, 'alpha' or 'roughness')");
-        Interval r = interval_at(m[key], w, key);
-        if (!split.sweepable)
-            throw Error(ctx + ": model '" + split.base.name + "' has no roughness; drop '" + key + "'");
-        if (!(r.lo >= 0.0)) throw Error(w.at(key) + " must not be negative");
-        if (std::string(key) == "roughness") r = {r.lo * r.lo, r.hi * r.hi};
-        alpha = r;
-    }
-    if (alpha && split.sweepable) {
-        // The same range check as a model spec's alpha, for the largest value; values below the
-        // alpha floor are planned at it (alpha 0 is the smooth limit of a microfacet lobe), as in
-        // a glTF scene.
-        try {
-            resolve_model(split.canonical + (split.canonical.find(':') == std::string::npos ? ":" : ",") +
-                          "alpha=" + format_number(std::max(alpha->hi, double(BB_ALPHA_MIN))));
-        } catch (const Error& e) {
-            throw Error(ctx + ": roughness: " + e.what());
-        }
-        if (alpha->lo < double(BB_ALPHA_MIN)) out.notes.push_back(alpha_floor_note(alpha->lo));
-    }
+    const std::optional<Interval> alpha = material_alpha(m, w, ctx, split, out);
+    const RoughnessAxis& axis = split.base.traits().roughness_axis;
 
     // Index of refraction: from a dielectric Fresnel spec, or "eta" (a value or a range).
     std::optional<Interval> eta;
@@ -303,8 +333,9 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
         return out;
     }
     if (!alpha)
-        throw Error(ctx + ": needs its roughness: 'alpha' or 'roughness' (a value or a [lo, hi] range), "
-                          "or alpha=A in the model spec");
+        throw Error(ctx + ": needs its roughness: 'alpha' or 'roughness' (a value or a [lo, hi] range), or " +
+                    std::string(axis.key) + "=" + (axis.value ? std::string(1, char(std::toupper(axis.key[0]))) : "A") +
+                    " in the model spec" + (axis.value ? std::string(" (alpha sets ") + axis.key + ": " + axis.mapping + ")" : ""));
     if (split.anisotropic) {
         out.notes.push_back("anisotropic alpha: isotropic tables over [alpha_y, alpha_x]");
         warnings.push_back("material '" + out.name + "': anisotropic roughness (alpha_x != alpha_y) is not "

@@ -216,8 +216,9 @@ TableKind ltc_kind() {
     // albedo samples' cost per sample of its magnitude (the fit's and the distance's cost do not
     // scale with --samples). With the graded points and the 96^2 polish (branch ltc2) the fit costs
     // 4.1x the fit without them in the same minutes (34 s against 8.3 s of CPU, load 15-17): 57;
-    // branch ltc3's 64^2 lazy polish takes 16.9 s of CPU where that took 31.9: 30.
-    k.sample_cost = 30.0;
+    // branch ltc3's 64^2 lazy polish takes 16.9 s of CPU where that took 31.9: 30; branch ltc4's host
+    // nodes 0.68 of that in the same minutes: 21.
+    k.sample_cost = 21.0;
     k.value_channels = [](const LutRequest& r) { return int(ltc_packing(r.packing).channels.size()) + 2; };
     k.integrations = [](const LutRequest&) { return 2; };
     return k;
