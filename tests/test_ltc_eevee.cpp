@@ -125,7 +125,7 @@ Table eevee_grid_table(int n) {
 
 }  // namespace
 
-TEST_CASE("eevee .cc and .c: compiled beside Blender's declarations, [t][a] holds the table's floats",
+TEST_CASE("eevee .cc and .c: compiled beside Blender's declarations, each texel as Blender indexes it is the table's float",
           "[formats][engine][ltc][quick]") {
     const int n = 64;
     const Table t = eevee_grid_table(n);
@@ -170,7 +170,7 @@ TEST_CASE("eevee .cc and .c: compiled beside Blender's declarations, [t][a] hold
     CHECK_FALSE(std::filesystem::exists(dir / "plain.c"));
 }
 
-TEST_CASE("lut ltc --preset eevee: Blender's arrays hold --preset three's ltc_1 and ltc_2.RG; row t = 0 is (1, 0, 0, m)",
+TEST_CASE("lut ltc --preset eevee: Blender's arrays hold --preset three's ltc_1 and ltc_2.RG, row t = 0 is (1, 0, 0, m)",
           "[ltc][presets][cli]") {
     // 8 x 8 texels on EEVEE's grid (Blender's 64 x 64 fit takes 17 s of CPU), the declarations'
     // size changed to match.
