@@ -437,21 +437,26 @@ std::string stem_identifier(const std::string& path) {
 }
 
 void write_text(const std::string& path, const std::string& text) { write_file_atomically(path, text); }
+void write_c_header(const Table& t, const std::string& p, bool) {
+    write_text(p, table_header(t, "brdfbake_" + stem_identifier(p)));
+}
 
 /// Every format, by extension: the one place check_table_path and write_table read.
 const std::vector<TableFormat>& table_formats() {
+    using T = const Table&;
+    using P = const std::string&;
     static const std::vector<TableFormat> formats = {
-        {"exr", "", [](const Table& t, const std::string& p, bool half) { write_exr(t, p, half); }},
-        {"csv", "", [](const Table& t, const std::string& p, bool) { write_text(p, table_csv(t)); }},
-        {"h", "", [](const Table& t, const std::string& p, bool) { write_text(p, table_header(t, "brdfbake_" + stem_identifier(p))); }},
-        {"hpp", "", [](const Table& t, const std::string& p, bool) { write_text(p, table_header(t, "brdfbake_" + stem_identifier(p))); }},
-        {"png", "", [](const Table& t, const std::string& p, bool) { write_png16(t, p); }},
-        {"npy", "", [](const Table& t, const std::string& p, bool) { write_npy(t, p); }},
-        {"js", "(three.js)", [](const Table& t, const std::string& p, bool) { write_text(p, table_threejs_module(t)); }},
-        {"inc", "(Filament)", [](const Table& t, const std::string& p, bool) { write_text(p, table_filament_include(t)); }},
-        {"tables", "(Cycles)", [](const Table& t, const std::string& p, bool) { write_text(p, table_cycles_tables(t, stem_identifier(p))); }},
-        {"cc", "(Blender EEVEE, 4.2 and later)", [](const Table& t, const std::string& p, bool) { write_text(p, table_eevee_source(t, false)); }},
-        {"c", "(legacy EEVEE, Blender 2.80 to 4.1)", [](const Table& t, const std::string& p, bool) { write_text(p, table_eevee_source(t, true)); }},
+        {"exr", "", [](T t, P p, bool half) { write_exr(t, p, half); }},
+        {"csv", "", [](T t, P p, bool) { write_text(p, table_csv(t)); }},
+        {"h", "", write_c_header},
+        {"hpp", "", write_c_header},
+        {"png", "", [](T t, P p, bool) { write_png16(t, p); }},
+        {"npy", "", [](T t, P p, bool) { write_npy(t, p); }},
+        {"js", "(three.js)", [](T t, P p, bool) { write_text(p, table_threejs_module(t)); }},
+        {"inc", "(Filament)", [](T t, P p, bool) { write_text(p, table_filament_include(t)); }},
+        {"tables", "(Cycles)", [](T t, P p, bool) { write_text(p, table_cycles_tables(t, stem_identifier(p))); }},
+        {"cc", "(Blender EEVEE, 4.2 and later)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, false)); }},
+        {"c", "(legacy EEVEE, Blender 2.80 to 4.1)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, true)); }},
     };
     return formats;
 }
