@@ -225,7 +225,8 @@ std::string c_identifier(const std::string& name) {
 }
 
 std::string c_float_literal(double v, bool as_float) {
-    std::string literal = round_trip_text(v, as_float);
+    // A float literal: the float nearest v (the nearest to v's 9 digits may be its neighbour).
+    std::string literal = round_trip_text(as_float ? double(float(v)) : v, as_float);
     if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
     return as_float ? literal + "f" : literal;
 }

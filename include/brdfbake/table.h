@@ -122,8 +122,9 @@ std::string table_cycles_tables(const Table& table, const std::string& symbol);
 /// (flat `ltc_mat_ggx[W * H * 4]`, eevee_lut.h's). Throws Error for a table off EEVEE's grid (x =
 /// roughness, y = sqrt_one_minus_mu, each 0 to 1 at edge texels) or without those channels.
 std::string table_eevee_source(const Table& table, bool legacy);
-/// `v` as a C floating literal that reads back as v (as a float with the `f` suffix when `as_float`):
-/// round_trip_text with ".0" where it has no point or exponent (1.0f, never 1f, which C rejects).
+/// `v` as a C floating literal that reads back as v (as float(v), with the `f` suffix, when
+/// `as_float`): round_trip_text with ".0" where it has no point or exponent (1.0f, never 1f, which C
+/// rejects).
 std::string c_float_literal(double v, bool as_float);
 /// `text` fit for one // comment line: no line break inside, no final backslash.
 std::string comment_line_text(const std::string& text);
