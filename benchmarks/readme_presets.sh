@@ -1,6 +1,6 @@
 #!/bin/sh
 # Issue 30: every preset command of the README, run once at its default settings with
-# --no-preview, its exit status and wall time; every .h it writes compiled as C and C++.
+# --no-preview, its exit status and wall time; every .h (and EEVEE's .c) it writes compiled as C and C++, a .cc as C++.
 # Usage: benchmarks/readme_presets.sh [path/to/brdfbake]   (writes only under $TMPDIR)
 set -u
 exe=$(realpath "${1:-./build/brdfbake}")
@@ -22,6 +22,15 @@ while IFS='|' read -r args file; do
         echo "#include \"$file\"" | gcc -fsyntax-only -x c - 2>/dev/null && c=yes
         echo "#include \"$file\"" | g++ -fsyntax-only -x c++ - 2>/dev/null && cxx=yes
         compiles="$c, $cxx" ;;
+    *.cc)  # Blender EEVEE (4.2 and later): C++ only
+        cxx=no
+        g++ -std=c++17 -fsyntax-only "$file" 2>/dev/null && cxx=yes
+        compiles="-, $cxx" ;;
+    *.c)  # legacy EEVEE: C and C++
+        c=no; cxx=no
+        gcc -std=c99 -fsyntax-only "$file" 2>/dev/null && c=yes
+        g++ -fsyntax-only -x c++ "$file" 2>/dev/null && cxx=yes
+        compiles="$c, $cxx" ;;
     esac
     printf '| `lut %s -o %s` | %s | %.1f s | %s |\n' "$args" "$file" "$rc" "$wall" "$compiles"
 done <<'LIST'
@@ -39,6 +48,7 @@ sheen-viewer --preset gltf --model sheen:visibility=ashikhmin|lut_charlie.png
 --preset filament|dfg.exr
 --preset three|DFGLUTData.js
 ltc --preset three|ltc_three.exr
+ltc --preset eevee|eevee_ltc.cc
 --preset unreal|PreIntegratedGF.png
 LIST
 echo "load at end $(cut -d' ' -f1-3 /proc/loadavg)"

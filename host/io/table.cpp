@@ -224,6 +224,13 @@ std::string c_identifier(const std::string& name) {
     return out;
 }
 
+std::string c_float_literal(double v, bool as_float) {
+    // A float literal: the float nearest v (the nearest to v's 9 digits may be its neighbour).
+    std::string literal = round_trip_text(as_float ? double(float(v)) : v, as_float);
+    if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
+    return as_float ? literal + "f" : literal;
+}
+
 std::string comment_line_text(const std::string& line) {
     std::string text = line;
     for (char& c : text)
@@ -406,12 +413,8 @@ std::string table_header(const Table& t, const std::string& symbol) {
     o << "static const int " << symbol << "_depth = " << t.depth() << ";\n";
     auto array = [&](const std::string& name, const std::vector<double>& v) {
         o << "static const " << type << " " << symbol << "_" << name << "[" << v.size() << "] = {";
-        for (size_t i = 0; i < v.size(); ++i) {
-            std::string literal = round_trip_text(v[i], as_float);
-            if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
-            if (as_float) literal += "f";
-            o << (i % 8 == 0 ? "\n    " : " ") << literal << (i + 1 < v.size() ? "," : "");
-        }
+        for (size_t i = 0; i < v.size(); ++i)
+            o << (i % 8 == 0 ? "\n    " : " ") << c_float_literal(v[i], as_float) << (i + 1 < v.size() ? "," : "");
         o << "\n};\n";
     };
     for (size_t c = 0; c < t.channels.size(); ++c) array(c_identifier(t.channels[c]), t.values[c]);
@@ -419,32 +422,72 @@ std::string table_header(const Table& t, const std::string& symbol) {
     return o.str();
 }
 
-void check_table_path(const std::string& path) {
+namespace {
+
+/// A file format of write_table: its extension, what the refusal's list says of it, and its writer.
+struct TableFormat {
+    const char* extension;
+    const char* note;  // "" or "(three.js)"
+    void (*write)(const Table& t, const std::string& path, bool half);
+};
+
+/// A C identifier from the file name's stem: brdfbake_<stem> (a header), table_<stem> (Cycles).
+std::string stem_identifier(const std::string& path) {
+    std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
+    return c_identifier(stem.substr(0, stem.find('.')));
+}
+
+void write_text(const std::string& path, const std::string& text) { write_file_atomically(path, text); }
+void write_c_header(const Table& t, const std::string& p, bool) {
+    write_text(p, table_header(t, "brdfbake_" + stem_identifier(p)));
+}
+
+/// Every format, by extension: the one place check_table_path and write_table read.
+const std::vector<TableFormat>& table_formats() {
+    using T = const Table&;
+    using P = const std::string&;
+    static const std::vector<TableFormat> formats = {
+        {"exr", "", [](T t, P p, bool half) { write_exr(t, p, half); }},
+        {"csv", "", [](T t, P p, bool) { write_text(p, table_csv(t)); }},
+        {"h", "", write_c_header},
+        {"hpp", "", write_c_header},
+        {"png", "", [](T t, P p, bool) { write_png16(t, p); }},
+        {"npy", "", [](T t, P p, bool) { write_npy(t, p); }},
+        {"js", "(three.js)", [](T t, P p, bool) { write_text(p, table_threejs_module(t)); }},
+        {"inc", "(Filament)", [](T t, P p, bool) { write_text(p, table_filament_include(t)); }},
+        {"tables", "(Cycles)", [](T t, P p, bool) { write_text(p, table_cycles_tables(t, stem_identifier(p))); }},
+        {"cc", "(Blender EEVEE, 4.2 and later)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, false)); }},
+        {"c", "(legacy EEVEE, Blender 2.80 to 4.1)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, true)); }},
+    };
+    return formats;
+}
+
+const TableFormat* table_format(const std::string& path) {
     const std::string ext = extension(path);
-    if (ext != "exr" && ext != "csv" && ext != "h" && ext != "hpp" && ext != "png" && ext != "npy" && ext != "js" &&
-        ext != "inc" && ext != "tables")
-        throw Error("cannot tell the table format from '" + path +
-                    "': use .exr, .csv, .h, .png, .npy, .js (three.js), .inc (Filament) or .tables (Cycles)");
+    for (const TableFormat& f : table_formats())
+        if (ext == f.extension) return &f;
+    return nullptr;
+}
+
+}  // namespace
+
+void check_table_path(const std::string& path) {
+    if (!table_format(path)) {
+        std::string known;
+        const std::vector<TableFormat>& formats = table_formats();
+        for (size_t k = 0; k < formats.size(); ++k)
+            known += std::string(k == 0 ? "" : k + 1 == formats.size() ? " or " : ", ") + "." + formats[k].extension +
+                     (*formats[k].note ? std::string(" ") + formats[k].note : "");
+        throw Error("cannot tell the table format from '" + path + "': use " + known);
+    }
     check_output_path(path);
-    if (ext == "npy") check_output_path(path + ".json");
+    if (extension(path) == "npy") check_output_path(path + ".json");
 }
 
 void write_table(const Table& t, const std::string& path, bool half) {
     check_table_path(path);
     check_finite(t);
-    const std::string ext = extension(path);
-    if (ext == "exr") return write_exr(t, path, half);
-    if (ext == "png") return write_png16(t, path);
-    if (ext == "npy") return write_npy(t, path);
-    if (ext == "csv") return write_file_atomically(path, table_csv(t));
-    if (ext == "js") return write_file_atomically(path, table_threejs_module(t));
-    if (ext == "inc") return write_file_atomically(path, table_filament_include(t));
-    // A C identifier from the file name's stem: brdfbake_<stem> (a header), table_<stem> (Cycles).
-    std::string stem = path.substr(path.find_last_of('/') == std::string::npos ? 0 : path.find_last_of('/') + 1);
-    stem = c_identifier(stem.substr(0, stem.find('.')));
-    if (ext == "tables") return write_file_atomically(path, table_cycles_tables(t, stem));
-    if (ext == "h" || ext == "hpp") return write_file_atomically(path, table_header(t, "brdfbake_" + stem));
-    write_file_atomically(path, table_csv(t));
+    table_format(path)->write(t, path, half);
 }
 
 }  // namespace brdfbake

@@ -9,9 +9,16 @@
 //    DFG) per texel, 4 texels per line, rows in GL order (row 0 at t = 0, perceptual roughness 0);
 //  - Cycles' intern/cycles/scene/shader.tables: `static const float table_NAME[N] = { ... };`
 //    between CCL_NAMESPACE_BEGIN and CCL_NAMESPACE_END, one table row per line, a blank line
-//    between z-slices, stored index (z * height + y) * width + x.
+//    between z-slices, stored index (z * height + y) * width + x;
+//  - Blender EEVEE's LTC arrays ltc_mat_ggx and ltc_mag_ggx as eevee_lut.cc defines them: Blender
+//    4.2 and later (source/blender/draw/engines/eevee/eevee_lut.hh: namespace blender::eevee::lut,
+//    `extern const float ltc_mat_ggx[64][64][4];`, `extern const float ltc_mag_ggx[64][64][2];`) or
+//    legacy EEVEE, Blender 2.80 to 4.1 (eevee_lut.h: `extern const float ltc_mat_ggx[64 * 64 * 4];`,
+//    `ltc_mag_ggx[64 * 64 * 2]`), index [t][a] = 4 (a + 64 t): row t at sqrt(1 - cos theta) = t/63,
+//    column a at roughness a/63 (docs/ltc_presets.md, "Blender EEVEE").
 #include <Imath/half.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <sstream>
@@ -120,6 +127,105 @@ std::string table_filament_include(const Table& t) {
     return o.str();
 }
 
+namespace {
+
+/// Blender EEVEE's LTC arrays: their names (the eevee packing's channels are NAME.0, NAME.1, ...),
+/// texel sizes and eevee_lut.hh's comments.
+struct EeveeArray {
+    const char* name;
+    int channels;
+    const char* comment;
+};
+const EeveeArray kEeveeArrays[] = {{"ltc_mat_ggx", 4, "LTC matrix components for isotropic GGX."},
+                                   {"ltc_mag_ggx", 2, "LTC magnitude components for isotropic GGX."}};
+
+/// "lo to hi, edge texels" of an axis, for the messages.
+std::string number_range(const Axis& a) {
+    return round_trip_text(a.lo) + " to " + round_trip_text(a.hi) + ", " + texels_name(a.texels) + " texels";
+}
+
+/// Throws unless t is an EEVEE LTC table: x = roughness and y = sqrt(1 - mu), each over [0, 1] at
+/// edge texels (lut_coords: uv * 63/64 + 0.5/64), unflipped, with the eevee packing's channels.
+void require_eevee_table(const Table& t, const std::string& format) {
+    for (const EeveeArray& a : kEeveeArrays)
+        for (int k = 0; k < a.channels; ++k)
+            if (std::find(t.channels.begin(), t.channels.end(), a.name + ("." + std::to_string(k))) == t.channels.end())
+                throw Error("an " + format + " holds Blender EEVEE's ltc_mat_ggx and ltc_mag_ggx (lut ltc --preset eevee); "
+                            "the " + t.kind + " table has channels " + channel_list(t) + ": write .exr or .csv");
+    require_2d(t, format);
+    auto on_grid = [](const Axis& a, const char* name) {
+        return a.name == name && a.lo == 0.0 && a.hi == 1.0 && a.texels == Texels::Edge;
+    };
+    if (!on_grid(t.x, "roughness") || !on_grid(t.y, "sqrt_one_minus_mu"))
+        throw Error("an " + format + " holds EEVEE's LTC grid, x = roughness and y = sqrt_one_minus_mu, each 0 to 1 at "
+                    "edge texels (lut ltc --preset eevee); this table's x is " + t.x.name + " (" + number_range(t.x) +
+                    "), y " + t.y.name + " (" + number_range(t.y) + "): write .exr or .csv");
+}
+
+/// The value channel `name` of t (present: require_eevee_table).
+const std::vector<double>& channel_values(const Table& t, const std::string& name) {
+    return t.values[size_t(std::find(t.channels.begin(), t.channels.end(), name) - t.channels.begin())];
+}
+
+/// One EEVEE array's initialiser: per texel its channels, either nested {{...}, ...} rows of
+/// {c0, c1, ...} texels (current EEVEE) or flat (legacy), `f` literals.
+std::string eevee_initialiser(const Table& t, const EeveeArray& a, bool flat) {
+    std::vector<const std::vector<double>*> ch;
+    for (int k = 0; k < a.channels; ++k) ch.push_back(&channel_values(t, a.name + ("." + std::to_string(k))));
+    const size_t per_line = size_t(8 / a.channels);  // 8 numbers a line
+    std::ostringstream o;
+    o << "{";
+    for (int j = 0; j < t.height(); ++j) {
+        if (!flat) o << (j ? "," : "") << "\n    {";
+        for (int i = 0; i < t.width(); ++i) {
+            const size_t texel = size_t(j) * size_t(t.width()) + size_t(i);
+            const bool first = flat ? texel == 0 : i == 0;
+            o << (first ? "" : ",") << ((flat ? texel : size_t(i)) % per_line == 0 ? (flat ? "\n    " : "\n        ") : " ")
+              << (flat ? "" : "{");
+            for (int k = 0; k < a.channels; ++k) o << (k ? ", " : "") << c_float_literal((*ch[size_t(k)])[texel], true);
+            if (!flat) o << "}";
+        }
+        if (!flat) o << "}";
+    }
+    o << "\n}";
+    return o.str();
+}
+
+}  // namespace
+
+std::string table_eevee_source(const Table& t, bool legacy) {
+    const std::string format = legacy ? "EEVEE .c file (legacy)" : "EEVEE .cc file";
+    require_eevee_table(t, format);
+    const std::string w = std::to_string(t.width()), h = std::to_string(t.height());
+    std::ostringstream o;
+    o << "/* Blender EEVEE's LTC tables, written by brdfbake " << BRDFBAKE_VERSION << " for "
+      << (legacy ? "legacy EEVEE, Blender 2.80 to 4.1\n * (source/blender/draw/engines/eevee/eevee_lut.c, eevee_lut.cc "
+                   "from 4.0; declared in eevee_lut.h)."
+                 : "Blender 4.2 and later\n * (source/blender/draw/engines/eevee/eevee_lut.cc, declared in eevee_lut.hh).")
+      << "\n * To use them: in eevee_lut." << (legacy ? "c (.cc)" : "cc") << " replace the definitions of ltc_mat_ggx and "
+      << "ltc_mag_ggx by the two\n * below, or add this file to the engine's sources and delete those two definitions "
+      << "there.\n * ltc_mat_ggx" << (legacy ? "[4 (a + " + w + " t) + c]" : "[t][a][c]")
+      << " = M^-1 / M^-1_11 as (00, 20, 02, 22) (three.js's ltc_1), ltc_mag_ggx"
+      << (legacy ? "[2 (a + " + w + " t) + c]" : "[t][a][c]") << " =\n * (magnitude, fresnel); column a at roughness a / "
+      << t.width() - 1 << ", row t at sqrt(1 - cos theta) = t / " << t.height() - 1 << ".\n";
+    if (t.width() != 64 || t.height() != 64)
+        o << " * Blender declares 64 x 64 (UTIL_TEX_SIZE / LUT_SIZE): this table is " << w << " x " << h
+          << ", which needs those declarations changed.\n";
+    o << " * The extern " << (legacy ? "declarations give" : "definitions have")
+      << " external linkage in C++ without the header.\n" << description_comment(t, " * ") << " */\n\n";
+    if (!legacy) o << "namespace blender::eevee::lut {\n\n";
+    for (const EeveeArray& a : kEeveeArrays) {
+        const std::string shape = legacy ? "[" + w + " * " + h + " * " + std::to_string(a.channels) + "]"
+                                         : "[" + h + "][" + w + "][" + std::to_string(a.channels) + "]";
+        o << "/* " << a.comment << " */\n";
+        if (legacy) o << "extern const float " << a.name << shape << ";\n";
+        o << (legacy ? "" : "extern ") << "const float " << a.name << shape << " = " << eevee_initialiser(t, a, legacy)
+          << ";\n\n";
+    }
+    if (!legacy) o << "}  // namespace blender::eevee::lut\n";
+    return o.str();
+}
+
 std::string table_cycles_tables(const Table& t, const std::string& symbol) {
     std::ostringstream o;
     o << "/* Written by brdfbake " << BRDFBAKE_VERSION
@@ -132,11 +238,9 @@ std::string table_cycles_tables(const Table& t, const std::string& symbol) {
         const std::string name = "table_" + symbol + (t.channels.size() > 1 ? "_" + c_identifier(t.channels[c]) : "");
         o << "\nstatic const float " << name << "[" << n << "] = {\n";
         for (size_t k = 0; k < n; ++k) {
-            std::string literal = round_trip_text(t.values[c][k], true);
-            if (literal.find_first_of(".e") == std::string::npos) literal += ".0";
             const bool row_start = k % size_t(t.width()) == 0;
             if (row_start && k > 0 && k % (size_t(t.width()) * size_t(t.height())) == 0) o << "\n";
-            o << (row_start ? "  " : " ") << literal << "f" << (k + 1 < n ? "," : "");
+            o << (row_start ? "  " : " ") << c_float_literal(t.values[c][k], true) << (k + 1 < n ? "," : "");
             if ((k + 1) % size_t(t.width()) == 0 || k + 1 == n) o << "\n";
         }
         o << "};\n";

@@ -70,6 +70,9 @@ fit::LtcMatrix from_three_ltc1(const std::array<double, 4>& t) {
     return m;
 }
 
+/// The M that a stored ltc_1 (three.js's, EEVEE's ltc_mat_ggx) denotes: M rounded through float32 ltc_1.
+fit::LtcMatrix as_stored_ltc1(const fit::LtcMatrix& m) { return from_three_ltc1(three_ltc1(m)); }
+
 const std::vector<LtcPacking>& ltc_packings() {
     static const std::vector<LtcPacking> packings = {
         {"",
@@ -88,7 +91,19 @@ const std::vector<LtcPacking>& ltc_packings() {
              const std::array<double, 4> t = three_ltc1(m);
              return std::vector<double>{t[0], t[1], t[2], t[3], e, b, 0.0, 0.0};
          },
-         [](const fit::LtcMatrix& m) { return from_three_ltc1(three_ltc1(m)); }},
+         as_stored_ltc1},
+        // Blender EEVEE's eevee_lut.cc: ltc_mat_ggx[t][a][0..3] and ltc_mag_ggx[t][a][0..1] hold
+        // three.js's ltc_1 and (ltc_2.R, ltc_2.G), the same numbers printed to 6 decimals; read by
+        // ltc_matrix (eevee_ltc_lib.glsl) as three.js reads ltc_1 (docs/ltc_presets.md, "Blender EEVEE").
+        {"eevee",
+         "Blender EEVEE's ltc_mat_ggx = M^-1 / M^-1_11 as (M^-1_00, M^-1_20, M^-1_02, M^-1_22) (three.js's ltc_1) "
+         "and ltc_mag_ggx = (magnitude, fresnel)",
+         {"ltc_mat_ggx.0", "ltc_mat_ggx.1", "ltc_mat_ggx.2", "ltc_mat_ggx.3", "ltc_mag_ggx.0", "ltc_mag_ggx.1"},
+         [](const fit::LtcMatrix& m, double e, double b) {
+             const std::array<double, 4> t = three_ltc1(m);
+             return std::vector<double>{t[0], t[1], t[2], t[3], e, b};
+         },
+         as_stored_ltc1},
     };
     return packings;
 }
@@ -96,7 +111,7 @@ const std::vector<LtcPacking>& ltc_packings() {
 const LtcPacking& ltc_packing(const std::string& name) {
     for (const LtcPacking& p : ltc_packings())
         if (p.name == name) return p;
-    throw Error("the ltc table has no packing '" + name + "' (three, or none for its own channels)");
+    throw Error("the ltc table has no packing '" + name + "' (three, eevee, or none for its own channels)");
 }
 
 void validate_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {

@@ -115,6 +115,18 @@ LutRequest three_ltc_layout() {
     return r;
 }
 
+// Blender EEVEE's LTC tables (source/blender/draw/engines/eevee/eevee_lut.cc: ltc_mat_ggx and
+// ltc_mag_ggx, declared in eevee_lut.hh): three.js's grid and numbers (ltc_code's fit/results/ltc.js
+// printed to 6 decimals, docs/ltc_presets.md), read at lut_coords / utility_tx_sample_lut:
+// uv = (roughness, sqrt(1 - cos_theta)) * 63/64 + 0.5/64 (eevee_utility_tx_lib.glsl). Packing
+// "eevee" (kind_ltc.cpp) names the channels after Blender's arrays; -o NAME.cc writes Blender 4.2's
+// eevee_lut.cc arrays, -o NAME.c legacy EEVEE's (table_eevee_source).
+LutRequest eevee_ltc_layout() {
+    LutRequest r = three_ltc_layout();
+    r.packing = "eevee";
+    return r;
+}
+
 std::string join_names(const std::vector<std::string>& names) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -203,6 +215,17 @@ const std::vector<LutPreset>& lut_presets() {
         preset_row({"unreal", "Unreal Engine", "PreIntegratedGF (EnvBRDF)", "png", false,
                     "128 x 32, x = NoV, y = roughness, texel centres, R = A, G = B, 16-bit PNG",
                     {{K::Dfg, engine_layout(128, 32), ""}}}),
+        // Blender EEVEE: see eevee_ltc_layout.
+        preset_row({"eevee", "Blender EEVEE",
+                    "ltc_mat_ggx and ltc_mag_ggx (source/blender/draw/engines/eevee/eevee_lut.cc, declared in "
+                    "eevee_lut.hh; read by eevee_ltc_lib.glsl's ltc_matrix)",
+                    "cc", false,
+                    "ltc: 64 x 64, x = roughness a/63, y = sqrt(1 - NoV) t/63 (three.js's grid), "
+                    "ltc_mat_ggx[t][a] = M^-1 / M^-1_11 as (00, 20, 02, 22) (three.js's ltc_1), ltc_mag_ggx[t][a] = "
+                    "(magnitude, fresnel); C++ source, float literals: .cc for Blender 4.2 and later "
+                    "(namespace blender::eevee::lut, float[64][64][4] and [64][64][2]), .c for legacy EEVEE, "
+                    "Blender 2.80 to 4.1 (float[64 * 64 * 4] and [64 * 64 * 2])",
+                    {{K::Ltc, eevee_ltc_layout(), ""}}}),
     };
     return presets;
 }

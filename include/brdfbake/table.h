@@ -86,12 +86,13 @@ std::string table_value_text(const Table& table, double value);
 void check_finite(const Table& table);
 
 /// Throws Error unless `path` ends in a table format write_table knows (.exr, .csv, .h, .hpp,
-/// .png, .npy, .js, .inc, .tables).
+/// .png, .npy, .js, .inc, .tables, .cc, .c).
 void check_table_path(const std::string& path);
 
 /// Writes by the extension of `path`: .exr (float32, or half when `half`), .csv, .h/.hpp, .png
 /// (16-bit), .npy (with its sidecar PATH.json), .js (table_threejs_module), .inc
-/// (table_filament_include), .tables (table_cycles_tables, arrays named after the file's stem).
+/// (table_filament_include), .tables (table_cycles_tables, arrays named after the file's stem),
+/// .cc and .c (table_eevee_source: Blender EEVEE, current and legacy).
 /// Every write goes through a temporary file and a rename. Throws Error.
 void write_table(const Table& table, const std::string& path, bool half = false);
 
@@ -114,6 +115,17 @@ std::string table_filament_include(const Table& table);
 /// `static const float table_SYMBOL[N]` (table_SYMBOL_CHANNEL for a table of several channels) per
 /// value channel in the stored order, 9 significant digits, `f` literals; no error array.
 std::string table_cycles_tables(const Table& table, const std::string& symbol);
+/// Blender EEVEE's LTC arrays ltc_mat_ggx and ltc_mag_ggx from the eevee packing's channels
+/// (ltc_mat_ggx.0-3, ltc_mag_ggx.0-1), `f` literals that read back as the table's floats: Blender
+/// 4.2 and later (`legacy` false: in namespace blender::eevee::lut, `extern const float
+/// ltc_mat_ggx[H][W][4] = {...};`, eevee_lut.hh's declarations) or legacy EEVEE, Blender 2.80 to 4.1
+/// (flat `ltc_mat_ggx[W * H * 4]`, eevee_lut.h's). Throws Error for a table off EEVEE's grid (x =
+/// roughness, y = sqrt_one_minus_mu, each 0 to 1 at edge texels) or without those channels.
+std::string table_eevee_source(const Table& table, bool legacy);
+/// `v` as a C floating literal that reads back as v (as float(v), with the `f` suffix, when
+/// `as_float`): round_trip_text with ".0" where it has no point or exponent (1.0f, never 1f, which C
+/// rejects).
+std::string c_float_literal(double v, bool as_float);
 /// `text` fit for one // comment line: no line break inside, no final backslash.
 std::string comment_line_text(const std::string& text);
 /// `name` with every character a C identifier cannot hold replaced by '_'.
