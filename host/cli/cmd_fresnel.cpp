@@ -496,7 +496,8 @@ std::vector<double> check_swatch(const FresnelOptions& o) {
     const std::vector<double> range = parse_number_list(o.thickness_range, "--thickness-range");
     if (range.size() != 2 || !(range[0] >= 0.0 && range[1] > range[0] && range[1] <= 100000.0))
         throw Error("--thickness-range LO,HI: 0 <= LO < HI <= 100000 (nm)");
-    if (resolve_fresnel(tables::thin_film_at(o.fresnel, range[0]), 550.0).kind != BB_FRESNEL_THIN_FILM)
+    if (o.fresnel.rfind("thin-film:", 0) != 0 ||
+        resolve_fresnel(tables::thin_film_at(o.fresnel, range[0]), 550.0).kind != BB_FRESNEL_THIN_FILM)
         throw Error("--thickness-range maps a thin film's colour over its thickness; '" + o.fresnel + "' is not a thin-film: term");
     return range;
 }
