@@ -51,7 +51,7 @@ TEST_CASE("fresnel rgb: one launch for the spectrum equals a launch per waveleng
     }
 }
 
-TEST_CASE("fresnel rgb: one launch against a launch per wavelength, timed", "[.][benchmark][fresnel]") {
+TEST_CASE("fresnel rgb: one launch against a launch per wavelength, timed", "[.][benchmark]") {
     for (int n : {91, 2049}) {
         const std::vector<double> cosines = cosines_of(n);
         for (const std::string spec : {"metal:Au", "thin-film:eta=1.3,thickness=400,base=metal:Au"}) {
