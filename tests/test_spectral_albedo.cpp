@@ -61,7 +61,7 @@ TEST_CASE("albedo colour: single-wavelength albedos summed with the colour weigh
     }
 }
 
-TEST_CASE("albedo colour: a wavelength-independent F gives R = G = B = its albedo; refusals", "[fresnel][colour][albedo]") {
+TEST_CASE("albedo colour: a wavelength-independent F gives R = G = B = its albedo, and refusals", "[fresnel][colour][albedo]") {
     // A film of index 1 is no film: F is the bare glass's at every wavelength.
     const auto film = testing::run_cli("albedo --model ggx:alpha=0.4 --fresnel thin-film:eta=1,thickness=300,base_eta=1.5 "
                                        "--mu 0.3,1 --method quadrature --precision double --format json");

@@ -443,10 +443,8 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
     cmd->add_option("--wavelength", o->wavelength_nm,
                     "wavelength in nm for measured metals and films (metal:Al, nk:FILE, thin-film:); without it, "
                     "such a term gives the albedo's colour (R, G, B over 380-780 nm, CIE 1931, D65)");
-    cmd->add_option("--colour-space", o->colour_space,
-                    "the colour of a spectral --fresnel without --wavelength: srgb (linear sRGB) or acescg")
-        ->check(CLI::IsMember({"srgb", "acescg"}))
-        ->capture_default_str();
+    add_colour_space_option(cmd, o->colour_space,
+                            "the colour of a spectral --fresnel without --wavelength: srgb (linear sRGB) or acescg");
     cmd->add_option("--mu", o->mu,
                     "comma-separated cos(theta_o) values in (0, 1] (default: 0.05,0.1,0.2,...,0.9,1; with --plot, 64 "
                     "values from 1/4096 to 1, dense at grazing angles)");

@@ -694,10 +694,8 @@ void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& act
     cmd->add_option("--thickness-range", o->thickness_range,
                     "LO,HI in nm, with --rgb --swatch and a thin-film: term: draw its colour over the angle (x, 0-90 "
                     "degrees) and the film's thickness (y, LO to HI) instead");
-    cmd->add_option("--colour-space", o->colour_space,
-                    "--rgb's colour space: srgb (linear sRGB) or acescg (ACES AP1, the ACES white by Bradford)")
-        ->check(CLI::IsMember({"srgb", "acescg"}))
-        ->capture_default_str();
+    add_colour_space_option(cmd, o->colour_space,
+                            "--rgb's colour space: srgb (linear sRGB) or acescg (ACES AP1, the ACES white by Bradford)");
     cmd->add_option("--fit", o->fit,
                     "f82-tint: the F82-tint f0 and tint per linear-sRGB channel of --fresnel's spectral colour "
                     "(OpenPBR's metal), with the largest deviation over angle");
