@@ -298,10 +298,12 @@ void plot_colour_runs(const std::string& path, const std::string& fresnel, const
     p.x = PlotAxis{"\\mu = cos \\theta_o", 0.0, 1.0, 0.0};
     p.y.label = "E(\\mu)";
     p.legend = LegendPlace::Outside;
-    const char* pens[3] = {"r-2", "g-2", "b-2"};
+    const char colours[3] = {'r', 'g', 'b'};
+    const char dashes[4] = {'-', ';', '|', ':'};  // one per model
     for (const Run& r : runs)
         for (size_t ch = 0; ch < 3; ++ch) {
-            Curve c{plot_text(r.model.canonical) + " " + tables::colour_channel_names()[ch], {}, {}, pens[ch]};
+            const std::string pen = std::string(1, colours[ch]) + dashes[size_t(&r - runs.data()) % 4] + "2";
+            Curve c{plot_text(r.model.canonical) + " " + tables::colour_channel_names()[ch], {}, {}, pen};
             for (size_t i = 0; i < r.request.cells.size(); ++i) {
                 c.x.push_back(r.request.cells[i].mu);
                 c.y.push_back(r.colour[ch].values[i].value);
