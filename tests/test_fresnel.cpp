@@ -494,7 +494,10 @@ TEST_CASE("fresnel and albedo reject bad Fresnel input with one clear message", 
                   Bad{"fresnel --fresnel dielectric:eta=1.5 --theta 95", "out of range"},
                   Bad{"fresnel --fresnel dielectric:eta=1.5 --compare --plot /tmp/x.png", "needs a conductor"},
                   Bad{"fresnel --compare", "--plot"},
-                  Bad{"albedo --model ggx:alpha=0.5 --fresnel metal:Al", "needs --wavelength"},
+                  // Without --wavelength, albedo gives a metal's colour (test_spectral_albedo.cpp); the
+                  // random walk takes one wavelength.
+                  Bad{"albedo --model ggx:alpha=0.5,scattering=multiple --fresnel metal:Al", "give --wavelength"},
+                  Bad{"albedo --model ggx:alpha=0.5 --fresnel metal:Al --wavelength 100000000", "outside the range"},
                   Bad{"albedo --model ggx:alpha=0.5 --fresnel dielectric:eta=-1", "out of range"}}) {
         const auto r = testing::run_cli(b.args);
         INFO(b.args << " -> " << r.err);

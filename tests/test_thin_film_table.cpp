@@ -181,3 +181,54 @@ TEST_CASE("scene files: a film's base=nk: path is read from the scene file's fol
     CHECK(s.materials[0].lobes[0].fresnel == "thin-film:eta=1.4,thickness=300,base=nk:" + dir + "/copper.yml");
     CHECK(make_plan(s).tables.at(0).unavailable.empty());
 }
+
+TEST_CASE("scene files: a thin film's thickness range plans a thin-film table, sliced by thickness_step",
+          "[scene][thin-film][quick]") {
+    using namespace testing::scene;
+    const std::string dir = fresh_tmp_dir("film-json");
+    ::mkdir(dir.c_str(), 0755);
+    auto scene = [&](const std::string& name, const std::string& material, const std::string& settings = "{}") {
+        std::ofstream(dir + "/" + name) << R"({"materials": [{"name": "film", "model": "ggx", "roughness": 0.3, )" +
+                                              material + R"(}], "settings": )" + settings + "}";
+        return dir + "/" + name;
+    };
+    // "thickness": [lo, hi] with a spec without one: the thin-film kind by default. The documented
+    // rule, ceil((hi - lo) / thickness_step) + 1 slices: 16 for glTF's 100-400 nm at the default
+    // 20 nm, 7 at 50 nm, 51 for 0-1000 nm at 20 nm.
+    struct Case {
+        std::string range, settings;
+        double lo, hi;
+        int depth;
+    };
+    for (const Case& c : {Case{"[100, 400]", "{}", 100, 400, 16}, Case{"[100, 400]", R"({"thickness_step": 50})", 100, 400, 7},
+                          Case{"[0, 1000]", "{}", 0, 1000, 51}, Case{"[100, 110]", R"({"thickness_step": 30})", 100, 110, 2}}) {
+        INFO(c.range << " " << c.settings);
+        const Plan p = make_plan(load_scene(scene(
+            "a.json", R"("fresnel": "thin-film:eta=1.3,base_eta=1.5", "thickness": )" + c.range, c.settings)));
+        REQUIRE(p.tables.size() == 1);
+        const PlannedTable* t = find_kind(p, "thin-film");
+        REQUIRE(t);
+        CHECK(t->request.thickness_lo == c.lo);
+        CHECK(t->request.thickness_hi == c.hi);
+        CHECK(t->request.depth == c.depth);
+        CHECK(t->unavailable.empty());
+    }
+    // The spec's own thickness, with "tables" naming the kind: one slice at it.
+    const Plan one = make_plan(load_scene(scene(
+        "b.json", R"("fresnel": "thin-film:eta=1.45,thickness=300,base=metal:Au", "tables": ["thin-film"])")));
+    const PlannedTable* t = find_kind(one, "thin-film");
+    REQUIRE(t);
+    CHECK(t->request.thickness_lo == 300.0);
+    CHECK(t->request.depth == 1);
+    // Refused with the reason: a thickness on another term, twice, a thin-film table without a
+    // film, a bad step.
+    CHECK_THROWS_WITH(load_scene(scene("c.json", R"("fresnel": "metal:Au", "thickness": [100, 200])")),
+                      Catch::Contains("'thickness' is a thin film's"));
+    CHECK_THROWS_WITH(load_scene(scene("d.json", R"("fresnel": "thin-film:eta=1.3,thickness=300,base_eta=1.5", "thickness": 200)")),
+                      Catch::Contains("thickness once"));
+    CHECK_THROWS_WITH(load_scene(scene("e.json", R"("fresnel": "dielectric:eta=1.5", "tables": ["thin-film"])")),
+                      Catch::Contains("thin-film Fresnel"));
+    CHECK_THROWS_WITH(load_scene(scene("f.json", R"("fresnel": "thin-film:eta=1.3,base_eta=1.5", "thickness": [100, 400])",
+                                       R"({"thickness_step": 0})")),
+                      Catch::Contains("thickness_step"));
+}

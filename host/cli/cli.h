@@ -67,6 +67,8 @@ std::string fresnel_spec_help();
 
 /// --precision float|double (the kernels' arithmetic), described by `description`.
 void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description = "kernel arithmetic");
+/// --colour-space srgb|acescg (default srgb): the colour of a spectral Fresnel term.
+void add_colour_space_option(CLI::App* cmd, std::string& colour_space, const std::string& description);
 /// --format, one of `formats` ("table", "json", "csv").
 void add_format_option(CLI::App* cmd, std::string& format, const std::vector<std::string>& formats);
 

@@ -170,6 +170,12 @@ void check_text_output(const std::string& path) {
 
 std::string fresnel_spec_help() { return "Fresnel spec: " + fresnel_spec_forms(); }
 
+void add_colour_space_option(CLI::App* cmd, std::string& colour_space, const std::string& description) {
+    cmd->add_option("--colour-space", colour_space, description)
+        ->check(CLI::IsMember({"srgb", "acescg"}))
+        ->capture_default_str();
+}
+
 void add_precision_option(CLI::App* cmd, std::string& precision, const std::string& description) {
     cmd->add_option("--precision", precision, description)
         ->check(CLI::IsMember({"float", "double"}))

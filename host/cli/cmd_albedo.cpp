@@ -1,5 +1,7 @@
 // `brdfbake albedo`: directional albedo E(mu) of one or more models, each value with its error
 // estimate, as a table, JSON or CSV, and optionally as a plot of E(mu) curves.
+#include <algorithm>
+#include <array>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -12,6 +14,7 @@
 #include "brdfbake/albedo.h"
 #include "brdfbake/analytic.h"
 #include "brdfbake/error.h"
+#include "brdfbake/fresnel_terms.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
@@ -19,6 +22,7 @@
 #include "models/key_reader.h"
 #include "models/merl_file.h"
 #include "plot/plot.h"
+#include "tables/spectral_fresnel.h"
 
 namespace brdfbake {
 namespace {
@@ -36,6 +40,7 @@ struct AlbedoOptions {
     std::string format = "table";
     std::string output;
     std::string plot;
+    std::string colour_space = "srgb";
     std::uint64_t seed = 0x62726466u;
 };
 
@@ -45,6 +50,9 @@ struct Run {
     AlbedoRequest request;
     AlbedoResult result;
     WalkResult walk;  // scattering=multiple: the walks' three estimates (result holds the albedo)
+    // A spectral Fresnel term without --wavelength: the albedo of each colour channel's curve,
+    // each value's error its integration's plus the curve's and the spectrum's (spectral_fresnel.h).
+    std::array<AlbedoResult, 3> colour;
 };
 
 const char* kWalkMeaning =
@@ -91,6 +99,10 @@ void walk_json(const Run& r, size_t i, nlohmann::json& e) {
     e["single_scattering_transmitted"] = w.single_t.value;
     e["single_scattering_transmitted_error"] = w.single_t.error;
 }
+
+const char* kColourErrorMeaning =
+    "; in colour, each channel's also adds its tabulated colour curve's interpolation error and its 1 nm vs 2 nm "
+    "spectral sums' difference";
 
 const char* kErrorMeaning =
     "3 standard errors of the replicas plus 3 |E| / N for what N samples cannot see (sampling), or the "
@@ -198,6 +210,109 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
     return out.str();
 }
 
+/// The colour runs (a spectral Fresnel term without --wavelength) as a table, JSON or CSV: per
+/// direction the albedo in each channel and each channel's error.
+std::string render_colour(Format format, const std::string& fresnel, const tables::SpectralCurves& curves,
+                          const std::vector<Run>& runs, const Engine& engine, double seconds) {
+    std::ostringstream out;
+    const Run& first = runs.front();
+    auto rgb = [](const Run& r, size_t i, bool error) {
+        std::array<double, 3> v{};
+        for (size_t ch = 0; ch < 3; ++ch) v[ch] = error ? r.colour[ch].values[i].error : r.colour[ch].values[i].value;
+        return v;
+    };
+    if (format == Format::Json) {
+        nlohmann::json j;
+        j["command"] = "albedo";
+        j["models"] = nlohmann::json::array();
+        for (const Run& r : runs) j["models"].push_back(r.model.canonical);
+        j["fresnel"] = fresnel;
+        j["colour_space"] = curves.colour;
+        j["estimator"] = first.colour[0].method;
+        j["precision"] = precision_name(first.request.precision);
+        j["error_meaning"] = std::string(kErrorMeaning) + kColourErrorMeaning;
+        j["device"] = engine.device().name;
+        j["seconds"] = seconds;
+        j["results"] = nlohmann::json::array();
+        for (const Run& r : runs)
+            for (size_t i = 0; i < r.request.cells.size(); ++i)
+                j["results"].push_back({{"model", r.model.canonical},
+                                        {"mu", r.request.cells[i].mu},
+                                        {"phi_deg", r.request.cells[i].phi * kDeg},
+                                        {"rgb", rgb(r, i, false)},
+                                        {"rgb_error", rgb(r, i, true)}});
+        out << j.dump(2) << "\n";
+        return out.str();
+    }
+    char line[256];
+    const bool csv = format == Format::Csv;
+    if (csv) out << (runs.size() > 1 ? "model," : "") << "mu,phi_deg,R,G,B,error_R,error_G,error_B\n";
+    for (const Run& r : runs) {
+        if (!csv)
+            out << "# albedo of " << r.model.canonical << ", Fresnel " << fresnel << " in " << curves.colour << "\n# "
+                << r.colour[0].method << ", " << precision_name(r.request.precision) << ", " << engine.device().name
+                << "\n# error: " << kErrorMeaning << kColourErrorMeaning << "\n"
+                << "        mu   phi_deg            R            G            B      error\n";
+        for (size_t i = 0; i < r.request.cells.size(); ++i) {
+            const auto v = rgb(r, i, false), e = rgb(r, i, true);
+            if (csv) {
+                std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.3e,%.3e,%.3e\n", r.request.cells[i].mu,
+                              r.request.cells[i].phi * kDeg, v[0], v[1], v[2], e[0], e[1], e[2]);
+                out << (runs.size() > 1 ? "\"" + r.model.canonical + "\"," : "") << line;
+            } else {
+                std::snprintf(line, sizeof line, "%10.6f %9.3f %12.8f %12.8f %12.8f %10.2e\n", r.request.cells[i].mu,
+                              r.request.cells[i].phi * kDeg, v[0], v[1], v[2], std::max({e[0], e[1], e[2]}));
+                out << line;
+            }
+        }
+        if (!csv && &r != &runs.back()) out << "\n";
+    }
+    return out.str();
+}
+
+/// The albedo of each colour channel of `curves` (tables/spectral_fresnel.h), as `lut conductor`
+/// makes its channels: the curve's and the spectrum's errors are added to the integration's, and
+/// a --tolerance leaves the integration what those two leave of it.
+void integrate_colour_run(Engine& engine, Run& r, const tables::SpectralCurves& curves, const ToleranceRequest& tolerance) {
+    for (size_t ch = 0; ch < 3; ++ch) {
+        const double own = curves.curve_error[ch] + curves.spectral_error[ch];
+        ToleranceRequest t = tolerance;
+        if (t.tolerance > 0.0) {
+            const double share = 1.0 - own / t.tolerance;
+            if (share < 0.25)
+                throw Error("--tolerance " + format_number(t.tolerance) + " is below what the spectral colour allows in "
+                            "channel " + tables::colour_channel_names()[ch] + " (its curve's and spectrum's error " +
+                            format_number(own) + "; ask for at least " + format_number(4.0 * own) + ", or give --wavelength NM)");
+            t.tolerance *= share;
+        }
+        AlbedoRequest req = r.request;
+        req.fresnel = curves.channel[ch];
+        r.colour[ch] = albedo_of_model(engine, r.model, curves.channel[ch], req, t);
+        for (AlbedoValue& v : r.colour[ch].values) v.error += own;
+    }
+}
+
+void plot_colour_runs(const std::string& path, const std::string& fresnel, const std::vector<Run>& runs) {
+    PlotSpec p;
+    p.title = "directional albedo E(\\mu), Fresnel " + plot_text(short_numbers(fresnel)) + ", linear sRGB";
+    p.x = PlotAxis{"\\mu = cos \\theta_o", 0.0, 1.0, 0.0};
+    p.y.label = "E(\\mu)";
+    p.legend = LegendPlace::Outside;
+    const char colours[3] = {'r', 'g', 'b'};
+    const char dashes[4] = {'-', ';', '|', ':'};  // one per model
+    for (const Run& r : runs)
+        for (size_t ch = 0; ch < 3; ++ch) {
+            const std::string pen = std::string(1, colours[ch]) + dashes[size_t(&r - runs.data()) % 4] + "2";
+            Curve c{plot_text(r.model.canonical) + " " + tables::colour_channel_names()[ch], {}, {}, pen};
+            for (size_t i = 0; i < r.request.cells.size(); ++i) {
+                c.x.push_back(r.request.cells[i].mu);
+                c.y.push_back(r.colour[ch].values[i].value);
+            }
+            p.curves.push_back(c);
+        }
+    write_plot(path, p, 1300, 640);
+}
+
 constexpr const char* kDefaultMu = "0.05,0.1,0.2,0.3,0.4,0.5,0.6,0.7,0.8,0.9,1";
 
 /// The directions of a plot without --mu: 64 values of mu = u^2, u evenly spaced, dense at grazing
@@ -245,7 +360,10 @@ void check_walk_options(const ModelConfig& model, const AlbedoOptions& o) {
 int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
     // Check every input before touching the device.
-    const FresnelConfig fresnel = resolve_fresnel(o.fresnel, o.wavelength_nm);
+    // A term that depends on the wavelength, without --wavelength: its colour (fresnel_needs_wavelength).
+    const bool colour = o.wavelength_nm == 0.0 && fresnel_needs_wavelength(o.fresnel);
+    if (!colour && o.colour_space != "srgb") throw Error("--colour-space is for a spectral --fresnel (metal:, nk:, thin-film:) without --wavelength");
+    const FresnelConfig fresnel = resolve_fresnel(o.fresnel, colour ? 550.0 : o.wavelength_nm);
     const Format format = parse_format(o.format);
     check_plot_output(o.plot, "--plot");
     check_text_output(o.output);
@@ -262,6 +380,9 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
         Run r;
         r.model = resolve_model_simulated(spec);
         if (r.model.simulated) check_walk_options(r.model, o);
+        if (colour && r.model.simulated)
+            throw Error("model '" + r.model.canonical + "': the random walk takes one wavelength of " + o.fresnel +
+                        "; give --wavelength NM");
         if (fresnel.kind != 0 && r.model.dielectric_walk)
             throw Error("model '" + r.model.canonical + "': eta=E walks the rough dielectric with the exact dielectric "
                         "Fresnel term of eta; drop --fresnel");
@@ -280,6 +401,15 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
     }
 
     Engine engine(g.device, g.verbose);
+    if (colour) {
+        const tables::SpectralCurves curves = tables::spectral_curves(engine, o.fresnel, o.colour_space,
+                                                                      runs.front().request.precision);
+        for (Run& r : runs) integrate_colour_run(engine, r, curves, choice.tolerance);
+        const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+        if (!o.plot.empty()) plot_colour_runs(o.plot, o.fresnel, runs);
+        emit(o.output, render_colour(format, o.fresnel, curves, runs, engine, seconds));
+        return kExitOk;
+    }
     for (Run& r : runs) {
         if (r.model.simulated) {
             r.walk = choice.tolerance.tolerance > 0.0 ? walk_albedo_to_tolerance(engine, r.request, choice.tolerance)
@@ -312,7 +442,11 @@ void add_albedo_command(CLI::App& app, const GlobalOptions& global, Action& acti
                     "model spec, e.g. ggx:alpha=0.5 or lambert:rho=0.8; repeat it to compare models")
         ->required();
     cmd->add_option("--fresnel", o->fresnel, fresnel_spec_help())->capture_default_str();
-    cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for measured metals (metal:Al, nk:FILE)");
+    cmd->add_option("--wavelength", o->wavelength_nm,
+                    "wavelength in nm for measured metals and films (metal:Al, nk:FILE, thin-film:); without it, "
+                    "such a term gives the albedo's colour (R, G, B over 380-780 nm, CIE 1931, D65)");
+    add_colour_space_option(cmd, o->colour_space,
+                            "the colour of a spectral --fresnel without --wavelength: srgb (linear sRGB) or acescg");
     cmd->add_option("--mu", o->mu,
                     "comma-separated cos(theta_o) values in (0, 1] (default: 0.05,0.1,0.2,...,0.9,1; with --plot, 64 "
                     "values from 1/4096 to 1, dense at grazing angles)");

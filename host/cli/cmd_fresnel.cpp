@@ -24,16 +24,21 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
+#include "cli/fresnel_pictures.h"
 #include "fit/f82_tint.h"
 #include "models/key_reader.h"
 #include "models/spectrum.h"
 #include "plot/plot.h"
+#include "tables/lut_common.h"
 
 namespace brdfbake {
 namespace {
 
 struct FresnelOptions {
-    std::string fresnel;
+    std::vector<std::string> fresnels;  // --fresnel, several only for --rgb --swatch
+    std::string fresnel;                // the first
+    std::string swatch;
+    std::string thickness_range;
     std::string theta = "0,10,20,30,40,50,60,70,75,80,85,89,89.9,90";
     double wavelength_nm = 0.0;
     std::string precision = "float";
@@ -473,16 +478,68 @@ PlotSpec rgb_panel(const FresnelOptions& o, const std::vector<std::array<double,
     return p;
 }
 
+/// The checks of `--rgb --swatch` and `--thickness-range`; returns the thickness range (empty
+/// without one).
+std::vector<double> check_swatch(const FresnelOptions& o) {
+    if (o.swatch.empty()) {
+        if (!o.thickness_range.empty()) throw Error("--thickness-range is the iridescence map's y axis: add --swatch FILE.png");
+        if (o.fresnels.size() > 1) throw Error("several --fresnel draw one swatch picture: add --swatch FILE.png");
+        return {};
+    }
+    if (!is_plot_path(o.swatch)) throw Error("--swatch '" + o.swatch + "': expected a file name ending in .png or .svg");
+    if (o.colour_space != "srgb") throw Error("--swatch shows colours encoded as sRGB; drop --colour-space");
+    if (o.fresnels.size() > 1 && parse_format(o.format) != Format::Table)
+        throw Error("--format " + o.format + " gives one --fresnel's colours; several are for the table format");
+    check_plot_output(o.swatch, "--swatch");
+    if (o.thickness_range.empty()) return {};
+    if (o.fresnels.size() != 1) throw Error("--thickness-range maps one thin film: give one --fresnel");
+    const std::vector<double> range = parse_number_list(o.thickness_range, "--thickness-range");
+    if (range.size() != 2 || !(range[0] >= 0.0 && range[1] > range[0] && range[1] <= 100000.0))
+        throw Error("--thickness-range LO,HI: 0 <= LO < HI <= 100000 (nm)");
+    if (o.fresnel.rfind("thin-film:", 0) != 0 ||
+        resolve_fresnel(tables::thin_film_at(o.fresnel, range[0]), 550.0).kind != BB_FRESNEL_THIN_FILM)
+        throw Error("--thickness-range maps a thin film's colour over its thickness; '" + o.fresnel + "' is not a thin-film: term");
+    return range;
+}
+
+/// `fresnel --rgb --swatch FILE --thickness-range LO,HI`: a thin film's iridescence map, and a
+/// line (or JSON) saying what it holds.
+int run_iridescence_map(const FresnelOptions& o, const GlobalOptions& g, const std::vector<double>& thickness) {
+    if (!o.plot.empty()) throw Error("--thickness-range draws the map into --swatch's file; drop --plot");
+    const Format format = parse_format(o.format);
+    if (format == Format::Csv) throw Error("--thickness-range prints a line or JSON; drop --format csv");
+    check_text_output(o.output);
+    Engine engine(g.device, g.verbose);
+    const int rows = 121;
+    const double error = write_iridescence_map(engine, o.swatch, o.fresnel, thickness[0], thickness[1], precision_of(o), rows);
+    std::ostringstream out;
+    if (format == Format::Json) {
+        nlohmann::json j = {{"command", "fresnel"},     {"fresnel", o.fresnel},  {"swatch", o.swatch},
+                            {"angles_deg", {0, 90, 91}}, {"thickness_nm", {thickness[0], thickness[1], rows}},
+                            {"max_rgb_error", error},    {"colour_space", colour_space_text("srgb")}};
+        out << j.dump(2) << "\n";
+    } else {
+        out << "# iridescence map of " << o.fresnel << " written to " << o.swatch << ": theta 0-90 deg at 1 deg x "
+            << rows << " thicknesses " << short_numbers(std::to_string(thickness[0]), 6) << "-" << short_numbers(std::to_string(thickness[1]), 6)
+            << " nm, in " << colour_space_text("srgb") << ", encoded as sRGB; largest |1 nm - 2 nm sum| "
+            << format_number(error) << "\n";
+    }
+    emit(o.output, out.str());
+    return kExitOk;
+}
+
 int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     if (o.wavelength_nm != 0.0)
         throw Error("--rgb sums the visible spectrum (380 to 780 nm); drop --wavelength, which picks one");
     if (o.compare) throw Error("--compare draws one wavelength's comparison; drop --rgb or --compare");
     if (o.fresnel.empty()) throw Error("--rgb needs --fresnel SPEC");
-    resolve_fresnel(o.fresnel, 550.0);  // a bad spec is refused before any work
     parse_format(o.format);
     if (!o.plot.empty() && !is_plot_path(o.plot))
         throw Error("--plot '" + o.plot + "': expected a file name ending in .png or .svg");
     check_plot_output(o.plot, "--plot");
+    const std::vector<double> thickness = check_swatch(o);
+    if (!thickness.empty()) return run_iridescence_map(o, g, thickness);
+    for (const std::string& spec : o.fresnels) resolve_fresnel(spec, 550.0);  // a bad spec is refused before any work
     check_text_output(o.output);
     const AngleGrid a = angle_grid(o.theta);
     const Precision precision = precision_of(o);
@@ -491,12 +548,24 @@ int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     std::vector<double> cosines = a.cosines;
     if (!o.plot.empty())
         for (double c : plot_grid().cosines) cosines.push_back(c);
-    FresnelColour c = fresnel_rgb_on_device(engine, o.fresnel, precision, cosines, o.colour_space);
-    if (!o.plot.empty())
-        write_plot(o.plot, rgb_panel(o, {c.rgb.begin() + std::ptrdiff_t(a.cosines.size()), c.rgb.end()}));
-    c.rgb.resize(a.cosines.size());
-    c.error.resize(a.cosines.size());
-    emit(o.output, render_rgb(o, precision, a.thetas, a.cosines, c, engine));
+    std::vector<std::pair<std::string, FresnelColour>> colours;
+    for (const std::string& spec : o.fresnels) {
+        FresnelColour c = fresnel_rgb_on_device(engine, spec, precision, cosines, o.colour_space);
+        if (!o.plot.empty() && colours.empty())
+            write_plot(o.plot, rgb_panel(o, {c.rgb.begin() + std::ptrdiff_t(a.cosines.size()), c.rgb.end()}));
+        c.rgb.resize(a.cosines.size());
+        c.error.resize(a.cosines.size());
+        colours.emplace_back(spec, c);
+    }
+    if (!o.swatch.empty())
+        write_swatches(o.swatch, colours, a.thetas);
+    std::string text;
+    for (const auto& [spec, c] : colours) {
+        FresnelOptions one = o;
+        one.fresnel = spec;
+        text += render_rgb(one, precision, a.thetas, a.cosines, c, engine);
+    }
+    emit(o.output, text);
     return kExitOk;
 }
 
@@ -548,6 +617,10 @@ int run_fresnel_fit(const FresnelOptions& o, const GlobalOptions& g) {
 }
 
 int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
+    o.fresnel = o.fresnels.empty() ? "" : o.fresnels.front();
+    if (o.fresnels.size() > 1 && !o.rgb) throw Error("several --fresnel are for --rgb --swatch; give one");
+    if (!o.rgb && (!o.swatch.empty() || !o.thickness_range.empty()))
+        throw Error(std::string(o.swatch.empty() ? "--thickness-range" : "--swatch") + " draws colours: add --rgb");
     if (!o.fit.empty()) return run_fresnel_fit(o, g);
     if (o.rgb) return run_fresnel_rgb(o, g);
     if (o.colour_space != "srgb") throw Error("--colour-space picks --rgb's colour space; add --rgb");
@@ -602,7 +675,9 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     const auto [cmd, o] = add_command<FresnelOptions>(
         app, "fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence", global, action, run_fresnel);
-    cmd->add_option("--fresnel", o->fresnel, fresnel_spec_help());
+    cmd->add_option("--fresnel", o->fresnels, fresnel_spec_help() + " (with --rgb --swatch, repeat for a row each)")
+        ->expected(1)
+        ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_option("--theta", o->theta, "comma-separated angles of incidence in degrees, in [0, 90]")
         ->capture_default_str();
     cmd->add_option("--wavelength", o->wavelength_nm, "wavelength in nm for the terms that depend on it (metal:, nk:, thin-film:)");
@@ -613,10 +688,14 @@ void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& act
     cmd->add_flag("--rgb", o->rgb,
                   "the reflectance's colour in linear sRGB: F over 380-780 nm (each wavelength's n, k or film) "
                   "weighed by the CIE 1931 observer under D65");
-    cmd->add_option("--colour-space", o->colour_space,
-                    "--rgb's colour space: srgb (linear sRGB) or acescg (ACES AP1, the ACES white by Bradford)")
-        ->check(CLI::IsMember({"srgb", "acescg"}))
-        ->capture_default_str();
+    cmd->add_option("--swatch", o->swatch,
+                    "with --rgb: draw the colour at each --theta angle as an sRGB-encoded swatch into FILE.png or "
+                    "FILE.svg, a row per --fresnel (the PNG holds the 8-bit levels exactly)");
+    cmd->add_option("--thickness-range", o->thickness_range,
+                    "LO,HI in nm, with --rgb --swatch and a thin-film: term: draw its colour over the angle (x, 0-90 "
+                    "degrees) and the film's thickness (y, LO to HI) instead");
+    add_colour_space_option(cmd, o->colour_space,
+                            "--rgb's colour space: srgb (linear sRGB) or acescg (ACES AP1, the ACES white by Bradford)");
     cmd->add_option("--fit", o->fit,
                     "f82-tint: the F82-tint f0 and tint per linear-sRGB channel of --fresnel's spectral colour "
                     "(OpenPBR's metal), with the largest deviation over angle");

@@ -1,5 +1,6 @@
 #include "models/spectrum.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdlib>
 #include <map>
@@ -192,6 +193,12 @@ std::string colour_space_text(const std::string& colour_space) {
                                                   "white = 1, 1, 1)"
                                                 : "linear sRGB (D65 white = 1, 1, 1)") +
            ", CIE 1931 2-degree observer, illuminant D65, 380-780 nm summed at 1 nm";
+}
+
+unsigned char srgb_encode_8bit(double linear) {
+    const double v = std::min(1.0, std::max(0.0, std::isfinite(linear) ? linear : 0.0));
+    const double encoded = v <= 0.0031308 ? 12.92 * v : 1.055 * std::pow(v, 1.0 / 2.4) - 0.055;
+    return static_cast<unsigned char>(std::lround(255.0 * encoded));
 }
 
 const SpectralWeights& srgb_weights(int step_nm) { return colour_weights("srgb", step_nm); }

@@ -39,6 +39,11 @@ const SpectralWeights& colour_weights(const std::string& colour_space, int step_
 /// space ("linear sRGB" or "ACEScg ..."), its white, the observer, the illuminant and the sums.
 std::string colour_space_text(const std::string& colour_space);
 
+/// The sRGB encoding of a linear-sRGB value (IEC 61966-2-1:1999, sec. 5.2: 12.92 v up to
+/// 0.0031308, 1.055 v^(1/2.4) - 0.055 above) as an 8-bit level, round(255 V); values outside
+/// [0, 1] (a colour outside sRGB's gamut, or brighter than white) are clipped first.
+unsigned char srgb_encode_8bit(double linear);
+
 /// The embedded CIE 1931 2-degree observer (data/cie/cie1931_2deg_1nm.csv): nm, x-bar, y-bar, z-bar.
 const std::vector<std::array<double, 4>>& cie_observer();
 

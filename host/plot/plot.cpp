@@ -211,8 +211,49 @@ void draw_heatmap(mglGraph& gr, const Heatmap& h, double x0, double x1, double y
     }
 }
 
-void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index, int cell_width, int cell_height) {
+/// A rectangle of pixels (columns x0..x1 - 1, rows y0..y1 - 1, row 0 at the top) to set to one colour.
+struct PixelRect {
+    long x0, x1, y0, y1;
+    unsigned char rgb[3];
+};
+
+/// Draws a panel's colour cells as faces with their labels, and adds to `paint` the pixels that
+/// each covers within the axes box [x0, x1] x [y0, y1] (the ranges are already set).
+void draw_cells(mglGraph& gr, const PlotSpec& p, double x0, double x1, double y0, double y1,
+                std::vector<PixelRect>& paint) {
+    char colour[16];
+    const mglPoint lo = gr.CalcScr(mglPoint(x0, y0)), hi = gr.CalcScr(mglPoint(x1, y1));
+    const int height = gr.GetHeight();
+    // Screen y from CalcScr grows upwards from the bottom; the RGB buffer's rows run downwards.
+    auto column = [](double s) { return long(std::ceil(s - 0.5)); };
+    for (const ColourCell& c : p.cells) {
+        std::snprintf(colour, sizeof colour, "{x%02X%02X%02X}", c.rgb[0], c.rgb[1], c.rgb[2]);
+        gr.Face(mglPoint(c.x0, c.y0, -0.5), mglPoint(c.x1, c.y0, -0.5), mglPoint(c.x0, c.y1, -0.5),
+                mglPoint(c.x1, c.y1, -0.5), colour);
+        if (!c.label.empty()) {
+            gr.SetCut(false);
+            gr.Puts(mglPoint(0.5 * (c.x0 + c.x1), c.y0 - 0.12 * (y1 - y0)), c.label.c_str(), ":C", -0.8);
+            gr.SetCut(true);
+        }
+        const mglPoint a = gr.CalcScr(mglPoint(std::max(c.x0, x0), std::max(c.y0, y0)));
+        const mglPoint b = gr.CalcScr(mglPoint(std::min(c.x1, x1), std::min(c.y1, y1)));
+        // Inside the box's frame (one pixel in), whose line the cells must not cover.
+        PixelRect r{std::max(column(a.x), column(lo.x) + 1), std::min(column(b.x), column(hi.x) - 1),
+                    std::max(column(height - b.y), column(height - hi.y) + 1),
+                    std::min(column(height - a.y), column(height - lo.y) - 1), {c.rgb[0], c.rgb[1], c.rgb[2]}};
+        if (r.x1 > r.x0 && r.y1 > r.y0) paint.push_back(r);
+    }
+}
+
+void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index, int cell_width, int cell_height,
+                std::vector<PixelRect>& paint) {
     Bounds bx, by;
+    for (const ColourCell& c : p.cells) {
+        bx.add(c.x0);
+        bx.add(c.x1);
+        by.add(c.y0);
+        by.add(c.y1);
+    }
     if (p.heatmap.nx > 0) {
         if (p.heatmap.z.size() != size_t(p.heatmap.nx) * p.heatmap.ny)
             throw Error("plot '" + p.title + "': heatmap data does not fill its grid");
@@ -264,13 +305,18 @@ void draw_panel(mglGraph& gr, const PlotSpec& p, size_t panel_index, int cell_wi
     }
     // Ticks counted from 0 (not from the range's lower end), so that they fall on round values.
     draw_heatmap(gr, p.heatmap, x0, x1, y0, y1);
+    draw_cells(gr, p, x0, x1, y0, y1, paint);
     if (!p.axes) {
         for (const Curve& c : p.curves) gr.Plot(to_mgl(c.x), to_mgl(c.y), c.style.empty() ? "k-2" : c.style.c_str());
         return;
     }
     gr.SetTicks('x', p.x.tick, 0, 0.0);
     gr.SetTicks('y', p.y.tick, 0, 0.0);
-    if (p.heatmap.nx == 0) gr.Grid("xy", "{h9}");
+    // A picture's axes (colour cells) read in their own units: no factored-out power of ten
+    // (MathGL's default, 3, writes 0..1000 nm as 0..10 x 100).
+    gr.SetTuneTicks(p.cells.empty() ? 3 : 0);
+    gr.SetTickTempl('y', p.cells.empty() ? "" : "%g");  // 1000, not 1e3
+    if (p.heatmap.nx == 0 && p.cells.empty()) gr.Grid("xy", "{h9}");
     gr.Box("k", false);
     gr.SetRotatedText(false);  // tick labels upright on the y axis too
     gr.Axis("xy");
@@ -341,6 +387,7 @@ void write_figure(const std::string& path, const Figure& figure) {
     mglGraph gr(0, width, figure.panel_height * rows);
     gr.Clf('w');
     gr.SetQuality(figure.flat ? MGL_DRAW_FAST : MGL_DRAW_NORM);
+    std::vector<PixelRect> paint;  // colour cells' pixels, set exactly after drawing
     for (int i = 0; i < n; ++i) {
         // Each panel is a cell of the grid (fractions of the canvas, y upwards); the axes box
         // leaves room for the y label on the left, the x label below and the title above.
@@ -360,7 +407,7 @@ void write_figure(const std::string& path, const Figure& figure) {
         gr.SetPlotFactor(1.0);  // 2D plots: fill the cell instead of leaving room for rotation
         gr.SetFontSize(3.0 * font_scale(figure.panel_height));
         const PlotSpec& p = figure.panels[size_t(i)];
-        draw_panel(gr, p, size_t(i), figure.panel_width, figure.panel_height);
+        draw_panel(gr, p, size_t(i), figure.panel_width, figure.panel_height, paint);
     }
     if (strip > 0) {
         // The strip as one plot (so that text keeps the panels' size), the bar in its left part.
@@ -396,7 +443,12 @@ void write_figure(const std::string& path, const Figure& figure) {
         const unsigned char* rgb = gr.GetRGB();
         const int w = gr.GetWidth(), h = gr.GetHeight();
         if (!rgb || w <= 0 || h <= 0) throw Error("cannot write plot '" + path + "': MathGL drew nothing");
-        write_png_file(path, w, h, 8, 3, std::vector<unsigned char>(rgb, rgb + size_t(w) * size_t(h) * 3), {});
+        std::vector<unsigned char> pixels(rgb, rgb + size_t(w) * size_t(h) * 3);
+        for (const PixelRect& r : paint)
+            for (long y = std::max(0L, r.y0); y < std::min(long(h), r.y1); ++y)
+                for (long x = std::max(0L, r.x0); x < std::min(long(w), r.x1); ++x)
+                    std::copy(r.rgb, r.rgb + 3, &pixels[3 * (size_t(y) * size_t(w) + size_t(x))]);
+        write_png_file(path, w, h, 8, 3, pixels, {});
         return;
     }
     // SVG: MathGL writes the file itself and reports no failure; a file that does not end with

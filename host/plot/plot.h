@@ -59,6 +59,17 @@ struct Heatmap {
     std::string scheme = "{x440154}{x3B528B}{x21918C}{x5EC962}{xFDE725}";
 };
 
+/// A rectangle of one exact colour in data coordinates (8 bits per channel, already encoded, e.g.
+/// sRGB), drawn under the curves, with an optional label centred under it: a colour swatch, or a
+/// cell of a true-colour picture. MathGL shades its faces by a few levels (a face of {xC8853B}
+/// comes out 198, 131, 57), so a PNG gets the colour exactly: after drawing, every pixel whose
+/// centre lies inside the rectangle (and inside the panel's box) is set to it. An SVG gets a face.
+struct ColourCell {
+    double x0 = 0.0, x1 = 0.0, y0 = 0.0, y1 = 0.0;
+    unsigned char rgb[3] = {0, 0, 0};
+    std::string label;  // MathGL markup under the cell; empty: none
+};
+
 /// One panel of a figure.
 struct PlotSpec {
     std::string title;
@@ -66,6 +77,7 @@ struct PlotSpec {
     std::vector<Curve> curves;
     std::vector<RefLine> lines;
     Heatmap heatmap;
+    std::vector<ColourCell> cells;  // drawn under the curves, over the heatmap
     bool axes = true;  // false: no box, ticks, grid or axis labels (a picture)
     LegendPlace legend = LegendPlace::TopRight;
     /// Legend position inside the axes box as fractions (0,0 bottom left .. 1,1 top right),

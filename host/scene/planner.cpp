@@ -481,10 +481,11 @@ PlannedTable group_table(const Group& g, const SceneSettings& s) {
         r.width = s.mu_texels;
         r.height = a.n;
     }
-    if (g.kind->eta_axis && g.thickness) {  // the thin-film table: 16 slices over the film's range, or one
+    if (g.kind->eta_axis && g.thickness) {  // the thin-film table: slices at most thickness_step apart, or one
         r.thickness_lo = g.thickness->lo;
         r.thickness_hi = g.thickness->hi;
-        t.depth = g.thickness->lo == g.thickness->hi ? 1 : 16;
+        const double span = g.thickness->hi - g.thickness->lo;
+        t.depth = span == 0.0 ? 1 : int(std::min(256.0, std::ceil(span / s.thickness_step - 1e-9) + 1.0));
         apply_eta_axis(t, r);
     } else if (g.kind->eta_axis) {
         const AxisPlan e = plan_axis(g.eta->lo, g.eta->hi, 1, s.eta_step, 1.0, kEtaAxisMax, 64);

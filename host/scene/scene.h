@@ -56,6 +56,9 @@ struct SceneSettings {
     int mu_texels = 32;                // mu axis (always the full [0, 1])
     int alpha_texels = 32;             // texels over the full roughness-axis coordinate [0, 1]
     double eta_step = 0.05;            // eta-axis spacing for a range of indices
+    /// Thin-film tables: at most this many nm between thickness slices; a range [lo, hi] gets
+    /// ceil((hi - lo) / thickness_step) + 1 slices (at most 256): 16 for glTF's 100-400 nm.
+    double thickness_step = 20.0;
     std::string mu_map = "linear";     // see LutRequest
     std::string alpha_map = "roughness";
     /// The sheen lobes' tables: "charlie" (the Charlie albedo, the default) or "ltc" (the LTC sheen of

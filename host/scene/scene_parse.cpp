@@ -16,6 +16,7 @@
 #include <sstream>
 #include <thread>
 
+#include "brdfbake/brdf/fresnel.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "brdfbake/spec.h"
@@ -25,6 +26,7 @@
 #include "models/merl_file.h"
 #include "scene/json_read.h"
 #include "scene/scene_text.h"
+#include "tables/lut_common.h"
 #include "tables/sweep.h"
 
 namespace brdfbake {
@@ -141,9 +143,10 @@ SweepSplit split_model(const std::string& text, const std::string& where) {
 }
 
 const std::set<std::string> kMaterialKeys = {"name", "model", "fresnel", "wavelength", "alpha", "roughness",
-                                             "eta", "transmission", "tables", "comment"};
-const std::set<std::string> kSettingsKeys = {"samples", "mu_texels", "alpha_texels", "eta_step", "mu_map",
-                                             "alpha_map", "precision", "format", "half", "sheen_model"};
+                                             "eta", "transmission", "tables", "thickness", "comment"};
+const std::set<std::string> kSettingsKeys = {"samples",   "mu_texels", "alpha_texels", "eta_step", "thickness_step",
+                                             "mu_map",    "alpha_map", "precision",    "format",   "half",
+                                             "sheen_model"};
 
 /// The material's "tables" (a list of kinds, each checked against the lobe), when it names them.
 void read_lobe_tables(const json& m, const Where& w, const std::string& ctx, Lobe& lobe) {
@@ -251,6 +254,7 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
     }
     std::string fresnel = "none";
     double wavelength = 0.0;
+    std::optional<Interval> thickness;  // a thin film's (nm)
     if (m.contains("wavelength")) {
         wavelength = number_at(m["wavelength"], w, "wavelength");
         if (!(wavelength > 0)) throw Error(w.at("wavelength") + " must be positive (nm)");
@@ -278,8 +282,26 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
                 text = text.substr(0, base + 5) + beside(nk) + (end == std::string::npos ? "" : text.substr(end));
             }
             const bool measured = fresnel_needs_wavelength(text);
-            resolve_fresnel(text, measured && wavelength == 0.0 ? 550.0 : wavelength);
-            fresnel = measured ? text : resolve_fresnel(text, wavelength).canonical;
+            // A film's thickness range ("thickness": nm or [lo, hi]) is the thin-film table's axis;
+            // the spec is checked at its lower end.
+            if (m.contains("thickness")) {
+                if (text.rfind("thin-film:", 0) != 0)
+                    throw Error("'thickness' is a thin film's (nm); the Fresnel '" + text + "' is not thin-film:");
+                const auto keys = parse_spec(text).keys;
+                if (std::any_of(keys.begin(), keys.end(), [](const auto& kv) { return kv.first == "thickness"; }))
+                    throw Error("give the film's thickness once ('thickness' or thickness= in the spec)");
+                thickness = interval_at(m["thickness"], w, "thickness");
+                if (!(thickness->lo >= 0.0 && thickness->hi <= 100000.0))
+                    throw Error(w.at("thickness") + " must lie in [0, 100000] nm");
+                resolve_fresnel(tables::thin_film_at(text, thickness->lo), measured && wavelength == 0.0 ? 550.0 : wavelength);
+            } else {
+                resolve_fresnel(text, measured && wavelength == 0.0 ? 550.0 : wavelength);
+                if (text.rfind("thin-film:", 0) == 0) {  // its one thickness: a thin-film table of one slice
+                    const double d = resolve_fresnel(text, 550.0).params[BB_THIN_FILM_THICKNESS];
+                    thickness = Interval{d, d};
+                }
+            }
+            fresnel = measured || m.contains("thickness") ? text : resolve_fresnel(text, wavelength).canonical;
         } catch (const Error& e) {
             throw Error(ctx + ": " + e.what());
         }
@@ -350,6 +372,7 @@ SceneMaterial parse_material(const json& m, size_t index, const std::string& fil
     lobe.wavelength_nm = wavelength;
     lobe.alpha = *alpha;
     lobe.eta = eta;
+    lobe.thickness = thickness;
     if (eta) lobe.role = transmission ? "transmission" : "dielectric";
     else lobe.role = is_conductor_fresnel(fresnel) ? "metal" : "specular";
     lobe.kinds = default_lobe_kinds(lobe);
@@ -365,8 +388,8 @@ void parse_settings(const json& s, const std::string& file, SceneSettings& out) 
         const std::string& k = item.key();
         const json& v = item.value();
         if (!kSettingsKeys.count(k))
-            throw Error(w.at(k) + " is not a setting (known: samples, mu_texels, alpha_texels, eta_step, mu_map, "
-                                  "alpha_map, precision, format, half, sheen_model)");
+            throw Error(w.at(k) + " is not a setting (known: samples, mu_texels, alpha_texels, eta_step, thickness_step, "
+                                  "mu_map, alpha_map, precision, format, half, sheen_model)");
         auto integer = [&] {
             const double x = number_at(v, w, k);
             if (x != std::floor(x) || x < 1 || x > 1e12) throw Error(w.at(k) + " must be a positive whole number");
@@ -376,6 +399,7 @@ void parse_settings(const json& s, const std::string& file, SceneSettings& out) 
         else if (k == "mu_texels") out.mu_texels = int(std::min(integer(), 1e6));
         else if (k == "alpha_texels") out.alpha_texels = int(std::min(integer(), 1e6));
         else if (k == "eta_step") out.eta_step = number_at(v, w, k);
+        else if (k == "thickness_step") out.thickness_step = number_at(v, w, k);
         else if (k == "mu_map") out.mu_map = string_at(v, w, k);
         else if (k == "alpha_map") out.alpha_map = string_at(v, w, k);
         else if (k == "sheen_model") out.sheen_model = string_at(v, w, k);
@@ -403,6 +427,7 @@ void check_settings(const SceneSettings& s) {
     if (s.mu_texels < 1 || s.mu_texels > 4096) throw Error("mu_texels must lie in 1..4096");
     if (s.alpha_texels < 1 || s.alpha_texels > 4096) throw Error("alpha_texels must lie in 1..4096");
     if (!(s.eta_step > 0.0 && s.eta_step <= 10.0)) throw Error("eta_step must lie in (0, 10]");
+    if (!(s.thickness_step > 0.0 && s.thickness_step <= 100000.0)) throw Error("thickness_step must lie in (0, 100000] (nm)");
     if (s.mu_map != "linear" && s.mu_map != "sqrt") throw Error("mu_map must be \"linear\" or \"sqrt\"");
     if (s.sheen_model != "charlie" && s.sheen_model != "ltc") throw Error("sheen_model must be \"charlie\" or \"ltc\"");
     if (s.alpha_map != "alpha" && s.alpha_map != "roughness")

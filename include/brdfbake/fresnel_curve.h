@@ -21,14 +21,15 @@ FresnelCurves fresnel_on_device(Engine& engine, const FresnelConfig& fresnel, Pr
                                 const std::vector<double>& cosines);
 
 /// The colour of a Fresnel term's reflectance at each cos(theta): F over the visible spectrum
-/// (380 to 780 nm at 1 nm, one kernel launch per wavelength, the spec resolved at each) weighed
+/// (380 to 780 nm at 1 nm, the spec resolved at each, one kernel launch for them all) weighed
 /// by the CIE 1931 2-degree observer under D65 into linear sRGB (white = (1, 1, 1); see
 /// models/spectrum.h). `error` is |sum at 1 nm - sum at 2 nm| per channel: the CIE defines
 /// colorimetry by the 1 nm sum, and the 2 nm one shows how far the spectrum's sampling matters.
 /// `colour_space` "acescg" gives ACEScg instead (models/spectrum.h).
 struct FresnelColour {
     std::vector<std::array<double, 3>> rgb, error;  // per cosine
-    int wavelengths = 0;                              // kernel launches
+    int wavelengths = 0;                              // wavelengths summed
+    int launches = 0;                                 // kernel launches (one per kind of term: 1)
 };
 FresnelColour fresnel_rgb_on_device(Engine& engine, const std::string& fresnel_spec, Precision precision,
                                     const std::vector<double>& cosines, const std::string& colour_space = "srgb");

@@ -177,3 +177,136 @@ def test_f82_fit_of_metals_matches_numpy(metal):
         err = np.max(np.abs(f82_tint(mus, f0, tint) - rgb[:, c]))
         assert abs(r["f0"][c] - f0) < 2e-3 and abs(r["tint"][c] - tint) < 3e-3, (metal, c, r, f0, tint)
         assert abs(r["max_error"][c] - err) < 3e-3, (metal, c, r["max_error"][c], err)
+
+
+# ------------------------------------------------------------ pictures: fresnel --rgb --swatch
+
+def read_png_rgb(path):
+    """An 8-bit RGB PNG's pixels (rows, columns, 3) by zlib and the five PNG filters (PNG spec,
+    ISO/IEC 15948 sec. 9), without an imaging library."""
+    import struct
+    import zlib
+    data = open(path, "rb").read()
+    assert data[:8] == b"\x89PNG\r\n\x1a\n"
+    pos, idat, width = 8, b"", 0
+    while pos < len(data):
+        length, kind = struct.unpack(">I4s", data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + length]
+        if kind == b"IHDR":
+            width, height, depth, colour = struct.unpack(">IIBB", body[:10])
+            assert depth == 8 and colour == 2, (depth, colour)
+        elif kind == b"IDAT":
+            idat += body
+        pos += 12 + length
+    raw = zlib.decompress(idat)
+    stride = 3 * width
+    out = np.zeros((height, stride), dtype=np.int64)
+    prev = np.zeros(stride, dtype=np.int64)
+    for y in range(height):
+        f = raw[y * (stride + 1)]
+        line = np.frombuffer(raw, dtype=np.uint8, count=stride, offset=y * (stride + 1) + 1).astype(np.int64)
+        cur = np.zeros(stride, dtype=np.int64)
+        for x in range(stride):
+            a = cur[x - 3] if x >= 3 else 0
+            b = prev[x]
+            c = prev[x - 3] if x >= 3 else 0
+            if f == 0:
+                p = 0
+            elif f == 1:
+                p = a
+            elif f == 2:
+                p = b
+            elif f == 3:
+                p = (a + b) // 2
+            else:
+                pa, pb, pc = abs(b - c), abs(a - c), abs(a + b - 2 * c)
+                p = a if pa <= pb and pa <= pc else (b if pb <= pc else c)
+            cur[x] = (line[x] + p) & 255
+        out[y] = cur
+        prev = cur
+    return out.reshape(height, width, 3)
+
+
+def srgb_8bit(linear):
+    """IEC 61966-2-1:1999 sec. 5.2 encoding, clipped to [0, 1], as 8-bit levels."""
+    v = np.clip(linear, 0.0, 1.0)
+    e = np.where(v <= 0.0031308, 12.92 * v, 1.055 * v ** (1 / 2.4) - 0.055)
+    return np.rint(255 * e).astype(int)
+
+
+def has_block(pixels, colour, size):
+    """Whether some size x size block of pixels lies within one level of `colour` in every channel."""
+    ok = np.all(np.abs(pixels - np.array(colour)) <= 1, axis=2).astype(np.int64)
+    s = np.pad(ok.cumsum(0).cumsum(1), ((1, 0), (1, 0)))
+    box = s[size:, size:] - s[:-size, size:] - s[size:, :-size] + s[:-size, :-size]
+    return bool((box == size * size).any())
+
+
+def test_metal_swatches_hold_the_srgb_encoded_colour(tmp_path):
+    """Each swatch's pixels are the numpy colour (CIE tables, n, k of data/nk, exact Fresnel)
+    encoded as sRGB, within one 8-bit level (the standard's 4-decimal matrix, and rounding)."""
+    path = str(tmp_path / "metals.png")
+    thetas = [0, 60, 85]
+    out = subprocess.run([EXE, "fresnel", "--rgb", "--fresnel", "metal:Au", "--fresnel", "metal:Cu", "--theta",
+                          ",".join(str(t) for t in thetas), "--precision", "double", "--swatch", path],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    pixels = read_png_rgb(path)
+    nm, w = colour_weights()
+    for metal, name in (("Au", "Au-Johnson.yml"), ("Cu", "Cu-Johnson.yml")):
+        nk = read_nk(name)
+        n = np.interp(nm * 1e-3, nk[:, 0], nk[:, 1]) + 1j * np.interp(nm * 1e-3, nk[:, 0], nk[:, 2])
+        for theta in thetas:
+            colour = srgb_8bit(IEC_SRGB @ (w @ fresnel_exact(np.cos(np.radians(theta)), n)))
+            assert has_block(pixels, colour, 40), (metal, theta, colour)
+    # A colour no swatch has is found nowhere: the check can fail.
+    assert not has_block(pixels, (40, 200, 40), 40)
+
+
+def airy_film(cos_i, lam_nm, d_nm, n1, n2):
+    """Reflectance of one film (index n1, thickness d) on a substrate n2 from air: the Airy sum
+    r = (r01 + r12 e^{2i delta}) / (1 + r01 r12 e^{2i delta}), delta = 2 pi n1 d cos_1 / lambda
+    (Born & Wolf 1.6.4), per polarisation, averaged."""
+    sin2 = 1.0 - cos_i ** 2
+    c1 = np.sqrt(1.0 - sin2 / n1 ** 2 + 0j)
+    c2 = np.sqrt(1.0 - sin2 / n2 ** 2 + 0j)
+    delta = 2 * np.pi * n1 * d_nm * c1 / lam_nm
+    e = np.exp(2j * delta)
+    total = 0.0
+    for pol in ("s", "p"):
+        if pol == "s":
+            r01 = (cos_i - n1 * c1) / (cos_i + n1 * c1)
+            r12 = (n1 * c1 - n2 * c2) / (n1 * c1 + n2 * c2)
+        else:
+            r01 = (n1 * cos_i - c1) / (n1 * cos_i + c1)
+            r12 = (n2 * c1 - n1 * c2) / (n2 * c1 + n1 * c2)
+        total = total + 0.5 * abs((r01 + r12 * e) / (1 + r01 * r12 * e)) ** 2
+    return total
+
+
+def test_iridescence_map_holds_the_film_colour(tmp_path):
+    """The map's cell at theta and thickness d is the numpy Airy colour encoded as sRGB."""
+    path = str(tmp_path / "film.png")
+    out = subprocess.run([EXE, "fresnel", "--rgb", "--fresnel", "thin-film:eta=1.3,base_eta=1.5", "--thickness-range",
+                          "0,1000", "--precision", "double", "--swatch", path, "--format", "json"],
+                         capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    info = json.loads(out.stdout)
+    assert info["thickness_nm"] == [0, 1000, 121]
+    pixels = read_png_rgb(path)
+    nm, w = colour_weights()
+    for theta, row in ((30, 60), (0, 36), (60, 90)):
+        d = 1000.0 * row / 120
+        colour = srgb_8bit(IEC_SRGB @ (w @ airy_film(np.cos(np.radians(theta)), nm, d, 1.3, 1.5)))
+        assert has_block(pixels, colour, 3), (theta, d, colour)
+
+
+def test_swatch_refusals(tmp_path):
+    for args, word in ((["--fresnel", "metal:Au", "--swatch", str(tmp_path / "a.png")], "--rgb"),
+                       (["--rgb", "--fresnel", "metal:Au", "--swatch", str(tmp_path / "a.txt")], "--swatch"),
+                       (["--rgb", "--fresnel", "metal:Au", "--thickness-range", "0,100", "--swatch",
+                         str(tmp_path / "a.png")], "thin-film"),
+                       (["--rgb", "--fresnel", "metal:Au", "--fresnel", "metal:Cu"], "--swatch")):
+        out = subprocess.run([EXE, "fresnel"] + args, capture_output=True, text=True)
+        assert out.returncode == 2 and out.stderr.startswith("brdfbake: error:") and word in out.stderr, (args, out.stderr)
+        assert not os.path.exists(str(tmp_path / "a.png"))
