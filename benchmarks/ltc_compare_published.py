@@ -27,7 +27,6 @@ second-order rule); then the texels where ours is worse by more than 3 noise, th
 where the worse ones lie (by row and by alpha band). Time: CPU seconds of this process.
 """
 import argparse
-import math
 import os
 import sys
 import time
