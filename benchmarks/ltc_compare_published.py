@@ -99,7 +99,7 @@ def main():
     better = z < -args.sigmas
     print("t a mu alpha d_ours err d_pub err diff/noise")
     for i, (t, a, m, al, _, _) in enumerate(texels):
-        print("%d %d %.6f %.6f %.5f %.1e %.5f %.1e %+.1f%s" % (t, a, m, al, dist[0, i], err[0, i], dist[1, i], err[1, i],
+        print("%d %d %.6f %.6f %.5g %.1e %.5g %.1e %+.1f%s" % (t, a, m, al, dist[0, i], err[0, i], dist[1, i], err[1, i],
                                                             z[i], " worse" if worse[i] else ""))
     ratio = dist[0] / np.maximum(dist[1], 1e-12)
     print("# %d texels (rows %s; a = 0 left out)" % (len(texels), ",".join(str(t) for t in sorted({x[0] for x in texels}))))
