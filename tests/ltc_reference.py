@@ -584,6 +584,17 @@ def self_checks(verbose=True):
     m = rot @ np.diag([a, a, 1.0])
     d, err, _ = l1_distance_converged(0.8, a, m, 128)
     check("L1 converged at alpha 1e-4", err < 1e-3 and 0 <= d < 1.0, "%.5f +- %.1e" % (d, err))
+    # 7. The batched quadratures (the 64 x 64 comparison) are the per-texel ones, texel by texel.
+    mus, alphas = np.array([0.9, 0.35, 0.05]), np.array([0.3, 0.05, 0.6])
+    mats = np.array([[random_ltc(rng) for _ in mus] for _ in range(2)])
+    e_b = lobe_albedo_batch(mus, alphas, 64)
+    d_b = l1_distance_batch(mus, alphas, mats, 32, e_b)
+    for i in range(len(mus)):
+        e_s = lobe_terms(mus[i], alphas[i], 64)[0]
+        d_s = [l1_distance(mus[i], alphas[i], mats[k, i], 32, e_s)[0] for k in range(2)]
+        check("batched = per-texel (texel #%d)" % i,
+              abs(e_b[i] - e_s) < 1e-12 and max(abs(d_b[k, i] - d_s[k]) for k in range(2)) < 1e-12,
+              "E %.12f vs %.12f, L1 %.9f vs %.9f" % (e_b[i], e_s, d_b[0, i], d_s[0]))
     return failures
 
 
