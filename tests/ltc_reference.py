@@ -459,7 +459,7 @@ def l1_distance_converged_batch(mu, alpha, mats, n=128, tol=1e-3, n_max=1024, e_
     distance moves by at most twice p's relative change); texels whose quadrature error exceeds
     tol are redone at doubled n up to n_max, as the scalar version does. E on the graded e_n x e_n
     rule: at e_n = 256 it is within 1.5e-5 of e_n = 1024 (lobe_terms' default) for alpha 1e-3..1,
-    at 1/30 of the cost, which was 85% of the per-texel time."""
+    on 256^2 + 128^2 points, a thirteenth of the 1024^2 that were most of the per-texel time."""
     mu, alpha = np.asarray(mu, float), np.asarray(alpha, float)
     mats = np.asarray(mats, float)
     b = len(mu)
