@@ -10,7 +10,8 @@ both matrices at the same texel with the same points; never the fitter's own `di
   ltc_compare_published.py BRDFBAKE.csv PUBLISHED [--n N] [--rows T1,T2,..] [--every K] [-o OUT.txt]
 
 BRDFBAKE.csv: `brdfbake lut ltc --preset three -o three.csv` (three.js's grid: M from ltc_1 as the
-shader unpacks it) or `brdfbake lut ltc --model ggx ... -o FILE.csv` on the published grid.
+shader unpacks it) or `brdfbake lut ltc --model ggx ... -o FILE.csv` on the published grid; a
+`.npy` table (with its `.npy.json`) is read as well.
 PUBLISHED: the user's own copy of ltc_code's fit/results/ltc.inc (tabM, linear theta) or of
 three.js's examples/jsm/lights/RectAreaLightTexturesLib.js as downloaded (LTC_MAT_1, the later
 sqrt(1 - cos theta) fit), or a hand subset (`t a R G B A` lines under a comment naming LTC_MAT_1;
@@ -88,7 +89,8 @@ def main():
     rows = {int(r) for r in args.rows.split(",")} if args.rows else None
     texels = common_texels(args.brdfbake_csv, args.published, rows, args.every)
     if not texels:
-        sys.exit("ltc_compare_published: error: no brdfbake texel is a node of the published table")
+        sys.exit("ltc_compare_published: error: no brdfbake texel is a node of the published table "
+                 "(for three.js's: brdfbake lut ltc --preset three -o three.csv)")
     mu = np.array([x[2] for x in texels])
     alpha = np.array([x[3] for x in texels])
     mats = np.array([[x[4] for x in texels], [x[5] for x in texels]])

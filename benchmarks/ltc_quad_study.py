@@ -54,7 +54,7 @@ def texel_pairs(published, brdfbake_csv, min_alpha, rows=None, every=1):
         if pub is None or kind != "node" or (rows and round(t) not in rows) or round(a) % every:
             continue
         m = ref.matrix_from_channels(row["m00"], row["m02"], row["m11"], row["m20"], row["m22"])
-        out.append((row["mu"], row["alpha"], m, row.get("magnitude", row.get("ltc_2.R")), pub, (round(t), round(a))))
+        out.append((row["mu"], row["alpha"], m, row["magnitude"], pub, (round(t), round(a))))
     return out
 
 
