@@ -68,26 +68,56 @@ def read_published(path):
     return table, 64, "sqrt" if three else "theta"
 
 
-def read_brdfbake_csv(path):
-    """rows of a brdfbake ltc CSV as dicts with mu and alpha (from sqrt_mu, roughness if so named)."""
-    header, rows = None, []
-    for line in open(path):
-        if line.startswith("#") or not line.strip():
-            continue
-        cells = line.strip().split(",")
-        if header is None:
-            header = cells
-            continue
-        row = dict(zip(header, (float(c) for c in cells)))
-        if "mu" not in row and "sqrt_mu" in row:
-            row["mu"] = row["sqrt_mu"] ** 2
-        if "alpha" not in row and "roughness" in row:
-            row["alpha"] = row["roughness"] ** 2
-        if "ltc_1.R" in row:  # `--preset three`: M from its ltc_1 as three.js's shader reads it
-            m = matrix_from_ltc_1(row["ltc_1.R"], row["ltc_1.G"], row["ltc_1.B"], row["ltc_1.A"])
-            row.update(m00=m[0, 0], m02=m[0, 2], m11=m[1, 1], m20=m[2, 0], m22=m[2, 2])
+def _with_mu_alpha_m(row):
+    """a brdfbake ltc row completed with mu and alpha (from sqrt_mu, roughness if so named) and,
+    for `--preset three`, M from its ltc_1 as three.js's shader reads it."""
+    if "mu" not in row and "sqrt_mu" in row:
+        row["mu"] = row["sqrt_mu"] ** 2
+    if "alpha" not in row and "roughness" in row:
+        row["alpha"] = row["roughness"] ** 2
+    if "ltc_1.R" in row:
+        m = matrix_from_ltc_1(row["ltc_1.R"], row["ltc_1.G"], row["ltc_1.B"], row["ltc_1.A"])
+        row.update(m00=m[0, 0], m02=m[0, 2], m11=m[1, 1], m20=m[2, 0], m22=m[2, 2])
+    if "magnitude" not in row and "ltc_2.R" in row:
+        row["magnitude"] = row["ltc_2.R"]
+    return row
+
+
+def _rows_of_npy(path):
+    """rows of a brdfbake `.npy` table: the array [axis 0, axis 1, ..., channel] described by
+    PATH.json (axes' `parameter` and `parameter_values`, `channels`)."""
+    import json
+    desc = json.load(open(path + ".json"))
+    data = np.load(path)
+    names = [axis["parameter"] for axis in desc["axes"]]
+    values = [np.asarray(axis["parameter_values"], float) for axis in desc["axes"]]
+    rows = []
+    for index in np.ndindex(*data.shape[:-1]):
+        row = {name: float(v[i]) for name, v, i in zip(names, values, index)}
+        row.update(zip(desc["channels"], (float(x) for x in data[index])))
         rows.append(row)
-    missing = {"mu", "alpha", "m00", "m02", "m11", "m20", "m22"} - set(rows[0] if rows else header or []) - {"mu", "alpha"}
+    return rows
+
+
+def read_brdfbake_csv(path):
+    """rows of a brdfbake ltc table (`.csv`, or `.npy` with its `.npy.json`) as dicts with mu, alpha
+    and M's five entries (EXR and .h tables: write the table again with -o FILE.csv or FILE.npy)."""
+    if path.endswith(".npy"):
+        rows = [_with_mu_alpha_m(r) for r in _rows_of_npy(path)]
+        header = list(rows[0]) if rows else []
+    elif path.endswith(".csv"):
+        header, rows = None, []
+        for line in open(path):
+            if line.startswith("#") or not line.strip():
+                continue
+            cells = line.strip().split(",")
+            if header is None:
+                header = cells
+                continue
+            rows.append(_with_mu_alpha_m(dict(zip(header, (float(c) for c in cells)))))
+    else:
+        sys.exit("ltc_compare: error: %s is not a .csv or .npy table (write it with -o FILE.csv)" % path)
+    missing = {"mu", "alpha", "m00", "m02", "m11", "m20", "m22"} - set(rows[0] if rows else header or [])
     if missing:
         sys.exit("ltc_compare: error: %s lacks the columns %s" % (path, ", ".join(sorted(missing))))
     return rows
