@@ -399,7 +399,7 @@ TEST_CASE("lut command: bad input exits 2 and writes nothing", "[lut][cli]") {
     }
     const auto r = testing::run_cli("lut albedo --model ggx -o " + tmp_path("table.txt"));
     CHECK(r.status == 2);
-    CHECK(r.err.find(".exr, .csv, .h, .png, .npy") != std::string::npos);
+    CHECK(r.err.find(".exr, .csv, .h, .hpp, .png, .npy") != std::string::npos);
 }
 
 // ------------------------------------------------------------------------------------------------
