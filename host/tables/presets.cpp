@@ -157,7 +157,7 @@ const std::vector<LutPreset>& lut_presets() {
                     "1024 x 1024, x = NdotV, y = roughness (row 0 at 0), texel centres, R = A, G = B, B = 0, 16-bit PNG; "
                     "sheen-viewer: 128 x 128, x = NdotV, y = sheenRoughness (row 0 at 0), texel centres, R = G = B = "
                     "min(E, 1), 16-bit PNG",
-                    {{K::Dfg, engine_layout(1024, 1024), ""}, {K::SheenViewer, gltf_sheen_layout(), ""}}}),
+                    {{K::Dfg, engine_layout(1024, 1024), ""}, {K::SheenViewer, gltf_sheen_layout(), ""}}, {}}),
         // Filament (google/filament, libs/ibl/src/CubemapIBL.cpp, CubemapIBL::DFG with multiscatter):
         // R = sum of V Fc = B, G = sum of V = E = A + B, read as mix(dfg.xxx, dfg.yyy, f0)
         // (shaders/src/surface_light_indirect.fs); x = NoV at texel centres. cmgen's image has its
@@ -170,7 +170,7 @@ const std::vector<LutPreset>& lut_presets() {
         preset_row({"filament", "Filament", "dfg.inc (cmgen --ibl-dfg-multiscatter)", "exr", true,
                     "128 x 128, x = NoV, y = perceptual roughness from 0 (row 0) up as in dfg.inc, texel centres, "
                     "R = B, G = E = A + B, half-float EXR",
-                    {{K::DfgMs, engine_layout(128, 128), ""}}}),
+                    {{K::DfgMs, engine_layout(128, 128), ""}}, {}}),
         // three.js (mrdoob/three.js, src/renderers/shaders/DFGLUTData.js): a 16 x 16 RG16F DataTexture,
         // (scale, bias) = (A, B), sampled at vec2(roughness, dotNV): x = roughness, y = NoV, texel
         // centres, row 0 at NoV near 0.
@@ -181,7 +181,7 @@ const std::vector<LutPreset>& lut_presets() {
                     "16 x 16, x = roughness, y = NoV, texel centres, R = A (scale), G = B (bias), half-float EXR "
                     "(RG16F); ltc: 64 x 64, x = roughness a/63, y = sqrt(1 - NoV) t/63, channels ltc_1.RGBA = "
                     "M^-1 / M^-1_11 as (00, 20, 02, 22) and ltc_2.RGBA = (magnitude, fresnel, 0, 0)",
-                    {{K::Dfg, engine_layout(16, 16, roughness_mu), ""}, {K::Ltc, three_ltc_layout(), ""}}}),
+                    {{K::Dfg, engine_layout(16, 16, roughness_mu), ""}, {K::Ltc, three_ltc_layout(), ""}}, {}}),
         // Blender Cycles: see cycles_layout and cycles_glass_layout. table_ggx_gen_schlick_s and
         // table_ggx_gen_schlick_ior_s[(z * 16 + y) * 16 + x]: x and y as table_ggx_E's, z = i/15 on
         // the kind's own z axis (cycles_z: Cycles' exponent or eta parameterisation, clamped to
@@ -208,13 +208,13 @@ const std::vector<LutPreset>& lut_presets() {
                      {K::Dielectric, cycles_glass_layout(16, cycles_3d, 1e-6), ""},
                      // x = roughness, z = cycles_z: already Cycles' order
                      {K::DielectricEavg, cycles_glass_layout(1, {}, 4e-6), ""},
-                     {K::SheenLtc, cycles_sheen_layout(), ""}}}),
+                     {K::SheenLtc, cycles_sheen_layout(), ""}}, {}}),
         // Unreal Engine (Engine/Shaders/Private/BRDF.ush, EnvBRDF): the split-sum texture
         // PreIntegratedGF is read at float2(NoV, Roughness), .x the scale A and .y the bias B of
         // SpecularColor * A + saturate(50 * SpecularColor.g) * B; 128 x 32 texels, centres.
         preset_row({"unreal", "Unreal Engine", "PreIntegratedGF (EnvBRDF)", "png", false,
                     "128 x 32, x = NoV, y = roughness, texel centres, R = A, G = B, 16-bit PNG",
-                    {{K::Dfg, engine_layout(128, 32), ""}}}),
+                    {{K::Dfg, engine_layout(128, 32), ""}}, {}}),
         // Blender EEVEE: see eevee_ltc_layout.
         preset_row({"eevee", "Blender EEVEE",
                     "ltc_mat_ggx and ltc_mag_ggx (source/blender/draw/engines/eevee/eevee_lut.cc, declared in "
@@ -225,7 +225,7 @@ const std::vector<LutPreset>& lut_presets() {
                     "(magnitude, fresnel); C++ source, float literals: .cc for Blender 4.2 and later "
                     "(namespace blender::eevee::lut, float[64][64][4] and [64][64][2]), .c for legacy EEVEE, "
                     "Blender 2.80 to 4.1 (float[64 * 64 * 4] and [64 * 64 * 2])",
-                    {{K::Ltc, eevee_ltc_layout(), ""}}}),
+                    {{K::Ltc, eevee_ltc_layout(), ""}}, {}}),
     };
     return presets;
 }
