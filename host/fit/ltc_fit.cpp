@@ -300,6 +300,42 @@ void polish_from_neighbours(std::vector<Minimum>& minima, const NelderMeadOption
     }
 }
 
+/// Cells at normal view (mu = 1): for an isotropic model the lobe is symmetric about the normal,
+/// and so is its best LTC; the fit is taken in that family, M = diag(a, a, 1) (theta = 0, b = 0,
+/// a = c), a one-parameter Nelder-Mead on ln a from the mean of the free fit's ln a and ln c, as
+/// fitLTC fits its first (isotropic) texel [HDHN16, ltc_code fitLTC.cpp]. The free fit's four
+/// parameters wander along directions the fixed points barely see (its b and theta off zero),
+/// which the independent distance sees (benchmarks/results/ltc-compare-amd-epyc-2c.md, ltc5).
+/// `minima` hold absolute-relative parameters x = (theta - theta_avg, ln a, b, ln c).
+void fit_normal_view(const std::vector<LtcCell>& cells, const std::vector<CellSummary>& sums,
+                     const NelderMeadOptions& nm, const BatchObjective& objective,
+                     std::vector<std::vector<double>>& xs, std::vector<int>& evaluations) {
+    std::vector<size_t> normal;
+    std::vector<std::vector<double>> starts;
+    for (size_t c = 0; c < cells.size(); ++c)
+        if (cells[c].mu >= 1.0 - 1e-12) {
+            normal.push_back(c);
+            starts.push_back({0.5 * (xs[c][1] + xs[c][3])});
+        }
+    if (normal.empty()) return;
+    auto symmetric = [&](size_t c, double ln_a) { return std::vector<double>{-sums[c].average_theta, ln_a, 0.0, ln_a}; };
+    NelderMeadOptions one = nm;
+    one.steps = {0.05};
+    const std::vector<Minimum> m = minimize_batch(starts, one, [&](const std::vector<size_t>& sub, const std::vector<std::vector<double>>& ys) {
+        std::vector<size_t> cells_of;
+        std::vector<std::vector<double>> x;
+        for (size_t i = 0; i < sub.size(); ++i) {
+            cells_of.push_back(normal[sub[i]]);
+            x.push_back(symmetric(normal[sub[i]], ys[i][0]));
+        }
+        return objective(cells_of, x);
+    });
+    for (size_t k = 0; k < normal.size(); ++k) {
+        xs[normal[k]] = symmetric(normal[k], m[k].x[0]);
+        evaluations[normal[k]] += m[k].evaluations;
+    }
+}
+
 /// The minimiser's coordinates of a cell: y = ((theta - theta_avg) / w, ln a, b / w, ln c) with w
 /// the lobe's width (CellSummary::width_x, at most 1), so that the simplex's steps and size
 /// tolerance are relative to the lobe (a lobe 2e-3 wide is lost in a step of 0.1 rad); and its
@@ -369,14 +405,18 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
         x[0] += fit_sums[nb].average_theta - fit_sums[c].average_theta;
         return scale[c].scaled(x);
     });
+    LobePoints fine_pts;
+    cl::Buffer fine_inv_e;
+    BatchObjective refined_objective = objective;  // the last stage's points: the normal-view fit's
     if (o.refine_side > 0) {
         // The coarse points' minimum is as far from the true one as their estimate's error lets
         // it be (a lobe-sampled midpoint rule of fit_side^2 points): polish it on refine_side^2
         // points with a smaller simplex and budget.
-        const LobePoints fine_pts = lobe_points(engine, model, o.precision, cells, o.refine_side, o.fit_grade);
+        fine_pts = lobe_points(engine, model, o.precision, cells, o.refine_side, o.fit_grade);
         std::vector<CellSummary> fine_sums;
-        const cl::Buffer fine_inv_e = inverse_albedos(fine_pts, fine_sums);
+        fine_inv_e = inverse_albedos(fine_pts, fine_sums);
         const BatchObjective fine = objective_on(fine_pts, fine_inv_e);
+        refined_objective = fine;
         std::vector<std::vector<double>> from;
         for (size_t c = 0; c < cells.size(); ++c) from.push_back(scale[c].relative(minima[c].x));
         const std::vector<double> f1 = fine(all, from);
@@ -394,13 +434,19 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
             if (refined[c].value < 1.0) minima[c].x = refined[c].x;
         }
     }
+    std::vector<std::vector<double>> xs;
+    std::vector<int> evaluations;
+    for (size_t c = 0; c < cells.size(); ++c) {
+        xs.push_back(scale[c].relative(minima[c].x));
+        evaluations.push_back(minima[c].evaluations);
+    }
+    fit_normal_view(cells, fit_sums, nm, refined_objective, xs, evaluations);
     std::vector<LtcFit> fits(cells.size());
     for (size_t c = 0; c < cells.size(); ++c) {
-        const std::vector<double> x = scale[c].relative(minima[c].x);
-        fits[c].x = as_q(x);
-        fits[c].q = absolute(c, x);
+        fits[c].x = as_q(xs[c]);
+        fits[c].q = absolute(c, xs[c]);
         fits[c].m = o.as_written ? o.as_written(ltc_matrix(fits[c].q)) : as_float32(ltc_matrix(fits[c].q));
-        fits[c].evaluations = minima[c].evaluations;
+        fits[c].evaluations = evaluations[c];
         fits[c].albedo = cells[c].albedo > 0 ? cells[c].albedo : fit_sums[c].albedo;
     }
     report_distances(engine, model, o, cells, fits);
