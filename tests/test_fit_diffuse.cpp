@@ -88,6 +88,21 @@ TEST_CASE("diffuse: the albedo of ggx with diffuse=kd is GGX's albedo + kd", "[f
     }
 }
 
+TEST_CASE("diffuse: the registry's diffuse_key is exactly the models whose spec takes diffuse=KD", "[fit][diffuse]") {
+    // compute_albedo adds kd in closed form for the models the registry marks; a model whose
+    // parser took diffuse= without the mark would integrate without its Lambert part.
+    for (const ModelTraits& t : model_registry()) {
+        bool accepted = true;
+        try {
+            resolve_model(std::string(t.example) + ",diffuse=0.1");
+        } catch (const Error&) {
+            accepted = false;
+        }
+        INFO(t.name);
+        CHECK(accepted == t.diffuse_key);
+    }
+}
+
 TEST_CASE("fit --diffuse: kd and alpha of a GGX + Lambert file are recovered, the spec runs as printed",
           "[fit][diffuse][cli]") {
     const std::string path = tmp("ggx-lambert.binary");

@@ -277,7 +277,7 @@ double azimuth_from_degrees(double degrees) {
 namespace {
 std::vector<double> take_diffuse(AlbedoRequest& req) {
     std::vector<double> kd(req.cells.size(), 0.0);
-    if (req.model != BB_MODEL_GGX && req.model != BB_MODEL_BECKMANN) return kd;
+    if (!model_traits(req.model).diffuse_key) return kd;
     for (size_t c = 0; c < req.cells.size(); ++c) {
         ParamBlock& p = req.cells[c].params;
         if (p[BB_SMITH_SCATTERING] != BB_SCATTERING_SINGLE) continue;

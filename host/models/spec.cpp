@@ -414,7 +414,7 @@ struct ModelEntry {
                  ((TRAITS) & BB_TRAIT_SAMPLES_VECTOR) != 0, ((TRAITS) & BB_TRAIT_EVALS_VECTOR) != 0,               \
                  ((TRAITS) & BB_TRAIT_RECIPROCAL) != 0, AX, AY, EX, ((TRAITS) & BB_TRAIT_KINKED) != 0,             \
                  ((TRAITS) & BB_TRAIT_FURNACE) != 0, ((TRAITS) & BB_TRAIT_STOCHASTIC) != 0,                        \
-                 ((TRAITS) & BB_TRAIT_MEASURED) != 0,                                                               \
+                 ((TRAITS) & BB_TRAIT_MEASURED) != 0, ((TRAITS) & BB_TRAIT_DIFFUSE_KEY) != 0,                         \
                  roughness_refusal_of(BB_MODEL_##NAME), sample_cost_of(BB_MODEL_##NAME),                            \
                  roughness_axis_of(BB_MODEL_##NAME, AX)},                                                           \
      resolve_##name},

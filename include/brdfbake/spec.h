@@ -56,6 +56,7 @@ struct ModelTraits {
     bool energy_conserving_example;  // the example's albedo is at most 1
     bool stochastic;               // its value is an estimate: sampling methods only, never quadrature
     bool measured;                 // a measured table: tables are E(mu_o) and Eavg of it alone (no roughness)
+    bool diffuse_key;              // takes diffuse=KD (brdf/smith.h): compute_albedo adds kd in closed form
     /// Why these parameters have no roughness to sweep although the model has alpha slots
     /// (torrance-sparrow with d=blinn), or nullptr.
     const char* (*roughness_refusal)(const ParamBlock& params);

@@ -146,6 +146,10 @@
                                        * bb_quad_sampler_cone_u1); the sampler's cos(theta_i) must
                                        * rise with u1 and not depend on u2 */
 
+#define BB_TRAIT_DIFFUSE_KEY 0x800   /* its spec takes diffuse=KD, a Lambert base kd/pi beside the
+                                       * lobe (brdf/smith.h, bb_smith_diffuse): compute_albedo adds
+                                       * its albedo kd in closed form (host/integrate/albedo.cpp) */
+
 #define BB_MODEL_REGISTRY(X)                                                                                      \
     /* NAME                 name                 SPEC                   ARGS     QUAD        */                   \
     X(LAMBERT,              lambert,             "lambert",             PLAIN,   SAMPLER,                         \
@@ -153,10 +157,12 @@
           BB_TRAIT_FURNACE,                                                                                       \
       -1, -1, -1, "lambert:rho=1")                                                                                \
     X(GGX,                  ggx,                 "ggx",                 FRESNEL, HALFVECTOR,                      \
-      BB_TRAIT_SAMPLES_DISK | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                     \
+      BB_TRAIT_SAMPLES_DISK | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE |                    \
+          BB_TRAIT_DIFFUSE_KEY,                                                                                   \
       BB_GGX_ALPHA_X, BB_GGX_ALPHA_Y, -1, "ggx:alpha=0.3")                                                        \
     X(BECKMANN,             beckmann,            "beckmann",            FRESNEL, HALFVECTOR,                      \
-      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE,                   \
+      BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL | BB_TRAIT_FURNACE |                  \
+          BB_TRAIT_DIFFUSE_KEY,                                                                                   \
       BB_BECKMANN_ALPHA_X, BB_BECKMANN_ALPHA_Y, -1, "beckmann:alpha=0.3")                                         \
     X(OREN_NAYAR,           oren_nayar,          "oren-nayar",          PLAIN,   SAMPLER,                         \
       BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_SAMPLES_VECTOR | BB_TRAIT_EVALS_VECTOR | BB_TRAIT_RECIPROCAL |           \
