@@ -23,6 +23,7 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
+#include "cli/furnace_sphere.h"
 #include "integrate/random_walk.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"
@@ -104,6 +105,9 @@ struct CompensationOptions {
     std::string format = "table";
     std::string output;
     std::string plot;
+    std::string furnace;  // the furnace picture: spheres of single, each scheme and the walk per alpha
+    int furnace_nodes = 24;
+    int furnace_pixels = 120;
 };
 
 /// One (alpha, mu) row: the walk, the single-scattering terms and each scheme's albedo.
@@ -367,10 +371,49 @@ void plot_rows(const std::string& path, const CompensationOptions& o, const std:
     write_figure(path, fig);
 }
 
+/// `--furnace FILE`: per alpha a row of spheres under the white environment (radiance 1), each
+/// pixel E(n.v) with Schlick's f0 at every bounce: single scattering (E_F), each picked scheme's
+/// compensated albedo and the walk's (multiple scattering), side by side. E at o.furnace_nodes mu
+/// nodes (furnace_nodes), the walk with o.walks walks each; returns the walk's largest error.
+double draw_furnace(Engine& engine, const CompensationOptions& o, const std::vector<size_t>& picked,
+                    const std::vector<double>& alphas) {
+    CompensationOptions albedo_only = o;
+    albedo_only.lobe_directions = 0;
+    const std::vector<double> mus = furnace_nodes(o.furnace_nodes);
+    const std::vector<Row> rows = compute(engine, albedo_only, alphas, mus);
+    Figure fig = furnace_figure(o.furnace_pixels);
+    fig.columns = int(picked.size()) + 2;
+    double worst = 0.0;
+    for (size_t a = 0; a < alphas.size(); ++a) {
+        std::vector<std::vector<double>> e(picked.size() + 2);
+        for (size_t k = 0; k < mus.size(); ++k) {
+            const Row& r = rows[a * mus.size() + k];
+            e.front().push_back(r.in.e_f);
+            for (size_t s = 0; s < picked.size(); ++s) e[s + 1].push_back(r.scheme[picked[s]]);
+            e.back().push_back(r.walk.value);
+            worst = std::max(worst, r.walk.error);
+        }
+        const std::string alpha = "\\alpha = " + format_number(alphas[a]) + ": ";
+        fig.panels.push_back(furnace_sphere(alpha + "single", e.front(), o.furnace_pixels));
+        for (size_t s = 0; s < picked.size(); ++s)
+            fig.panels.push_back(furnace_sphere(alpha + schemes()[picked[s]].name, e[s + 1], o.furnace_pixels));
+        fig.panels.push_back(furnace_sphere(alpha + "walk", e.back(), o.furnace_pixels));
+    }
+    fig.caption = "white furnace of " + o.model + ", Schlick f_0 = " + format_number(o.f0) +
+                  " at every bounce: single scattering, each compensation scheme, the random walk (multiple "
+                  "scattering, Heitz et al. 2016)";
+    write_figure(o.furnace, fig);
+    return worst;
+}
+
 int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
     const Format format = parse_format(o.format);
     check_text_output(o.output);
     check_plot_output(o.plot, "--plot");
+    check_plot_output(o.furnace, "--furnace");
+    if (!o.furnace.empty() && o.furnace == o.plot) throw Error("--furnace and --plot name the same file");
+    if (o.furnace_nodes < 4 || o.furnace_nodes > 256) throw Error("--furnace-nodes must be 4 to 256");
+    if (o.furnace_pixels < 16 || o.furnace_pixels > 1024) throw Error("--furnace-pixels must be 16 to 1024");
     std::vector<size_t> picked;
     std::string names;
     for (size_t s = 0; s < schemes().size(); ++s) {
@@ -378,6 +421,11 @@ int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
         if (o.scheme == "all" || o.scheme == schemes()[s].name) picked.push_back(s);
     }
     if (picked.empty()) throw Error("--scheme: unknown scheme '" + o.scheme + "'; known: all, " + names);
+    if (o.model.find(':') != std::string::npos)
+        throw Error("--model '" + o.model + "': give the distribution's name, ggx or beckmann (isotropic, height-correlated)" +
+                    (o.model.find("eta=") != std::string::npos
+                         ? "; the rough dielectric walk (eta=) is not compared: the schemes compensate a conductor"
+                         : ""));
     // The random walk's resolver names what it does not take (a model without scattering=multiple).
     if (resolve_model_simulated(o.model + ":alpha=0.5,scattering=multiple").dielectric_walk)
         throw Error("--model: give the distribution's name (ggx or beckmann): the schemes compensate a conductor");
@@ -394,6 +442,11 @@ int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
     Engine engine(g.device, g.verbose);
     const std::vector<Row> rows = compute(engine, o, alphas, mus);
     if (!o.plot.empty()) plot_rows(o.plot, o, picked, rows);
+    if (!o.furnace.empty()) {
+        const double worst = draw_furnace(engine, o, picked, alphas);
+        std::fprintf(stderr, "brdfbake: wrote %s: %zu rows of %zu spheres (the walk's error at most %.1e)\n",
+                     o.furnace.c_str(), alphas.size(), picked.size() + 2, worst);
+    }
     emit(o.output, render(o, picked, rows, format));
     return kExitOk;
 }
@@ -418,6 +471,12 @@ void add_compensation_command(CLI::App& app, const GlobalOptions& global, Action
     add_format_option(cmd, o->format, {"table", "json", "csv"});
     cmd->add_option("-o,--output", o->output, "write to FILE instead of standard output");
     cmd->add_option("--plot", o->plot, "draw each scheme's difference from the walk against mu into FILE.png or .svg");
+    cmd->add_option("--furnace", o->furnace,
+                    "draw the furnace picture into FILE.png or .svg: per alpha, spheres of single scattering, each "
+                    "scheme and the walk under a white environment");
+    cmd->add_option("--furnace-nodes", o->furnace_nodes, "mu values of the furnace spheres' E (the walk: --walks each)")
+        ->capture_default_str();
+    cmd->add_option("--furnace-pixels", o->furnace_pixels, "furnace sphere diameter in pixels")->capture_default_str();
 }
 
 }  // namespace brdfbake

@@ -13,6 +13,7 @@
 #include <iostream>
 #include <limits>
 #include <memory>
+#include <optional>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -35,10 +36,11 @@ namespace brdfbake {
 namespace {
 
 struct FresnelOptions {
-    std::vector<std::string> fresnels;  // --fresnel, several only for --rgb --swatch
+    std::vector<std::string> fresnels;  // --fresnel, several only for --rgb
     std::string fresnel;                // the first
     std::string swatch;
     std::string thickness_range;
+    std::optional<double> thickness_step;  // nm between the iridescence map's rows (none: 121 rows)
     std::string theta = "0,10,20,30,40,50,60,70,75,80,85,89,89.9,90";
     double wavelength_nm = 0.0;
     std::string precision = "float";
@@ -408,34 +410,69 @@ AngleGrid angle_grid(const std::string& text) {
 
 Precision precision_of(const FresnelOptions& o) { return o.precision == "double" ? Precision::Double : Precision::Float; }
 
-/// `fresnel --rgb`: the reflectance's colour in linear sRGB per angle (fresnel_rgb_on_device).
+/// One spec's colours as `fresnel --rgb --format json` prints them.
+nlohmann::json rgb_json(const FresnelOptions& o, Precision precision, const std::vector<double>& thetas,
+                        const std::vector<double>& cosines, const FresnelColour& c, const Engine& engine) {
+    nlohmann::json j;
+    j["command"] = "fresnel";
+    j["fresnel"] = o.fresnel;
+    j["colour_space"] = colour_space_text(o.colour_space);
+    j["precision"] = precision_name(precision);
+    j["device"] = engine.device().name;
+    j["results"] = nlohmann::json::array();
+    for (size_t i = 0; i < thetas.size(); ++i)
+        j["results"].push_back({{"theta_deg", thetas[i]}, {"cos_theta", cosines[i]}, {"rgb", c.rgb[i]},
+                                {"rgb_error", c.error[i]}});
+    return j;
+}
+
+/// A CSV field as RFC 4180 writes it: quoted (its quotes doubled) when it holds a comma or a quote.
+std::string csv_field(const std::string& text) {
+    if (text.find_first_of(",\"\n") == std::string::npos) return text;
+    std::string q = "\"";
+    for (char ch : text) q += ch == '"' ? std::string("\"\"") : std::string(1, ch);
+    return q + "\"";
+}
+
+/// `fresnel --rgb --format csv`: a row per angle; with several specs (`labelled`) a first column
+/// `fresnel` names each row's spec, the rows of each spec one after the other.
+std::string rgb_csv(const std::vector<std::pair<std::string, FresnelColour>>& colours, const std::vector<double>& thetas,
+                    const std::vector<double>& cosines, bool labelled) {
+    std::ostringstream out;
+    char line[240];
+    out << (labelled ? "fresnel," : "") << "theta_deg,cos_theta,R,G,B,error_R,error_G,error_B\n";
+    for (const auto& [spec, c] : colours)
+        for (size_t i = 0; i < thetas.size(); ++i) {
+            std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.3g,%.3g,%.3g\n", thetas[i], cosines[i],
+                          c.rgb[i][0], c.rgb[i][1], c.rgb[i][2], c.error[i][0], c.error[i][1], c.error[i][2]);
+            out << (labelled ? csv_field(spec) + "," : "") << line;
+        }
+    return out.str();
+}
+
+/// `fresnel --rgb`: the reflectance's colour in linear sRGB per angle (fresnel_rgb_on_device), a
+/// table per spec; JSON: one spec's object, or an array of them (one per spec, in order); CSV:
+/// rgb_csv.
 std::string render_rgb(const FresnelOptions& o, Precision precision, const std::vector<double>& thetas,
-                       const std::vector<double>& cosines, const FresnelColour& c, const Engine& engine) {
+                       const std::vector<double>& cosines,
+                       const std::vector<std::pair<std::string, FresnelColour>>& colours, const Engine& engine) {
     const std::string space = colour_space_text(o.colour_space);
     std::ostringstream out;
     char line[240];
     const Format format = parse_format(o.format);
+    if (format == Format::Csv) return rgb_csv(colours, thetas, cosines, colours.size() > 1);
     if (format == Format::Json) {
-        nlohmann::json j;
-        j["command"] = "fresnel";
-        j["fresnel"] = o.fresnel;
-        j["colour_space"] = space;
-        j["precision"] = precision_name(precision);
-        j["device"] = engine.device().name;
-        j["results"] = nlohmann::json::array();
-        for (size_t i = 0; i < thetas.size(); ++i)
-            j["results"].push_back({{"theta_deg", thetas[i]}, {"cos_theta", cosines[i]}, {"rgb", c.rgb[i]},
-                                    {"rgb_error", c.error[i]}});
-        out << j.dump(2) << "\n";
-    } else if (format == Format::Csv) {
-        out << "theta_deg,cos_theta,R,G,B,error_R,error_G,error_B\n";
-        for (size_t i = 0; i < thetas.size(); ++i) {
-            std::snprintf(line, sizeof line, "%.17g,%.17g,%.17g,%.17g,%.17g,%.3g,%.3g,%.3g\n", thetas[i], cosines[i],
-                          c.rgb[i][0], c.rgb[i][1], c.rgb[i][2], c.error[i][0], c.error[i][1], c.error[i][2]);
-            out << line;
+        nlohmann::json all = nlohmann::json::array();
+        for (const auto& [spec, c] : colours) {
+            FresnelOptions one = o;
+            one.fresnel = spec;
+            all.push_back(rgb_json(one, precision, thetas, cosines, c, engine));
         }
-    } else {
-        out << "# Fresnel " << o.fresnel << " in " << space << "\n# kernel fresnel_curve, "
+        out << (colours.size() == 1 ? all[0] : all).dump(2) << "\n";
+        return out.str();
+    }
+    for (const auto& [spec, c] : colours) {
+        out << "# Fresnel " << spec << " in " << space << "\n# kernel fresnel_curve, "
             << precision_name(precision) << ", " << engine.device().name << ", " << c.wavelengths
             << " wavelengths; error: |1 nm sum - 2 nm sum|\n";
         out << " theta_deg      cos_theta            R            G            B      error\n";
@@ -478,18 +515,20 @@ PlotSpec rgb_panel(const FresnelOptions& o, const std::vector<std::array<double,
     return p;
 }
 
+/// The iridescence map's most rows (thicknesses), one kernel launch each.
+constexpr int kMaxMapRows = 1001;
+
 /// The checks of `--rgb --swatch` and `--thickness-range`; returns the thickness range (empty
 /// without one).
 std::vector<double> check_swatch(const FresnelOptions& o) {
+    if (o.thickness_step && o.thickness_range.empty())
+        throw Error("--thickness-step spaces the iridescence map's rows: add --thickness-range LO,HI");
     if (o.swatch.empty()) {
         if (!o.thickness_range.empty()) throw Error("--thickness-range is the iridescence map's y axis: add --swatch FILE.png");
-        if (o.fresnels.size() > 1) throw Error("several --fresnel draw one swatch picture: add --swatch FILE.png");
         return {};
     }
     if (!is_plot_path(o.swatch)) throw Error("--swatch '" + o.swatch + "': expected a file name ending in .png or .svg");
     if (o.colour_space != "srgb") throw Error("--swatch shows colours encoded as sRGB; drop --colour-space");
-    if (o.fresnels.size() > 1 && parse_format(o.format) != Format::Table)
-        throw Error("--format " + o.format + " gives one --fresnel's colours; several are for the table format");
     check_plot_output(o.swatch, "--swatch");
     if (o.thickness_range.empty()) return {};
     if (o.fresnels.size() != 1) throw Error("--thickness-range maps one thin film: give one --fresnel");
@@ -499,6 +538,14 @@ std::vector<double> check_swatch(const FresnelOptions& o) {
     if (o.fresnel.rfind("thin-film:", 0) != 0 ||
         resolve_fresnel(tables::thin_film_at(o.fresnel, range[0]), 550.0).kind != BB_FRESNEL_THIN_FILM)
         throw Error("--thickness-range maps a thin film's colour over its thickness; '" + o.fresnel + "' is not a thin-film: term");
+    if (!o.thickness_step) return range;
+    const auto nm = [](double v) { return short_numbers(std::to_string(v), 6); };
+    const double step = *o.thickness_step;
+    if (!(step > 0.0 && step <= range[1] - range[0]))
+        throw Error("--thickness-step " + nm(step) + ": must lie in (0, HI - LO] = (0, " + nm(range[1] - range[0]) + "] nm");
+    if (tables::thickness_slices(range[0], range[1], step) > kMaxMapRows)
+        throw Error("--thickness-step " + nm(step) + " gives more than " + std::to_string(kMaxMapRows) + " rows over " +
+                    nm(range[0]) + "-" + nm(range[1]) + " nm (one kernel launch each); give a larger step");
     return range;
 }
 
@@ -510,7 +557,7 @@ int run_iridescence_map(const FresnelOptions& o, const GlobalOptions& g, const s
     if (format == Format::Csv) throw Error("--thickness-range prints a line or JSON; drop --format csv");
     check_text_output(o.output);
     Engine engine(g.device, g.verbose);
-    const int rows = 121;
+    const int rows = o.thickness_step ? tables::thickness_slices(thickness[0], thickness[1], *o.thickness_step) : 121;
     const double error = write_iridescence_map(engine, o.swatch, o.fresnel, thickness[0], thickness[1], precision_of(o), rows);
     std::ostringstream out;
     if (format == Format::Json) {
@@ -559,13 +606,7 @@ int run_fresnel_rgb(const FresnelOptions& o, const GlobalOptions& g) {
     }
     if (!o.swatch.empty())
         write_swatches(o.swatch, colours, a.thetas);
-    std::string text;
-    for (const auto& [spec, c] : colours) {
-        FresnelOptions one = o;
-        one.fresnel = spec;
-        text += render_rgb(one, precision, a.thetas, a.cosines, c, engine);
-    }
-    emit(o.output, text);
+    emit(o.output, render_rgb(o, precision, a.thetas, a.cosines, colours, engine));
     return kExitOk;
 }
 
@@ -618,9 +659,10 @@ int run_fresnel_fit(const FresnelOptions& o, const GlobalOptions& g) {
 
 int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
     o.fresnel = o.fresnels.empty() ? "" : o.fresnels.front();
-    if (o.fresnels.size() > 1 && !o.rgb) throw Error("several --fresnel are for --rgb --swatch; give one");
-    if (!o.rgb && (!o.swatch.empty() || !o.thickness_range.empty()))
-        throw Error(std::string(o.swatch.empty() ? "--thickness-range" : "--swatch") + " draws colours: add --rgb");
+    if (o.fresnels.size() > 1 && !o.rgb) throw Error("several --fresnel are for --rgb (colours); give one");
+    if (!o.rgb && (!o.swatch.empty() || !o.thickness_range.empty() || o.thickness_step))
+        throw Error(std::string(!o.swatch.empty() ? "--swatch" : !o.thickness_range.empty() ? "--thickness-range" : "--thickness-step") +
+                    " draws colours: add --rgb");
     if (!o.fit.empty()) return run_fresnel_fit(o, g);
     if (o.rgb) return run_fresnel_rgb(o, g);
     if (o.colour_space != "srgb") throw Error("--colour-space picks --rgb's colour space; add --rgb");
@@ -675,7 +717,7 @@ int run_fresnel(FresnelOptions o, const GlobalOptions& g) {
 void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& action) {
     const auto [cmd, o] = add_command<FresnelOptions>(
         app, "fresnel", "Fresnel reflectance F, Rs, Rp over the angle of incidence", global, action, run_fresnel);
-    cmd->add_option("--fresnel", o->fresnels, fresnel_spec_help() + " (with --rgb --swatch, repeat for a row each)")
+    cmd->add_option("--fresnel", o->fresnels, fresnel_spec_help() + " (with --rgb, repeat for each term's colours: a swatch row each)")
         ->expected(1)
         ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
     cmd->add_option("--theta", o->theta, "comma-separated angles of incidence in degrees, in [0, 90]")
@@ -694,6 +736,9 @@ void add_fresnel_command(CLI::App& app, const GlobalOptions& global, Action& act
     cmd->add_option("--thickness-range", o->thickness_range,
                     "LO,HI in nm, with --rgb --swatch and a thin-film: term: draw its colour over the angle (x, 0-90 "
                     "degrees) and the film's thickness (y, LO to HI) instead");
+    cmd->add_option("--thickness-step", o->thickness_step,
+                    "NM, with --thickness-range: the map's rows at most NM apart, ceil((HI - LO) / NM) + 1 of them "
+                    "(default: 121 rows)");
     add_colour_space_option(cmd, o->colour_space,
                             "--rgb's colour space: srgb (linear sRGB) or acescg (ACES AP1, the ACES white by Bradford)");
     cmd->add_option("--fit", o->fit,

@@ -1,6 +1,7 @@
 // `brdfbake furnace`: the white-furnace picture. A row of spheres lit by a uniform white
 // environment (radiance 1), one per model; each pixel shows E(n.v), the light the sphere sends
 // back, so energy loss reads at a glance as darkening against the white background.
+#include <algorithm>
 #include <cmath>
 #include <cstdio>
 #include <memory>
@@ -11,10 +12,71 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
+#include "cli/furnace_sphere.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"
 
 namespace brdfbake {
+namespace {
+
+// Linear interpolation of E at mu from values at nodes mu_k = ((k + 0.5)/n)^2 (denser at grazing).
+double interpolate(const std::vector<double>& e, double mu) {
+    const int n = int(e.size());
+    const double u = std::sqrt(std::max(mu, 0.0)) * n - 0.5;
+    if (u <= 0) return e.front();
+    if (u >= n - 1) return e.back();
+    const int k = int(u);
+    return e[size_t(k)] + (u - k) * (e[size_t(k) + 1] - e[size_t(k)]);
+}
+
+}  // namespace
+
+std::vector<double> furnace_nodes(int n) {
+    std::vector<double> mus;
+    for (int k = 0; k < n; ++k) mus.push_back(std::pow((k + 0.5) / n, 2));
+    return mus;
+}
+
+PlotSpec furnace_sphere(const std::string& title, const std::vector<double>& e, int pixels) {
+    PlotSpec p;
+    p.axes = false;
+    p.title = title;
+    Curve outline;  // the sphere's silhouette, so that a sphere with E = 1 still shows
+    outline.style = "h-1";
+    for (int k = 0; k <= 256; ++k) {
+        outline.x.push_back(std::cos(k * 2 * M_PI / 256));
+        outline.y.push_back(std::sin(k * 2 * M_PI / 256));
+    }
+    p.curves.push_back(outline);
+    Heatmap& h = p.heatmap;
+    h.nx = h.ny = pixels;
+    h.x_lo = h.y_lo = -1.0;
+    h.x_hi = h.y_hi = 1.0;
+    h.z_lo = 0.0;
+    h.z_hi = 1.0;
+    h.scheme = "kw";
+    // The environment (E = 1 by definition) in a colour of its own, so that a sphere that
+    // conserves energy (white) still stands out; the figure's colour bar gives the scale.
+    h.gap_colour = "{x8DB3D9}";
+    for (int j = 0; j < pixels; ++j)
+        for (int i = 0; i < pixels; ++i) {
+            const double x = -1 + (i + 0.5) * 2.0 / pixels, y = -1 + (j + 0.5) * 2.0 / pixels;
+            const double r2 = x * x + y * y;
+            // Background: a gap (the environment's colour). Sphere: E(n.v) for the view along -z.
+            h.z.push_back(r2 >= 1.0 ? NAN : std::min(1.0, interpolate(e, std::sqrt(1.0 - r2))));
+        }
+    return p;
+}
+
+Figure furnace_figure(int pixels) {
+    Figure fig;
+    fig.panel_width = pixels * 2;
+    fig.panel_height = int(std::lround(fig.panel_width * 0.94 / 0.86));  // square spheres (see write_figure)
+    fig.colorbar_label = "E(\\mu); environment (blue) = 1";
+    fig.colorbar_scheme = "kw";
+    return fig;
+}
+
 namespace {
 
 struct FurnaceArgs {
@@ -27,16 +89,6 @@ struct FurnaceArgs {
     std::int64_t samples = 1 << 16;
     std::string output;
 };
-
-// Linear interpolation of E at mu from values at nodes mu_k = ((k + 0.5)/n)^2 (denser at grazing).
-double interpolate(const std::vector<double>& e, double mu) {
-    const int n = int(e.size());
-    const double u = std::sqrt(std::max(mu, 0.0)) * n - 0.5;
-    if (u <= 0) return e.front();
-    if (u >= n - 1) return e.back();
-    const int k = int(u);
-    return e[size_t(k)] + (u - k) * (e[size_t(k) + 1] - e[size_t(k)]);
-}
 
 int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
     check_plot_output(a.output, "-o");
@@ -65,11 +117,8 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
     }
 
     Engine engine(g.device, g.verbose);
-    Figure fig;
-    fig.panel_width = a.pixels * 2;
-    fig.panel_height = int(std::lround(fig.panel_width * 0.94 / 0.86));  // square spheres (see write_figure)
-    std::vector<double> mus;
-    for (int k = 0; k < a.nodes; ++k) mus.push_back(std::pow((k + 0.5) / a.nodes, 2));
+    Figure fig = furnace_figure(a.pixels);
+    const std::vector<double> mus = furnace_nodes(a.nodes);
     std::optional<ProgressStage> stage;  // ends before the figure is written
     stage.emplace("white furnace of " + std::to_string(models.size()) + (models.size() == 1 ? " model" : " models"),
                   models.size(), models.size() == 1 ? "" : "models");
@@ -84,39 +133,10 @@ int run_furnace(const FurnaceArgs& a, const GlobalOptions& g) {
         const AlbedoResult res = compute_albedo(engine, req);
         std::vector<double> e;
         for (const auto& v : res.values) e.push_back(v.value);
-        PlotSpec p;
-        p.axes = false;
-        p.title = labels[mi];
-        Curve outline;  // the sphere's silhouette, so that a sphere with E = 1 still shows
-        outline.style = "h-1";
-        for (int k = 0; k <= 256; ++k) {
-            outline.x.push_back(std::cos(k * 2 * M_PI / 256));
-            outline.y.push_back(std::sin(k * 2 * M_PI / 256));
-        }
-        p.curves.push_back(outline);
-        Heatmap& h = p.heatmap;
-        h.nx = h.ny = a.pixels;
-        h.x_lo = h.y_lo = -1.0;
-        h.x_hi = h.y_hi = 1.0;
-        h.z_lo = 0.0;
-        h.z_hi = 1.0;
-        h.scheme = "kw";
-        // The environment (E = 1 by definition) in a colour of its own, so that a sphere that
-        // conserves energy (white) still stands out; the figure's colour bar gives the scale.
-        h.gap_colour = "{x8DB3D9}";
-        for (int j = 0; j < a.pixels; ++j)
-            for (int i = 0; i < a.pixels; ++i) {
-                const double x = -1 + (i + 0.5) * 2.0 / a.pixels, y = -1 + (j + 0.5) * 2.0 / a.pixels;
-                const double r2 = x * x + y * y;
-                // Background: a gap (the environment's colour). Sphere: E(n.v) for the view along -z.
-                h.z.push_back(r2 >= 1.0 ? NAN : std::min(1.0, interpolate(e, std::sqrt(1.0 - r2))));
-            }
-        fig.panels.push_back(p);
+        fig.panels.push_back(furnace_sphere(labels[mi], e, a.pixels));
     }
     stage->update(models.size());
     stage.reset();
-    fig.colorbar_label = "E(\\mu); environment (blue) = 1";
-    fig.colorbar_scheme = "kw";
     write_figure(a.output, fig);
     std::fprintf(stderr, "brdfbake: wrote %s: %zu spheres\n", a.output.c_str(), models.size());
     return kExitOk;

@@ -18,6 +18,7 @@
 #include "io/part_file.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"
+#include "tables/lut_common.h"
 
 namespace brdfbake {
 namespace {
@@ -31,6 +32,7 @@ struct LutOptions {
     std::string size;
     std::string mu_map, alpha_map, eta_map, texels;
     std::string alpha_range, eta_range, mu_range, thickness_range;
+    double thickness_step = 0.0;  // nm: the thin-film table's depth from its thickness range
     double mu_floor = 0.0;
     std::string axes, flip;
     MethodOptions integration;
@@ -126,9 +128,26 @@ LutSettings given_settings(const LutOptions& o) {
     return s;
 }
 
+/// `--thickness-step NM`: the thin-film table's slices at most NM apart over its thickness range
+/// (tables::thickness_slices, the scene setting thickness_step's rule) instead of --size's depth.
+void apply_thickness_step(const LutOptions& o, LutRequest& r) {
+    const auto nm = [](double v) { return short_numbers(std::to_string(v), 6); };
+    const std::string step = nm(o.thickness_step);
+    if (r.kind != "thin-film") throw Error("--thickness-step spaces the thin-film table's slices; this is the " + r.kind + " table");
+    if (o.command->count("--size") && parse_size(o.size).size() == 3)
+        throw Error("--thickness-step sets the table's depth; give --size N or WIDTHxHEIGHT beside it, not a depth");
+    const double span = r.thickness_hi - r.thickness_lo;
+    if (!(o.thickness_step > 0.0 && o.thickness_step <= span))
+        throw Error("--thickness-step " + step + ": must lie in (0, HI - LO] = (0, " + nm(span) + "] nm");
+    const int slices = tables::thickness_slices(r.thickness_lo, r.thickness_hi, o.thickness_step);
+    if (slices > 256) throw Error("--thickness-step " + step + " gives " + std::to_string(slices) + " slices; at most 256");
+    r.depth = slices;
+}
+
 int run_lut(LutOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
-    const LutSetup setup = apply_preset(given_settings(o));
+    LutSetup setup = apply_preset(given_settings(o));
+    if (o.command->count("--thickness-step")) apply_thickness_step(o, setup.request);
     const LutRequest& r = setup.request;
     const bool sharded = !o.shard.empty();
     std::pair<int, int> shard{0, 1};
@@ -269,6 +288,9 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
     cmd->add_option("--thickness-range", o->thickness_range,
                     "LO,HI of the film thickness in nm (the thin-film table's z axis; KHR_materials_iridescence's 100,400)")
         ->capture_default_str();
+    cmd->add_option("--thickness-step", o->thickness_step,
+                    "NM: thin-film slices at most NM apart over --thickness-range, ceil((HI - LO) / NM) + 1 of them "
+                    "(the scene setting thickness_step), instead of --size's depth");
     cmd->add_option("--eta-map", o->eta_map,
                     "eta axis coordinate: linear (w = eta), f0 (w = ((eta-1)/(eta+1))^2) or cycles "
                     "(w = sqrt((eta-1)/(eta+1)), Cycles' glass tables)")

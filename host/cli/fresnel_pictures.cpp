@@ -44,8 +44,7 @@ void write_swatches(const std::string& path, const std::vector<std::pair<std::st
     for (const auto& [spec, colour] : colours) {
         PlotSpec p;
         p.axes = false;
-        p.title = plot_text(short_numbers(spec));
-        if (fig.panels.empty()) p.title += std::string(": the reflectance at each angle, ") + kEncoding;
+        p.title = plot_text(short_numbers(spec));  // each row's label; the figure's caption says what all show
         // Swatch i over [i + 0.06, i + 0.94] x [0, 1] on a mid-grey strip (where white and light
         // metals stand out), its angle below it.
         p.x = PlotAxis{"", 0.0, double(n), 0.0};
@@ -61,6 +60,7 @@ void write_swatches(const std::string& path, const std::vector<std::pair<std::st
         }
         fig.panels.push_back(p);
     }
+    fig.caption = std::string("the reflectance at each angle (below each swatch), ") + kEncoding;
     write_figure(path, fig);
 }
 

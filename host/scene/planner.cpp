@@ -20,6 +20,7 @@
 #include "scene/calibration.h"
 #include "scene/scene.h"
 #include "scene/scene_text.h"
+#include "tables/lut_common.h"
 
 namespace brdfbake {
 
@@ -484,8 +485,7 @@ PlannedTable group_table(const Group& g, const SceneSettings& s) {
     if (g.kind->eta_axis && g.thickness) {  // the thin-film table: slices at most thickness_step apart, or one
         r.thickness_lo = g.thickness->lo;
         r.thickness_hi = g.thickness->hi;
-        const double span = g.thickness->hi - g.thickness->lo;
-        t.depth = span == 0.0 ? 1 : int(std::min(256.0, std::ceil(span / s.thickness_step - 1e-9) + 1.0));
+        t.depth = std::min(256, tables::thickness_slices(g.thickness->lo, g.thickness->hi, s.thickness_step));
         apply_eta_axis(t, r);
     } else if (g.kind->eta_axis) {
         const AxisPlan e = plan_axis(g.eta->lo, g.eta->hi, 1, s.eta_step, 1.0, kEtaAxisMax, 64);

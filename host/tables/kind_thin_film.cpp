@@ -10,6 +10,9 @@
 //
 // Each z slice is the conductor kind's spectral table at that thickness (the colour R, G, B from
 // three tabulated curves, tables/spectral_fresnel.h) or, with --wavelength, its one channel E.
+#include <algorithm>
+#include <cmath>
+
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/error.h"
 #include "brdfbake/fresnel_terms.h"
@@ -119,6 +122,12 @@ void validate_thin_film(const LutRequest& r, const ModelConfig&, const FresnelCo
 }
 
 }  // namespace
+
+int thickness_slices(double lo_nm, double hi_nm, double step_nm) {
+    const double span = hi_nm - lo_nm;
+    if (!(span > 0.0)) return 1;
+    return int(std::min(1e6, std::ceil(span / step_nm - 1e-9) + 1.0));
+}
 
 std::string thin_film_at(const std::string& fresnel_spec, double thickness_nm) {
     const Spec s = parse_spec(fresnel_spec);

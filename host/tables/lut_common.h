@@ -111,5 +111,10 @@ TableKind thin_film_kind();
 /// one z slice of the thin-film table (kind_thin_film.cpp).
 std::string thin_film_at(const std::string& fresnel_spec, double thickness_nm);
 
+/// The thicknesses of a film over [lo_nm, hi_nm] at most `step_nm` apart, evenly spaced with both
+/// ends: ceil((hi - lo) / step) + 1 (1 for an empty span; at most 1e6). The one rule of the scene
+/// setting thickness_step, `lut thin-film --thickness-step` and the iridescence map's.
+int thickness_slices(double lo_nm, double hi_nm, double step_nm);
+
 }  // namespace tables
 }  // namespace brdfbake

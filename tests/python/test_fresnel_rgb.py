@@ -234,12 +234,18 @@ def srgb_8bit(linear):
     return np.rint(255 * e).astype(int)
 
 
-def has_block(pixels, colour, size):
-    """Whether some size x size block of pixels lies within one level of `colour` in every channel."""
+def block_corners(pixels, colour, size):
+    """The (row, column) corners of every size x size block of pixels within one level of `colour`
+    in every channel."""
     ok = np.all(np.abs(pixels - np.array(colour)) <= 1, axis=2).astype(np.int64)
     s = np.pad(ok.cumsum(0).cumsum(1), ((1, 0), (1, 0)))
     box = s[size:, size:] - s[:-size, size:] - s[size:, :-size] + s[:-size, :-size]
-    return bool((box == size * size).any())
+    return np.argwhere(box == size * size)
+
+
+def has_block(pixels, colour, size):
+    """Whether some size x size block of pixels lies within one level of `colour` in every channel."""
+    return len(block_corners(pixels, colour, size)) > 0
 
 
 def test_metal_swatches_hold_the_srgb_encoded_colour(tmp_path):
@@ -253,14 +259,28 @@ def test_metal_swatches_hold_the_srgb_encoded_colour(tmp_path):
     assert out.returncode == 0, out.stderr
     pixels = read_png_rgb(path)
     nm, w = colour_weights()
+    centres = {}
     for metal, name in (("Au", "Au-Johnson.yml"), ("Cu", "Cu-Johnson.yml")):
         nk = read_nk(name)
         n = np.interp(nm * 1e-3, nk[:, 0], nk[:, 1]) + 1j * np.interp(nm * 1e-3, nk[:, 0], nk[:, 2])
         for theta in thetas:
             colour = srgb_8bit(IEC_SRGB @ (w @ fresnel_exact(np.cos(np.radians(theta)), n)))
-            assert has_block(pixels, colour, 40), (metal, theta, colour)
+            corners = block_corners(pixels, colour, 40)
+            assert len(corners) > 0, (metal, theta, colour)
+            centres[metal, theta] = corners.mean(axis=0)
     # A colour no swatch has is found nowhere: the check can fail.
     assert not has_block(pixels, (40, 200, 40), 40)
+    # The layout: a row per --fresnel in the order given, each the height of the picture over the
+    # rows (less the caption's strip), its swatches left to right in --theta's order.
+    height, width = pixels.shape[:2]
+    for row, metal in enumerate(("Au", "Cu")):
+        ys = [centres[metal, t][0] for t in thetas]
+        xs = [centres[metal, t][1] for t in thetas]
+        assert all(row * height / 2 <= y < (row + 1) * height / 2 for y in ys), (metal, ys, height)
+        assert max(ys) - min(ys) < 2, (metal, ys)  # one row
+        assert all(a < b for a, b in zip(xs, xs[1:])), (metal, xs)
+        for i, x in enumerate(xs):  # swatch i of n in the i-th n-th of the width
+            assert i * width / len(thetas) <= x < (i + 1) * width / len(thetas), (metal, i, x, width)
 
 
 def airy_film(cos_i, lam_nm, d_nm, n1, n2):
@@ -301,12 +321,95 @@ def test_iridescence_map_holds_the_film_colour(tmp_path):
         assert has_block(pixels, colour, 3), (theta, d, colour)
 
 
+def test_iridescence_map_rows_follow_the_thickness_step(tmp_path):
+    """--thickness-step NM: ceil((HI - LO) / NM) + 1 rows from LO to HI, evenly spaced (the scene
+    setting's rule, docs/fresnel.md); a row at a thickness the default 121 rows lack is the numpy
+    Airy colour."""
+    nm, w = colour_weights()
+    for step, rows, d in ((50, 21, 350.0), (300, 5, 250.0)):
+        path = str(tmp_path / "film.png")
+        out = subprocess.run([EXE, "fresnel", "--rgb", "--fresnel", "thin-film:eta=1.3,base_eta=1.5",
+                              "--thickness-range", "0,1000", "--thickness-step", str(step), "--precision", "double",
+                              "--swatch", path, "--format", "json"], capture_output=True, text=True)
+        assert out.returncode == 0, out.stderr
+        assert json.loads(out.stdout)["thickness_nm"] == [0, 1000, rows]
+        pixels = read_png_rgb(path)
+        colour = srgb_8bit(IEC_SRGB @ (w @ airy_film(np.cos(np.radians(30)), nm, d, 1.3, 1.5)))
+        assert has_block(pixels, colour, 3), (step, d, colour)
+
+
+def test_thin_film_table_slices_follow_the_thickness_step(tmp_path):
+    """`lut thin-film --thickness-step NM`: ceil((HI - LO) / NM) + 1 slices over the range, at most
+    NM apart (counted in the CSV's thickness column)."""
+    for step, lo, hi in ((50, 100, 400), (70, 0, 1000)):
+        path = str(tmp_path / "film.csv")
+        out = subprocess.run([EXE, "lut", "thin-film", "--model", "ggx", "--fresnel", "thin-film:eta=1.3,base_eta=1.5",
+                              "--wavelength", "550", "--samples", "64", "--size", "2", "--thickness-range",
+                              f"{lo},{hi}", "--thickness-step", str(step), "--no-preview", "-o", path],
+                             capture_output=True, text=True)
+        assert out.returncode == 0, out.stderr
+        d = np.unique(np.loadtxt(path, delimiter=",", comments="#", skiprows=0, usecols=2, dtype=str)[1:].astype(float))
+        assert len(d) == int(np.ceil((hi - lo) / step)) + 1, (step, d)
+        assert lo <= d[0] and d[-1] <= hi and np.all(np.diff(d) <= step + 1e-9), (step, d)
+
+
+def test_several_fresnel_terms_in_json_and_csv():
+    """Several --fresnel with --rgb: JSON is an array of one object per term, in order; CSV a row
+    per term and angle, the term in a first column (RFC 4180 quoting of a spec with commas); each
+    colour the numpy one (gold's n, k; the film's Airy sum)."""
+    film = "thin-film:eta=1.3,thickness=300,base_eta=1.5"
+    thetas = [0, 60]
+    nm, w = colour_weights()
+    nk = read_nk("Au-Johnson.yml")
+    n = np.interp(nm * 1e-3, nk[:, 0], nk[:, 1]) + 1j * np.interp(nm * 1e-3, nk[:, 0], nk[:, 2])
+    expect = {"metal:Au": [IEC_SRGB @ (w @ fresnel_exact(np.cos(np.radians(t)), n)) for t in thetas],
+              film: [IEC_SRGB @ (w @ airy_film(np.cos(np.radians(t)), nm, 300.0, 1.3, 1.5)) for t in thetas]}
+    base = [EXE, "fresnel", "--rgb", "--fresnel", "metal:Au", "--fresnel", film, "--precision", "double", "--theta", "0,60"]
+    out = subprocess.run(base + ["--format", "json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    j = json.loads(out.stdout)
+    assert isinstance(j, list) and [o["fresnel"] for o in j] == ["metal:Au", film]
+    for o in j:
+        assert [r["theta_deg"] for r in o["results"]] == thetas
+        for r, rgb in zip(o["results"], expect[o["fresnel"]]):
+            assert np.all(np.abs(np.array(r["rgb"]) - rgb) <= 2e-3 + np.array(r["rgb_error"])), (o["fresnel"], r, rgb)
+    out = subprocess.run(base + ["--format", "csv"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    import csv
+    import io
+    rows = list(csv.reader(io.StringIO(out.stdout)))
+    assert rows[0] == ["fresnel", "theta_deg", "cos_theta", "R", "G", "B", "error_R", "error_G", "error_B"]
+    assert [r[0] for r in rows[1:]] == ["metal:Au"] * 2 + [film] * 2
+    for r in rows[1:]:
+        rgb = expect[r[0]][thetas.index(float(r[1]))]
+        assert np.all(np.abs(np.array(r[3:6], dtype=float) - rgb) <= 2e-3 + np.array(r[6:9], dtype=float)), (r, rgb)
+
+
 def test_swatch_refusals(tmp_path):
     for args, word in ((["--fresnel", "metal:Au", "--swatch", str(tmp_path / "a.png")], "--rgb"),
                        (["--rgb", "--fresnel", "metal:Au", "--swatch", str(tmp_path / "a.txt")], "--swatch"),
                        (["--rgb", "--fresnel", "metal:Au", "--thickness-range", "0,100", "--swatch",
                          str(tmp_path / "a.png")], "thin-film"),
-                       (["--rgb", "--fresnel", "metal:Au", "--fresnel", "metal:Cu"], "--swatch")):
+                       (["--fresnel", "metal:Au", "--fresnel", "metal:Cu"], "--rgb"),
+                       (["--rgb", "--fresnel", "thin-film:eta=1.3,base_eta=1.5", "--thickness-step", "20"],
+                        "--thickness-range"),
+                       (["--rgb", "--fresnel", "thin-film:eta=1.3,base_eta=1.5", "--thickness-range", "0,100",
+                         "--thickness-step", "0", "--swatch", str(tmp_path / "a.png")], "--thickness-step"),
+                       (["--rgb", "--fresnel", "thin-film:eta=1.3,base_eta=1.5", "--thickness-range", "0,100",
+                         "--thickness-step", "150", "--swatch", str(tmp_path / "a.png")], "--thickness-step"),
+                       (["--rgb", "--fresnel", "thin-film:eta=1.3,base_eta=1.5", "--thickness-range", "0,1000",
+                         "--thickness-step", "0.5", "--swatch", str(tmp_path / "a.png")], "--thickness-step")):
         out = subprocess.run([EXE, "fresnel"] + args, capture_output=True, text=True)
         assert out.returncode == 2 and out.stderr.startswith("brdfbake: error:") and word in out.stderr, (args, out.stderr)
         assert not os.path.exists(str(tmp_path / "a.png"))
+    for args, word in ((["albedo", "--model", "ggx", "--thickness-step", "20"], "thin-film"),
+                       (["thin-film", "--model", "ggx", "--fresnel", "thin-film:eta=1.3,base_eta=1.5",
+                         "--thickness-step", "-5"], "--thickness-step"),
+                       (["thin-film", "--model", "ggx", "--fresnel", "thin-film:eta=1.3,base_eta=1.5",
+                         "--thickness-step", "20", "--size", "8x8x4"], "--thickness-step"),
+                       (["thin-film", "--model", "ggx", "--fresnel", "thin-film:eta=1.3,base_eta=1.5",
+                         "--thickness-step", "1"], "256")):
+        out = subprocess.run([EXE, "lut"] + args + ["--no-preview", "-o", str(tmp_path / "t.csv")],
+                             capture_output=True, text=True)
+        assert out.returncode == 2 and out.stderr.startswith("brdfbake: error:") and word in out.stderr, (args, out.stderr)
+        assert out.stderr.count("\n") == 1 and not os.path.exists(str(tmp_path / "t.csv"))
