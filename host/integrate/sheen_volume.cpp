@@ -6,6 +6,7 @@
 #include <cmath>
 #include <map>
 #include <sstream>
+#include <utility>
 
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/sheen_volume.h"
@@ -223,6 +224,17 @@ std::vector<double> sheen_layer_lobe(Engine& engine, const ModelConfig& model, P
 namespace {
 
 constexpr int kBands = 4, kPhiRanges = 4, kGauss = 3;
+const double kGaussX[kGauss] = {-0.7745966692414834, 0.0, 0.7745966692414834}, kGaussW[kGauss] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+
+/// The mu interval of theta band a (its SheenLobeBins rows), and its Gauss node g.
+std::pair<double, double> band_mu(int a) {
+    const double dt = SheenLobeBins::theta() / kBands * 0.5 * M_PI / SheenLobeBins::theta();
+    return {std::cos((a + 1) * dt), std::cos(a * dt)};
+}
+double band_node(int a, int g) {
+    const auto [lo, hi] = band_mu(a);
+    return 0.5 * (hi + lo) + 0.5 * (hi - lo) * kGaussX[g];
+}
 
 /// Per theta band A (rows grouped by kBands) and exit region B = (band, |phi| range): the flux
 /// Q(A -> B) up to a common factor, and its error (3 standard errors, bins and nodes in quadrature).
@@ -231,18 +243,15 @@ struct BandFlux {
 };
 
 BandFlux band_fluxes(const SheenVolumeResult& r) {
-    static const double x[kGauss] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)}, w[kGauss] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
     const int rows = SheenLobeBins::theta() / kBands, cols = SheenLobeBins::phi() / kPhiRanges;
     BandFlux out;
     out.q.assign(kBands * kBands * kPhiRanges, 0.0);
     out.e = out.q;
     for (int a = 0; a < kBands; ++a) {
-        const double mu_hi = std::cos(a * rows * 0.5 * M_PI / SheenLobeBins::theta());
-        const double mu_lo = std::cos((a + 1) * rows * 0.5 * M_PI / SheenLobeBins::theta());
+        const auto [mu_lo, mu_hi] = band_mu(a);
         for (int g = 0; g < kGauss; ++g) {
             const SheenVolumeValue& v = r.values[size_t(a * kGauss + g)];
-            const double mu = 0.5 * (mu_hi + mu_lo) + 0.5 * (mu_hi - mu_lo) * x[g];
-            const double weight = 0.5 * (mu_hi - mu_lo) * w[g] * mu;  // integral of mu dmu
+            const double weight = 0.5 * (mu_hi - mu_lo) * kGaussW[g] * band_node(a, g);  // integral of mu dmu
             for (int row = 0; row < SheenLobeBins::theta(); ++row)
                 for (int col = 0; col < SheenLobeBins::phi(); ++col) {
                     const size_t bin = size_t(row * SheenLobeBins::phi() + col);
@@ -265,13 +274,8 @@ void scan_layer_reciprocity(Engine& engine, const ModelConfig& model, const Chec
     req.precision = o.precision;
     req.lobe = true;
     const int rows = SheenLobeBins::theta() / kBands;
-    static const double x[kGauss] = {-std::sqrt(0.6), 0.0, std::sqrt(0.6)};
-    for (int a = 0; a < kBands; ++a) {
-        const double mu_hi = std::cos(a * rows * 0.5 * M_PI / SheenLobeBins::theta());
-        const double mu_lo = std::cos((a + 1) * rows * 0.5 * M_PI / SheenLobeBins::theta());
-        for (int g = 0; g < kGauss; ++g)
-            req.cells.push_back(layer_cell(model.params, 0.5 * (mu_hi + mu_lo) + 0.5 * (mu_hi - mu_lo) * x[g]));
-    }
+    for (int a = 0; a < kBands; ++a)
+        for (int g = 0; g < kGauss; ++g) req.cells.push_back(layer_cell(model.params, band_node(a, g)));
     r.reciprocity_noise = true;
     r.reciprocity_of = "|Q(A->B) - Q(B->A)| (band fluxes of the orders >= 2, the first order reciprocal in closed form)";
     try {
