@@ -66,7 +66,8 @@ const char* kDielectricWalkMeaning =
 const char* kLayerWalkMeaning =
     "albedo: R, the energy the sheen layer reflects (Zeltner et al. 2022), its error with the cut-off added; T: "
     "what it transmits to the base below (not reflected); single: R's first order; single_T: T without "
-    "scattering (Beer-Lambert); cutoff: the energy still inside at the bounce limit, in neither";
+    "scattering (Beer-Lambert; JSON: unscattered_transmitted); cutoff: the energy still inside at the bounce "
+    "limit, in neither";
 
 /// A walk with reflected and transmitted columns: the rough dielectric's, or a layer's
 /// (BB_TRAIT_LAYER_WALK: the sheen layer over a base that takes what it transmits).
@@ -118,8 +119,10 @@ void walk_json(const Run& r, size_t i, nlohmann::json& e) {
     e["reflected_error"] = w.energy.error;
     e["transmitted"] = w.transmitted.value;
     e["transmitted_error"] = w.transmitted.error;
-    e["single_scattering_transmitted"] = w.single_t.value;
-    e["single_scattering_transmitted_error"] = w.single_t.error;
+    // the dielectric's T after one scattering; a layer's T without scattering (Beer-Lambert)
+    const std::string t1 = r.model.traits().layer_walk ? "unscattered_transmitted" : "single_scattering_transmitted";
+    e[t1] = w.single_t.value;
+    e[t1 + "_error"] = w.single_t.error;
 }
 
 const char* kColourErrorMeaning =

@@ -224,7 +224,8 @@ std::vector<double> sheen_layer_lobe(Engine& engine, const ModelConfig& model, P
 namespace {
 
 constexpr int kBands = 4, kPhiRanges = 4, kGauss = 3;
-const double kGaussX[kGauss] = {-0.7745966692414834, 0.0, 0.7745966692414834}, kGaussW[kGauss] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
+const double kGaussX[kGauss] = {-0.7745966692414834, 0.0, 0.7745966692414834};  // 3-point Gauss-Legendre
+const double kGaussW[kGauss] = {5.0 / 9, 8.0 / 9, 5.0 / 9};
 
 /// The mu interval of theta band a (its SheenLobeBins rows), and its Gauss node g.
 std::pair<double, double> band_mu(int a) {
@@ -277,7 +278,8 @@ void scan_layer_reciprocity(Engine& engine, const ModelConfig& model, const Chec
     for (int a = 0; a < kBands; ++a)
         for (int g = 0; g < kGauss; ++g) req.cells.push_back(layer_cell(model.params, band_node(a, g)));
     r.reciprocity_noise = true;
-    r.reciprocity_of = "|Q(A->B) - Q(B->A)| (band fluxes of the orders >= 2, the first order reciprocal in closed form)";
+    r.reciprocity_of =
+        "|Q(A->B) - Q(B->A)| (band fluxes of the orders >= 2, the first order reciprocal in closed form)";
     try {
         const BandFlux q = band_fluxes(sheen_volume_walks(engine, req));
         r.min_value = *std::min_element(q.q.begin(), q.q.end());
@@ -285,7 +287,8 @@ void scan_layer_reciprocity(Engine& engine, const ModelConfig& model, const Chec
         for (int a = 0; a < kBands; ++a)
             for (int b = a + 1; b < kBands; ++b)
                 for (int k = 0; k < kPhiRanges; ++k) {
-                    const size_t ab = size_t((a * kBands + b) * kPhiRanges + k), ba = size_t((b * kBands + a) * kPhiRanges + k);
+                    const size_t ab = size_t((a * kBands + b) * kPhiRanges + k);
+                    const size_t ba = size_t((b * kBands + a) * kPhiRanges + k);
                     const double d = std::fabs(q.q[ab] - q.q[ba]), noise = std::hypot(q.e[ab], q.e[ba]) / 3.0;
                     const double sigmas = noise > 0.0 ? d / noise : (d > 0.0 ? HUGE_VAL : 0.0);
                     ++r.pairs;
@@ -297,7 +300,8 @@ void scan_layer_reciprocity(Engine& engine, const ModelConfig& model, const Chec
                         r.max_rel_theta_o = (b + 0.5) * rows * 0.5 * M_PI / SheenLobeBins::theta();
                         r.max_rel_dphi = (k + 0.5) * M_PI / kPhiRanges;
                     }
-                    const double allowed = kReciprocitySigmas * noise + o.reciprocity_tolerance * std::max(q.q[ab], q.q[ba]);
+                    const double allowed =
+                        kReciprocitySigmas * noise + o.reciprocity_tolerance * std::max(q.q[ab], q.q[ba]);
                     r.reciprocity_violation = r.reciprocity_violation || d > allowed;
                 }
     } catch (const NonFiniteError& e) {

@@ -4,7 +4,8 @@ fiber-like specular SGGX microflakes (S = diag(1, 1, s^2), s = R^2, albedo 1; He
 lit from the top. The numpy walk draws its visible normals in its own way, not by the program's ellipsoid
 mapping: the normal's cosine from a tabulated inverse CDF of D's marginal on the sphere, its azimuth uniform,
 then rejection with probability <v, m>+ (the visible-normal density <v, m>+ D(m) / sigma(v)); reflection about m.
-R (top exits), T (bottom exits) and the first order R1 agree within the combined error (3 standard errors each).
+R (top exits), T (bottom exits) and the first order R1 agree within the combined error (3 standard errors each);
+T without scattering equals Beer-Lambert's exp(-sigma(wo) / mu).
 Numpy and the executable only (BRDFBAKE_EXE); run by CTest's `python` test."""
 import json
 import os
@@ -94,6 +95,10 @@ def test_sheen_volume_albedo_matches_an_independent_numpy_walk():
             assert abs(res["reflected"] - r) <= res["reflected_error"] + r_err, msg
             assert abs(res["transmitted"] - t) <= res["transmitted_error"] + t_err, msg
             assert abs(res["single_scattering"] - r1) <= res["single_scattering_error"] + r1_err, msg
+            # T without scattering: Beer-Lambert along the view, exp(-sigma(wo) / mu), sigma(w) = sqrt(w^T S w)
+            s = roughness * roughness
+            t0 = np.exp(-np.sqrt(1 - mu * mu + s * s * mu * mu) / mu)
+            assert abs(res["unscattered_transmitted"] - t0) <= res["unscattered_transmitted_error"] + 1e-6, msg
             assert r_err < 0.15 * r, msg  # the comparison has teeth
             checked += 1
     assert checked == 3
