@@ -298,7 +298,7 @@ TEST_CASE("a stochastic model refuses quadrature and keeps the sampling methods"
 TEST_CASE("the host's model traits are the registry rows' flags, as the kernels read them", "[registry]") {
     // Both sides are generated from BB_MODEL_REGISTRY: ModelTraits (host/models/spec.cpp) and
     // bb_model_has_trait (model_registry.h, compiled into the kernels); every model registered
-    // today is a closed form, none stochastic.
+    // today is a closed form but the sheen layer (sheen-volume), stochastic as a layer's walk.
     for (const ModelTraits& t : model_registry()) {
         INFO(t.name);
         CHECK(t.delta == (bb_model_is_delta(t.id) != 0));
@@ -307,6 +307,7 @@ TEST_CASE("the host's model traits are the registry rows' flags, as the kernels 
         CHECK(t.evals_vector == (bb_model_evals_vector(t.id) != 0));
         CHECK(t.cosine_sampler == (bb_quad_sampler_is_cosine(t.id) != 0));
         CHECK(t.stochastic == (bb_model_has_trait(t.id, BB_TRAIT_STOCHASTIC) != 0));
-        CHECK_FALSE(t.stochastic);
+        CHECK(t.layer_walk == (bb_model_has_trait(t.id, BB_TRAIT_LAYER_WALK) != 0));
+        CHECK(t.stochastic == t.layer_walk);  // the one stochastic row is the sheen layer's walk
     }
 }

@@ -44,7 +44,9 @@ TEST_CASE("battery: every registered model resolves its example spec", "[battery
     CHECK(model_registry().size() == model_names().size());
     for (const ModelTraits& t : model_registry()) {
         INFO(t.name << ": " << t.example);
-        const ModelConfig m = resolve_model(t.example);
+        // a layer's walk (sheen-volume) has no pointwise f: every pointwise command refuses it
+        if (t.layer_walk) CHECK_THROWS_WITH(resolve_model(t.example), Catch::Contains("no pointwise value"));
+        const ModelConfig m = resolve_model_simulated(t.example);
         CHECK(m.id == t.id);
         CHECK(m.name == t.name);
         CHECK(&m.traits() == &model_traits(t.id));
@@ -61,6 +63,7 @@ TEST_CASE("battery: every registered model resolves its example spec", "[battery
 
 TEST_CASE("battery: reciprocity where the registry claims it, and only there", "[battery][quick]") {
     for (const ModelTraits& t : model_registry()) {
+        if (t.layer_walk) continue;  // no pointwise f (tests/test_sheen_volume_model.cpp)
         const ModelConfig m = resolve_model(t.example);
         std::mt19937 rng(17);
         int worse = 0, nonzero = 0;
@@ -81,6 +84,7 @@ TEST_CASE("battery: reciprocity where the registry claims it, and only there", "
 
 TEST_CASE("battery: host and kernel evaluate and sample alike, float and double", "[battery][parity][device]") {
     for (const ModelTraits& t : model_registry()) {
+        if (t.layer_walk) continue;  // no pointwise f (tests/test_sheen_volume_model.cpp)
         const ModelConfig m = resolve_model(t.example);
         testing::check_host_device_parity(m, t.name, 1000);
     }
@@ -89,6 +93,7 @@ TEST_CASE("battery: host and kernel evaluate and sample alike, float and double"
 TEST_CASE("battery: white furnace, the albedo of an energy-conserving example is at most 1", "[battery][device]") {
     const std::vector<double> mus = {1e-3, 0.1, 0.5, 1.0};
     for (const ModelTraits& t : model_registry()) {
+        if (t.layer_walk) continue;  // no pointwise f (tests/test_sheen_volume_model.cpp)
         if (!t.energy_conserving_example) continue;
         const ModelConfig m = resolve_model(t.example);
         const AlbedoResult r = has_analytic_albedo(m) ? analytic_albedo_result(m, resolve_fresnel("none"), cells_for(mus, 0.0, m.params))
@@ -107,6 +112,7 @@ TEST_CASE("battery: the importance sampler integrates the model's own evaluation
     // combined error estimates. A sampler whose density is not the one its weight assumes fails.
     const std::vector<double> mus = {0.05, 0.4, 1.0};
     for (const ModelTraits& t : model_registry()) {
+        if (t.layer_walk) continue;  // no pointwise f (tests/test_sheen_volume_model.cpp)
         const ModelConfig m = resolve_model(t.example);
         const AlbedoResult imp = albedo(m, mus, Method::Importance, 1u << 14);
         if (t.delta) {  // eval is 0: the sampler's weight is the analytic albedo
@@ -134,6 +140,7 @@ TEST_CASE("battery: finite and non-negative at the extremes", "[battery][quick]"
     // the host's double and the sampler's weights too.
     const std::vector<double> mus = {1e-6, 1e-3, 0.5, 1.0};
     for (const ModelTraits& t : model_registry()) {
+        if (t.layer_walk) continue;  // no pointwise f (tests/test_sheen_volume_model.cpp)
         std::vector<ModelConfig> configs = {resolve_model(t.example)};
         if (t.alpha_x_slot >= 0) {
             ModelConfig floor = configs.front();
@@ -169,6 +176,7 @@ TEST_CASE("battery: the vector paths the registry gives a model agree with its s
     const bool cpu = testing::engine().device().type == "cpu";
     const std::vector<double> mus = {0.02, 0.3, 1.0};
     for (const ModelTraits& t : model_registry()) {
+        if (t.layer_walk) continue;  // no pointwise f (tests/test_sheen_volume_model.cpp)
         std::vector<Method> methods;
         if (t.samples_disk || t.samples_vector) methods.push_back(Method::Importance);
         if (t.evals_vector) methods.push_back(Method::QuasiMonteCarlo);

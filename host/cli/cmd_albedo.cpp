@@ -63,6 +63,29 @@ const char* kDielectricWalkMeaning =
     "T times eta^2); single, single_T: the first scattering order of R and T (the height-correlated lobes, "
     "Heitz 2014 eq. 99 and 100); cutoff: the energy still inside at the bounce limit, in neither";
 
+const char* kLayerWalkMeaning =
+    "albedo: R, the energy the sheen layer reflects (Zeltner et al. 2022), its error with the cut-off added; T: "
+    "what it transmits to the base below (not reflected); single: R's first order; single_T: T without "
+    "scattering (Beer-Lambert; JSON: unscattered_transmitted); cutoff: the energy still inside at the bounce "
+    "limit, in neither";
+
+/// A walk with reflected and transmitted columns: the rough dielectric's, or a layer's
+/// (BB_TRAIT_LAYER_WALK: the sheen layer over a base that takes what it transmits).
+bool walk_with_transmission(const ModelConfig& m) { return m.dielectric_walk || m.traits().layer_walk; }
+
+const char* walk_meaning(const ModelConfig& m) {
+    return m.traits().layer_walk ? kLayerWalkMeaning : m.dielectric_walk ? kDielectricWalkMeaning : kWalkMeaning;
+}
+
+/// The albedo a walk reports: R + T of the dielectric; R of a layer, with the cut-off energy in its
+/// error (the walk's albedo up to the bounce limit); E of the conductor (its cut-off in a column).
+AlbedoValue walk_albedo_value(const ModelConfig& m, const WalkAlbedo& w) {
+    if (m.dielectric_walk) return w.total;
+    AlbedoValue v = w.energy;
+    if (m.traits().layer_walk) v.error += w.cutoff.value + w.cutoff.error;
+    return v;
+}
+
 /// A walk run's extra columns of cell i: single scattering and cut-off energy, and the dielectric's
 /// R, T and T's first order (empty for a conductor), each with its error.
 void walk_columns(const Run& r, size_t i, Format format, std::ostream& out) {
@@ -73,14 +96,14 @@ void walk_columns(const Run& r, size_t i, Format format, std::ostream& out) {
     }
     const WalkAlbedo& w = r.walk.values[i];
     std::vector<const AlbedoValue*> cols = {&w.single, &w.cutoff};
-    if (r.model.dielectric_walk) cols = {&w.energy, &w.transmitted, &w.single, &w.single_t, &w.cutoff};
-    if (csv && r.model.dielectric_walk) cols = {&w.single, &w.cutoff, &w.energy, &w.transmitted, &w.single_t};
+    if (walk_with_transmission(r.model)) cols = {&w.energy, &w.transmitted, &w.single, &w.single_t, &w.cutoff};
+    if (csv && walk_with_transmission(r.model)) cols = {&w.single, &w.cutoff, &w.energy, &w.transmitted, &w.single_t};
     char cell[64];
     for (const AlbedoValue* v : cols) {
         std::snprintf(cell, sizeof cell, csv ? ",%.17g,%.3e" : " %12.8f %10.2e", v->value, v->error);
         out << cell;
     }
-    if (csv && !r.model.dielectric_walk) out << ",,,,,,";
+    if (csv && !walk_with_transmission(r.model)) out << ",,,,,,";
 }
 
 /// A walk run's JSON fields of cell i.
@@ -91,13 +114,15 @@ void walk_json(const Run& r, size_t i, nlohmann::json& e) {
     e["single_scattering_error"] = w.single.error;
     e["cutoff"] = w.cutoff.value;
     e["cutoff_error"] = w.cutoff.error;
-    if (!r.model.dielectric_walk) return;
+    if (!walk_with_transmission(r.model)) return;
     e["reflected"] = w.energy.value;
     e["reflected_error"] = w.energy.error;
     e["transmitted"] = w.transmitted.value;
     e["transmitted_error"] = w.transmitted.error;
-    e["single_scattering_transmitted"] = w.single_t.value;
-    e["single_scattering_transmitted_error"] = w.single_t.error;
+    // the dielectric's T after one scattering; a layer's T without scattering (Beer-Lambert)
+    const std::string t1 = r.model.traits().layer_walk ? "unscattered_transmitted" : "single_scattering_transmitted";
+    e[t1] = w.single_t.value;
+    e[t1 + "_error"] = w.single_t.error;
 }
 
 const char* kColourErrorMeaning =
@@ -191,9 +216,9 @@ std::string render(Format format, const FresnelConfig& fresnel, const std::vecto
         std::vector<double> mus;
         for (const auto& c : r.request.cells) mus.push_back(c.mu);
         out << merl_unmeasured_line(r.model, mus);
-        if (r.model.simulated) out << "# " << (r.model.dielectric_walk ? kDielectricWalkMeaning : kWalkMeaning) << "\n";
+        if (r.model.simulated) out << "# " << walk_meaning(r.model) << "\n";
         out << "        mu   phi_deg       albedo      error"
-            << (r.model.dielectric_walk ? "            R      error            T      error       single      error"
+            << (walk_with_transmission(r.model) ? "            R      error            T      error       single      error"
                                           "     single_T      error       cutoff      error"
                 : r.model.simulated     ? "       single      error       cutoff      error"
                                         : "")
@@ -420,7 +445,7 @@ int run_albedo(const AlbedoOptions& o, const GlobalOptions& g) {
             r.result.method = r.walk.method;
             r.result.samples_per_cell = r.walk.walks_per_cell;
             r.result.kernel_seconds = r.walk.kernel_seconds;
-            for (const WalkAlbedo& w : r.walk.values) r.result.values.push_back(w.total);
+            for (const WalkAlbedo& w : r.walk.values) r.result.values.push_back(walk_albedo_value(r.model, w));
         } else {
             r.result = albedo_of_model(engine, r.model, fresnel, r.request, choice.tolerance);
         }

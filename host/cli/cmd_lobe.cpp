@@ -16,6 +16,7 @@
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
 #include "integrate/random_walk.h"
+#include "integrate/sheen_volume.h"
 #include "models/key_reader.h"
 #include "plot/plot.h"
 
@@ -45,6 +46,8 @@ std::vector<double> lobe_values(Engine& engine, const ModelConfig& model, const 
                                 Precision precision, const std::vector<Vec3>& wo, const std::vector<Vec3>& wis,
                                 std::int64_t walks, std::vector<double>* error) {
     if (!model.simulated) return evaluate_on_device(engine, model, fresnel, precision, wo, wis);
+    if (model.traits().layer_walk)  // a histogram of exits, at least 2^20 walks per incident direction
+        return sheen_layer_lobe(engine, model, precision, wo, wis, std::max<std::uint64_t>(walks, 1u << 20), error);
     WalkEvalRequest req;
     req.model = model.id;
     req.fresnel = fresnel;

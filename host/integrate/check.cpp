@@ -168,11 +168,11 @@ std::string check_report_text(const CheckReport& r) {
                       (unsigned long long)r.scan_nonfinite, (unsigned long long)r.pairs);
     else if (r.reciprocity_noise)
         std::snprintf(line, sizeof line,
-                      "  reciprocity  %s  max |f(wo,wi) - f(wi,wo)| = %.2f standard errors (relative %.2e) at theta_i = "
+                      "  reciprocity  %s  max %s = %.2f standard errors (relative %.2e) at theta_i = "
                       "%.1f, theta_o = %.1f, dphi = %.1f deg (%llu pairs of walk estimates, tolerance %.0f standard "
                       "errors + %.0e)\n",
-                      r.reciprocity_violation ? "FAIL" : "pass", r.reciprocity_sigmas, r.max_rel, r.max_rel_theta_i * kDeg,
-                      r.max_rel_theta_o * kDeg, r.max_rel_dphi * kDeg, (unsigned long long)r.pairs, kReciprocitySigmas,
+                      r.reciprocity_violation ? "FAIL" : "pass", r.reciprocity_of.c_str(), r.reciprocity_sigmas, r.max_rel,
+                      r.max_rel_theta_i * kDeg, r.max_rel_theta_o * kDeg, r.max_rel_dphi * kDeg, (unsigned long long)r.pairs, kReciprocitySigmas,
                       r.reciprocity_tolerance);
     else if (r.max_rel == 0.0)
         std::snprintf(line, sizeof line, "  reciprocity  pass  f(wo,wi) = f(wi,wo) exactly at every pair (%llu pairs)\n",

@@ -8,6 +8,7 @@
 #include "brdfbake/check.h"
 #include "brdfbake/progress.h"
 #include "integrate/random_walk.h"
+#include "integrate/sheen_volume.h"
 
 namespace brdfbake {
 
@@ -78,7 +79,10 @@ CheckReport run_check_walk(Engine& engine, const ModelConfig& model, const Fresn
     r.reciprocity_tolerance = o.reciprocity_tolerance;
     ProgressStage stage("check of " + model.canonical, 2);
     stage.update(0, "reciprocity and values by walk estimates", 1);
-    scan_walk_reciprocity(engine, model, fresnel, o, r);
+    if (model.traits().layer_walk)
+        scan_layer_reciprocity(engine, model, o, r);  // no pointwise f: band fluxes (integrate/sheen_volume.h)
+    else
+        scan_walk_reciprocity(engine, model, fresnel, o, r);
 
     const AlbedoRequest req = furnace_request(model, fresnel, o);
     r.furnace_directions = int(req.cells.size());

@@ -13,6 +13,7 @@
 #include "integrate/launch.h"
 #include "integrate/refine.h"
 #include "integrate/replicas.h"
+#include "integrate/sheen_volume.h"
 #include "models/key_reader.h"
 
 namespace brdfbake {
@@ -68,6 +69,7 @@ WalkLaunch launch_walks(Engine& engine, BuildRequest build, const char* entry, s
 }  // namespace
 
 WalkResult walk_albedo(Engine& engine, const AlbedoRequest& req) {
+    if (model_traits(req.model).layer_walk) return sheen_layer_walk_albedo(engine, req);  // a layer's walk
     std::vector<double> mus, phis, params;
     std::vector<cl_uint> streams;
     for (const AlbedoCell& c : req.cells) {

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "brdfbake/albedo.h"
+#include "brdfbake/check.h"
+#include "integrate/random_walk.h"
 
 namespace brdfbake {
 
@@ -66,5 +68,30 @@ struct SheenVolumeResult {
 /// The walks of `req`: req.walks per cell over req.replicas replicas, in req.precision, Philox
 /// keyed by req.seed and each cell's content. Throws NonFiniteError if a walk met NaN.
 SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& req);
+
+// ---- the layer as a model spec (sheen-volume:roughness=R, BB_TRAIT_LAYER_WALK) ------------------
+
+/// The walks of an albedo request of the sheen-volume model (walk_albedo routes it here by the
+/// registry's layer_walk trait): per cell energy = R, single = R's first order, transmitted = T,
+/// single_t = T without scattering, cutoff, and total = R + T (= 1 - cutoff per replica: the layer
+/// absorbs nothing). The cells' parameters are the model's (BB_SHEEN_VOLUME_MODEL_*).
+WalkResult sheen_layer_walk_albedo(Engine& engine, const AlbedoRequest& req);
+
+/// f(wis[k], wos[k]) of the sheen-volume model `model` for `lobe`: light from wis[k] walks through
+/// the layer (`walks` per distinct incident direction) and f is estimated per exit bin
+/// (SheenLobeBins) as the orders >= 2's histogram over the bin's integral of cos theta_o, plus the
+/// first order in closed form at wos[k] (sheen_single_density); *error gets the histogram's error
+/// (3 standard errors) over the same integral.
+std::vector<double> sheen_layer_lobe(Engine& engine, const ModelConfig& model, Precision precision,
+                                     const std::vector<Vec3>& wos, const std::vector<Vec3>& wis, std::uint64_t walks,
+                                     std::vector<double>* error);
+
+/// check's reciprocity of the sheen-volume model: the histogram cannot evaluate f at a pair, so the
+/// check compares integrals that reciprocity makes equal: the flux Q(A -> B) = integral over wo in the
+/// theta band A of cos theta_o P(exit in B | wo), B a theta band and a |phi| range of the exits, against
+/// Q(B's band -> A's band, same |phi| range); 4 bands x 4 azimuth ranges (SheenLobeBins grouped),
+/// each band's integral by 3-point Gauss-Legendre in mu. Orders >= 2 (the histogram's); the first
+/// order is reciprocal by its closed form (its f is symmetric in wo and wi).
+void scan_layer_reciprocity(Engine& engine, const ModelConfig& model, const CheckOptions& o, CheckReport& r);
 
 }  // namespace brdfbake

@@ -13,6 +13,7 @@
 
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/random_walk.h"
+#include "brdfbake/brdf/sheen_volume.h"
 #include "brdfbake/brdf/rough_dielectric.h"
 #include "brdfbake/error.h"
 #include "models/key_reader.h"
@@ -343,6 +344,21 @@ ModelConfig resolve_sheen_ltc(KeyReader& keys) {
     return m;
 }
 
+// sheen-volume: the volumetric sheen layer of Zeltner, Burley and Chiang 2022 (brdf/sheen_volume.h)
+// simulated, roughness=R or alpha=A (= R^2 = the fibers' sigma, as sheen-ltc's), bounces=N its
+// walk's scattering limit. Always simulated: no pointwise f (brdf/sheen_volume_model.h).
+ModelConfig resolve_sheen_volume(KeyReader& keys) {
+    ModelConfig m;
+    const double alpha = read_sheen_alpha(keys, "sheen-volume");
+    const double n = keys.number("bounces", BB_SHEEN_VOLUME_DEFAULT_BOUNCES, {1.0, double(BB_SHEEN_VOLUME_MAX_BOUNCES)});
+    if (n != std::floor(n)) throw Error("model 'sheen-volume': bounces=" + format_number(n) + " is not an integer");
+    m.params[BB_SHEEN_VOLUME_MODEL_ALPHA] = alpha;
+    m.params[BB_SHEEN_VOLUME_MODEL_BOUNCES] = n;
+    m.simulated = true;
+    m.canonical = "sheen-volume:alpha=" + format_number(alpha) + ",bounces=" + fmt(n);
+    return m;
+}
+
 /// Torrance-Sparrow's roughness axis exists only for the distributions with an alpha.
 const char* torrance_sparrow_roughness_refusal(const ParamBlock& params) {
     return params[BB_TORRANCE_SPARROW_DIST] == BB_TS_D_BLINN
@@ -415,6 +431,7 @@ struct ModelEntry {
                  ((TRAITS) & BB_TRAIT_RECIPROCAL) != 0, AX, AY, EX, ((TRAITS) & BB_TRAIT_KINKED) != 0,             \
                  ((TRAITS) & BB_TRAIT_FURNACE) != 0, ((TRAITS) & BB_TRAIT_STOCHASTIC) != 0,                        \
                  ((TRAITS) & BB_TRAIT_MEASURED) != 0, ((TRAITS) & BB_TRAIT_DIFFUSE_KEY) != 0,                         \
+                 ((TRAITS) & BB_TRAIT_LAYER_WALK) != 0,                                                            \
                  roughness_refusal_of(BB_MODEL_##NAME), sample_cost_of(BB_MODEL_##NAME),                            \
                  roughness_axis_of(BB_MODEL_##NAME, AX)},                                                           \
      resolve_##name},
@@ -474,6 +491,10 @@ std::vector<std::string> model_names() {
 
 ModelConfig resolve_model(const std::string& text) {
     ModelConfig m = resolve_model_simulated(text);
+    if (m.simulated && m.traits().layer_walk)
+        throw Error("model '" + m.name +
+                    "' is a random walk through a volumetric layer (Zeltner et al. 2022): f has no pointwise value; "
+                    "albedo, check, lobe and lut albedo take it (sheen-ltc is its pointwise fit)");
     if (m.simulated)
         throw Error("model '" + m.name +
                     "': scattering=multiple (a random-walk estimate) is supported by albedo, check, lobe (plane and 3d), "

@@ -58,6 +58,7 @@ struct CheckReport {
     /// worst difference is also given in standard errors of the two (reciprocity_sigmas).
     bool reciprocity_noise = false;
     double reciprocity_sigmas = 0.0;
+    std::string reciprocity_of = "|f(wo,wi) - f(wi,wo)|";  // the quantities compared (a layer's: band fluxes)
     std::uint64_t pairs = 0;
     std::uint64_t scan_nonfinite = 0;  // NaN or Inf values met by the scan: reciprocity is then unknown
     // values

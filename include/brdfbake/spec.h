@@ -57,6 +57,7 @@ struct ModelTraits {
     bool stochastic;               // its value is an estimate: sampling methods only, never quadrature
     bool measured;                 // a measured table: tables are E(mu_o) and Eavg of it alone (no roughness)
     bool diffuse_key;              // takes diffuse=KD (brdf/smith.h): compute_albedo adds kd in closed form
+    bool layer_walk;               // a layer's walk without pointwise f (BB_TRAIT_LAYER_WALK, integrate/sheen_volume.h)
     /// Why these parameters have no roughness to sweep although the model has alpha slots
     /// (torrance-sparrow with d=blinn), or nullptr.
     const char* (*roughness_refusal)(const ParamBlock& params);

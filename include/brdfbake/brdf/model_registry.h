@@ -102,6 +102,12 @@
 #define BB_COMPILED_SHEEN_LTC ~, 1
 #endif
 
+#define BB_MODEL_SHEEN_VOLUME 14
+#if BB_HAS_MODEL(BB_MODEL_SHEEN_VOLUME)
+#include "brdfbake/brdf/sheen_volume_model.h"
+#define BB_COMPILED_SHEEN_VOLUME ~, 1
+#endif
+
 /* ---------------------------------------------------------------------------- the table
  * X(NAME, name, SPEC, ARGS, QUAD, TRAITS, ALPHA_X, ALPHA_Y, EXPONENT, EXAMPLE), one row per model:
  *   NAME, name  its id is BB_MODEL_<NAME>; its functions are bb_<name>_eval and
@@ -149,6 +155,10 @@
 #define BB_TRAIT_DIFFUSE_KEY 0x800   /* its spec takes diffuse=KD, a Lambert base kd/pi beside the
                                        * lobe (brdf/smith.h, bb_smith_diffuse): compute_albedo adds
                                        * its albedo kd in closed form (host/integrate/albedo.cpp) */
+#define BB_TRAIT_LAYER_WALK 0x1000    /* a walk through a volumetric layer with no pointwise f (no
+                                       * next-event estimate): albedo, check and lut albedo by the
+                                       * layer's walks, lobe by a histogram of exit directions
+                                       * (host/integrate/sheen_volume.h); evaluate refused */
 
 #define BB_MODEL_REGISTRY(X)                                                                                      \
     /* NAME                 name                 SPEC                   ARGS     QUAD        */                   \
@@ -194,7 +204,10 @@
       BB_TRAIT_COSINE_SAMPLER | BB_TRAIT_RECIPROCAL | BB_TRAIT_KINKED | BB_TRAIT_FURNACE | BB_TRAIT_MEASURED,     \
       -1, -1, -1, "merl:file=builtin:lambert")                                                                   \
     X(SHEEN_LTC,            sheen_ltc,           "sheen-ltc",           PLAIN,   SAMPLER,                         \
-      BB_TRAIT_FURNACE, BB_SHEEN_LTC_ALPHA, BB_SHEEN_LTC_ALPHA, -1, "sheen-ltc:roughness=0.5")
+      BB_TRAIT_FURNACE, BB_SHEEN_LTC_ALPHA, BB_SHEEN_LTC_ALPHA, -1, "sheen-ltc:roughness=0.5")                  \
+    X(SHEEN_VOLUME,         sheen_volume,        "sheen-volume",        PLAIN,   SAMPLER,                         \
+      BB_TRAIT_STOCHASTIC | BB_TRAIT_LAYER_WALK | BB_TRAIT_FURNACE, BB_SHEEN_VOLUME_MODEL_ALPHA,                 \
+      BB_SHEEN_VOLUME_MODEL_ALPHA, -1, "sheen-volume:roughness=0.5")
 
 /* The values of the QUAD column. */
 #define BB_QUAD_SPACE_SAMPLER 0
