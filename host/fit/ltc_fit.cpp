@@ -377,10 +377,11 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
     const LobePoints fit_pts = lobe_points(engine, model, o.precision, cells, o.fit_side, o.fit_grade);
     std::vector<CellSummary> fit_sums;
     const cl::Buffer fit_inv_e = inverse_albedos(fit_pts, fit_sums);
-    if (o.precision == Precision::Float && narrowest(fit_sums) < o.double_width) {
-        LtcFitOptions in_double = o;
-        in_double.precision = Precision::Double;
-        return fit_row(engine, model, cells, previous, in_double);
+    if (o.precision == Precision::Float && narrowest(fit_sums) < o.narrow_width) {
+        LtcFitOptions narrow = o;
+        narrow.precision = Precision::Double;
+        narrow.value_tolerance = narrow.size_tolerance = o.narrow_tolerance;
+        return fit_row(engine, model, cells, previous, narrow);
     }
     auto absolute = [&](size_t c, const std::vector<double>& x) {
         return std::array<double, 4>{fit_sums[c].average_theta + x[0], x[1], x[2], x[3]};
