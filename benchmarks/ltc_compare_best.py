@@ -140,7 +140,7 @@ def main():
     dist, err, _ = ref.l1_distance_converged_batch(mu, alpha, mats, n=128)
     print("t a mu alpha d_ours err d_pub err d_best err ours/best pub/best")
     for i, (t, a, m, al, _, _) in enumerate(texels):
-        print("%d %d %.6f %.6f %.5f %.1e %.5f %.1e %.5f %.1e %.3f %.3f" % (
+        print("%d %d %.6f %.6f %.5g %.1e %.5g %.1e %.5g %.1e %.3f %.3f" % (
             t, a, m, al, dist[0, i], err[0, i], dist[1, i], err[1, i], dist[2, i], err[2, i],
             dist[0, i] / max(dist[2, i], 1e-12), dist[1, i] / max(dist[2, i], 1e-12)))
     lowest = np.minimum(dist[2], np.minimum(dist[0], dist[1]))

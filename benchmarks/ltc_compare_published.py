@@ -7,7 +7,7 @@ reference (tests/ltc_reference.py, l1_distance_converged_batch: balance-heuristi
 on the GGX visible-normal map and the LTC's own map, error |L(n) - L(2n)| plus E's share), for
 both matrices at the same texel with the same points; never the fitter's own `distance` channel.
 
-  ltc_compare_published.py BRDFBAKE.csv PUBLISHED [--n N] [--rows T1,T2,..] [--every K] [-o OUT.txt]
+  ltc_compare_published.py BRDFBAKE.csv PUBLISHED [--n N] [--rows T1,T2,..] [--cols A1,A2,..] [--every K]
 
 BRDFBAKE.csv: `brdfbake lut ltc --preset three -o three.csv` (three.js's grid: M from ltc_1 as the
 shader unpacks it) or `brdfbake lut ltc --model ggx ... -o FILE.csv` on the published grid; a
@@ -43,7 +43,7 @@ import ltc_compare as lc  # noqa: E402
 ALPHA_BANDS = (0.0, 0.01, 0.05, 0.2, 0.5, 1.01)
 
 
-def common_texels(brdfbake_csv, published, rows, every):
+def common_texels(brdfbake_csv, published, rows, every, cols=None):
     """[(t, a, mu, alpha, ours M, published M)] at texels that are nodes of both grids, a >= 1."""
     table, size, param = lc.read_published(published)
     out = []
@@ -52,6 +52,8 @@ def common_texels(brdfbake_csv, published, rows, every):
         pub, kind = lc.published_matrix_at(table, size, t, a)
         t, a = int(round(t)), int(round(a))
         if pub is None or kind != "node" or a == 0 or (rows and t not in rows) or a % every:
+            continue
+        if cols and a not in cols:
             continue
         ours = ref.matrix_from_channels(row["m00"], row["m02"], row["m11"], row["m20"], row["m22"])
         out.append((t, a, row["mu"], row["alpha"], ours, pub))
@@ -82,12 +84,14 @@ def main():
     ap.add_argument("published")
     ap.add_argument("--n", type=int, default=128, help="nodes per axis of the coarser rule (default 128)")
     ap.add_argument("--rows", default=None, help="published rows t to compare (default: all present)")
+    ap.add_argument("--cols", default=None, help="published columns a to compare (default: all)")
     ap.add_argument("--every", type=int, default=1, help="every K-th column a")
     ap.add_argument("--sigmas", type=float, default=3.0)
     args = ap.parse_args()
     cpu0, wall0 = time.process_time(), time.time()
     rows = {int(r) for r in args.rows.split(",")} if args.rows else None
-    texels = common_texels(args.brdfbake_csv, args.published, rows, args.every)
+    cols = {int(a) for a in args.cols.split(",")} if args.cols else None
+    texels = common_texels(args.brdfbake_csv, args.published, rows, args.every, cols)
     if not texels:
         sys.exit("ltc_compare_published: error: no brdfbake texel is a node of the published table "
                  "(for three.js's: brdfbake lut ltc --preset three -o three.csv)")

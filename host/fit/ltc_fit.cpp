@@ -319,8 +319,14 @@ void fit_normal_view(const std::vector<LtcCell>& cells, const std::vector<CellSu
         }
     if (normal.empty()) return;
     auto symmetric = [&](size_t c, double ln_a) { return std::vector<double>{-sums[c].average_theta, ln_a, 0.0, ln_a}; };
+    // The distance of a lobe that an LTC matches almost exactly (GGX as alpha -> 0 is diag(2 alpha,
+    // 2 alpha, 1)) grows as |ln a - ln a*| (the L1 distance of a rescaling), not quadratically: a
+    // tolerance of 1e-3 on ln a left 3e-6 at alpha 2.5e-4 where the optimum's is 1e-7 (ltc6); the
+    // fixed points place the tip of that V where p = D. So the simplex shrinks to 1e-8.
     NelderMeadOptions one = nm;
     one.steps = {0.05};
+    one.size_tolerance = 1e-8;
+    one.value_tolerance = 1e-10;
     const std::vector<Minimum> m = minimize_batch(starts, one, [&](const std::vector<size_t>& sub, const std::vector<std::vector<double>>& ys) {
         std::vector<size_t> cells_of;
         std::vector<std::vector<double>> x;
@@ -347,6 +353,13 @@ struct CellScale {
     std::vector<double> relative(const std::vector<double>& y) const { return {y[0] * width, y[1], y[2] * width, y[3]}; }
 };
 
+/// The narrowest lobe width (CellSummary::width_x, width_y) of a row.
+double narrowest(const std::vector<CellSummary>& sums) {
+    double w = HUGE_VAL;
+    for (const CellSummary& s : sums) w = std::min({w, s.width_x, s.width_y});
+    return w;
+}
+
 /// One row: the fit points and their summaries, the batched minimisation from `starts` (theta
 /// taken from each cell's average direction), then the distance of the matrices as written.
 std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std::vector<LtcCell>& cells,
@@ -364,6 +377,12 @@ std::vector<LtcFit> fit_row(Engine& engine, const ModelConfig& model, const std:
     const LobePoints fit_pts = lobe_points(engine, model, o.precision, cells, o.fit_side, o.fit_grade);
     std::vector<CellSummary> fit_sums;
     const cl::Buffer fit_inv_e = inverse_albedos(fit_pts, fit_sums);
+    if (o.precision == Precision::Float && narrowest(fit_sums) < o.narrow_width) {
+        LtcFitOptions narrow = o;
+        narrow.precision = Precision::Double;
+        narrow.value_tolerance = narrow.size_tolerance = o.narrow_tolerance;
+        return fit_row(engine, model, cells, previous, narrow);
+    }
     auto absolute = [&](size_t c, const std::vector<double>& x) {
         return std::array<double, 4>{fit_sums[c].average_theta + x[0], x[1], x[2], x[3]};
     };

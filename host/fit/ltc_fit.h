@@ -65,6 +65,16 @@ struct LtcFitOptions {
     int refine_side = 64;
     double refine_step = 0.3;
     int refine_evaluations = 40;
+    /// A row of precision float with a lobe narrower than narrow_width (E_p[|x'/z'|] or E_p[|y'/z'|]
+    /// about its average direction, about the LTC's a or c) is fitted in double, with Nelder-Mead's
+    /// value and size tolerances narrow_tolerance. Float's directions and view cosine (1 - mu to
+    /// 6e-8) move a lobe 2.5e-4 wide by a few percent of its width: the float fit of GGX at alpha
+    /// 2.5e-4 lay 3e-4 from the true lobe by the numpy reference, 7e-6 in double. And a near-exact
+    /// fit's distance grows as |dx|, not dx^2: the tolerances 1e-3 stopped up to 35% above the distance
+    /// reached at 1e-6 (0.02: the 12 smoothest rows of 64 of the GGX table, alpha <= 0.03;
+    /// benchmarks/results/ltc-compare-amd-epyc-2c.md, ltc6).
+    double narrow_width = 0.02;
+    double narrow_tolerance = 1e-6;
 };
 
 struct LtcFit {

@@ -200,12 +200,19 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
         "^2 points (lobe- and LTC-sampled), for the M that the stored float32 values denote: " + min_median_max_text(distance_error);
     t.attributes["error_channel"] = "the larger of the magnitude's and the fresnel channel's integration errors "
                                     "(--samples, --method, --tolerance); the distance's: the distance_error channel";
+    auto short_text = [](double v) {
+        std::ostringstream o;
+        o << v;
+        return o.str();
+    };
     t.attributes["ltc_fit"] = "Nelder-Mead in (theta, ln a, b, ln c), M = R_y(theta) [[a,0,b],[0,c,0],[0,0,1]], on " +
                               std::to_string(options.fit_side) + "x" + std::to_string(options.fit_side) +
                               " sampler points per texel (u1 graded towards the lobe's tail, power " +
                               std::to_string(options.fit_grade) + "), steps relative to the lobe's width, rows from rough "
                               "to smooth, each started from the row before; then polished on " +
-                              std::to_string(options.refine_side) + "x" + std::to_string(options.refine_side) + " points";
+                              std::to_string(options.refine_side) + "x" + std::to_string(options.refine_side) +
+                              " points; a row whose narrowest lobe is under " + short_text(options.narrow_width) +
+                              " wide in double, tolerances " + short_text(options.narrow_tolerance);
     if (!m.uses_fresnel)
         t.attributes["fresnel_channel"] = "the magnitude: " + m.name + " has no Fresnel term to split "
                                           "(f0 E + (1 - f0) B = E for every f0)";
