@@ -457,7 +457,10 @@ BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, bb_ve
         bb_vec3 v = bb_scale(w, BB_R(-1.0));
         bb_real e = et.e[outside], em1 = et.em1[outside];
         bb_vec3 m = bb_walk_sample_vndf(dist, v, ax, ay, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
-        bb_real c = bb_clamp_cos(bb_dot(v, m));
+        /* <v, m> >= 0 but for Beckmann's views below BB_WALK_BECKMANN_MIN_COS (drawn from that cone's
+         * edge, bb_walk_sample_vndf), whose normal can face away (11 in 1.7e7 walks at alpha 0.3, mu
+         * 0.29): taken at grazing incidence, F = 1, a reflection (a refraction there has no direction). */
+        bb_real c = bb_max(bb_clamp_cos(bb_dot(v, m)), BB_R(0.0));
         bb_fresnel_sp f = bb_fresnel_dielectric_sp_m1(c, e, em1);
         int cross = !(bb_unit_from_bits(u.v[3]) < BB_R(0.5) * (f.rs + f.rp));
         bb_vec3 wa = cross ? bb_refract(v, m, c, e) : bb_reflect(v, m); /* in this side's frame */
