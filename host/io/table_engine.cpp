@@ -144,22 +144,31 @@ std::string number_range(const Axis& a) {
     return round_trip_text(a.lo) + " to " + round_trip_text(a.hi) + ", " + texels_name(a.texels) + " texels";
 }
 
-/// Throws unless t is an EEVEE LTC table: x = roughness and y = sqrt(1 - mu), each over [0, 1] at
-/// edge texels (lut_coords: uv * 63/64 + 0.5/64), unflipped, with the eevee packing's channels.
-void require_eevee_table(const Table& t, const std::string& format) {
-    for (const EeveeArray& a : kEeveeArrays)
-        for (int k = 0; k < a.channels; ++k)
-            if (std::find(t.channels.begin(), t.channels.end(), a.name + ("." + std::to_string(k))) == t.channels.end())
-                throw Error("an " + format + " holds Blender EEVEE's ltc_mat_ggx and ltc_mag_ggx (lut ltc --preset eevee); "
-                            "the " + t.kind + " table has channels " + channel_list(t) + ": write .exr or .csv");
+/// Throws unless t has the channels `names` (else: "an FORMAT holds WHAT (lut ltc --preset
+/// PRESET)") and lies on the LTC grid of ENGINE (three.js's, which EEVEE and HDRP share): x =
+/// roughness and y = sqrt(1 - mu), each over [0, 1] at edge texels (uv * 63/64 + 0.5/64), unflipped.
+void require_ltc_grid_table(const Table& t, const std::string& format, const std::vector<std::string>& names,
+                            const std::string& what, const std::string& preset, const std::string& engine) {
+    for (const std::string& name : names)
+        if (std::find(t.channels.begin(), t.channels.end(), name) == t.channels.end())
+            throw Error("an " + format + " holds " + what + " (lut ltc --preset " + preset + "); the " + t.kind +
+                        " table has channels " + channel_list(t) + ": write .exr or .csv");
     require_2d(t, format);
     auto on_grid = [](const Axis& a, const char* name) {
         return a.name == name && a.lo == 0.0 && a.hi == 1.0 && a.texels == Texels::Edge;
     };
     if (!on_grid(t.x, "roughness") || !on_grid(t.y, "sqrt_one_minus_mu"))
-        throw Error("an " + format + " holds EEVEE's LTC grid, x = roughness and y = sqrt_one_minus_mu, each 0 to 1 at "
-                    "edge texels (lut ltc --preset eevee); this table's x is " + t.x.name + " (" + number_range(t.x) +
-                    "), y " + t.y.name + " (" + number_range(t.y) + "): write .exr or .csv");
+        throw Error("an " + format + " holds " + engine + "'s LTC grid, x = roughness and y = sqrt_one_minus_mu, each "
+                    "0 to 1 at edge texels (lut ltc --preset " + preset + "); this table's x is " + t.x.name + " (" +
+                    number_range(t.x) + "), y " + t.y.name + " (" + number_range(t.y) + "): write .exr or .csv");
+}
+
+/// Throws unless t is an EEVEE LTC table (the eevee packing's channels, EEVEE's grid).
+void require_eevee_table(const Table& t, const std::string& format) {
+    std::vector<std::string> names;
+    for (const EeveeArray& a : kEeveeArrays)
+        for (int k = 0; k < a.channels; ++k) names.push_back(a.name + ("." + std::to_string(k)));
+    require_ltc_grid_table(t, format, names, "Blender EEVEE's ltc_mat_ggx and ltc_mag_ggx", "eevee", "EEVEE");
 }
 
 /// The value channel `name` of t (present: require_eevee_table).
@@ -223,6 +232,68 @@ std::string table_eevee_source(const Table& t, bool legacy) {
           << ";\n\n";
     }
     if (!legacy) o << "}  // namespace blender::eevee::lut\n";
+    return o.str();
+}
+
+namespace {
+
+/// HDRP's GGX LTC array, whose channels the unity-hdrp packing names NAME.0 ... NAME.3.
+const char* const kUnityArray = "s_LtcMatrixData_BRDF_GGX";
+
+/// The binary16 bits of a value the table stores as a half float (the unity-hdrp packing rounds
+/// and clamps); throws if it is not one, so that no other table's numbers pass as HDRP's.
+uint16_t exact_half_bits(double v, const std::string& channel) {
+    const Imath::half h = Imath::half(float(v));
+    if (!h.isFinite() || double(float(h)) != v)
+        throw Error("the HDRP .cs file holds half floats; channel " + channel + " holds " + round_trip_text(v) +
+                    ", which is not one: write it with lut ltc --preset unity-hdrp");
+    return h.bits();
+}
+
+/// The texel's "// alpha = ..." and the row's "// cos theta = ..." numbers: the axis's parameter.
+double axis_parameter(const Axis& a, int i) {
+    return a.parameter.size() == size_t(a.size) ? a.parameter[size_t(i)] : a.coordinate[size_t(i)];
+}
+
+}  // namespace
+
+std::string table_unity_hdrp_source(const Table& t) {
+    const std::string format = "HDRP .cs file (Unity HDRP)";
+    std::vector<std::string> names;
+    for (int k = 0; k < 4; ++k) names.push_back(kUnityArray + ("." + std::to_string(k)));
+    require_ltc_grid_table(t, format, names, std::string("Unity HDRP's ") + kUnityArray, "unity-hdrp", "HDRP");
+    const std::string w = std::to_string(t.width()), h = std::to_string(t.height());
+    std::ostringstream o;
+    o << "// Unity HDRP's GGX LTC table, written by brdfbake " << BRDFBAKE_VERSION << " as HDRP's\n"
+      << "// Runtime/Material/LTCAreaLight/Generated/LtcData.BRDF_GGX.cs (the ushort form of HDRP since 2023, pull\n"
+      << "// request Unity-Technologies/Graphics#7929; LTCAreaLight.cs uploads it with SetPixelData into slice 0 of\n"
+      << "// _LtcData, R16G16B16A16_SFloat). To use it: replace that file's text by this file's (keep its .meta; an\n"
+      << "// HDRP package from the package cache must first be embedded in the project's Packages folder).\n"
+      << "// " << kUnityArray << "[4 * (a + " << w << " * t) + c]: the half-float bits of M^-1 / M^-1_22 as\n"
+      << "// (00, 20, 11, 02) for c = R, G, B, A (SampleLtcMatrix loads them into invM._m00_m02_m11_m20, _m22 = 1);\n"
+      << "// column a at perceptual roughness a / " << t.width() - 1 << ", row t at sqrt(1 - cos theta) = t / "
+      << t.height() - 1 << ". Entries beyond\n// the half floats' 65504 are clamped to it. HDRP takes the magnitude "
+      << "and Fresnel terms from its FGD table:\n// the table's magnitude and fresnel channels are not written here.\n";
+    if (t.width() != 64 || t.height() != 64)
+        o << "// HDRP's texture is 64 x 64 (LTCAreaLight.k_LtcLUTResolution, LTC_LUT_SIZE): this table is " << w << " x "
+          << h << ",\n// which needs those changed.\n";
+    o << description_comment(t, "// ") << "\nnamespace UnityEngine.Rendering.HighDefinition\n{\n"
+      << "    internal partial class LTCAreaLight\n    {\n"
+      << "        internal static ushort[] " << kUnityArray << " = new ushort[" << w << " * " << h << " * 4]\n        {";
+    std::vector<const std::vector<double>*> ch;
+    for (const std::string& name : names) ch.push_back(&channel_values(t, name));
+    for (int j = 0; j < t.height(); ++j) {
+        o << "\n            // t = " << j << ": cos theta = " << round_trip_text(axis_parameter(t.y, j))
+          << "\n";
+        for (int i = 0; i < t.width(); ++i) {
+            const size_t texel = size_t(j) * size_t(t.width()) + size_t(i);
+            std::string line = "            ";
+            for (size_t c = 0; c < 4; ++c) line += std::to_string(exact_half_bits((*ch[c])[texel], names[c])) + ", ";
+            o << line << std::string(line.size() < 45 ? 45 - line.size() : 1, ' ') << "// a = " << i
+              << ": alpha = " << round_trip_text(axis_parameter(t.x, i)) << "\n";
+        }
+    }
+    o << "        };\n    }\n}\n";
     return o.str();
 }
 
