@@ -30,6 +30,7 @@
 
 #include "brdfbake/table.h"
 #include "checks.h"
+#include "scratch.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -38,18 +39,8 @@ using testing::run_shell;
 
 namespace {
 
-struct Scratch {
-    std::string path;
-    Scratch() {
-        char t[] = "/tmp/brdfbake-unity-XXXXXX";
-        REQUIRE(::mkdtemp(t) != nullptr);
-        path = t;
-    }
-    ~Scratch() { std::filesystem::remove_all(path); }
-    std::string operator/(const std::string& name) const { return path + "/" + name; }
-};
-
-void put(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+using testing::put;
+using Scratch = testing::ScratchDir;
 
 /// The rest of HDRP's LTCAreaLight class that the table meets: k_LtcLUTResolution (n; HDRP's is
 /// 64) and a Main that reads the array as SetPixelData lays it into an RGBA16F texture, printing
@@ -134,7 +125,7 @@ TEST_CASE("unity-hdrp .cs: compiled by mcs beside HDRP's class, each texel as Se
           "[formats][engine][ltc][quick]") {
     const int n = 64;
     const Table t = unity_grid_table(n);
-    const Scratch dir;
+    const Scratch dir("unity");
     write_table(t, dir / "LtcData.BRDF_GGX.cs");
     const auto texels = compile_and_read(dir.path, n);
     for (int j = 0; j < n; ++j)
@@ -164,7 +155,7 @@ TEST_CASE("lut ltc --preset unity-hdrp: HDRP's texels are --preset three's M^-1 
     // 8 x 8 texels on HDRP's grid (the 64 x 64 fit takes 16 s of CPU); three's last row computed at
     // HDRP's cosTheta floor so that every texel has the same (roughness, view).
     const int n = 8;
-    const Scratch dir;
+    const Scratch dir("unity");
     const auto unity = run_cli("lut ltc --preset unity-hdrp --size " + std::to_string(n) + " -o " +
                                (dir / "LtcData.BRDF_GGX.cs") + " --no-preview");
     INFO(unity.err);
@@ -213,15 +204,9 @@ TEST_CASE("lut ltc --preset unity-hdrp: HDRP's texels are --preset three's M^-1 
 }
 
 TEST_CASE("lut -o NAME.cs: a table that is not HDRP's is refused with one line, nothing written", "[ltc][presets][cli]") {
-    const Scratch dir;
+    const Scratch dir("unity");
     for (const auto& [args, out] : {std::pair<std::string, std::string>{"lut albedo --model ggx --size 4", "albedo.cs"},
                                     {"lut ltc --preset three --size 3", "three.cs"},
-                                    {"lut ltc --preset unity-hdrp --size 3 --flip roughness", "flipped.cs"}}) {
-        INFO(args);
-        const auto r = run_shell("BRDFBAKE_PROGRESS_DELAY=100000 " + std::string(BRDFBAKE_EXE) + " " + args +
-                                 " --samples 256 --no-preview -o " + (dir / out));
-        testing::check_usage_error(r);
-        CHECK(r.err.find(".cs") != std::string::npos);
-        CHECK_FALSE(std::filesystem::exists(dir / out));
-    }
+                                    {"lut ltc --preset unity-hdrp --size 3 --flip roughness", "flipped.cs"}})
+        testing::check_refused_when_written(args, dir / out);
 }
