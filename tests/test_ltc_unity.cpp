@@ -207,6 +207,10 @@ TEST_CASE("lut -o NAME.cs: a table that is not HDRP's is refused with one line, 
     const Scratch dir("unity");
     for (const auto& [args, out] : {std::pair<std::string, std::string>{"lut albedo --model ggx --size 4", "albedo.cs"},
                                     {"lut ltc --preset three --size 3", "three.cs"},
-                                    {"lut ltc --preset unity-hdrp --size 3 --flip roughness", "flipped.cs"}})
+                                    {"lut ltc --preset unity-hdrp --size 3 --flip roughness", "flipped.cs"},
+                                    // HDRP's BRDF_GGX.cs: GGX with height-correlated G2, F = 1
+                                    {"lut ltc --preset unity-hdrp --size 3 --model beckmann", "beckmann.cs"},
+                                    {"lut ltc --preset unity-hdrp --size 3 --model ggx:shadowing=separable",
+                                     "separable.cs"}})
         testing::check_refused_when_written(args, dir / out);
 }

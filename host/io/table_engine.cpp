@@ -262,6 +262,13 @@ std::string table_unity_hdrp_source(const Table& t) {
     std::vector<std::string> names;
     for (int k = 0; k < 4; ++k) names.push_back(kUnityArray + ("." + std::to_string(k)));
     require_ltc_grid_table(t, format, names, std::string("Unity HDRP's ") + kUnityArray, "unity-hdrp", "HDRP");
+    // HDRP's array is the fit of its BRDF_GGX (Runtime/Material/LTCAreaLight/BRDF/BRDF_GGX.cs: GGX
+    // D, height-correlated G2 = 1 / (1 + Lambda(V) + Lambda(L)), F = 1): brdfbake's default ggx.
+    const auto model = t.attributes.find("model");
+    if (model != t.attributes.end() && model->second != "ggx:shadowing=correlated")
+        throw Error("an " + format + " holds " + kUnityArray + ", the fit of HDRP's GGX with height-correlated "
+                    "shadowing (ggx:shadowing=correlated); this table's model is " + model->second +
+                    ": write .exr or .csv");
     const std::string w = std::to_string(t.width()), h = std::to_string(t.height());
     std::ostringstream o;
     o << "// Unity HDRP's GGX LTC table, written by brdfbake " << BRDFBAKE_VERSION << " as HDRP's\n"
