@@ -43,24 +43,37 @@ using testing::put;
 using Scratch = testing::ScratchDir;
 
 /// The rest of HDRP's LTCAreaLight class that the table meets: k_LtcLUTResolution (n; HDRP's is
-/// 64) and a Main that reads the array as SetPixelData lays it into an RGBA16F texture, printing
-/// "y x R G B A" (the half floats' bits) for texel (x, y) at x + n y.
-std::string csharp_stub(int n) {
+/// 64) and a Main that reads the array as HDRP uploads it, printing "y x R G B A" for texel (x, y):
+/// since July 2023 SetPixelData lays the ushort array into an RGBA16F texture, texel (x, y) at
+/// x + n y (printed: the half floats' bits); from 2021 to then LoadLUT took entries 0, 2, 4, 6 of
+/// row x + n y of the double[,] array as Mathf.Min(65504, (float)v) (printed: the floats, with
+/// entry 8 and the sum of |entries 1, 3, 5, 7|).
+std::string csharp_stub(int n, bool doubles) {
     const std::string s = std::to_string(n);
-    return "using System;\n\nnamespace UnityEngine.Rendering.HighDefinition\n{\n"
-           "    internal partial class LTCAreaLight\n    {\n"
-           "        internal const int k_LtcLUTResolution = " + s + ";\n\n"
-           "        static int Main()\n        {\n"
-           "            ushort[] data = s_LtcMatrixData_BRDF_GGX;\n"
-           "            if (data.Length != k_LtcLUTResolution * k_LtcLUTResolution * 4) return 1;\n"
-           "            for (int y = 0; y < k_LtcLUTResolution; ++y)\n"
-           "                for (int x = 0; x < k_LtcLUTResolution; ++x)\n"
-           "                {\n"
-           "                    int texel = x + k_LtcLUTResolution * y;\n"
-           "                    Console.WriteLine(\"{0} {1} {2} {3} {4} {5}\", y, x, data[4 * texel], data[4 * texel + 1],\n"
-           "                                      data[4 * texel + 2], data[4 * texel + 3]);\n"
-           "                }\n"
-           "            return 0;\n        }\n    }\n}\n";
+    std::string p = "using System;\n\nnamespace UnityEngine.Rendering.HighDefinition\n{\n"
+                    "    internal partial class LTCAreaLight\n    {\n"
+                    "        internal const int k_LtcLUTResolution = " + s + ";\n\n"
+                    "        static float Clamp(double v) { return Math.Min(65504.0f, (float)v); }\n\n"
+                    "        static int Main()\n        {\n";
+    if (doubles)
+        p += "            double[,] data = s_LtcMatrixData_BRDF_GGX;\n"
+             "            if (data.GetLength(0) != k_LtcLUTResolution * k_LtcLUTResolution || data.GetLength(1) != 9) return 1;\n";
+    else
+        p += "            ushort[] data = s_LtcMatrixData_BRDF_GGX;\n"
+             "            if (data.Length != k_LtcLUTResolution * k_LtcLUTResolution * 4) return 1;\n";
+    p += "            for (int y = 0; y < k_LtcLUTResolution; ++y)\n"
+         "                for (int x = 0; x < k_LtcLUTResolution; ++x)\n"
+         "                {\n"
+         "                    int i = x + k_LtcLUTResolution * y;\n";
+    if (doubles)
+        p += "                    Console.WriteLine(\"{0} {1} {2} {3} {4} {5} {6} {7}\", y, x, Clamp(data[i, 0]).ToString(\"R\"),\n"
+             "                                      Clamp(data[i, 2]).ToString(\"R\"), Clamp(data[i, 4]).ToString(\"R\"),\n"
+             "                                      Clamp(data[i, 6]).ToString(\"R\"), data[i, 8].ToString(\"R\"),\n"
+             "                                      (Math.Abs(data[i, 1]) + Math.Abs(data[i, 3]) + Math.Abs(data[i, 5]) + Math.Abs(data[i, 7])).ToString(\"R\"));\n";
+    else
+        p += "                    Console.WriteLine(\"{0} {1} {2} {3} {4} {5}\", y, x, data[4 * i], data[4 * i + 1],\n"
+             "                                      data[4 * i + 2], data[4 * i + 3]);\n";
+    return p + "                }\n            return 0;\n        }\n    }\n}\n";
 }
 
 float half_value(unsigned bits) {
@@ -70,9 +83,10 @@ float half_value(unsigned bits) {
 }
 
 /// Compiles dir/LtcData.BRDF_GGX.cs beside the stub with mcs (warnings as errors) and runs it with
-/// mono: texels[y * n + x] = the four half floats of texel (x, y).
-std::vector<std::vector<float>> compile_and_read(const std::string& dir, int n) {
-    put(dir + "/LTCAreaLightStub.cs", csharp_stub(n));
+/// mono: texels[y * n + x] = the four values HDRP uploads for texel (x, y) (the 2021 form: then
+/// entry 8 and the sum of the entries that must be 0).
+std::vector<std::vector<float>> compile_and_read(const std::string& dir, int n, bool doubles = false) {
+    put(dir + "/LTCAreaLightStub.cs", csharp_stub(n, doubles));
     const auto built = run_shell("cd " + dir + " && mcs -warnaserror+ -warn:4 -nologo -out:print.exe "
                                  "LtcData.BRDF_GGX.cs LTCAreaLightStub.cs");
     INFO("mcs (Debian's mono-mcs, scripts/setup.sh): " << built.out << built.err);
@@ -85,9 +99,14 @@ std::vector<std::vector<float>> compile_and_read(const std::string& dir, int n) 
     int y, x, count = 0;
     while (in >> y >> x) {
         REQUIRE((y >= 0 && y < n && x >= 0 && x < n));
-        unsigned bits[4];
-        for (unsigned& b : bits) in >> b;
-        for (unsigned b : bits) texels[size_t(y) * n + x].push_back(half_value(b));
+        std::vector<float>& v = texels[size_t(y) * n + x];
+        for (int c = 0; c < (doubles ? 6 : 4); ++c) {
+            unsigned bits = 0;
+            float f = 0;
+            if (doubles) in >> f;
+            else in >> bits;
+            v.push_back(doubles ? f : half_value(bits));
+        }
         ++count;
     }
     CHECK(count == n * n);
@@ -150,13 +169,18 @@ TEST_CASE("unity-hdrp .cs: compiled by mcs beside HDRP's class, each texel as Se
     for (const char* name : {"flipped.cs", "plain.cs", "wide.cs"}) CHECK_FALSE(std::filesystem::exists(dir / name));
 }
 
-TEST_CASE("lut ltc --preset unity-hdrp: HDRP's texels are --preset three's M^-1 renormalised, row t = 0 is (1/m, 0, 1/m, 0)",
+TEST_CASE("lut ltc --preset unity-hdrp(-2021): HDRP's texels are --preset three's M^-1 renormalised, row t = 0 is "
+          "(1/m, 0, 1/m, 0)",
           "[ltc][presets][cli]") {
     // 8 x 8 texels on HDRP's grid (the 64 x 64 fit takes 16 s of CPU); three's last row computed at
-    // HDRP's cosTheta floor so that every texel has the same (roughness, view).
+    // HDRP's cosTheta floor so that every texel has the same (roughness, view). The 2021 form holds
+    // the same numbers (those of the half floats the GPU gets) as doubles, all nine entries.
+    const bool doubles = GENERATE(false, true);
+    const std::string preset = doubles ? "unity-hdrp-2021" : "unity-hdrp";
+    INFO("--preset " << preset);
     const int n = 8;
     const Scratch dir("unity");
-    const auto unity = run_cli("lut ltc --preset unity-hdrp --size " + std::to_string(n) + " -o " +
+    const auto unity = run_cli("lut ltc --preset " + preset + " --size " + std::to_string(n) + " -o " +
                                (dir / "LtcData.BRDF_GGX.cs") + " --no-preview");
     INFO(unity.err);
     REQUIRE(unity.status == 0);
@@ -168,7 +192,7 @@ TEST_CASE("lut ltc --preset unity-hdrp: HDRP's texels are --preset three's M^-1 
     REQUIRE(t3.channels.size() >= 4);
     REQUIRE(t3.channels[0] == "ltc_1.R");
     REQUIRE(t3.channels[3] == "ltc_1.A");
-    const auto texels = compile_and_read(dir.path, n);
+    const auto texels = compile_and_read(dir.path, n, doubles);
     for (int t = 0; t < n; ++t)
         for (int a = 0; a < n; ++a) {
             // three.js's ltc_1 = (Minv00, Minv20, Minv02, Minv22) / Minv11 (docs/ltc_presets.md), so
@@ -188,6 +212,10 @@ TEST_CASE("lut ltc --preset unity-hdrp: HDRP's texels are --preset three's M^-1 
             // The shader's invM (_m22 = 1) is M^-1 transposed, up to a positive scale: the stored
             // M^-1_22 of three (A) and its M^-1_11 (1) have the sign of HDRP's B and 1.
             CHECK(texels[k][2] > 0.0f);
+            if (doubles) {  // entry 8 (M^-1_22 / M^-1_22) is 1, entries 1, 3, 5, 7 are 0 (isotropic: no y coupling)
+                CHECK(texels[k][4] == 1.0f);
+                CHECK(texels[k][5] == 0.0f);
+            }
         }
     // Normal view (t = 0): M = diag(m, m, 1) up to scale (the lobe is symmetric about the normal),
     // so M^-1 / M^-1_22 = diag(1/m, 1/m, 1): R = B, G = A = 0 as in HDRP's own first row; for small

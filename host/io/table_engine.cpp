@@ -257,11 +257,47 @@ double axis_parameter(const Axis& a, int i) {
 
 }  // namespace
 
+namespace {
+
+/// The header comment of an HDRP .cs file: what it replaces, how HDRP reads it, the description.
+std::string unity_hdrp_comment(const Table& t, bool doubles) {
+    const std::string w = std::to_string(t.width());
+    std::ostringstream o;
+    o << "// Unity HDRP's GGX LTC table, written by brdfbake " << BRDFBAKE_VERSION << " as HDRP's\n"
+      << "// Runtime/Material/LTCAreaLight/Generated/LtcData.BRDF_GGX.cs"
+      << (doubles ? " (the double form of HDRP from its 2021 LTC generator, pull\n"
+                    "// request Unity-Technologies/Graphics#3957, until pull request #7929 of July 2023; LTCAreaLight.cs's "
+                    "LoadLUT\n// uploads entries 0, 2, 4, 6 into slice 0 of _LtcData, R16G16B16A16_SFloat)."
+                  : " (the ushort form of HDRP since 2023, pull\n"
+                    "// request Unity-Technologies/Graphics#7929; LTCAreaLight.cs uploads it with SetPixelData into slice 0 "
+                    "of\n// _LtcData, R16G16B16A16_SFloat).")
+      << " To use it: replace that file's text by this file's (keep its .meta;\n// an HDRP package from the package "
+         "cache must first be embedded in the project's Packages folder).\n// "
+      << kUnityArray
+      << (doubles ? "[a + " + w + " * t, r + 3 * c] = M^-1_rc / M^-1_22 (columns first; HDRP reads entries 0, 2, 4, 6 "
+                    "into\n// invM._m00_m02_m11_m20 with _m22 = 1, clamped to 65504);"
+                  : "[4 * (a + " + w + " * t) + c]: the half-float bits of M^-1 / M^-1_22 as (00, 20, 11, 02)\n"
+                    "// for c = R, G, B, A (SampleLtcMatrix loads them into invM._m00_m02_m11_m20, _m22 = 1), clamped "
+                    "to 65504;")
+      << "\n// column a at perceptual roughness a / " << t.width() - 1 << ", row t at sqrt(1 - cos theta) = t / "
+      << t.height() - 1 << ". HDRP takes the magnitude and Fresnel terms\n// from its FGD table: the table's "
+      << "magnitude and fresnel channels are not written here.\n";
+    if (t.width() != 64 || t.height() != 64)
+        o << "// HDRP's texture is 64 x 64 (LTCAreaLight.k_LtcLUTResolution, LTC_LUT_SIZE): this table is " << w << " x "
+          << t.height() << ",\n// which needs those changed.\n";
+    return o.str() + description_comment(t, "// ");
+}
+
+}  // namespace
+
 std::string table_unity_hdrp_source(const Table& t) {
     const std::string format = "HDRP .cs file (Unity HDRP)";
+    // The nine entries (packing unity-hdrp-2021) or the four half floats (unity-hdrp).
+    const bool doubles = std::find(t.channels.begin(), t.channels.end(), kUnityArray + std::string(".8")) != t.channels.end();
     std::vector<std::string> names;
-    for (int k = 0; k < 4; ++k) names.push_back(kUnityArray + ("." + std::to_string(k)));
-    require_ltc_grid_table(t, format, names, std::string("Unity HDRP's ") + kUnityArray, "unity-hdrp", "HDRP");
+    for (int k = 0; k < (doubles ? 9 : 4); ++k) names.push_back(kUnityArray + ("." + std::to_string(k)));
+    require_ltc_grid_table(t, format, names, std::string("Unity HDRP's ") + kUnityArray,
+                           doubles ? "unity-hdrp-2021" : "unity-hdrp", "HDRP");
     // HDRP's array is the fit of its BRDF_GGX (Runtime/Material/LTCAreaLight/BRDF/BRDF_GGX.cs: GGX
     // D, height-correlated G2 = 1 / (1 + Lambda(V) + Lambda(L)), F = 1): brdfbake's default ggx.
     const auto model = t.attributes.find("model");
@@ -271,31 +307,20 @@ std::string table_unity_hdrp_source(const Table& t) {
                     ": write .exr or .csv");
     const std::string w = std::to_string(t.width()), h = std::to_string(t.height());
     std::ostringstream o;
-    o << "// Unity HDRP's GGX LTC table, written by brdfbake " << BRDFBAKE_VERSION << " as HDRP's\n"
-      << "// Runtime/Material/LTCAreaLight/Generated/LtcData.BRDF_GGX.cs (the ushort form of HDRP since 2023, pull\n"
-      << "// request Unity-Technologies/Graphics#7929; LTCAreaLight.cs uploads it with SetPixelData into slice 0 of\n"
-      << "// _LtcData, R16G16B16A16_SFloat). To use it: replace that file's text by this file's (keep its .meta; an\n"
-      << "// HDRP package from the package cache must first be embedded in the project's Packages folder).\n"
-      << "// " << kUnityArray << "[4 * (a + " << w << " * t) + c]: the half-float bits of M^-1 / M^-1_22 as\n"
-      << "// (00, 20, 11, 02) for c = R, G, B, A (SampleLtcMatrix loads them into invM._m00_m02_m11_m20, _m22 = 1);\n"
-      << "// column a at perceptual roughness a / " << t.width() - 1 << ", row t at sqrt(1 - cos theta) = t / "
-      << t.height() - 1 << ". Entries beyond\n// the half floats' 65504 are clamped to it. HDRP takes the magnitude "
-      << "and Fresnel terms from its FGD table:\n// the table's magnitude and fresnel channels are not written here.\n";
-    if (t.width() != 64 || t.height() != 64)
-        o << "// HDRP's texture is 64 x 64 (LTCAreaLight.k_LtcLUTResolution, LTC_LUT_SIZE): this table is " << w << " x "
-          << h << ",\n// which needs those changed.\n";
-    o << description_comment(t, "// ") << "\nnamespace UnityEngine.Rendering.HighDefinition\n{\n"
-      << "    internal partial class LTCAreaLight\n    {\n"
-      << "        internal static ushort[] " << kUnityArray << " = new ushort[" << w << " * " << h << " * 4]\n        {";
+    o << unity_hdrp_comment(t, doubles) << "\nnamespace UnityEngine.Rendering.HighDefinition\n{\n"
+      << "    internal partial class LTCAreaLight\n    {\n        internal static "
+      << (doubles ? "double[,] " : "ushort[] ") << kUnityArray << " = new "
+      << (doubles ? "double[" + w + " * " + h + ", 3 * 3]" : "ushort[" + w + " * " + h + " * 4]") << "\n        {";
     std::vector<const std::vector<double>*> ch;
     for (const std::string& name : names) ch.push_back(&channel_values(t, name));
     for (int j = 0; j < t.height(); ++j) {
-        o << "\n            // t = " << j << ": cos theta = " << round_trip_text(axis_parameter(t.y, j))
-          << "\n";
+        o << "\n            // t = " << j << ": cos theta = " << round_trip_text(axis_parameter(t.y, j)) << "\n";
         for (int i = 0; i < t.width(); ++i) {
             const size_t texel = size_t(j) * size_t(t.width()) + size_t(i);
-            std::string line = "            ";
-            for (size_t c = 0; c < 4; ++c) line += std::to_string(exact_half_bits((*ch[c])[texel], names[c])) + ", ";
+            std::string line = doubles ? "            { " : "            ";
+            for (size_t c = 0; c < names.size(); ++c)
+                line += (doubles ? round_trip_text((*ch[c])[texel]) : std::to_string(exact_half_bits((*ch[c])[texel], names[c]))) +
+                        (doubles && c + 1 == names.size() ? " }," : ", ");
             o << line << std::string(line.size() < 45 ? 45 - line.size() : 1, ' ') << "// a = " << i
               << ": alpha = " << round_trip_text(axis_parameter(t.x, i)) << "\n";
         }

@@ -150,6 +150,22 @@ const std::vector<LtcPacking>& ltc_packings() {
              return std::vector<double>{u[0], u[1], u[2], u[3], e, b};
          },
          [](const fit::LtcMatrix& m) { return from_unity_hdrp_texel(unity_hdrp_texel(m)); }},
+        // HDRP from its 2021 LTC generator to mid-2023: the whole M^-1 / M^-1_22 "columns first"
+        // as doubles (double[64 * 64, 3 * 3], entry r + 3 c = M^-1_rc / M^-1_22), of which
+        // LTCAreaLight.cs's LoadLUT uploads entries 0, 2, 4, 6, min(65504, (float)v), as half floats.
+        {"unity-hdrp-2021",
+         "Unity HDRP's s_LtcMatrixData_BRDF_GGX of 2021 to 2023 = M^-1 / M^-1_22 columns first (entry r + 3 c = "
+         "M^-1_rc / M^-1_22), doubles; magnitude and fresnel",
+         {"s_LtcMatrixData_BRDF_GGX.0", "s_LtcMatrixData_BRDF_GGX.1", "s_LtcMatrixData_BRDF_GGX.2",
+          "s_LtcMatrixData_BRDF_GGX.3", "s_LtcMatrixData_BRDF_GGX.4", "s_LtcMatrixData_BRDF_GGX.5",
+          "s_LtcMatrixData_BRDF_GGX.6", "s_LtcMatrixData_BRDF_GGX.7", "s_LtcMatrixData_BRDF_GGX.8", "magnitude",
+          "fresnel"},
+         [](const fit::LtcMatrix& m, double e, double b) {
+             const double d = m.m00 * m.m22 - m.m02 * m.m20;
+             return std::vector<double>{m.m22 / m.m00, 0.0, -m.m20 / m.m00, 0.0, d / (m.m11 * m.m00), 0.0,
+                                        -m.m02 / m.m00, 0.0, 1.0, e, b};
+         },
+         [](const fit::LtcMatrix& m) { return from_unity_hdrp_texel(unity_hdrp_texel(m)); }},  // what the GPU holds
     };
     return packings;
 }
@@ -157,7 +173,7 @@ const std::vector<LtcPacking>& ltc_packings() {
 const LtcPacking& ltc_packing(const std::string& name) {
     for (const LtcPacking& p : ltc_packings())
         if (p.name == name) return p;
-    throw Error("the ltc table has no packing '" + name + "' (three, eevee, unity-hdrp, or none for its own channels)");
+    throw Error("the ltc table has no packing '" + name + "' (three, eevee, unity-hdrp, unity-hdrp-2021, or none for its own channels)");
 }
 
 void validate_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {

@@ -140,6 +140,14 @@ LutRequest unity_hdrp_ltc_layout() {
     return r;
 }
 
+// HDRP's GGX LTC table of 2021 to mid-2023 (the same file, s_LtcMatrixData_BRDF_GGX as double[64 * 64,
+// 3 * 3], read by LoadLUT): the same grid, packing "unity-hdrp-2021" (kind_ltc.cpp).
+LutRequest unity_hdrp_2021_ltc_layout() {
+    LutRequest r = unity_hdrp_ltc_layout();
+    r.packing = "unity-hdrp-2021";
+    return r;
+}
+
 std::string join_names(const std::vector<std::string>& names) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -248,6 +256,13 @@ const std::vector<LutPreset>& lut_presets() {
                     "s_LtcMatrixData_BRDF_GGX[4 (a + 64 t) + c] = M^-1 / M^-1_22 as (00, 20, 11, 02) in half floats "
                     "(ushort bits, clamped to 65504); C# source for HDRP from 2023 (pull request #7929)",
                     {{K::Ltc, unity_hdrp_ltc_layout(), ""}}, {}}),
+        preset_row({"unity-hdrp-2021", "Unity HDRP (2021 to mid-2023)",
+                    "s_LtcMatrixData_BRDF_GGX as double[64 * 64, 3 * 3] (Generated/LtcData.BRDF_GGX.cs from the LTC "
+                    "table generator of pull request #3957 to pull request #7929; uploaded by LTCAreaLight.cs LoadLUT)",
+                    "cs", false,
+                    "ltc: unity-hdrp's grid, s_LtcMatrixData_BRDF_GGX[a + 64 t, r + 3 c] = M^-1_rc / M^-1_22 (all nine, "
+                    "doubles; LoadLUT uploads entries 0, 2, 4, 6 clamped to 65504 as half floats)",
+                    {{K::Ltc, unity_hdrp_2021_ltc_layout(), ""}}, {}}),
     };
     return presets;
 }
