@@ -55,6 +55,7 @@ sheen-viewer --preset gltf --model sheen:visibility=ashikhmin|lut_charlie.png
 ltc --preset three|ltc_three.exr
 ltc --preset eevee|eevee_ltc.cc
 ltc --preset unity-hdrp|LtcData.BRDF_GGX.cs
+ltc --preset unity-hdrp-2021|LtcData.BRDF_GGX_2021.cs
 --preset unreal|PreIntegratedGF.png
 LIST
 echo "load at end $(cut -d' ' -f1-3 /proc/loadavg)"
