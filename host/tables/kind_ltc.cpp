@@ -160,10 +160,9 @@ const std::vector<LtcPacking>& ltc_packings() {
           "s_LtcMatrixData_BRDF_GGX.3", "s_LtcMatrixData_BRDF_GGX.4", "s_LtcMatrixData_BRDF_GGX.5",
           "s_LtcMatrixData_BRDF_GGX.6", "s_LtcMatrixData_BRDF_GGX.7", "s_LtcMatrixData_BRDF_GGX.8", "magnitude",
           "fresnel"},
-         [](const fit::LtcMatrix& m, double e, double b) {
-             const double d = m.m00 * m.m22 - m.m02 * m.m20;
-             return std::vector<double>{m.m22 / m.m00, 0.0, -m.m20 / m.m00, 0.0, d / (m.m11 * m.m00), 0.0,
-                                        -m.m02 / m.m00, 0.0, 1.0, e, b};
+         [](const fit::LtcMatrix& m, double e, double b) {  // the half floats the GPU gets, as doubles
+             const std::array<double, 4> u = unity_hdrp_texel(m);
+             return std::vector<double>{u[0], 0.0, u[1], 0.0, u[2], 0.0, u[3], 0.0, 1.0, e, b};
          },
          [](const fit::LtcMatrix& m) { return from_unity_hdrp_texel(unity_hdrp_texel(m)); }},  // what the GPU holds
     };
