@@ -1,6 +1,7 @@
 #!/bin/sh
 # Issue 30: every preset command of the README, run once at its default settings with
-# --no-preview, its exit status and wall time; every .h (and EEVEE's .c) it writes compiled as C and C++, a .cc as C++.
+# --no-preview, its exit status and wall time; every .h (and EEVEE's .c) it writes compiled as C and C++, a .cc as C++,
+# a .cs (Unity HDRP) as C# by Mono's mcs.
 # Usage: benchmarks/readme_presets.sh [path/to/brdfbake]   (writes only under $TMPDIR)
 set -u
 exe=$(realpath "${1:-./build/brdfbake}")
@@ -31,6 +32,10 @@ while IFS='|' read -r args file; do
         gcc -std=c99 -fsyntax-only "$file" 2>/dev/null && c=yes
         g++ -fsyntax-only -x c++ "$file" 2>/dev/null && cxx=yes
         compiles="$c, $cxx" ;;
+    *.cs)  # Unity HDRP: C#, compiled alone as a library by Mono's mcs (mono-mcs)
+        cs=no
+        mcs -nologo -target:library -warnaserror+ -out:"$file.dll" "$file" >/dev/null 2>&1 && cs=yes
+        compiles="C#: $cs" ;;
     esac
     printf '| `lut %s -o %s` | %s | %.1f s | %s |\n' "$args" "$file" "$rc" "$wall" "$compiles"
 done <<'LIST'
@@ -49,6 +54,8 @@ sheen-viewer --preset gltf --model sheen:visibility=ashikhmin|lut_charlie.png
 --preset three|DFGLUTData.js
 ltc --preset three|ltc_three.exr
 ltc --preset eevee|eevee_ltc.cc
+ltc --preset unity-hdrp|LtcData.BRDF_GGX.cs
+ltc --preset unity-hdrp-2021|LtcData.BRDF_GGX_2021.cs
 --preset unreal|PreIntegratedGF.png
 LIST
 echo "load at end $(cut -d' ' -f1-3 /proc/loadavg)"

@@ -14,6 +14,7 @@ packages=(
   libjpeg-dev  # the ranges of glTF JPEG textures (host/scene/texture_image.cpp)
   libopenmpi-dev openmpi-bin  # MPI jobs (mpirun -np N brdfbake ...; docs/cluster.md) and their tests
   chromium  # the bake report rendered headless by its test (tests/test_bake_report_browser.cpp)
+  mono-mcs  # the Unity HDRP .cs table compiled and read back by its test (tests/test_ltc_unity.cpp)
 )
 
 missing=()

@@ -21,6 +21,7 @@
 
 #include "brdfbake/table.h"
 #include "checks.h"
+#include "scratch.h"
 #include "support.h"
 
 using namespace brdfbake;
@@ -29,18 +30,8 @@ using testing::run_shell;
 
 namespace {
 
-struct Scratch {
-    std::string path;
-    Scratch() {
-        char t[] = "/tmp/brdfbake-eevee-XXXXXX";
-        REQUIRE(::mkdtemp(t) != nullptr);
-        path = t;
-    }
-    ~Scratch() { std::filesystem::remove_all(path); }
-    std::string operator/(const std::string& name) const { return path + "/" + name; }
-};
-
-void put(const std::string& path, const std::string& text) { std::ofstream(path) << text; }
+using testing::put;
+using Scratch = testing::ScratchDir;
 
 /// Blender 4.2's eevee_lut.hh, its two LTC declarations (for an n x n table; Blender's n is 64).
 std::string eevee_lut_hh(int n) {
@@ -129,7 +120,7 @@ TEST_CASE("eevee .cc and .c: compiled beside Blender's declarations, each texel 
           "[formats][engine][ltc][quick]") {
     const int n = 64;
     const Table t = eevee_grid_table(n);
-    const Scratch dir;
+    const Scratch dir("eevee");
     write_table(t, dir / "eevee_ltc.cc");
     write_table(t, dir / "eevee_ltc.c");
     put(dir / "eevee_lut.hh", eevee_lut_hh(n));
@@ -175,7 +166,7 @@ TEST_CASE("lut ltc --preset eevee: Blender's arrays hold --preset three's ltc_1 
     // 8 x 8 texels on EEVEE's grid (Blender's 64 x 64 fit takes 17 s of CPU), the declarations'
     // size changed to match.
     const int n = 8;
-    const Scratch dir;
+    const Scratch dir("eevee");
     const auto eevee = run_cli("lut ltc --preset eevee --size " + std::to_string(n) + " -o " + (dir / "eevee_ltc.cc") +
                                " --no-preview");
     INFO(eevee.err);
@@ -230,15 +221,9 @@ TEST_CASE("lut -o NAME.cc / NAME.c: a table that is not EEVEE's is refused with 
           "[ltc][presets][cli]") {
     // Refused when the table is written (after its computation): the progress display held back so
     // that stderr holds the message alone.
-    const Scratch dir;
+    const Scratch dir("eevee");
     for (const auto& [args, out] : {std::pair<std::string, std::string>{"lut albedo --model ggx --size 4", "albedo.cc"},
                                     {"lut ltc --preset three --size 3", "three.c"},
-                                    {"lut ltc --preset eevee --size 3 --flip roughness", "flipped.cc"}}) {
-        INFO(args);
-        const auto r = run_shell("BRDFBAKE_PROGRESS_DELAY=100000 " + std::string(BRDFBAKE_EXE) + " " + args +
-                                 " --samples 256 --no-preview -o " + (dir / out));
-        testing::check_usage_error(r);
-        CHECK(r.err.find(out.substr(out.find('.'))) != std::string::npos);
-        CHECK_FALSE(std::filesystem::exists(dir / out));
-    }
+                                    {"lut ltc --preset eevee --size 3 --flip roughness", "flipped.cc"}})
+        testing::check_refused_when_written(args, dir / out);
 }

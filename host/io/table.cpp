@@ -458,6 +458,7 @@ const std::vector<TableFormat>& table_formats() {
         {"tables", "(Cycles)", [](T t, P p, bool) { write_text(p, table_cycles_tables(t, stem_identifier(p))); }},
         {"cc", "(Blender EEVEE, 4.2 and later)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, false)); }},
         {"c", "(legacy EEVEE, Blender 2.80 to 4.1)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, true)); }},
+        {"cs", "(Unity HDRP)", [](T t, P p, bool) { write_text(p, table_unity_hdrp_source(t)); }},
     };
     return formats;
 }

@@ -144,22 +144,31 @@ std::string number_range(const Axis& a) {
     return round_trip_text(a.lo) + " to " + round_trip_text(a.hi) + ", " + texels_name(a.texels) + " texels";
 }
 
-/// Throws unless t is an EEVEE LTC table: x = roughness and y = sqrt(1 - mu), each over [0, 1] at
-/// edge texels (lut_coords: uv * 63/64 + 0.5/64), unflipped, with the eevee packing's channels.
-void require_eevee_table(const Table& t, const std::string& format) {
-    for (const EeveeArray& a : kEeveeArrays)
-        for (int k = 0; k < a.channels; ++k)
-            if (std::find(t.channels.begin(), t.channels.end(), a.name + ("." + std::to_string(k))) == t.channels.end())
-                throw Error("an " + format + " holds Blender EEVEE's ltc_mat_ggx and ltc_mag_ggx (lut ltc --preset eevee); "
-                            "the " + t.kind + " table has channels " + channel_list(t) + ": write .exr or .csv");
+/// Throws unless t has the channels `names` (else: "an FORMAT holds WHAT (lut ltc --preset
+/// PRESET)") and lies on the LTC grid of ENGINE (three.js's, which EEVEE and HDRP share): x =
+/// roughness and y = sqrt(1 - mu), each over [0, 1] at edge texels (uv * 63/64 + 0.5/64), unflipped.
+void require_ltc_grid_table(const Table& t, const std::string& format, const std::vector<std::string>& names,
+                            const std::string& what, const std::string& preset, const std::string& engine) {
+    for (const std::string& name : names)
+        if (std::find(t.channels.begin(), t.channels.end(), name) == t.channels.end())
+            throw Error("an " + format + " holds " + what + " (lut ltc --preset " + preset + "); the " + t.kind +
+                        " table has channels " + channel_list(t) + ": write .exr or .csv");
     require_2d(t, format);
     auto on_grid = [](const Axis& a, const char* name) {
         return a.name == name && a.lo == 0.0 && a.hi == 1.0 && a.texels == Texels::Edge;
     };
     if (!on_grid(t.x, "roughness") || !on_grid(t.y, "sqrt_one_minus_mu"))
-        throw Error("an " + format + " holds EEVEE's LTC grid, x = roughness and y = sqrt_one_minus_mu, each 0 to 1 at "
-                    "edge texels (lut ltc --preset eevee); this table's x is " + t.x.name + " (" + number_range(t.x) +
-                    "), y " + t.y.name + " (" + number_range(t.y) + "): write .exr or .csv");
+        throw Error("an " + format + " holds " + engine + "'s LTC grid, x = roughness and y = sqrt_one_minus_mu, each "
+                    "0 to 1 at edge texels (lut ltc --preset " + preset + "); this table's x is " + t.x.name + " (" +
+                    number_range(t.x) + "), y " + t.y.name + " (" + number_range(t.y) + "): write .exr or .csv");
+}
+
+/// Throws unless t is an EEVEE LTC table (the eevee packing's channels, EEVEE's grid).
+void require_eevee_table(const Table& t, const std::string& format) {
+    std::vector<std::string> names;
+    for (const EeveeArray& a : kEeveeArrays)
+        for (int k = 0; k < a.channels; ++k) names.push_back(a.name + ("." + std::to_string(k)));
+    require_ltc_grid_table(t, format, names, "Blender EEVEE's ltc_mat_ggx and ltc_mag_ggx", "eevee", "EEVEE");
 }
 
 /// The value channel `name` of t (present: require_eevee_table).
@@ -223,6 +232,100 @@ std::string table_eevee_source(const Table& t, bool legacy) {
           << ";\n\n";
     }
     if (!legacy) o << "}  // namespace blender::eevee::lut\n";
+    return o.str();
+}
+
+namespace {
+
+/// HDRP's GGX LTC array, whose channels the unity-hdrp packing names NAME.0 ... NAME.3.
+const char* const kUnityArray = "s_LtcMatrixData_BRDF_GGX";
+
+/// The binary16 bits of a value the table stores as a half float (the unity-hdrp packing rounds
+/// and clamps); throws if it is not one, so that no other table's numbers pass as HDRP's.
+uint16_t exact_half_bits(double v, const std::string& channel) {
+    const Imath::half h = Imath::half(float(v));
+    if (!h.isFinite() || double(float(h)) != v)
+        throw Error("the HDRP .cs file holds half floats; channel " + channel + " holds " + round_trip_text(v) +
+                    ", which is not one: write it with lut ltc --preset unity-hdrp");
+    return h.bits();
+}
+
+/// The texel's "// alpha = ..." and the row's "// cos theta = ..." numbers: the axis's parameter.
+double axis_parameter(const Axis& a, int i) {
+    return a.parameter.size() == size_t(a.size) ? a.parameter[size_t(i)] : a.coordinate[size_t(i)];
+}
+
+}  // namespace
+
+namespace {
+
+/// The header comment of an HDRP .cs file: what it replaces, how HDRP reads it, the description.
+std::string unity_hdrp_comment(const Table& t, bool doubles) {
+    const std::string w = std::to_string(t.width());
+    std::ostringstream o;
+    o << "// Unity HDRP's GGX LTC table, written by brdfbake " << BRDFBAKE_VERSION << " as HDRP's\n"
+      << "// Runtime/Material/LTCAreaLight/Generated/LtcData.BRDF_GGX.cs"
+      << (doubles ? " (the double form of HDRP from its 2021 LTC generator, pull\n"
+                    "// request Unity-Technologies/Graphics#3957, until pull request #7929 of July 2023; LTCAreaLight.cs's "
+                    "LoadLUT\n// uploads entries 0, 2, 4, 6 into slice 0 of _LtcData, R16G16B16A16_SFloat)."
+                  : " (the ushort form of HDRP since 2023, pull\n"
+                    "// request Unity-Technologies/Graphics#7929; LTCAreaLight.cs uploads it with SetPixelData into slice 0 "
+                    "of\n// _LtcData, R16G16B16A16_SFloat).")
+      << " To use it: replace that file's text by this file's (keep its .meta;\n// an HDRP package from the package "
+         "cache must first be embedded in the project's Packages folder).\n// "
+      << kUnityArray
+      << (doubles ? "[a + " + w + " * t, r + 3 * c] = M^-1_rc / M^-1_22 (columns first; HDRP reads entries 0, 2, 4, 6 "
+                    "into\n// invM._m00_m02_m11_m20 with _m22 = 1, clamped to 65504);"
+                  : "[4 * (a + " + w + " * t) + c]: the half-float bits of M^-1 / M^-1_22 as (00, 20, 11, 02)\n"
+                    "// for c = R, G, B, A (SampleLtcMatrix loads them into invM._m00_m02_m11_m20, _m22 = 1), clamped "
+                    "to 65504;")
+      << "\n// column a at perceptual roughness a / " << t.width() - 1 << ", row t at sqrt(1 - cos theta) = t / "
+      << t.height() - 1 << ". HDRP takes the magnitude and Fresnel terms\n// from its FGD table: the table's "
+      << "magnitude and fresnel channels are not written here.\n";
+    if (t.width() != 64 || t.height() != 64)
+        o << "// HDRP's texture is 64 x 64 (LTCAreaLight.k_LtcLUTResolution, LTC_LUT_SIZE): this table is " << w << " x "
+          << t.height() << ",\n// which needs those changed.\n";
+    return o.str() + description_comment(t, "// ");
+}
+
+}  // namespace
+
+std::string table_unity_hdrp_source(const Table& t) {
+    const std::string format = "HDRP .cs file (Unity HDRP)";
+    // The nine entries (packing unity-hdrp-2021) or the four half floats (unity-hdrp).
+    const bool doubles = std::find(t.channels.begin(), t.channels.end(), kUnityArray + std::string(".8")) != t.channels.end();
+    std::vector<std::string> names;
+    for (int k = 0; k < (doubles ? 9 : 4); ++k) names.push_back(kUnityArray + ("." + std::to_string(k)));
+    require_ltc_grid_table(t, format, names, std::string("Unity HDRP's ") + kUnityArray,
+                           doubles ? "unity-hdrp-2021" : "unity-hdrp", "HDRP");
+    // HDRP's array is the fit of its BRDF_GGX (Runtime/Material/LTCAreaLight/BRDF/BRDF_GGX.cs: GGX
+    // D, height-correlated G2 = 1 / (1 + Lambda(V) + Lambda(L)), F = 1): brdfbake's default ggx.
+    const auto model = t.attributes.find("model");
+    if (model != t.attributes.end() && model->second != "ggx:shadowing=correlated")
+        throw Error("an " + format + " holds " + kUnityArray + ", the fit of HDRP's GGX with height-correlated "
+                    "shadowing (ggx:shadowing=correlated); this table's model is " + model->second +
+                    ": write .exr or .csv");
+    const std::string w = std::to_string(t.width()), h = std::to_string(t.height());
+    std::ostringstream o;
+    o << unity_hdrp_comment(t, doubles) << "\nnamespace UnityEngine.Rendering.HighDefinition\n{\n"
+      << "    internal partial class LTCAreaLight\n    {\n        internal static "
+      << (doubles ? "double[,] " : "ushort[] ") << kUnityArray << " = new "
+      << (doubles ? "double[" + w + " * " + h + ", 3 * 3]" : "ushort[" + w + " * " + h + " * 4]") << "\n        {";
+    std::vector<const std::vector<double>*> ch;
+    for (const std::string& name : names) ch.push_back(&channel_values(t, name));
+    for (int j = 0; j < t.height(); ++j) {
+        o << "\n            // t = " << j << ": cos theta = " << round_trip_text(axis_parameter(t.y, j)) << "\n";
+        for (int i = 0; i < t.width(); ++i) {
+            const size_t texel = size_t(j) * size_t(t.width()) + size_t(i);
+            std::string line = doubles ? "            { " : "            ";
+            for (size_t c = 0; c < names.size(); ++c)
+                line += (doubles ? round_trip_text((*ch[c])[texel]) : std::to_string(exact_half_bits((*ch[c])[texel], names[c]))) +
+                        (doubles && c + 1 == names.size() ? " }," : ", ");
+            o << line << std::string(line.size() < 45 ? 45 - line.size() : 1, ' ') << "// a = " << i
+              << ": alpha = " << round_trip_text(axis_parameter(t.x, i)) << "\n";
+        }
+    }
+    o << "        };\n    }\n}\n";
     return o.str();
 }
 

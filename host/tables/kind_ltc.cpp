@@ -73,6 +73,40 @@ fit::LtcMatrix from_three_ltc1(const std::array<double, 4>& t) {
 /// The M that a stored ltc_1 (three.js's, EEVEE's ltc_mat_ggx) denotes: M rounded through float32 ltc_1.
 fit::LtcMatrix as_stored_ltc1(const fit::LtcMatrix& m) { return from_three_ltc1(three_ltc1(m)); }
 
+/// v rounded to the nearest IEEE 754 binary16 value (ties to even), clamped to its largest finite
+/// magnitude 65504 as HDRP's LTC loader clamped its tables (LTCAreaLight.cs LoadLUT's clampValue;
+/// pull request Unity-Technologies/ScriptableRenderPipeline#5839 "Fix a source of Inf").
+double as_half(double v) {
+    constexpr double kHalfMax = 65504.0;
+    v = std::clamp(v, -kHalfMax, kHalfMax);
+    int e = 0;
+    std::frexp(v, &e);                                   // |v| = f 2^e, f in [0.5, 1)
+    const double ulp = std::ldexp(1.0, std::max(e, -13) - 11);  // 11 significant bits; subnormals below 2^-14
+    return std::nearbyint(v / ulp) * ulp + 0.0;  // + 0.0: no negative zero
+}
+
+/// Unity HDRP's s_LtcMatrixData_BRDF_GGX texel (R, G, B, A) = (M^-1_00, M^-1_20, M^-1_11, M^-1_02) / M^-1_22
+/// as half floats: its generator's ExportToCSharp (Editor/Material/LTCAreaLight/LTCTableGenerator.cs
+/// divides invM by invM.m22, Unity's Matrix mRC being row R, column C; LTC.cs) read by
+/// SampleLtcMatrix (LTCAreaLight.hlsl) into invM._m00_m02_m11_m20 with invM._m22 = 1, "the transposed
+/// M^(-1)". With D = m00 m22 - m02 m20 and M^-1_22 = m00 / D: (m22, -m20, D / m11, -m02) / m00.
+std::array<double, 4> unity_hdrp_texel(const fit::LtcMatrix& m) {
+    const double d = m.m00 * m.m22 - m.m02 * m.m20;
+    return {as_half(m.m22 / m.m00), as_half(-m.m20 / m.m00), as_half(d / (m.m11 * m.m00)), as_half(-m.m02 / m.m00)};
+}
+
+/// The M (up to scale) of a stored texel u: the inverse of [[u0, 0, u3], [0, u2, 0], [u1, 0, 1]].
+fit::LtcMatrix from_unity_hdrp_texel(const std::array<double, 4>& u) {
+    const double d = u[0] - u[3] * u[1];
+    fit::LtcMatrix m;
+    m.m00 = 1.0 / d;
+    m.m02 = -u[3] / d;
+    m.m11 = 1.0 / u[2];
+    m.m20 = -u[1] / d;
+    m.m22 = u[0] / d;
+    return m;
+}
+
 const std::vector<LtcPacking>& ltc_packings() {
     static const std::vector<LtcPacking> packings = {
         {"",
@@ -104,6 +138,33 @@ const std::vector<LtcPacking>& ltc_packings() {
              return std::vector<double>{t[0], t[1], t[2], t[3], e, b};
          },
          as_stored_ltc1},
+        // Unity HDRP's Generated/LtcData.BRDF_GGX.cs: the half floats above; HDRP takes the
+        // magnitude and Fresnel terms from its FGD table, so they are channels of the table only.
+        {"unity-hdrp",
+         "Unity HDRP's s_LtcMatrixData_BRDF_GGX = M^-1 / M^-1_22 as (M^-1_00, M^-1_20, M^-1_11, M^-1_02), half "
+         "floats clamped to 65504; magnitude and fresnel",
+         {"s_LtcMatrixData_BRDF_GGX.0", "s_LtcMatrixData_BRDF_GGX.1", "s_LtcMatrixData_BRDF_GGX.2",
+          "s_LtcMatrixData_BRDF_GGX.3", "magnitude", "fresnel"},
+         [](const fit::LtcMatrix& m, double e, double b) {
+             const std::array<double, 4> u = unity_hdrp_texel(m);
+             return std::vector<double>{u[0], u[1], u[2], u[3], e, b};
+         },
+         [](const fit::LtcMatrix& m) { return from_unity_hdrp_texel(unity_hdrp_texel(m)); }},
+        // HDRP from its 2021 LTC generator to mid-2023: the whole M^-1 / M^-1_22 "columns first"
+        // as doubles (double[64 * 64, 3 * 3], entry r + 3 c = M^-1_rc / M^-1_22), of which
+        // LTCAreaLight.cs's LoadLUT uploads entries 0, 2, 4, 6, min(65504, (float)v), as half floats.
+        {"unity-hdrp-2021",
+         "Unity HDRP's s_LtcMatrixData_BRDF_GGX of 2021 to 2023 = M^-1 / M^-1_22 columns first (entry r + 3 c = "
+         "M^-1_rc / M^-1_22), doubles; magnitude and fresnel",
+         {"s_LtcMatrixData_BRDF_GGX.0", "s_LtcMatrixData_BRDF_GGX.1", "s_LtcMatrixData_BRDF_GGX.2",
+          "s_LtcMatrixData_BRDF_GGX.3", "s_LtcMatrixData_BRDF_GGX.4", "s_LtcMatrixData_BRDF_GGX.5",
+          "s_LtcMatrixData_BRDF_GGX.6", "s_LtcMatrixData_BRDF_GGX.7", "s_LtcMatrixData_BRDF_GGX.8", "magnitude",
+          "fresnel"},
+         [](const fit::LtcMatrix& m, double e, double b) {  // the half floats the GPU gets, as doubles
+             const std::array<double, 4> u = unity_hdrp_texel(m);
+             return std::vector<double>{u[0], 0.0, u[1], 0.0, u[2], 0.0, u[3], 0.0, 1.0, e, b};
+         },
+         [](const fit::LtcMatrix& m) { return from_unity_hdrp_texel(unity_hdrp_texel(m)); }},  // what the GPU holds
     };
     return packings;
 }
@@ -111,7 +172,7 @@ const std::vector<LtcPacking>& ltc_packings() {
 const LtcPacking& ltc_packing(const std::string& name) {
     for (const LtcPacking& p : ltc_packings())
         if (p.name == name) return p;
-    throw Error("the ltc table has no packing '" + name + "' (three, eevee, or none for its own channels)");
+    throw Error("the ltc table has no packing '" + name + "' (three, eevee, unity-hdrp, unity-hdrp-2021, or none for its own channels)");
 }
 
 void validate_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {

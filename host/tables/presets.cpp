@@ -127,6 +127,27 @@ LutRequest eevee_ltc_layout() {
     return r;
 }
 
+// Unity HDRP's GGX LTC table (Runtime/Material/LTCAreaLight/Generated/LtcData.BRDF_GGX.cs,
+// s_LtcMatrixData_BRDF_GGX[a + 64 t]): three.js's axes (LTCTableGenerator.cs GetRoughnessAndAngle,
+// CosTheta parametrisation: perceptual roughness a/63, cos theta = 1 - (t/63)^2 floored at
+// 3.7540224885647058e-4; read at Remap01ToHalfTexelCoord(perceptualRoughness, sqrt(1 - NdotV)) in
+// LTCAreaLight.hlsl). Packing "unity-hdrp" (kind_ltc.cpp); -o NAME.cs writes the C# file
+// (table_unity_hdrp_source). docs/ltc_presets.md, "Unity HDRP".
+LutRequest unity_hdrp_ltc_layout() {
+    LutRequest r = three_ltc_layout();
+    r.mu_floor = 3.7540224885647058e-4;
+    r.packing = "unity-hdrp";
+    return r;
+}
+
+// HDRP's GGX LTC table of 2021 to mid-2023 (the same file, s_LtcMatrixData_BRDF_GGX as double[64 * 64,
+// 3 * 3], read by LoadLUT): the same grid, packing "unity-hdrp-2021" (kind_ltc.cpp).
+LutRequest unity_hdrp_2021_ltc_layout() {
+    LutRequest r = unity_hdrp_ltc_layout();
+    r.packing = "unity-hdrp-2021";
+    return r;
+}
+
 std::string join_names(const std::vector<std::string>& names) {
     std::string list;
     for (const auto& n : names) list += (list.empty() ? "" : ", ") + n;
@@ -226,6 +247,22 @@ const std::vector<LutPreset>& lut_presets() {
                     "(namespace blender::eevee::lut, float[64][64][4] and [64][64][2]), .c for legacy EEVEE, "
                     "Blender 2.80 to 4.1 (float[64 * 64 * 4] and [64 * 64 * 2])",
                     {{K::Ltc, eevee_ltc_layout(), ""}}, {}}),
+        // Unity HDRP: see unity_hdrp_ltc_layout.
+        preset_row({"unity-hdrp", "Unity HDRP",
+                    "s_LtcMatrixData_BRDF_GGX (Runtime/Material/LTCAreaLight/Generated/LtcData.BRDF_GGX.cs, "
+                    "uploaded by LTCAreaLight.cs into slice 0 of _LtcData; read by SampleLtcMatrix)",
+                    "cs", false,
+                    "ltc: 64 x 64, x = perceptual roughness a/63, y = sqrt(1 - NoV) t/63 (NoV floored at 3.754e-4), "
+                    "s_LtcMatrixData_BRDF_GGX[4 (a + 64 t) + c] = M^-1 / M^-1_22 as (00, 20, 11, 02) in half floats "
+                    "(ushort bits, clamped to 65504); C# source for HDRP from 2023 (pull request #7929)",
+                    {{K::Ltc, unity_hdrp_ltc_layout(), ""}}, {}}),
+        preset_row({"unity-hdrp-2021", "Unity HDRP (2021 to mid-2023)",
+                    "s_LtcMatrixData_BRDF_GGX as double[64 * 64, 3 * 3] (Generated/LtcData.BRDF_GGX.cs from the LTC "
+                    "table generator of pull request #3957 to pull request #7929; uploaded by LTCAreaLight.cs LoadLUT)",
+                    "cs", false,
+                    "ltc: unity-hdrp's grid, s_LtcMatrixData_BRDF_GGX[a + 64 t, r + 3 c] = M^-1_rc / M^-1_22 (all nine, "
+                    "doubles; LoadLUT uploads entries 0, 2, 4, 6 clamped to 65504 as half floats)",
+                    {{K::Ltc, unity_hdrp_2021_ltc_layout(), ""}}, {}}),
     };
     return presets;
 }

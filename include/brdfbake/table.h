@@ -122,6 +122,12 @@ std::string table_cycles_tables(const Table& table, const std::string& symbol);
 /// (flat `ltc_mat_ggx[W * H * 4]`, eevee_lut.h's). Throws Error for a table off EEVEE's grid (x =
 /// roughness, y = sqrt_one_minus_mu, each 0 to 1 at edge texels) or without those channels.
 std::string table_eevee_source(const Table& table, bool legacy);
+/// Unity HDRP's Generated/LtcData.BRDF_GGX.cs from the unity-hdrp packing's channels
+/// (s_LtcMatrixData_BRDF_GGX.0-3, half floats): namespace UnityEngine.Rendering.HighDefinition,
+/// `internal partial class LTCAreaLight`, `internal static ushort[] s_LtcMatrixData_BRDF_GGX = new
+/// ushort[W * H * 4]` of the values' binary16 bits, texel [4 (a + W t) + c]. Throws Error for a table
+/// off HDRP's grid (EEVEE's), without those channels, or whose values are not half floats.
+std::string table_unity_hdrp_source(const Table& table);
 /// `v` as a C floating literal that reads back as v (as float(v), with the `f` suffix, when
 /// `as_float`): round_trip_text with ".0" where it has no point or exponent (1.0f, never 1f, which C
 /// rejects).
