@@ -133,6 +133,9 @@ double point_distance(const std::vector<double>& target, double a, double b) {
 /// histogram (bin averages), the LTC taken at the bins' centres, summed |D - lobe|^3 (the paper's
 /// L3 of R D against the lobe, over R^3: the same minimum, scale-free for the simplex's tolerance).
 constexpr int kPaperBins = 32;
+/// The paper's fit skips texels reflecting less than this (Cycles holds A = B = 0 there); here they
+/// hold the cosine as the unfitted texels do (its L3 at R ~ 0 drives b off to -20 and beyond).
+constexpr double kPaperMinR = 3e-6;
 
 /// The paper's bins' values of a texel's normalised lobe: its histogram weighs each exit by
 /// 1/sin(theta), so a bin holds the lobe's plain average over the bin's (theta, phi) rectangle, and
@@ -214,6 +217,7 @@ std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const std::vector<SheenVo
         std::vector<double> totals;
         for (size_t i = 0; i < w; ++i) {
             double total = 0.0;
+            if (paper && walks.values[j * w + i].reflectance.value < kPaperMinR) continue;
             std::vector<double> t = texel_target(cells[j * w + i], walks.values[j * w + i], total);
             if (t.empty()) continue;
             texels.push_back(j * w + i);
