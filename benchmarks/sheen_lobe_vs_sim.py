@@ -22,6 +22,8 @@ Per texel (row j = roughness j/31, column i = mu i/31, both floored at 0.01 as t
 
 Usage: sheen_lobe_vs_sim.py OURS.csv CYCLES_ROWS.py --texels J:I,J:I,... [--walks N] [--bounces B]
 CYCLES_ROWS.py is a transcription kept outside the repository (dicts A, B, R: row j -> 32 values).
+Needs NumPy and SciPy (Debian python3-numpy, python3-scipy; no test uses this script). 4e6 walks take
+~20 s of one core a texel. Figures: benchmarks/results/sheen-ltc-amd-epyc-2c.md (session 5).
 """
 import argparse
 import runpy
