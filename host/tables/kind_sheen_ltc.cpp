@@ -9,6 +9,8 @@
 // form (sheen_single_density) plus a histogram of the exits through the top after two or more
 // scatterings. Channels a, b, R, distance (the L1 distance between the normalised lobe and the LTC
 // at the fit's points), distance_error (the histogram's noise floor in it) and error (R's).
+// --estimator cycles: the paper's precomputation and fit instead (sheen_bounces, paper_distance), the
+// ones Cycles' table was made by (benchmarks/results/sheen-ltc-amd-epyc-2c.md, session 5).
 #include <algorithm>
 #include <array>
 #include <cmath>
