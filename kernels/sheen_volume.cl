@@ -5,7 +5,8 @@
  *   1  R1, those that left through the top after one scattering (the first order),
  *   2  T, through the bottom,
  *   3  T0, through the bottom without scattering,
- *   4  the share the bounce limit cut off,
+ *   4  the share the bounce limit cut off (bounces < 0: the share the paper's rule stopped and
+ *      counted by direction, brdf/sheen_volume.h),
  * and, when n_bins > 0, the counts of the top exits after two or more scatterings in
  * BB_SHEEN_LOBE_THETA x BB_SHEEN_LOBE_PHI bins (theta in [0, pi/2] and |phi| in [0, pi] uniform; the
  * lobe is symmetric about phi = 0): the multiple-scattering part of the outgoing lobe's histogram
@@ -45,7 +46,7 @@ __kernel void BB_ENTRY_SHEEN_VOLUME(__global const bb_scalar* cell_mu, __global 
         count[1] += (unsigned int)(r.exit == BB_SHEEN_EXIT_TOP && r.scatterings == 1);
         count[2] += (unsigned int)(r.exit == BB_SHEEN_EXIT_BOTTOM);
         count[3] += (unsigned int)(r.exit == BB_SHEEN_EXIT_BOTTOM && r.scatterings == 0);
-        count[4] += (unsigned int)(r.exit == BB_SHEEN_EXIT_CUTOFF);
+        count[4] += (unsigned int)(r.exit == BB_SHEEN_EXIT_CUTOFF || r.truncated); /* cut off, or stopped by the paper's rule */
         if (n_bins > 0 && r.exit == BB_SHEEN_EXIT_TOP && r.scatterings >= 2) {
             const bb_real theta = acos(bb_clamp(r.w.z, BB_R(0.0), BB_R(1.0)));
             const bb_real phi = bb_atan2(bb_fabs(r.w.y), r.w.x);

@@ -215,7 +215,7 @@ TEST_CASE("the estimator of a request is checked by the library too, not only th
     r.kind = "albedo";
     r.model = "ggx";
     r.estimator = "cycles";
-    CHECK_THROWS_WITH(validate_lut(r), Catch::Contains("for the gen-schlick and gen-schlick-ior tables"));
+    CHECK_THROWS_WITH(validate_lut(r), Catch::Contains("for the gen-schlick, gen-schlick-ior and sheen-ltc tables"));
     r.kind = "gen-schlick";
     r.estimator = "exact";
     CHECK_THROWS_WITH(validate_lut(r), Catch::Contains("ratio or cycles"));

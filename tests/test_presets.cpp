@@ -329,7 +329,7 @@ TEST_CASE("apply_preset: the preset's layout for the kind, each option given rep
     CHECK_THROWS_WITH(apply_preset(bare), "--model is required (or give --preset)");
     bare.model = "ggx";
     bare.estimator = "cycles";
-    CHECK_THROWS_WITH(apply_preset(bare), "--estimator is for the gen-schlick and gen-schlick-ior tables, not albedo");
+    CHECK_THROWS_WITH(apply_preset(bare), "--estimator is for the gen-schlick, gen-schlick-ior and sheen-ltc tables, not albedo");
 }
 
 TEST_CASE("preset cycles gen-schlick-ior: the z = 0 slice (eta = 1, no interface) holds s = 0 in closed form",

@@ -257,7 +257,9 @@ void add_lut_command(CLI::App& app, const GlobalOptions& global, Action& action)
                                                   "(required without --preset)");
     cmd->add_option("--estimator", o->estimator,
                     "gen-schlick kinds: ratio (s = E_w / E, exact) or cycles (Blender Cycles' estimator: E_w of the "
-                    "masking-only lobe, shadowing=masking, not divided by E)")
+                    "masking-only lobe, shadowing=masking, not divided by E); sheen-ltc: ratio (the walks to the end) or "
+                    "cycles (the paper's precomputation behind Cycles' table: 16 scatterings, a walk still inside "
+                    "counted by its direction)")
         ->check(CLI::IsMember({"ratio", "cycles"}))
         ->capture_default_str();
     cmd->add_option("--fresnel", o->fresnel, "Fresnel spec (albedo and eavg)")->capture_default_str();

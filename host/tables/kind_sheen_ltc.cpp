@@ -9,6 +9,8 @@
 // form (sheen_single_density) plus a histogram of the exits through the top after two or more
 // scatterings. Channels a, b, R, distance (the L1 distance between the normalised lobe and the LTC
 // at the fit's points), distance_error (the histogram's noise floor in it) and error (R's).
+// --estimator cycles: the paper's precomputation and fit instead (sheen_bounces, paper_distance), the
+// ones Cycles' table was made by (benchmarks/results/sheen-ltc-amd-epyc-2c.md, session 5).
 #include <algorithm>
 #include <array>
 #include <cmath>
@@ -39,6 +41,12 @@ constexpr double kMinShare = 0.05;
 constexpr std::uint64_t kRewalk = 16;
 /// Sub-points per bin side for the LTC's bin averages.
 constexpr int kSub = 3;
+
+/// The walks' scattering limit: --estimator cycles, the paper's precomputation (a negative limit:
+/// brdf/sheen_volume.h), which Cycles' table_sheen_ltc was fitted to; otherwise to the end.
+int sheen_bounces(const LutRequest& r) {
+    return r.estimator == "cycles" ? -BB_SHEEN_VOLUME_PAPER_BOUNCES : BB_SHEEN_VOLUME_DEFAULT_BOUNCES;
+}
 
 std::vector<std::string> sheen_ltc_programs(const LutRequest&) { return {"sheen_volume"}; }
 
@@ -122,6 +130,55 @@ double point_distance(const std::vector<double>& target, double a, double b) {
     return sum;
 }
 
+/// The paper's objective (--estimator cycles; Zeltner et al.'s public fitting code, which made
+/// Cycles' table): the lobe tabulated in kPaperBins x kPaperBins bins of (theta, |phi|) as a
+/// histogram (bin averages), the LTC taken at the bins' centres, summed |D - lobe|^3 (the paper's
+/// L3 of R D against the lobe, over R^3: the same minimum, scale-free for the simplex's tolerance).
+constexpr int kPaperBins = 32;
+/// The paper's fit skips texels reflecting less than this (Cycles holds A = B = 0 there); here they
+/// hold the cosine as the unfitted texels do (its L3 at R ~ 0 drives b off to -20 and beyond).
+constexpr double kPaperMinR = 3e-6;
+
+/// The paper's bins' values of a texel's normalised lobe: its histogram weighs each exit by
+/// 1/sin(theta), so a bin holds the lobe's plain average over the bin's (theta, phi) rectangle, and
+/// its first theta row is averaged over phi. Here the first order by kSub x kSub sub-points a bin,
+/// the higher orders' histogram bin (SheenLobeBins) each sub-point falls in.
+std::vector<double> paper_target(const SheenVolumeCell& cell, const SheenVolumeValue& v, double total) {
+    std::vector<double> t(kPaperBins * kPaperBins, 0.0);
+    const double dt = 0.5 * M_PI / kPaperBins, dp = M_PI / kPaperBins;
+    for (int i = 0; i < kPaperBins; ++i)
+        for (int j = 0; j < kPaperBins; ++j) {
+            double sum = 0.0;
+            for (int si = 0; si < kSub; ++si)
+                for (int sj = 0; sj < kSub; ++sj) {
+                    const double th = (i + (si + 0.5) / kSub) * dt, ph = (j + (sj + 0.5) / kSub) * dp;
+                    const double st = std::sin(th);
+                    const int bt = std::min(int(th / (0.5 * M_PI) * SheenLobeBins::theta()), SheenLobeBins::theta() - 1);
+                    const int bp = std::min(int(ph / M_PI * SheenLobeBins::phi()), SheenLobeBins::phi() - 1);
+                    sum += sheen_single_density(cell.mu, cell.alpha, st * std::cos(ph), st * std::sin(ph), std::cos(th)) +
+                           v.lobe[bt * SheenLobeBins::phi() + bp];
+                }
+            t[i * kPaperBins + j] = sum / (kSub * kSub) / total;
+        }
+    double row0 = 0.0;
+    for (int j = 0; j < kPaperBins; ++j) row0 += t[j] / kPaperBins;
+    std::fill(t.begin(), t.begin() + kPaperBins, row0);
+    return t;
+}
+
+/// The paper's objective at (a, b) for a target of paper_target.
+double paper_distance(const std::vector<double>& target, double a, double b) {
+    const double dt = 0.5 * M_PI / kPaperBins, dp = M_PI / kPaperBins;
+    double sum = 0.0;
+    for (int i = 0; i < kPaperBins; ++i)
+        for (int j = 0; j < kPaperBins; ++j) {
+            const double th = (i + 0.5) * dt, ph = (j + 0.5) * dp, st = std::sin(th);
+            const double d = ltc_d(a, b, st * std::cos(ph), st * std::sin(ph), std::cos(th));
+            sum += std::pow(std::abs(d - target[i * kPaperBins + j]), 3.0);
+        }
+    return sum;
+}
+
 struct TexelFit {
     double a = 1.0, b = 0.0, distance = 0.0, distance_error = 0.0;
     bool fitted = false;
@@ -141,7 +198,7 @@ double noise_floor(const SheenVolumeValue& v, double total) {
 /// Fits the texels row by row from rough to smooth, each row's texels started from the row fitted
 /// before (as [ZBC22]'s fit runs from high to low roughness), a row's texels in one batch.
 std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const std::vector<SheenVolumeCell>& cells,
-                                 const SheenVolumeResult& walks) {
+                                 const SheenVolumeResult& walks, bool paper) {
     const size_t w = g.table.x.parameter.size(), h = g.table.y.parameter.size();
     std::vector<size_t> order(h);
     for (size_t j = 0; j < h; ++j) order[j] = j;
@@ -158,21 +215,24 @@ std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const std::vector<SheenVo
     for (size_t k = 0; k < h; ++k) {
         const size_t j = order[k];
         std::vector<size_t> texels;
-        std::vector<std::vector<double>> starts, targets;
+        std::vector<std::vector<double>> starts, targets, paper_targets;
         std::vector<double> totals;
         for (size_t i = 0; i < w; ++i) {
             double total = 0.0;
+            if (paper && walks.values[j * w + i].reflectance.value < kPaperMinR) continue;
             std::vector<double> t = texel_target(cells[j * w + i], walks.values[j * w + i], total);
             if (t.empty()) continue;
             texels.push_back(j * w + i);
             totals.push_back(total);
             starts.push_back(start[i]);
+            if (paper) paper_targets.push_back(paper_target(cells[j * w + i], walks.values[j * w + i], total));
             targets.push_back(std::move(t));
         }
         const auto objective = [&](const std::vector<size_t>& problem, const std::vector<std::vector<double>>& x) {
             std::vector<double> out(x.size());
             for (size_t p = 0; p < x.size(); ++p)
-                out[p] = point_distance(targets[problem[p]], std::exp(x[p][0]), x[p][1]);
+                out[p] = paper ? paper_distance(paper_targets[problem[p]], std::exp(x[p][0]), x[p][1])
+                               : point_distance(targets[problem[p]], std::exp(x[p][0]), x[p][1]);
             return out;
         };
         const std::vector<fit::Minimum> mins = fit::minimize_batch(starts, options, objective);
@@ -204,7 +264,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     const size_t w = t.x.parameter.size();
     for (size_t c = 0; c < g.cells.size(); ++c)
         req.cells.push_back({std::max(g.cells[c].mu, kSheenFloor), std::max(std::sqrt(t.y.parameter[c / w]), kSheenFloor),
-                             BB_SHEEN_VOLUME_DEFAULT_BOUNCES});
+                             sheen_bounces(r)});
     progress_next_pass();
     SheenVolumeResult walks = sheen_volume_walks(engine, req);
     // Texels whose higher orders left few walks through the top (smooth layers seen from above) are
@@ -227,7 +287,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
         const SheenVolumeResult more = sheen_volume_walks(engine, again);
         for (size_t k = 0; k < rewalked.size(); ++k) walks.values[rewalked[k]] = more.values[k];
     }
-    const std::vector<TexelFit> fits = fit_texels(g, req.cells, walks);
+    const std::vector<TexelFit> fits = fit_texels(g, req.cells, walks, r.estimator == "cycles");
     const size_t n = g.cells.size();
     t.channels = {"a", "b", "R", "distance", "distance_error"};
     t.values.assign(t.channels.size(), std::vector<double>(n));
@@ -269,8 +329,14 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.attributes["distance_error"] = "the higher orders' histogram's noise floor in the distance: sqrt(2/pi) "
                                      "standard errors per bin, summed: " + min_median_max_text(distance_error);
     t.attributes["unfitted"] = std::to_string(unfitted) + " texels that reflect nothing hold the cosine (a = 1, b = 0)";
-    t.attributes["cutoff"] = "share of walks still inside after " + std::to_string(BB_SHEEN_VOLUME_DEFAULT_BOUNCES) +
-                             " scatterings: " + min_median_max_text(cutoff);
+    t.attributes["cutoff"] =
+        r.estimator == "cycles"
+            ? "--estimator cycles (the paper's precomputation, as Cycles' table): walks stopped after " +
+                  std::to_string(BB_SHEEN_VOLUME_PAPER_BOUNCES) +
+                  " scatterings, counted as reflected when their direction points up: share " +
+                  min_median_max_text(cutoff)
+            : "share of walks still inside after " + std::to_string(BB_SHEEN_VOLUME_DEFAULT_BOUNCES) +
+                  " scatterings: " + min_median_max_text(cutoff);
     return std::move(g.table);
 }
 
@@ -287,6 +353,7 @@ TableKind sheen_ltc_kind() {
     k.required_model = "sheen";
     k.lobe_requirement = "the sheen-ltc table needs a sheen lobe (model sheen, KHR_materials_sheen)";
     k.simulated = true;
+    k.cycles_estimator = true;  // --estimator cycles: the paper's 16-scattering walks (sheen_bounces)
     // A walk costs several albedo samples (its flights); not measured for the planner yet.
     k.sample_cost = 8.0;
     return k;

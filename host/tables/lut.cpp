@@ -317,7 +317,7 @@ void validate_lut(const LutRequest& r) {
                     " is out of range (1 to 4096 per side, at most 4M texels)");
     if (r.estimator != "ratio" && r.estimator != "cycles") throw Error("--estimator must be ratio or cycles");
     if (r.estimator != "ratio" && !kind.cycles_estimator)
-        throw Error("--estimator " + r.estimator + " is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
+        throw Error("--estimator " + r.estimator + " is for the gen-schlick, gen-schlick-ior and sheen-ltc tables, not " + r.kind);
     if (r.mu_map != "linear" && r.mu_map != "sqrt" && r.mu_map != "sqrt-one-minus")
         throw Error("--mu-map must be linear, sqrt or sqrt-one-minus");
     if (r.alpha_map != "alpha" && r.alpha_map != "roughness") throw Error("--alpha-map must be alpha or roughness");

@@ -329,7 +329,7 @@ const LutPreset* preset_for_kind(const LutSettings& given, LutRequest& r) {
     const TableKind& kind = table_kind(r.kind);
     if (given.estimator) {
         if (!kind.cycles_estimator)
-            throw Error("--estimator is for the gen-schlick and gen-schlick-ior tables, not " + r.kind);
+            throw Error("--estimator is for the gen-schlick, gen-schlick-ior and sheen-ltc tables, not " + r.kind);
         r.estimator = *given.estimator;
     }
     if (preset) {

@@ -52,6 +52,9 @@ struct LutRequest {
     /// gen-schlick and gen-schlick-ior: the quantity the table holds. ratio: s = E_w / E, exact
     /// for the model's own G2; cycles: Blender Cycles' estimator, E_w of the masking-only lobe
     /// (the model must have shadowing=masking; --preset cycles then sets it), not divided by E.
+    /// sheen-ltc: ratio, the walks to the end (1000 scatterings, the rest reported as cut off);
+    /// cycles, the paper's precomputation (brdf/sheen_volume.h: 16 scatterings, a walk still
+    /// inside counted by its direction), the walks Cycles' table_sheen_ltc was fitted to.
     std::string estimator = "ratio";
     /// The ltc kind's channels: empty, its own (m00 ... distance_error); "three": three.js's
     /// ltc_1 (M^-1 / M^-1_11 packed) and ltc_2 (magnitude, fresnel, 0, 0) (docs/ltc_presets.md).

@@ -71,7 +71,8 @@ struct TableKind {
     // The planner.
     bool tileable = false;     // `bake` may compute it in tiles along the roughness axis
     /// The kind writes Blender Cycles' estimator with LutRequest::estimator = "cycles" (the
-    /// generalized-Schlick kinds); every other kind takes only "ratio", the default.
+    /// generalized-Schlick kinds; sheen-ltc: the paper's 16-scattering walks that Cycles' table
+    /// fits); every other kind takes only "ratio", the default.
     bool cycles_estimator = false;
     double sample_cost = 1.0;  // the cost of one sample relative to an albedo sample
     /// Its cells are random walks (sheen-ltc): --samples walks a texel, no --tolerance; `bench`

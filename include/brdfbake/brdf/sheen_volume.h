@@ -26,6 +26,14 @@
  * a visible normal m of -w, w' = reflect(-w, m). With albedo 1 every walk ends in exactly one of
  * reflection, transmission, or the bounce limit (its `cutoff`, reported, never dropped).
  *
+ * The paper's precomputation (Zeltner et al.'s public fitting code, which made the table Blender
+ * Cycles ships, table_sheen_ltc) walks at most 16 scatterings and stops a walk right after its 16th:
+ * one still inside then counts as reflected when its direction points up (its weight is 1 whatever
+ * the exit), as transmitted otherwise. A negative `bounces` = -L asks for that rule with L
+ * scatterings (`truncated` marks those walks; the kernel reports their share as the cut-off). At
+ * low roughness it is most of the lobe's shape: rows r = 0.13-0.23 of Cycles' table are fits to it
+ * (benchmarks/results/sheen-ltc-amd-epyc-2c.md, session 5).
+ *
  * Closed forms the walk must meet (tests): transmission without scattering T0 = exp(-sigma(wo)/mu_o)
  * (Beer-Lambert along the view), and the first order
  *   R1(wo) = integral over the upper hemisphere of p(wo -> w) k_o (1 - exp(-(k_o + k))) / (k_o + k) dw,
@@ -51,6 +59,8 @@
 #define BB_SHEEN_VOLUME_BOUNCES 1   /* the walk's scattering limit */
 #define BB_SHEEN_VOLUME_DEFAULT_BOUNCES 1000
 #define BB_SHEEN_VOLUME_MAX_BOUNCES 1000000
+/* The paper's precomputation's limit, with its rule for the walks it stops (bounces = -16). */
+#define BB_SHEEN_VOLUME_PAPER_BOUNCES 16
 
 /* The fourth counter word of a sheen walk's Philox stream: "s" in the top byte. */
 #define BB_SHEEN_TAG 0x73000000u
@@ -88,17 +98,21 @@ BB_FN bb_vec3 bb_sggx_fiber_sample_vndf(bb_vec3 wi, bb_real s, bb_real u1, bb_re
 typedef struct {
     int exit;        /* BB_SHEEN_EXIT_* */
     int scatterings; /* the scatterings before the exit */
+    int truncated;   /* 1: stopped by the paper's rule (bounces < 0), its exit read from its direction */
     bb_vec3 w;       /* the direction it left in */
 } bb_sheen_walk;
 
 #ifdef BB_PHILOX
 /* One walk through the layer of fiber cross-section s from the view wo (wo.z > 0), at most
- * `bounces` scatterings. */
+ * `bounces` scatterings; bounces = -L: the paper's rule, stopped right after the L-th scattering. */
 BB_FN bb_sheen_walk bb_sheen_volume_walk(bb_real s, bb_vec3 wo, int bounces, philox4x32_key_t key, unsigned int walk,
                                          unsigned int rep, unsigned int stream) {
     bb_sheen_walk r;
     r.w = bb_scale(wo, BB_R(-1.0));
     r.scatterings = 0;
+    r.truncated = 0;
+    const int paper_limit = bounces < 0 ? -bounces : 0;
+    bounces = bounces < 0 ? BB_SHEEN_VOLUME_MAX_BOUNCES : bounces;
     bb_real t = BB_R(0.0);
     for (int k = 0;; ++k) {
         philox4x32_ctr_t ctr = {{walk, rep, stream, BB_SHEEN_TAG | (unsigned int)k}};
@@ -121,6 +135,11 @@ BB_FN bb_sheen_walk bb_sheen_volume_walk(bb_real s, bb_vec3 wo, int bounces, phi
         r.scatterings = k + 1;
         if (!bb_isfinite(r.w.z) || !bb_isfinite(t)) {
             r.exit = BB_SHEEN_EXIT_BAD;
+            return r;
+        }
+        if (r.scatterings == paper_limit) {
+            r.truncated = 1;
+            r.exit = r.w.z > BB_R(0.0) ? BB_SHEEN_EXIT_TOP : BB_SHEEN_EXIT_BOTTOM;
             return r;
         }
     }
