@@ -30,7 +30,7 @@ TEST_CASE("csv text: description, header and rows, blank lines skipped", "[io][c
     CHECK_FALSE(t.next_row(cells));
 }
 
-TEST_CASE("csv text: the columns are found by name; a text without rows has none", "[io][csv]") {
+TEST_CASE("csv text: the columns are found by name, a text without rows has none", "[io][csv]") {
     const std::string text = "# kind: sheen-ltc\nmu,roughness,a,b,R,error";
     CsvText t(text);
     CHECK(t.column("mu") == 0);
