@@ -136,15 +136,13 @@ BB_FN bb_real bb_smith_lobe_pdf(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
     return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wh.z > BB_R(0.0) && bb_dot(wo, wh) > BB_R(0.0));
 }
 
-/* The importance sample of f = f_spec + kd/pi. Without diffuse=KD (kd = 0: the kernels' albedo
- * path always, compute_albedo adding kd in closed form) the lobe's sample above. With it, the
- * one-sample mixture of the lobe's sampler and the cosine warp (sampling.h), the Lambert part
- * chosen with chance kd / (kd + F(cos theta_o)): the Fresnel term at wo, a bound from above on the
- * lobe's albedo that costs no integral (any chance keeps the weight unbiased; a closer one lowers
- * its variance). The weight is the whole f cos over the mixture's density. */
-BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
+/* The importance sample of f = f_spec + kd/pi where kd > 0: the one-sample mixture of the lobe's
+ * sampler and the cosine warp (sampling.h), the Lambert part chosen with chance
+ * kd / (kd + F(cos theta_o)): the Fresnel term at wo, a bound from above on the lobe's albedo that
+ * costs no integral (any chance keeps the weight unbiased; a closer one lowers its variance). The
+ * weight is the whole f cos over the mixture's density. */
+BB_FN bb_sample bb_smith_mixture_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
     bb_real kd = bb_smith_diffuse(p);
-    if (!bb_any_lane(kd > BB_R(0.0))) return bb_smith_lobe_sample(dist, p, fkind, fp, wo, u1, u2);
     bb_real c = bb_mixture_lambert_chance(kd, bb_fresnel_eval(fkind, fp, bb_clamp_cos(wo.z)));
     bb_real v1 = bb_mixture_rescale(u1, c);
     bb_mask lambert = u1 < c;
@@ -153,6 +151,17 @@ BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, 
     bb_vec3 wi = bb_v3(bb_select(ws.x, wl.x, lambert), bb_select(ws.y, wl.y, lambert), bb_select(ws.z, wl.z, lambert));
     bb_real f_cos = bb_smith_eval(dist, p, fkind, fp, wo, wi) * bb_max(wi.z, BB_R(0.0));
     return bb_make_sample(wi, bb_mixture_weight(f_cos, wi.z, c, bb_smith_lobe_pdf(dist, p, wo, wi)));
+}
+
+/* The model's sampler: the mixture above where kd > 0, else the lobe's sample. The albedo kernels
+ * (kernels/albedo.cl) define BB_SMITH_LOBE_SAMPLER_ONLY: compute_albedo has taken kd out of their
+ * cells (host/integrate/albedo.cpp, take_diffuse), so they keep the lobe's sampler without the
+ * test per sample (which cost Beckmann's vector path 8% of its CPU time). */
+BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
+#ifndef BB_SMITH_LOBE_SAMPLER_ONLY
+    if (bb_any_lane(bb_smith_diffuse(p) > BB_R(0.0))) return bb_smith_mixture_sample(dist, p, fkind, fp, wo, u1, u2);
+#endif
+    return bb_smith_lobe_sample(dist, p, fkind, fp, wo, u1, u2);
 }
 
 /* The coordinate system of the half-vector quadrature (integrands.h): the radial CDF of D cos. */
