@@ -38,6 +38,9 @@
  * [-D BB_ISOTROPIC=1 | -D BB_VECTOR_POINTS=1 [-D BB_VECTOR_UNIFORM=1] | -D BB_QUAD_SAMPLER_ROWS=1]]
  * [-D BB_PHILOX -I <Random123's include directory>] [-D BB_QUADRATURE: the quadrature kernel
  * alone, a smaller program to build]. */
+/* compute_albedo integrates a Smith lobe's specular part alone and adds diffuse=KD's kd in closed
+ * form (host/integrate/albedo.cpp): the lobe's sampler, without the mixture's test (smith.h). */
+#define BB_SMITH_LOBE_SAMPLER_ONLY
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/models.h"
 #include "brdfbake/brdf/sampling.h"

@@ -210,6 +210,16 @@ Request round_request(const Request& req, const RefineStep& step, const std::vec
     return r;
 }
 
+// One round's record of the integration that made it (its values are the caller's): what it did,
+// its kernel time and its vector width (1 where the integrator has none).
+RefineRound round_of(const std::string& method, double kernel_seconds, unsigned vector_width = 1) {
+    RefineRound round;
+    round.method = method;
+    round.kernel_seconds = kernel_seconds;
+    round.vector_width = vector_width;
+    return round;
+}
+
 }  // namespace
 
 AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tol) {
@@ -226,11 +236,8 @@ AlbedoResult compute_albedo_to_tolerance(Engine& engine, const AlbedoRequest& re
     const RefineOutcome o =
         refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
             const AlbedoResult part = compute_albedo(engine, round_request(req, step, todo));
-            RefineRound round;
+            RefineRound round = round_of(part.method, part.kernel_seconds, part.vector_width);
             for (const auto& v : part.values) round.values.push_back({v});
-            round.method = part.method;
-            round.kernel_seconds = part.kernel_seconds;
-            round.vector_width = part.vector_width;
             return round;
         });
 
@@ -271,11 +278,8 @@ DielectricResult compute_dielectric_to_tolerance(Engine& engine, const Dielectri
     const RefineOutcome o =
         refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
             const DielectricResult part = compute_dielectric(engine, round_request(req, step, todo));
-            RefineRound round;
+            RefineRound round = round_of(part.method, part.kernel_seconds, part.vector_width);
             for (size_t i = 0; i < todo.size(); ++i) round.values.push_back({part.reflected[i], part.transmitted[i]});
-            round.method = part.method;
-            round.kernel_seconds = part.kernel_seconds;
-            round.vector_width = part.vector_width;
             return round;
         });
     DielectricResult out;
@@ -313,13 +317,11 @@ WalkResult walk_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, co
         refine_to_tolerance(req.cells.size(), steps, options, [&](const RefineStep& step, const std::vector<size_t>& todo) {
             const WalkResult part = walk_albedo(engine, round_request(req, step, todo));
             out.method = part.method;
-            RefineRound round;
+            RefineRound round = round_of(part.method, part.kernel_seconds);
             for (const WalkAlbedo& w : part.values) {
                 round.values.emplace_back();
                 for (auto channel : kWalkChannels) round.values.back().push_back(w.*channel);
             }
-            round.method = part.method;
-            round.kernel_seconds = part.kernel_seconds;
             return round;
         });
     out.kernel_seconds = o.kernel_seconds;

@@ -25,6 +25,7 @@
 #include "brdfbake/error.h"
 #include "brdfbake/table.h"
 #include "io/png_memory.h"
+#include "models/csv_text.h"
 #include "models/input_file.h"
 
 namespace brdfbake {
@@ -217,39 +218,22 @@ Table read_exr(const std::string& path) {
 
 Table read_csv(const std::string& path) {
     const std::string text = read_input_file(path, "table", kMaxTableFileBytes);
-    std::istringstream in(text);
-    Description d;
-    std::string line;
-    std::vector<std::string> columns;
-    while (std::getline(in, line)) {
-        if (line.rfind("# ", 0) == 0) {
-            const size_t colon = line.find(": ");
-            if (colon != std::string::npos) d[line.substr(2, colon - 2)] = line.substr(colon + 2);
-            continue;
-        }
-        std::istringstream cells(line);
-        for (std::string c; std::getline(cells, c, ',');) columns.push_back(c);
-        break;
-    }
-    Table t = table_from_description(d, path);
-    auto column = [&](const std::string& name) -> int {
-        for (size_t i = 0; i < columns.size(); ++i)
-            if (columns[i] == name) return int(i);
-        return -1;
-    };
+    CsvText csv(text);
+    const std::vector<std::string>& columns = csv.columns();
+    Table t = table_from_description(csv.description(), path);
     std::vector<int> value_columns;
     for (const auto& c : t.channels) {
-        const int i = column(c);
+        const int i = csv.column(c);
         if (i < 0) throw Error("'" + path + "' has no column '" + c + "'");
         value_columns.push_back(i);
     }
-    const int error_column = column("error");
+    const int error_column = csv.column("error");
     if (error_column < 0) throw Error("'" + path + "' has no error column");
     // An axis's derived parameter sits in the column after its coordinate where the two differ.
     const Axis* axes[3] = {&t.x, &t.y, &t.z};
     int parameter_column[3] = {-1, -1, -1};
     for (int a = 0; a < 3; ++a) {
-        const int i = axes[a]->size > 1 || a == 0 ? column(axes[a]->name) : -1;
+        const int i = axes[a]->size > 1 || a == 0 ? csv.column(axes[a]->name) : -1;
         if (i >= 0 && i + 1 < int(columns.size()) && i + 1 != value_columns.front()) {
             bool is_axis = false;
             for (int b = 0; b < 3; ++b) is_axis = is_axis || columns[size_t(i + 1)] == axes[b]->name;
@@ -264,12 +248,8 @@ Table read_csv(const std::string& path) {
     std::vector<std::vector<double>> parameter(3);
     for (int a = 0; a < 3; ++a) parameter[a].assign(size_t(axes[a]->size), 0.0);
     size_t k = 0;
-    while (std::getline(in, line)) {
-        if (line.empty()) continue;
+    for (std::vector<std::string> cells; csv.next_row(cells);) {
         if (k == n) throw Error("'" + path + "' has more rows than its " + std::to_string(n) + " texels");
-        std::vector<std::string> cells;
-        std::istringstream row(line);
-        for (std::string c; std::getline(row, c, ',');) cells.push_back(c);
         if (cells.size() != columns.size()) throw Error("'" + path + "': row " + std::to_string(k + 1) + " has " +
                                                         std::to_string(cells.size()) + " fields, not " +
                                                         std::to_string(columns.size()));
@@ -320,8 +300,7 @@ Table read_npy(const std::string& path) {
         if (open == std::string::npos || close == std::string::npos)
             throw Error("'" + path + "': its header gives no shape");
         std::vector<size_t> header_shape;
-        std::istringstream dims(header.substr(open + 10, close - open - 10));
-        for (std::string w; std::getline(dims, w, ',');)
+        for (const std::string& w : csv_cells(header.substr(open + 10, close - open - 10)))
             if (w.find_first_not_of(' ') != std::string::npos)
                 header_shape.push_back(size_t(number_of(w.substr(w.find_first_not_of(' ')), path, "shape")));
         auto shape_text = [](const std::vector<size_t>& v) {

@@ -7,10 +7,10 @@
 #include <functional>
 #include <map>
 #include <mutex>
-#include <sstream>
 
 #include "brdfbake/error.h"
 #include "engine/embedded_sources.h"
+#include "models/csv_text.h"
 #include "models/input_file.h"
 
 namespace brdfbake {
@@ -35,45 +35,13 @@ Store& store() {
     return s;
 }
 
-/// A table's text split: its description ("# key: value") and its rows of cells under the header.
-struct CsvText {
-    std::map<std::string, std::string> description;
-    std::vector<std::string> columns;
-    std::vector<std::vector<std::string>> rows;
-};
-
-std::vector<std::string> cells_of(const std::string& line) {
-    std::vector<std::string> cells;
-    std::istringstream in(line);
-    for (std::string c; std::getline(in, c, ',');) cells.push_back(c);
-    return cells;
-}
-
-CsvText split_csv(const std::string& text) {
-    CsvText t;
-    std::istringstream in(text);
-    for (std::string line; std::getline(in, line);) {
-        if (line.empty()) continue;
-        if (line.rfind("# ", 0) == 0) {
-            const size_t colon = line.find(": ");
-            if (colon != std::string::npos) t.description[line.substr(2, colon - 2)] = line.substr(colon + 2);
-        } else if (t.columns.empty()) {
-            t.columns = cells_of(line);
-        } else {
-            t.rows.push_back(cells_of(line));
-        }
-    }
-    return t;
-}
-
 /// Reads the table's text into the layout of brdf/sheen_ltc.h; `fail` throws with the file's name.
 std::vector<double> parse_table(const std::string& text, int& nx, int& ny,
                                 const std::function<void(const std::string&)>& fail) {
-    const CsvText t = split_csv(text);
-    const auto said = [&](const std::string& key) {
-        const auto it = t.description.find(key);
-        return it == t.description.end() ? std::string() : it->second;
-    };
+    CsvText t(text);
+    const auto said = [&](const std::string& key) { return t.said(key); };
+    std::vector<std::vector<std::string>> rows;
+    for (std::vector<std::string> cells; t.next_row(cells);) rows.push_back(cells);
     if (said("kind") != "sheen-ltc") fail("not a sheen-ltc table (its '# kind:' line; write one with brdfbake lut sheen-ltc -o FILE.csv)");
     const std::string xm = said("x_mapping");  // linear, perhaps with the floor the walks ran at ("mu = max(u, 0.01)")
     if (said("x_axis") != "mu" || (xm != "mu = u" && xm.rfind("mu = max(u, ", 0) != 0))
@@ -85,24 +53,23 @@ std::vector<double> parse_table(const std::string& text, int& nx, int& ny,
     ny = std::atoi(said("y_size").c_str());
     if (nx < 2 || ny < 2) fail("it has " + said("x_size") + " x " + said("y_size") + " texels; bilinear lookup needs at least 2 x 2");
     const auto column = [&](const std::string& name) {
-        for (size_t i = 0; i < t.columns.size(); ++i)
-            if (t.columns[i] == name) return i;
-        fail("it has no column '" + name + "'");
-        return size_t(0);
+        const int i = t.column(name);
+        if (i < 0) fail("it has no column '" + name + "'");
+        return size_t(i);
     };
     const size_t cx = column("mu"), cy = column(y), ca = column("a"), cb = column("b"), cr = column("R");
-    if (t.rows.size() != size_t(nx) * size_t(ny))
-        fail("it has " + std::to_string(t.rows.size()) + " rows for " + std::to_string(nx) + " x " + std::to_string(ny) + " texels");
+    if (rows.size() != size_t(nx) * size_t(ny))
+        fail("it has " + std::to_string(rows.size()) + " rows for " + std::to_string(nx) + " x " + std::to_string(ny) + " texels");
     std::vector<double> out(size_t(nx + ny) + 3 * size_t(nx) * size_t(ny));
-    for (size_t k = 0; k < t.rows.size(); ++k) {
-        const auto& row = t.rows[k];
-        if (row.size() != t.columns.size()) fail("row " + std::to_string(k + 1) + " has " + std::to_string(row.size()) + " fields");
+    for (size_t k = 0; k < rows.size(); ++k) {
+        const auto& row = rows[k];
+        if (row.size() != t.columns().size()) fail("row " + std::to_string(k + 1) + " has " + std::to_string(row.size()) + " fields");
         const auto number = [&](size_t c) {
             errno = 0;
             char* end = nullptr;
             const double v = std::strtod(row[c].c_str(), &end);
             if (end == row[c].c_str() || *end != '\0' || errno == ERANGE || !std::isfinite(v))
-                fail("row " + std::to_string(k + 1) + ": '" + row[c] + "' in column '" + t.columns[c] + "' is not a finite number");
+                fail("row " + std::to_string(k + 1) + ": '" + row[c] + "' in column '" + t.columns()[c] + "' is not a finite number");
             return v;
         };
         const size_t i = k % size_t(nx), j = k / size_t(nx), plane = size_t(nx + ny), n = size_t(nx) * size_t(ny);

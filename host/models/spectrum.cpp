@@ -4,34 +4,26 @@
 #include <cmath>
 #include <cstdlib>
 #include <map>
-#include <sstream>
 #include <string>
 
 #include "brdfbake/error.h"
 #include "engine/embedded_sources.h"
+#include "models/csv_text.h"
 
 namespace brdfbake {
 
 namespace {
 
-/// The rows of an embedded CSV (comment lines start with '#', one header line): its columns.
+/// The rows of an embedded CSV (its "# " lines and header read by CsvText): its columns.
 std::vector<std::vector<double>> read_embedded_csv(const std::string& key) {
     const char* text = embedded_source(key);
     if (!text) throw Error("the embedded table '" + key + "' is missing from this build");
-    std::istringstream in(text);
-    std::string line;
+    const std::string whole = text;
+    CsvText csv(whole);
     std::vector<std::vector<double>> rows;
-    bool header = true;
-    while (std::getline(in, line)) {
-        if (line.empty() || line[0] == '#') continue;
-        if (header) {
-            header = false;
-            continue;
-        }
+    for (std::vector<std::string> cells; csv.next_row(cells);) {
         std::vector<double> row;
-        std::istringstream cells(line);
-        std::string cell;
-        while (std::getline(cells, cell, ',')) row.push_back(std::strtod(cell.c_str(), nullptr));
+        for (const std::string& cell : cells) row.push_back(std::strtod(cell.c_str(), nullptr));
         rows.push_back(row);
     }
     return rows;

@@ -181,6 +181,25 @@ def test_eval_agrees_with_the_textbook_formula():
     np.testing.assert_allclose(lam, 0.5 / np.pi, rtol=1e-14)
 
 
+
+def test_diffuse_adds_a_lambert_base_of_kd_over_pi():
+    """diffuse=KD on a Smith lobe (ggx, beckmann): f is the lobe plus kd/pi (a closed form), for
+    GGX the numpy textbook formula plus kd/pi; the albedo the numpy quadrature of the lobe plus kd."""
+    rng = np.random.default_rng(11)
+    v = rng.normal(size=(2, 48, 3))
+    v[..., 2] = np.abs(v[..., 2]) + 0.05
+    wo, wi = v / np.linalg.norm(v, axis=-1, keepdims=True)
+    kd = 0.25
+    f = brdfbake.eval("ggx:alpha=0.3,diffuse=0.25", wo, wi)
+    np.testing.assert_allclose(f, ggx_f(wo, wi, 0.3) + kd / np.pi, rtol=1e-10)
+    lobe = brdfbake.eval("beckmann:alpha=0.4", wo, wi)
+    both = brdfbake.eval("beckmann:alpha=0.4,diffuse=0.25", wo, wi)
+    np.testing.assert_allclose(both - lobe, kd / np.pi, rtol=1e-10, atol=1e-14)
+    r = brdfbake.albedo("ggx:alpha=0.5,diffuse=0.25", 0.5)
+    truth = ggx_albedo_quadrature(0.5, 0.5) + kd
+    assert abs(float(r.albedo) - truth) <= float(r.error), (float(r.albedo), float(r.error), truth)
+    assert float(r.error) <= 1e-4
+
 def test_check_gives_the_verdict():
     ok = brdfbake.check("ggx:alpha=0.5", directions=4, samples=4096, resolution=8)
     assert ok["passed"] is True and ok["energy"]["violation"] is False

@@ -54,4 +54,42 @@ BB_FN bb_vec3 bb_cosine_hemisphere(bb_real u1, bb_real u2) {
     return bb_v3(s * bb_cos(phi), s * bb_sin(phi), bb_sqrt(u1));
 }
 
+/* ------------------------------------------------------------------ one-sample mixtures
+ * A lobe's sampler beside the cosine warp of a Lambert part f = kd/pi, one of the two chosen per
+ * sample: Veach's one-sample model with the balance heuristic (Veach 1997, sec. 9.2.4; PBRT 4th
+ * ed. sec. 2.2.3): the cosine warp with chance c, else the lobe's sampler, u1 rescaled into
+ * [0, 1) within the part it chose (a stratified u1 stays stratified within each part), and the
+ * weight f cos / (c cos/pi + (1 - c) pdf_lobe), unbiased for the whole f (lobe plus Lambert) at any
+ * c in [0, 1] where the lobe's pdf is positive wherever the lobe is. The Smith lobes' diffuse=KD
+ * uses it (smith.h, bb_smith_sample). */
+
+/* Whether the mask holds in any lane (a vector build's lanes share a cell's parameters, so a test
+ * of them is uniform); a scalar mask itself elsewhere. */
+#if defined(__OPENCL_C_VERSION__) && defined(BB_VECTOR_WIDTH)
+#define bb_any_lane(m) any(m)
+#else
+#define bb_any_lane(m) (m)
+#endif
+
+/* The chance of the Lambert part: its albedo kd against an estimate e of the lobe's albedo,
+ * c = kd / (kd + e) (1 where both are 0: the caller samples the mixture only for kd > 0). */
+BB_FN bb_real bb_mixture_lambert_chance(bb_real kd, bb_real e) {
+    bb_real sum = kd + bb_max(e, BB_R(0.0));
+    return bb_select(BB_R(1.0), kd / sum, sum > BB_R(0.0));
+}
+
+/* u rescaled to [0, 1) in the part it chose: u / c below c, (u - c) / (1 - c) from c on. */
+BB_FN bb_real bb_mixture_rescale(bb_real u, bb_real c) {
+    bb_real below = u / bb_select(BB_R(1.0), c, c > BB_R(0.0));
+    bb_real above = (u - c) / bb_select(BB_R(1.0), BB_R(1.0) - c, c < BB_R(1.0));
+    return bb_min(bb_select(above, below, u < c), BB_R(1.0) - BB_R(0.5) * BB_EPS_REAL);
+}
+
+/* The mixture's weight of a direction with f cos = f_cos and cos(theta_i) = cos_i: f cos over the
+ * mixture's density c cos/pi + (1 - c) pdf_lobe; 0 where that density is 0. */
+BB_FN bb_real bb_mixture_weight(bb_real f_cos, bb_real cos_i, bb_real c, bb_real pdf_lobe) {
+    bb_real pdf = c * bb_max(cos_i, BB_R(0.0)) * BB_INV_PI + (BB_R(1.0) - c) * pdf_lobe;
+    return bb_select(BB_R(0.0), f_cos / bb_select(BB_R(1.0), pdf, pdf > BB_R(0.0)), pdf > BB_R(0.0));
+}
+
 #endif /* BRDFBAKE_BRDF_SAMPLING_H */

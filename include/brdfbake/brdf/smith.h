@@ -48,7 +48,8 @@
  * the Fresnel term. Only the evaluation adds it: the albedo of the Lambert part is kd exactly (the
  * integral of kd/pi cos theta_i over the hemisphere), which the host adds in closed form
  * (host/integrate/albedo.cpp, compute_albedo) while the kernels integrate the specular lobe with
- * the slot set to 0; the sampler and the quadrature weights below are those of the specular lobe. */
+ * the slot set to 0; the quadrature weights below are those of the specular lobe. The sampler
+ * (bb_smith_sample) samples the whole f where kd > 0: a one-sample mixture with the cosine warp. */
 #define BB_SMITH_SCATTERING 4 /* BB_SCATTERING_SINGLE or BB_SCATTERING_MULTIPLE */
 #define BB_SMITH_DIFFUSE 7
 #define BB_SCATTERING_SINGLE 0
@@ -112,8 +113,8 @@ BB_FN bb_real bb_smith_eval(int dist, bb_params p, int fkind, bb_params fp, bb_v
     return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wi.z > BB_R(0.0));
 }
 
-/* The visible-normal importance sample and its weight F(wo.wh) G2(wo, wi) / G1(wo). */
-BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
+/* The specular lobe's visible-normal importance sample and its weight F(wo.wh) G2(wo, wi) / G1(wo). */
+BB_FN bb_sample bb_smith_lobe_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
     bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
     bb_vec3 wh = bb_smith_sample_vndf(dist, wo, ax, ay, u1, u2);
     bb_real cos_oh = bb_clamp_cos(bb_dot(wo, wh));
@@ -122,6 +123,45 @@ BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, 
     bb_real w = bb_fresnel_eval(fkind, fp, cos_oh) * bb_smith_g2(dist, p, wo, wi) /
              bb_select(BB_R(1.0), g1o, g1o > BB_R(0.0));
     return bb_make_sample(wi, bb_select(BB_R(0.0), w, wi.z > BB_R(0.0) && g1o > BB_R(0.0)));
+}
+
+/* The density of wi under bb_smith_lobe_sample: the visible normals' D_wo(wh) = G1(wo) max(0, wo.wh)
+ * D(wh) / wo.z [H18 sec. 2] times the reflection's Jacobian 1 / (4 wo.wh) [Walter et al. 2007 eq. 14],
+ * G1(wo) D(wh) / (4 wo.z) with wh = normalize(wo + wi); 0 where wh faces away from wo or the normal. */
+BB_FN bb_real bb_smith_lobe_pdf(int dist, bb_params p, bb_vec3 wo, bb_vec3 wi) {
+    bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
+    bb_vec3 wh = bb_normalize(bb_add(wo, wi));
+    bb_real v = bb_smith_g1(dist, wo, ax, ay) * bb_smith_d(dist, wh, ax, ay) /
+                (BB_R(4.0) * bb_select(BB_R(1.0), wo.z, wo.z > BB_R(0.0)));
+    return bb_select(BB_R(0.0), v, wo.z > BB_R(0.0) && wh.z > BB_R(0.0) && bb_dot(wo, wh) > BB_R(0.0));
+}
+
+/* The importance sample of f = f_spec + kd/pi where kd > 0: the one-sample mixture of the lobe's
+ * sampler and the cosine warp (sampling.h), the Lambert part chosen with chance
+ * kd / (kd + F(cos theta_o)): the Fresnel term at wo, a bound from above on the lobe's albedo that
+ * costs no integral (any chance keeps the weight unbiased; a closer one lowers its variance). The
+ * weight is the whole f cos over the mixture's density. */
+BB_FN bb_sample bb_smith_mixture_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
+    bb_real kd = bb_smith_diffuse(p);
+    bb_real c = bb_mixture_lambert_chance(kd, bb_fresnel_eval(fkind, fp, bb_clamp_cos(wo.z)));
+    bb_real v1 = bb_mixture_rescale(u1, c);
+    bb_mask lambert = u1 < c;
+    bb_vec3 wl = bb_cosine_hemisphere(v1, u2);
+    bb_vec3 ws = bb_reflect(wo, bb_smith_sample_vndf(dist, wo, p.v[BB_SMITH_ALPHA_X], p.v[BB_SMITH_ALPHA_Y], v1, u2));
+    bb_vec3 wi = bb_v3(bb_select(ws.x, wl.x, lambert), bb_select(ws.y, wl.y, lambert), bb_select(ws.z, wl.z, lambert));
+    bb_real f_cos = bb_smith_eval(dist, p, fkind, fp, wo, wi) * bb_max(wi.z, BB_R(0.0));
+    return bb_make_sample(wi, bb_mixture_weight(f_cos, wi.z, c, bb_smith_lobe_pdf(dist, p, wo, wi)));
+}
+
+/* The model's sampler: the mixture above where kd > 0, else the lobe's sample. The albedo kernels
+ * (kernels/albedo.cl) define BB_SMITH_LOBE_SAMPLER_ONLY: compute_albedo has taken kd out of their
+ * cells (host/integrate/albedo.cpp, take_diffuse), so they keep the lobe's sampler without the
+ * test per sample (which cost Beckmann's vector path 8% of its CPU time). */
+BB_FN bb_sample bb_smith_sample(int dist, bb_params p, int fkind, bb_params fp, bb_vec3 wo, bb_real u1, bb_real u2) {
+#ifndef BB_SMITH_LOBE_SAMPLER_ONLY
+    if (bb_any_lane(bb_smith_diffuse(p) > BB_R(0.0))) return bb_smith_mixture_sample(dist, p, fkind, fp, wo, u1, u2);
+#endif
+    return bb_smith_lobe_sample(dist, p, fkind, fp, wo, u1, u2);
 }
 
 /* The coordinate system of the half-vector quadrature (integrands.h): the radial CDF of D cos. */
