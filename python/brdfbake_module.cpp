@@ -232,7 +232,8 @@ Table python_lut(Opt<std::string> kind, Opt<std::string> model, const py::object
           Opt<std::string> texels, Opt<std::vector<std::string>> axes, Opt<std::vector<std::string>> flip,
           Opt<double> samples, Opt<double> tolerance, Opt<std::string> method, Opt<double> max_samples,
           Opt<std::string> precision, Opt<bool> half, Opt<std::string> colour_space, Opt<bool> rgb_wavelengths,
-          Opt<std::string> output, const Opt<std::string>& device, Opt<std::vector<double>> thickness_range) {
+          Opt<std::string> output, const Opt<std::string>& device, Opt<std::vector<double>> thickness_range,
+          Opt<double> thickness_step) {
     if (rgb_wavelengths.value_or(false) && colour_space)
         throw Error("rgb_wavelengths takes R, G, B at 650, 550 and 450 nm, not a colour space; drop one of them");
     const Opt<std::string> colour = rgb_wavelengths.value_or(false) ? Opt<std::string>("wavelengths") : colour_space;
@@ -241,7 +242,7 @@ Table python_lut(Opt<std::string> kind, Opt<std::string> model, const py::object
     const LutSettings given{kind,     preset,    model,       estimator, fresnel,  wavelength,  dims,
                             mu_map,   alpha_map, eta_map,     texels,    alpha_range, eta_range, mu_range,
                             mu_floor, axes,      flip,        samples,   tolerance, max_samples, method,
-                            precision, half,     colour,      thickness_range};
+                            precision, half,     colour,      thickness_range, thickness_step};
     const LutSetup setup = apply_preset(given);
     validate_lut(setup.request);  // every input checked before the device is touched
     if (output) check_table_path(*output);
@@ -597,6 +598,7 @@ PYBIND11_MODULE(brdfbake, m) {
           py::arg("method") = py::none(), py::arg("max_samples") = py::none(), py::arg("precision") = py::none(),
           py::arg("half") = py::none(), py::arg("colour_space") = py::none(), py::arg("rgb_wavelengths") = py::none(),
           py::arg("output") = py::none(), py::arg("device") = py::none(), py::arg("thickness_range") = py::none(),
+          py::arg("thickness_step") = py::none(),
           "a lookup table as `brdfbake lut KIND`: size is N, (W, H) or (W, H, D); preset names an engine's layout "
           "(the arguments given override it); output writes the table as -o does; every other argument is the "
           "option of the same name"));

@@ -116,6 +116,7 @@ LutSettings given_settings(const LutOptions& o) {
     if (given("--eta-range")) s.eta_range = parse_number_list(o.eta_range, "--eta-range");
     if (given("--mu-range")) s.mu_range = parse_number_list(o.mu_range, "--mu-range");
     if (given("--thickness-range")) s.thickness_range = parse_number_list(o.thickness_range, "--thickness-range");
+    s.thickness_step = number("--thickness-step", o.thickness_step);
     s.mu_floor = number("--mu-floor", o.mu_floor);
     if (given("--axes")) s.axes = parse_names(o.axes, "--axes");
     if (given("--flip")) s.flip = parse_names(o.flip, "--flip");
@@ -128,26 +129,9 @@ LutSettings given_settings(const LutOptions& o) {
     return s;
 }
 
-/// `--thickness-step NM`: the thin-film table's slices at most NM apart over its thickness range
-/// (tables::thickness_slices, the scene setting thickness_step's rule) instead of --size's depth.
-void apply_thickness_step(const LutOptions& o, LutRequest& r) {
-    const auto nm = [](double v) { return short_numbers(std::to_string(v), 6); };
-    const std::string step = nm(o.thickness_step);
-    if (r.kind != "thin-film") throw Error("--thickness-step spaces the thin-film table's slices; this is the " + r.kind + " table");
-    if (o.command->count("--size") && parse_size(o.size).size() == 3)
-        throw Error("--thickness-step sets the table's depth; give --size N or WIDTHxHEIGHT beside it, not a depth");
-    const double span = r.thickness_hi - r.thickness_lo;
-    if (!(o.thickness_step > 0.0 && o.thickness_step <= span))
-        throw Error("--thickness-step " + step + ": must lie in (0, HI - LO] = (0, " + nm(span) + "] nm");
-    const int slices = tables::thickness_slices(r.thickness_lo, r.thickness_hi, o.thickness_step);
-    if (slices > 256) throw Error("--thickness-step " + step + " gives " + std::to_string(slices) + " slices; at most 256");
-    r.depth = slices;
-}
-
 int run_lut(LutOptions& o, const GlobalOptions& g) {
     const auto t0 = std::chrono::steady_clock::now();
     LutSetup setup = apply_preset(given_settings(o));
-    if (o.command->count("--thickness-step")) apply_thickness_step(o, setup.request);
     const LutRequest& r = setup.request;
     const bool sharded = !o.shard.empty();
     std::pair<int, int> shard{0, 1};

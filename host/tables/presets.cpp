@@ -3,6 +3,7 @@
 // and in the README's "Drop-in tables" section); where an engine's own table sits away from where
 // its shader reads, the preset writes what the shader reads.
 #include <limits>
+#include <sstream>
 #include <tuple>
 #include <utility>
 
@@ -11,6 +12,7 @@
 #include "brdfbake/lut.h"
 #include "brdfbake/table_kinds.h"
 #include "models/key_reader.h"
+#include "tables/lut_common.h"
 
 namespace brdfbake {
 namespace {
@@ -300,6 +302,28 @@ void LutPreset::apply(LutRequest& request) const {
 namespace {
 
 /// "--size 32x32x4", for the messages of set_lut_size.
+std::string size_text(const std::vector<int>& size);
+
+/// `--thickness-step NM`: the thin-film table's slices at most NM apart over its thickness range
+/// (tables::thickness_slices, the scene setting thickness_step's rule) instead of --size's depth.
+void apply_thickness_step(double step_nm, const std::optional<std::vector<int>>& size, LutRequest& r) {
+    const auto nm = [](double v) {
+        std::ostringstream text;
+        text << v;
+        return text.str();
+    };
+    const std::string step = nm(step_nm);
+    if (r.kind != "thin-film") throw Error("--thickness-step spaces the thin-film table's slices; this is the " + r.kind + " table");
+    if (size && size->size() == 3)
+        throw Error("--thickness-step sets the table's depth; give --size N or WIDTHxHEIGHT beside it, not a depth");
+    const double span = r.thickness_hi - r.thickness_lo;
+    if (!(step_nm > 0.0 && step_nm <= span))
+        throw Error("--thickness-step " + step + ": must lie in (0, HI - LO] = (0, " + nm(span) + "] nm");
+    const int slices = tables::thickness_slices(r.thickness_lo, r.thickness_hi, step_nm);
+    if (slices > 256) throw Error("--thickness-step " + step + " gives " + std::to_string(slices) + " slices; at most 256");
+    r.depth = slices;
+}
+
 std::string size_text(const std::vector<int>& size) {
     std::string text;
     for (int n : size) text += (text.empty() ? "" : "x") + std::to_string(n);
@@ -380,6 +404,7 @@ LutSetup apply_preset(const LutSettings& given) {
     if (given.eta_range) std::tie(r.eta_lo, r.eta_hi) = range_of(*given.eta_range, "--eta-range");
     if (given.mu_range) std::tie(r.mu_lo, r.mu_hi) = range_of(*given.mu_range, "--mu-range");
     if (given.thickness_range) std::tie(r.thickness_lo, r.thickness_hi) = range_of(*given.thickness_range, "--thickness-range");
+    if (given.thickness_step) apply_thickness_step(*given.thickness_step, given.size, r);
     if (given.mu_floor) r.mu_floor = *given.mu_floor;
     if (given.texels) r.texels = parse_texels(*given.texels);
     if (given.axes) r.axes = *given.axes;

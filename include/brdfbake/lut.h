@@ -129,6 +129,7 @@ struct LutSettings {
     std::optional<bool> half;
     std::optional<std::string> colour;  // --colour-space, or "wavelengths" for --rgb-wavelengths
     std::optional<std::vector<double>> thickness_range;  // LO, HI nm: the thin-film table's z axis
+    std::optional<double> thickness_step;  // nm: the thin-film table's depth from its thickness range
 };
 
 /// Texels on every axis of a table without --size or a preset.

@@ -427,6 +427,7 @@ LUT_OPTION_VALUES = {
     "--alpha-range": (["--alpha-range", "0.1,0.9"], {"alpha_range": [0.1, 0.9]}),
     "--eta-range": (["--eta-range", "1.2,2"], {"eta_range": [1.2, 2.0]}),
     "--thickness-range": (["--thickness-range", "0,300"], {"thickness_range": [0.0, 300.0]}),
+    "--thickness-step": (["--thickness-step", "50"], {"thickness_step": 50.0}),
     "--eta-map": (["--eta-map", "f0"], {"eta_map": "f0"}),
     "--texels": (["--texels", "edge"], {"texels": "edge"}),
     "--mu-range": (["--mu-range", "0.2,1"], {"mu_range": [0.2, 1.0]}),
