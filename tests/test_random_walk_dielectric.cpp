@@ -308,3 +308,32 @@ TEST_CASE("dielectric walk: with bounces=1 f is the height-correlated reflection
         }
     }
 }
+
+TEST_CASE("dielectric walk: a first intersection at the very top, refracted, stays finite (float)", "[random-walk]") {
+    // `check --model beckmann:alpha=0.3,scattering=multiple,eta=1.5` (float) met a NaN in walk 2 of
+    // replica 15 of the pair theta 7.5 / 7.5 deg, dphi 112.5 deg (check's pair and seed; walk6): its
+    // first height draw was u = 0 exactly (the uniform grid's first point, 2^-24 in float), so the
+    // intersection lay at the top (log C1 = 0); refracted, the height seen from below was C1 = 0
+    // (log = -inf), and the next ray, steep upward, has a Beckmann Lambda that underflows to 0 in
+    // float: Lambda log C1 = 0 * inf. The same pair and walks as check's, every estimate finite, and
+    // f(a, b) = f(b, a) within the noise (a law of the model).
+    const char* spec = "beckmann:alpha=0.3,scattering=multiple,eta=1.5";
+    const ModelConfig m = resolve_model_simulated(spec);
+    const auto at = [](double theta, double phi) {
+        return Vec3{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+    };
+    const double t = 0.5 / 6 * M_PI / 2, dphi = 2.5 / 4 * M_PI;  // check_walk.cpp's pair (0, 0, 2)
+    const Vec3 a = at(t, 0.0), b = at(t, dphi);
+    WalkEvalRequest req;
+    req.model = m.id;
+    req.fresnel = resolve_fresnel("none");
+    req.samples = 4096;
+    req.precision = Precision::Float;
+    req.pairs = {{a, b, m.params}, {b, a, m.params}};
+    WalkEvalResult r;
+    REQUIRE_NOTHROW(r = walk_eval(testing::engine(), req));
+    INFO(r.f[0].value << " +- " << r.f[0].error << " vs " << r.f[1].value << " +- " << r.f[1].error);
+    CHECK(std::isfinite(r.f[0].value));
+    CHECK(std::isfinite(r.f[1].value));
+    CHECK(std::fabs(r.f[0].value - r.f[1].value) <= kReciprocitySigmas * std::hypot(r.f[0].error, r.f[1].error) / 3);
+}

@@ -283,9 +283,24 @@ BB_FN bb_walk_result bb_walk_conductor(int dist, bb_params p, int fkind, bb_para
     return r;
 }
 
+/* The half step of bb_unit_from_bits's grid (2^-24 in float, 2^-32 in double): the height a draw
+ * u = 0 stands for (bb_walk_flip_height). */
+#ifdef BB_REAL_IS_FLOAT
+#define BB_WALK_HALF_STEP BB_R(2.98023223876953125e-8)
+#else
+#define BB_WALK_HALF_STEP BB_R(1.16415321826934814e-10)
+#endif
+
 /* log C1(-h) = log(1 - C1(h)) from lc = log C1(h) < 0: the height seen from the other side of the
- * microsurface (heights mirrored, C1 uniform). log(-expm1(lc)) near the top, log1p(-exp(lc)) below. */
+ * microsurface (heights mirrored, C1 uniform). log(-expm1(lc)) near the top, log1p(-exp(lc)) below.
+ * The top itself, lc = 0 (the first intersection of a walk whose height draw is u = 0 exactly: the
+ * uniform grid's first point, probability 2^-24 in float), has no mirror: C1 = 0, lc = -inf, a height
+ * from which every later height average, hit probability and Lambda(w) lc is inf - inf or 0 * inf
+ * (walk6: a NaN in `check` of Beckmann alpha 0.3, eta 1.5 in float, where the steep upward ray's Lambda
+ * underflows to 0). That draw stands for the grid cell [0, 2 BB_WALK_HALF_STEP): it is taken at the
+ * cell's middle, lc = -BB_WALK_HALF_STEP (at most; the height's density there is bounded). */
 BB_FN bb_real bb_walk_flip_height(bb_real lc) {
+    lc = bb_min(lc, -BB_WALK_HALF_STEP);
     return bb_select(bb_log1p(-bb_exp(lc)), bb_log(-bb_expm1(lc)), lc > BB_R(-0.6931471805599453));
 }
 
