@@ -8,6 +8,7 @@
 
 #include <boost/math/quadrature/gauss.hpp>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <nlohmann/json.hpp>
 
@@ -336,4 +337,56 @@ TEST_CASE("dielectric walk: a first intersection at the very top, refracted, sta
     CHECK(std::isfinite(r.f[0].value));
     CHECK(std::isfinite(r.f[1].value));
     CHECK(std::fabs(r.f[0].value - r.f[1].value) <= kReciprocitySigmas * std::hypot(r.f[0].error, r.f[1].error) / 3);
+}
+
+TEST_CASE("dielectric walk: reciprocity pooled over 16 seeds, GGX alpha 0.6 (a heavy tail per seed)", "[.][walk-scan]") {
+    // Hidden: a measurement of the tail left (walk6; 5.7 s wall on amd-epyc-2c with the kernels
+    // cached). For 16 seeds, check's 84 pairs (check_walk.cpp's grid, 4096 walks each way, float):
+    // prints the pairs whose two ends differ by more than kReciprocitySigmas of their noise (walk6:
+    // 4 of 16 seeds, all at theta_o 82.5 deg: seed 3 at 22.5/82.5, dphi 22.5, 11.58 s.e.; seeds 13,
+    // 14, 15 at 7.04, 8.04, 7.03) and the pooled ends at the grazing pairs. Pooled over the seeds the
+    // two ends agree (a law of the model: reflection is reciprocal; walk6: within 1.83 of their
+    // pooled standard errors at every pair), which this asserts; the per-seed failures are the
+    // glass paths' heavy tail from the near-normal end (docs/models.md).
+    const char* spec = "ggx:alpha=0.6,scattering=multiple,eta=1.5";
+    const ModelConfig m = resolve_model_simulated(spec);
+    const auto at = [](double theta, double phi) {
+        return Vec3{std::sin(theta) * std::cos(phi), std::sin(theta) * std::sin(phi), std::cos(theta)};
+    };
+    WalkEvalRequest req;
+    req.model = m.id;
+    req.fresnel = resolve_fresnel("none");
+    req.samples = 4096;
+    req.precision = Precision::Float;
+    std::vector<std::array<double, 3>> where;
+    for (int i = 0; i < 6; ++i)
+        for (int j = i; j < 6; ++j)
+            for (int p = 0; p < 4; ++p) {
+                const double ti = (i + 0.5) / 6 * M_PI / 2, to = (j + 0.5) / 6 * M_PI / 2, dphi = (p + 0.5) / 4 * M_PI;
+                req.pairs.push_back({at(to, 0.0), at(ti, dphi), m.params});
+                req.pairs.push_back({at(ti, dphi), at(to, 0.0), m.params});
+                where.push_back({ti * 180 / M_PI, to * 180 / M_PI, dphi * 180 / M_PI});
+            }
+    std::vector<std::array<double, 4>> pooled(where.size(), {0, 0, 0, 0});
+    for (int seed = 0; seed < 16; ++seed) {
+        req.seed = 0x62726466u + 977u * unsigned(seed);
+        const WalkEvalResult r = walk_eval(testing::engine(), req);
+        for (size_t k = 0; k < where.size(); ++k) {
+            const AlbedoValue &ab = r.f[2 * k], &ba = r.f[2 * k + 1];
+            const double s = std::fabs(ab.value - ba.value) / (std::hypot(ab.error, ba.error) / 3);
+            pooled[k] = {pooled[k][0] + ab.value / 16, pooled[k][1] + ba.value / 16,
+                         pooled[k][2] + ab.error * ab.error / 256, pooled[k][3] + ba.error * ba.error / 256};
+            if (s > kReciprocitySigmas)
+                std::printf("seed %2d theta_i %4.1f theta_o %4.1f dphi %5.1f: %5.2f s.e.; f(o->i) %.5e +- %.2e, f(i->o) %.5e +- %.2e\n",
+                            seed, where[k][0], where[k][1], where[k][2], s, ab.value, ab.error, ba.value, ba.error);
+        }
+    }
+    for (size_t k = 0; k < where.size(); ++k) {
+        const double s = std::fabs(pooled[k][0] - pooled[k][1]) / (std::sqrt(pooled[k][2] + pooled[k][3]) / 3);
+        CHECK(s <= kReciprocitySigmas);
+        if (where[k][1] > 80 || s > 3)
+            std::printf("pooled theta_i %4.1f theta_o %4.1f dphi %5.1f: %.5e +- %.2e vs %.5e +- %.2e (%.2f s.e.)\n",
+                        where[k][0], where[k][1], where[k][2], pooled[k][0], std::sqrt(pooled[k][2]), pooled[k][1],
+                        std::sqrt(pooled[k][3]), s);
+    }
 }
