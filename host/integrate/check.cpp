@@ -185,8 +185,11 @@ std::string check_report_text(const CheckReport& r) {
                       r.max_rel_theta_o * kDeg, r.max_rel_dphi * kDeg, (unsigned long long)r.pairs,
                       r.reciprocity_tolerance);
     out << line;
-    std::snprintf(line, sizeof line, "  values       %s  %llu NaN or Inf, smallest f = %.3g\n",
-                  r.value_violation ? "FAIL" : "pass", (unsigned long long)r.nonfinite, r.min_value);
+    if (r.nonfinite > 0)  // the smallest f is not a measured figure once a value is not finite
+        std::snprintf(line, sizeof line, "  values       FAIL  %llu NaN or Inf\n", (unsigned long long)r.nonfinite);
+    else
+        std::snprintf(line, sizeof line, "  values       %s  0 NaN or Inf, smallest f = %.3g\n",
+                      r.value_violation ? "FAIL" : "pass", r.min_value);
     out << line;
     out << "verdict: " << (r.passed() ? "PASS" : "VIOLATION") << "\n";
     return out.str();
