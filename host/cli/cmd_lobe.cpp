@@ -359,7 +359,8 @@ void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("--view", o->view, "plane: polar plot in the plane of incidence; 3d: the lobe over the hemisphere")
         ->capture_default_str();
     add_precision_option(cmd, o->precision, "evaluation arithmetic");
-    cmd->add_option("--walks", o->walks, "simulated models (scattering=multiple): walks per direction")
+    cmd->add_option("--walks", o->walks, "simulated models: walks per direction pair (scattering=multiple); per incident direction, "
+                    "at least 2^20, for sheen-volume's histogram of exits")
         ->capture_default_str();
     cmd->add_option("-o,--output", o->output, "the picture: .png or .svg");
     cmd->add_option("--data", o->data, "the numbers behind it as CSV (- for standard output)");

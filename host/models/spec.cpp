@@ -494,7 +494,8 @@ ModelConfig resolve_model(const std::string& text) {
     if (m.simulated && m.traits().layer_walk)
         throw Error("model '" + m.name +
                     "' is a random walk through a volumetric layer (Zeltner et al. 2022): f has no pointwise value; "
-                    "albedo, check, lobe and lut albedo take it (sheen-ltc is its pointwise fit)");
+                    "albedo, check, lobe and lut albedo (Python: lut) take it, this command does not (sheen-ltc is its "
+                    "pointwise fit)");
     if (m.simulated)
         throw Error("model '" + m.name +
                     "': scattering=multiple (a random-walk estimate) is supported by albedo, check, lobe (plane and 3d), "

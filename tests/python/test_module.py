@@ -200,6 +200,21 @@ def test_diffuse_adds_a_lambert_base_of_kd_over_pi():
     assert abs(float(r.albedo) - truth) <= float(r.error), (float(r.albedo), float(r.error), truth)
     assert float(r.error) <= 1e-4
 
+def test_a_simulated_layer_is_refused_where_f_is_pointwise_and_tabled_by_lut():
+    """sheen-volume (a random walk) has no pointwise f: eval and albedo refuse it with one line saying
+    so; lut albedo tables it, R + T of a non-absorbing layer with nothing cut off at most 1 (R in [0, 1])."""
+    w = np.array([[0.0, 0.0, 1.0]])
+    for call in (lambda: brdfbake.eval("sheen-volume:roughness=0.5", w, w),
+                 lambda: brdfbake.albedo("sheen-volume:roughness=0.5", 0.5)):
+        with pytest.raises(ValueError, match="no pointwise value.*this command does not"):
+            call()
+    t = brdfbake.lut("albedo", model="sheen-volume", alpha_map="roughness", size=(2, 2), samples=4096)
+    r, err = np.asarray(t.values)[..., 0], np.asarray(t.error)
+    assert t.channels == ["E"] and r.shape == err.shape == (2, 2)
+    assert np.all(np.isfinite(r)) and np.all(np.isfinite(err)) and np.all(err > 0)
+    assert np.all(r >= -err) and np.all(r <= 1 + err)
+
+
 def test_check_gives_the_verdict():
     ok = brdfbake.check("ggx:alpha=0.5", directions=4, samples=4096, resolution=8)
     assert ok["passed"] is True and ok["energy"]["violation"] is False
