@@ -8,7 +8,10 @@
 #include <fstream>
 #include <stdexcept>
 #include <string>
+#include <utility>
+#include <vector>
 
+#include "brdfbake/table.h"
 #include "checks.h"
 #include "support.h"
 
@@ -44,6 +47,21 @@ inline void check_refused_when_written(const std::string& args, const std::strin
     check_usage_error(r);
     CHECK(r.err.find(out.substr(out.rfind('.'))) != std::string::npos);
     CHECK_FALSE(std::ifstream(out).good());
+}
+
+/// A test table on three.js's LTC grid (n x n, x = roughness, y = sqrt(1 - mu), edge texels, as the
+/// EEVEE and Unity HDRP layouts share it) with the given channels, values zero, error 1e-6, float.
+inline brdfbake::Table ltc_engine_grid_table(int n, std::vector<std::string> channels) {
+    brdfbake::Table t;
+    t.kind = "ltc";
+    t.quantity = "test values naming their texel";
+    t.x = brdfbake::make_axis("roughness", "alpha = r^2 (r = sqrt(alpha))", 0, 1, n, brdfbake::Texels::Edge);
+    t.y = brdfbake::make_axis("sqrt_one_minus_mu", "mu = 1 - u^2", 0, 1, n, brdfbake::Texels::Edge);
+    t.channels = std::move(channels);
+    t.values.assign(t.channels.size(), std::vector<double>(size_t(n) * n));
+    t.error.assign(size_t(n) * n, 1e-6);
+    t.attributes["precision"] = "float";
+    return t;
 }
 
 }  // namespace testing

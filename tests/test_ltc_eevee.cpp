@@ -96,21 +96,13 @@ std::vector<std::vector<float>> compile_and_print(const std::string& dir, const 
 /// A table on EEVEE's grid (n x n, x = roughness, y = sqrt(1 - mu), edge texels) in the eevee
 /// packing, each value naming its texel and channel (not a binary fraction: float rounds it).
 Table eevee_grid_table(int n) {
-    Table t;
-    t.kind = "ltc";
-    t.quantity = "test values naming their texel";
-    t.x = make_axis("roughness", "alpha = r^2 (r = sqrt(alpha))", 0, 1, n, Texels::Edge);
-    t.y = make_axis("sqrt_one_minus_mu", "mu = 1 - u^2", 0, 1, n, Texels::Edge);
+    Table t = testing::ltc_engine_grid_table(n, {"ltc_mat_ggx.0", "ltc_mat_ggx.1", "ltc_mat_ggx.2", "ltc_mat_ggx.3",
+                                                 "ltc_mag_ggx.0", "ltc_mag_ggx.1", "distance", "distance_error"});
     t.x.parameter = t.x.coordinate;
     t.y.parameter = t.y.coordinate;
-    t.channels = {"ltc_mat_ggx.0", "ltc_mat_ggx.1", "ltc_mat_ggx.2", "ltc_mat_ggx.3", "ltc_mag_ggx.0",
-                  "ltc_mag_ggx.1", "distance", "distance_error"};
-    t.values.assign(t.channels.size(), std::vector<double>(size_t(n) * n));
     for (size_t c = 0; c < t.channels.size(); ++c)
         for (int j = 0; j < n; ++j)
             for (int i = 0; i < n; ++i) t.values[c][size_t(j) * n + i] = (c + 1) * 10.0 + j + i / 3.0 - (c == 1 ? 50 : 0);
-    t.error.assign(size_t(n) * n, 1e-6);
-    t.attributes["precision"] = "float";
     return t;
 }
 

@@ -117,14 +117,9 @@ std::vector<std::vector<float>> compile_and_read(const std::string& dir, int n, 
 /// packing, R and G naming its row and column (G negative), each value a half float (one
 /// subnormal and HDRP's clamp 65504 among them).
 Table unity_grid_table(int n) {
-    Table t;
-    t.kind = "ltc";
-    t.quantity = "test values naming their texel";
-    t.x = make_axis("roughness", "alpha = r^2 (r = sqrt(alpha))", 0, 1, n, Texels::Edge);
-    t.y = make_axis("sqrt_one_minus_mu", "mu = 1 - u^2", 0, 1, n, Texels::Edge);
-    t.channels = {"s_LtcMatrixData_BRDF_GGX.0", "s_LtcMatrixData_BRDF_GGX.1", "s_LtcMatrixData_BRDF_GGX.2",
-                  "s_LtcMatrixData_BRDF_GGX.3", "magnitude", "fresnel", "distance", "distance_error"};
-    t.values.assign(t.channels.size(), std::vector<double>(size_t(n) * n));
+    Table t = testing::ltc_engine_grid_table(
+        n, {"s_LtcMatrixData_BRDF_GGX.0", "s_LtcMatrixData_BRDF_GGX.1", "s_LtcMatrixData_BRDF_GGX.2",
+            "s_LtcMatrixData_BRDF_GGX.3", "magnitude", "fresnel", "distance", "distance_error"});
     for (int j = 0; j < n; ++j)
         for (int i = 0; i < n; ++i) {  // R names the row, G the column; each exact in half floats
             const double v[8] = {1.0 + j + (i % 8) / 8.0, -(1.0 + i + (j % 8) / 8.0), 100.0 + i + j / 4.0,
@@ -133,8 +128,6 @@ Table unity_grid_table(int n) {
         }
     t.values[3][0] = 65504.0;
     t.values[3][1] = std::ldexp(3.0, -24);  // a subnormal half
-    t.error.assign(size_t(n) * n, 1e-6);
-    t.attributes["precision"] = "float";
     return t;
 }
 

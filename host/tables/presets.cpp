@@ -301,9 +301,6 @@ void LutPreset::apply(LutRequest& request) const {
 
 namespace {
 
-/// "--size 32x32x4", for the messages of set_lut_size.
-std::string size_text(const std::vector<int>& size);
-
 /// `--thickness-step NM`: the thin-film table's slices at most NM apart over its thickness range
 /// (tables::thickness_slices, the scene setting thickness_step's rule) instead of --size's depth.
 void apply_thickness_step(double step_nm, const std::optional<std::vector<int>>& size, LutRequest& r) {
@@ -324,6 +321,7 @@ void apply_thickness_step(double step_nm, const std::optional<std::vector<int>>&
     r.depth = slices;
 }
 
+/// "--size 32x32x4", for the messages of set_lut_size.
 std::string size_text(const std::vector<int>& size) {
     std::string text;
     for (int n : size) text += (text.empty() ? "" : "x") + std::to_string(n);
