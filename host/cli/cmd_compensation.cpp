@@ -23,6 +23,7 @@
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
 #include "cli/cli.h"
+#include "cli/compensation.h"
 #include "cli/furnace_sphere.h"
 #include "integrate/random_walk.h"
 #include "models/key_reader.h"
@@ -30,6 +31,49 @@
 #include "tables/mu_average.h"
 
 namespace brdfbake {
+
+std::vector<double> e_grid_nodes() {
+    std::vector<double> grid;
+    for (int k = 0; k < kEGrid; ++k) grid.push_back((k + 0.5) / kEGrid);
+    return grid;
+}
+
+double e_at(const std::vector<AlbedoValue>& grid, double mu) {
+    const double x = std::clamp(mu * kEGrid - 0.5, 0.0, double(kEGrid - 1));
+    const int k = std::min(int(x), kEGrid - 2);
+    return grid[k].value + (x - k) * (grid[k + 1].value - grid[k].value);
+}
+
+LobeDirections lobe_directions(Engine& engine, const ModelConfig& single, double alpha, double mu, int n,
+                               std::uint64_t seed) {
+    LobeDirections d;
+    d.wo = {std::sqrt(1.0 - mu * mu), 0.0, mu};
+    std::mt19937_64 rng(std::uint64_t(alpha * 1e6) * 1000003u + std::uint64_t(mu * 1e6) + seed * 0x9E3779B97F4A7C15u);
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    for (int k = 0; k < n / 2; ++k) {  // cosine-weighted
+        const double z = std::sqrt(u(rng)), p = 2 * M_PI * u(rng), s = std::sqrt(1 - z * z);
+        d.wi.push_back({s * std::cos(p), s * std::sin(p), z});
+    }
+    std::vector<std::array<double, 2>> us;
+    for (int k = n / 2; k < n; ++k) us.push_back({u(rng), u(rng)});
+    const FresnelConfig none = resolve_fresnel("none");
+    for (const DeviceSample& s : sample_on_device(engine, single, none, Precision::Double,
+                                                  std::vector<Vec3>(us.size(), d.wo), us))
+        if (s.wi[2] > 0.0 && std::isfinite(s.weight)) d.wi.push_back(s.wi);  // one below the horizon adds 0
+    d.f_single = evaluate_on_device(engine, single, none, Precision::Double, std::vector<Vec3>(d.wi.size(), d.wo), d.wi);
+    const bool beckmann = single.name == "beckmann";
+    const auto lambda = [&](const Vec3& w) {
+        const bb_vec3 v = bb_v3(w[0], w[1], w[2]);
+        return beckmann ? bb_beckmann_lambda(v, alpha, alpha) : bb_ggx_lambda(v, alpha, alpha);
+    };
+    const double lo = lambda(d.wo);
+    for (size_t k = 0; k < d.wi.size(); ++k) {
+        const double z = d.wi[k][2];
+        d.density.push_back(0.5 * z / M_PI + 0.5 * d.f_single[k] * z * (1.0 + lo + lambda(d.wi[k])) / (1.0 + lo));
+    }
+    return d;
+}
+
 namespace {
 
 /// What a scheme is built from, at one alpha and mu.
@@ -93,23 +137,6 @@ const std::vector<Scheme>& schemes() {
     return s;
 }
 
-struct CompensationOptions {
-    std::string scheme = "all";
-    std::string model = "ggx";
-    std::string alpha = "0.1,0.25,0.5,0.75,1";
-    std::string mu = "0.1,0.3,0.5,0.7,1";
-    double f0 = 0.5;
-    std::int64_t walks = std::int64_t(1) << 18;
-    int lobe_directions = 256;          // directions wi of the lobe distance (0: none)
-    std::int64_t lobe_walks = 1024;     // walks per direction
-    std::string format = "table";
-    std::string output;
-    std::string plot;
-    std::string furnace;  // the furnace picture: spheres of single, each scheme and the walk per alpha
-    int furnace_nodes = 24;
-    int furnace_pixels = 120;
-};
-
 /// One (alpha, mu) row: the walk, the single-scattering terms and each scheme's albedo.
 struct Row {
     double alpha, mu;
@@ -134,15 +161,6 @@ std::vector<AlbedoValue> single_albedo(Engine& engine, const ModelConfig& m, con
     return albedo_of_model(engine, m, f, req, tol).values;
 }
 
-/// E(mu) with F = 1 at kEGrid mu texel centres, linear between them (clamped at the ends): E(mu_i)
-/// of Kulla and Conty's lobe.
-constexpr int kEGrid = 64;
-double e_at(const std::vector<AlbedoValue>& grid, double mu) {
-    const double x = std::clamp(mu * kEGrid - 0.5, 0.0, double(kEGrid - 1));
-    const int k = std::min(int(x), kEGrid - 2);
-    return grid[k].value + (x - k) * (grid[k + 1].value - grid[k].value);
-}
-
 /// The models and terms of one alpha that the lobe distance reads.
 struct LobeInputs {
     const ModelConfig &single, &walk;
@@ -157,39 +175,20 @@ struct LobeInputs {
 /// brdf/microfacet.h); f_walk by next-event estimation on o.lobe_walks walks per direction.
 void lobe_distance(Engine& engine, const CompensationOptions& o, const LobeInputs& in, Row& r) {
     const int n = o.lobe_directions;
-    const Vec3 wo{std::sqrt(1.0 - r.mu * r.mu), 0.0, r.mu};
-    std::mt19937_64 rng(std::uint64_t(r.alpha * 1e6) * 1000003u + std::uint64_t(r.mu * 1e6));
-    std::uniform_real_distribution<double> u(0.0, 1.0);
-    std::vector<Vec3> wis;
-    for (int k = 0; k < n / 2; ++k) {  // cosine-weighted
-        const double z = std::sqrt(u(rng)), p = 2 * M_PI * u(rng), s = std::sqrt(1 - z * z);
-        wis.push_back({s * std::cos(p), s * std::sin(p), z});
-    }
-    std::vector<std::array<double, 2>> us;
-    for (int k = n / 2; k < n; ++k) us.push_back({u(rng), u(rng)});
-    for (const DeviceSample& d : sample_on_device(engine, in.single, in.none, Precision::Double,
-                                                  std::vector<Vec3>(us.size(), wo), us))
-        if (d.wi[2] > 0.0 && std::isfinite(d.weight)) wis.push_back(d.wi);  // one below the horizon adds 0
-    const std::vector<Vec3> wos(wis.size(), wo);
-    const std::vector<double> f1 = evaluate_on_device(engine, in.single, in.none, Precision::Double, wos, wis);
+    const LobeDirections dirs = lobe_directions(engine, in.single, r.alpha, r.mu, n);
+    const std::vector<Vec3>& wis = dirs.wi;
+    const std::vector<Vec3> wos(wis.size(), dirs.wo);
     const std::vector<double> f_ss = evaluate_on_device(engine, in.single, in.schlick, Precision::Double, wos, wis);
     WalkEvalRequest req;
     req.model = in.walk.id;
     req.fresnel = in.schlick;
     req.samples = std::uint64_t(o.lobe_walks);
-    for (const Vec3& wi : wis) req.pairs.push_back({wo, wi, in.walk.params});
+    for (const Vec3& wi : wis) req.pairs.push_back({dirs.wo, wi, in.walk.params});
     const WalkEvalResult walk = walk_eval(engine, req);
-    const bool beckmann = in.single.name == "beckmann";
-    const auto lambda = [&](const Vec3& w) {
-        const bb_vec3 v = bb_v3(w[0], w[1], w[2]);
-        return beckmann ? bb_beckmann_lambda(v, r.alpha, r.alpha) : bb_ggx_lambda(v, r.alpha, r.alpha);
-    };
-    const double lo = lambda(wo);
     std::vector<double> sum(schemes().size(), 0.0), sum2(schemes().size(), 0.0);
     double noise = 0.0;
     for (size_t k = 0; k < wis.size(); ++k) {
-        const double z = wis[k][2];
-        const double p = 0.5 * z / M_PI + 0.5 * f1[k] * z * (1.0 + lo + lambda(wis[k])) / (1.0 + lo);
+        const double z = wis[k][2], p = dirs.density[k];
         const LobePoint at{f_ss[k], e_at(in.e_grid, z)};
         for (size_t s = 0; s < schemes().size(); ++s) {
             const double d = std::fabs(schemes()[s].lobe(r.in, at) - walk.f[k].value) * z / p;
@@ -228,8 +227,7 @@ std::vector<Row> compute(Engine& engine, const CompensationOptions& o, const std
         req.samples = std::uint64_t(o.walks);
         req.cells = cells_for(mus, 0.0, walk_model.params);
         const WalkResult walk = walk_albedo(engine, req);
-        std::vector<double> grid;
-        for (int k = 0; k < kEGrid; ++k) grid.push_back((k + 0.5) / kEGrid);
+        const std::vector<double> grid = e_grid_nodes();
         const LobeInputs lobe{single, walk_model, none, schlick,
                               o.lobe_directions > 0 ? single_albedo(engine, single, none, grid, 1e-4)
                                                     : std::vector<AlbedoValue>{}};
@@ -406,14 +404,8 @@ double draw_furnace(Engine& engine, const CompensationOptions& o, const std::vec
     return worst;
 }
 
-int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
-    const Format format = parse_format(o.format);
-    check_text_output(o.output);
-    check_plot_output(o.plot, "--plot");
-    check_plot_output(o.furnace, "--furnace");
-    if (!o.furnace.empty() && o.furnace == o.plot) throw Error("--furnace and --plot name the same file");
-    if (o.furnace_nodes < 4 || o.furnace_nodes > 256) throw Error("--furnace-nodes must be 4 to 256");
-    if (o.furnace_pixels < 16 || o.furnace_pixels > 1024) throw Error("--furnace-pixels must be 16 to 1024");
+/// The conductor's schemes `o.scheme` picks, and its --model and --f0 checked (one line each).
+std::vector<size_t> check_conductor(const CompensationOptions& o) {
     std::vector<size_t> picked;
     std::string names;
     for (size_t s = 0; s < schemes().size(); ++s) {
@@ -429,10 +421,26 @@ int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
     // The random walk's resolver names what it does not take (a model without scattering=multiple).
     if (resolve_model_simulated(o.model + ":alpha=0.5,scattering=multiple").dielectric_walk)
         throw Error("--model: give the distribution's name (ggx or beckmann): the schemes compensate a conductor");
+    if (!(o.f0 >= 0.0 && o.f0 <= 1.0)) throw Error("--f0: " + format_number(o.f0) + " must lie in [0, 1]");
+    return picked;
+}
+
+int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
+    const Format format = parse_format(o.format);
+    check_text_output(o.output);
+    check_plot_output(o.plot, "--plot");
+    check_plot_output(o.furnace, "--furnace");
+    if (!o.furnace.empty() && o.furnace == o.plot) throw Error("--furnace and --plot name the same file");
+    if (o.furnace_nodes < 4 || o.furnace_nodes > 256) throw Error("--furnace-nodes must be 4 to 256");
+    if (o.furnace_pixels < 16 || o.furnace_pixels > 1024) throw Error("--furnace-pixels must be 16 to 1024");
     if (o.lobe_directions < 0 || o.lobe_directions == 1 || o.lobe_directions > 1 << 20)
         throw Error("--lobe-directions must be 0 or 2 to 2^20");
     if (o.lobe_walks < 32) throw Error("--lobe-walks must be at least 32");
-    if (!(o.f0 >= 0.0 && o.f0 <= 1.0)) throw Error("--f0: " + format_number(o.f0) + " must lie in [0, 1]");
+    std::vector<size_t> picked;
+    if (o.eta_given)
+        check_dielectric_compensation(o, o.f0_given);
+    else
+        picked = check_conductor(o);
     if (o.walks < 16) throw Error("--walks must be at least 16");
     const std::vector<double> alphas = parse_number_list(o.alpha, "--alpha");
     const std::vector<double> mus = parse_number_list(o.mu, "--mu");
@@ -440,6 +448,10 @@ int run_compensation(const CompensationOptions& o, const GlobalOptions& g) {
         if (!(mu > 0.0 && mu <= 1.0)) throw Error("--mu: " + format_number(mu) + " must lie in (0, 1]");
     for (double a : alphas) resolve_model(o.model + ":alpha=" + format_number(a));  // its range, before the device
     Engine engine(g.device, g.verbose);
+    if (o.eta_given) {
+        run_dielectric_compensation(engine, o, alphas, mus, format);
+        return kExitOk;
+    }
     const std::vector<Row> rows = compute(engine, o, alphas, mus);
     if (!o.plot.empty()) plot_rows(o.plot, o, picked, rows);
     if (!o.furnace.empty()) {
@@ -458,11 +470,17 @@ void add_compensation_command(CLI::App& app, const GlobalOptions& global, Action
         app, "compensation",
         "multiple-scattering compensation schemes (Kulla-Conty, Fdez-Aguera, Turquin) against the random walk",
         global, action, run_compensation);
-    cmd->add_option("--scheme", o->scheme, "kulla-conty, fdez-aguera, turquin or all")->capture_default_str();
+    cmd->add_option("--scheme", o->scheme, "kulla-conty, fdez-aguera, turquin or all (--eta: kulla-conty, turquin)")->capture_default_str();
     cmd->add_option("--model", o->model, "the distribution: ggx or beckmann (height-correlated)")->capture_default_str();
     cmd->add_option("--alpha", o->alpha, "comma-separated alpha values")->capture_default_str();
     cmd->add_option("--mu", o->mu, "comma-separated cos(theta_o) values in (0, 1]")->capture_default_str();
-    cmd->add_option("--f0", o->f0, "Schlick's normal reflectance at every bounce")->capture_default_str();
+    cmd->add_option_function<double>(
+           "--f0", [o = o](double v) { o->f0 = v, o->f0_given = true; }, "Schlick's normal reflectance at every bounce")
+        ->default_str("0.5");
+    cmd->add_option_function<double>(
+        "--eta", [o = o](double v) { o->eta = v, o->eta_given = true; },
+        "the rough dielectric (ggx) of this index relative to the outside, > 1: each glass scheme (kulla-conty, "
+        "turquin) against the dielectric walk's R and T from outside (eta) and inside (1/eta)");
     cmd->add_option("--walks", o->walks, "random walks per direction")->capture_default_str();
     cmd->add_option("--lobe-directions", o->lobe_directions,
                     "directions wi of each lobe's L1 distance from the walk's (0: albedo only)")

@@ -1,0 +1,376 @@
+// `brdfbake compensation --eta E`: the energy-compensation schemes of rough glass against the
+// multiple-scattering rough dielectric of Heitz, Hanika, d'Eon and Dachsbacher 2016 (the walk of
+// brdf/random_walk.h with eta=), from outside (relative index eta) and from inside (1/eta), per
+// alpha and mu. Each scheme is built from brdfbake's own integrals of the single-scattering
+// height-correlated GGX interface (compute_dielectric: R(mu) and T(mu), Heitz 2014 eq. 99 and
+// 100; E = R + T and Eavg = 2 int E mu dmu from both sides, tables/mu_average.h, as the
+// dielectric-eavg table integrates them) and the average Fresnel reflectance Favg = 2 int F mu dmu
+// of the exact unpolarised interface from both sides. Compared: R, T and R + T with the walk's
+// errors, and the reflection lobe's L1 distance from the walk's (the walk estimates f of the
+// reflection only: walk_eval).
+#include <algorithm>
+#include <array>
+#include <boost/math/quadrature/gauss_kronrod.hpp>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "brdfbake/brdf/fresnel.h"
+#include "brdfbake/brdf/random_walk.h"
+#include "brdfbake/error.h"
+#include "cli/cli.h"
+#include "cli/compensation.h"
+#include "integrate/random_walk.h"
+#include "models/key_reader.h"
+#include "tables/mu_average.h"
+
+namespace brdfbake {
+namespace {
+
+/// What a dielectric scheme is built from, at one alpha, side and mu.
+struct GlassInputs {
+    double r, t;   // single scattering: R(mu) and T(mu) of the height-correlated interface on this side
+    double e_avg;  // Eavg of this side: 2 int (R + T) mu dmu
+    double tau;    // [KC17]'s share of the lost energy this side transmits (glass_split)
+};
+
+/// A dielectric compensation scheme: its name and source, the compensated R and T it predicts at mu
+/// and its reflection lobe at (wo, wi) from the single-scattering reflection f_ss and E(mu_i).
+struct GlassScheme {
+    const char* name;
+    const char* source;
+    std::array<double, 2> (*albedo)(const GlassInputs&);
+    double (*reflection)(const GlassInputs&, double f_ss, double e_i);
+};
+
+double e_of(const GlassInputs& x) { return x.r + x.t; }
+
+/// The registry of dielectric schemes (one row each). Fdez-Aguera 2019 (the split sum) is not one:
+/// it compensates a reflection and defines no transmission.
+const std::vector<GlassScheme>& glass_schemes() {
+    static const std::vector<GlassScheme> s = {
+        // [KC17] Kulla and Conty 2017, "Revisiting Physically Based Shading at Imageworks", section
+        // "Dielectrics": E and Eavg of the whole BSDF (R + T) from both sides; the lost energy
+        // 1 - E(mu_o) is put back by the lobe (1 - E(mu_o))(1 - E'(mu_i)) / (pi (1 - Eavg')), E' and
+        // Eavg' those of the side wi lies on, split between reflection (1 - tau) and transmission
+        // (tau). R + T = E + (1 - E) = 1 at every mu: exact for a non-absorbing interface.
+        {"kulla-conty", "Kulla and Conty 2017 (E, Eavg from both sides, the split by Favg)",
+         [](const GlassInputs& x) {
+             const double lost = 1.0 - e_of(x);
+             return std::array<double, 2>{x.r + lost * (1.0 - x.tau), x.t + lost * x.tau};
+         },
+         [](const GlassInputs& x, double f_ss, double e_i) {
+             return f_ss + (1.0 - e_of(x)) * (1.0 - e_i) / (M_PI * (1.0 - x.e_avg)) * (1.0 - x.tau);
+         }},
+        // [T19] Turquin 2019, "Practical multiple scattering compensation for microfacet models",
+        // the dielectric: the whole single-scattering BSDF (reflection and transmission) scaled by
+        // 1 / E(mu_o), E = R + T: R + T = 1 at every mu, exact for a non-absorbing interface.
+        {"turquin", "Turquin 2019 (the BSDF times 1/E, E = R + T)",
+         [](const GlassInputs& x) { return std::array<double, 2>{x.r / e_of(x), x.t / e_of(x)}; },
+         [](const GlassInputs& x, double f_ss, double) { return f_ss / e_of(x); }},
+    };
+    return s;
+}
+
+/// Favg = 2 int_0^1 F(mu) mu dmu of the exact unpolarised interface of relative index eta
+/// (fresnel.h), Gauss-Kronrod on each side of the critical angle (total reflection below it, eta < 1).
+double fresnel_average(double eta) {
+    const auto g = [eta](double mu) { return 2.0 * mu * double(bb_fresnel_dielectric(mu, eta)); };
+    using gk = boost::math::quadrature::gauss_kronrod<double, 61>;
+    const double mu_c = eta < 1.0 ? std::sqrt(1.0 - eta * eta) : 0.0;
+    return (mu_c > 0.0 ? gk::integrate(g, 0.0, mu_c, 15, 1e-13) : 0.0) + gk::integrate(g, mu_c, 1.0, 15, 1e-13);
+}
+
+/// [KC17] "Dielectrics": the lost energy is reflected and transmitted in the shares 1 - tau and tau;
+/// from outside tau = (1 - Favg) x, from inside tau' = (1 - Favg') (1 - x), and x balances the
+/// energy the two lobes carry through the interface the way it crosses a smooth one (the
+/// cosine-weighted transmittance from inside is that from outside over eta^2):
+/// (1 - Eavg) (1 - Favg) x / eta^2 = (1 - Eavg') (1 - Favg') (1 - x),
+/// x = t / (1 + t), t = eta^2 (1 - Eavg') (1 - Favg') / ((1 - Eavg) (1 - Favg)). Returns {tau, tau'}.
+std::array<double, 2> glass_split(double eta, const std::array<double, 2>& e_avg, const std::array<double, 2>& f_avg) {
+    const double lost_out = std::max(1.0 - e_avg[0], 1e-300), lost_in = std::max(1.0 - e_avg[1], 1e-300);
+    const double t = eta * eta * lost_in * (1.0 - f_avg[1]) / (lost_out * (1.0 - f_avg[0]));
+    const double x = t / (1.0 + t);
+    return {(1.0 - f_avg[0]) * x, (1.0 - f_avg[1]) * (1.0 - x)};
+}
+
+/// One (alpha, side, mu) row.
+struct GlassRow {
+    double alpha, mu;
+    int side;    // 0: lit from outside (eta), 1: from inside (1/eta)
+    double eta;  // this side's relative index
+    WalkAlbedo walk;
+    GlassInputs in;
+    double f_avg;
+    double input_error;                      // the integrals' error (R's, T's and Eavg's)
+    std::vector<std::array<double, 2>> scheme;  // per scheme: R, T
+    std::vector<double> lobe_l1;             // per scheme: integral of |f_R,scheme - f_R,walk| cos over wi
+    double l1_error = 0.0, l1_noise = 0.0;
+};
+
+const char* side_name(int side) { return side == 0 ? "outside" : "inside"; }
+
+/// The walk's parameters seen from `side`: 1/eta from inside, 1/eta - 1 = -(eta - 1)/eta.
+ParamBlock side_params(const ModelConfig& walk, int side) {
+    ParamBlock p = walk.params;
+    if (side == 1) {
+        p[BB_SMITH_WALK_ETA] = 1.0 / walk.params[BB_SMITH_WALK_ETA];
+        p[BB_SMITH_WALK_ETA_M1] = -walk.params[BB_SMITH_WALK_ETA_M1] / walk.params[BB_SMITH_WALK_ETA];
+    }
+    return p;
+}
+
+/// R(mu) and T(mu) of the single-scattering interface at alpha for each (side, mu), side-major, to
+/// `tolerance` (quadrature first, then importance sampling where the rule cannot certify it).
+DielectricResult single_glass(Engine& engine, double alpha, double eta, const std::vector<double>& mus,
+                              double tolerance) {
+    DielectricRequest req;
+    req.precision = Precision::Double;
+    for (int side = 0; side < 2; ++side)
+        for (double mu : mus) req.cells.push_back({mu, alpha, side == 0 ? eta : 1.0 / eta});
+    ToleranceRequest tol;
+    tol.tolerance = tolerance;
+    return compute_dielectric_to_tolerance(engine, req, tol);
+}
+
+/// The reflection lobe's L1 distance from the walk's of each scheme at row r (directions as the
+/// conductor's: lobe_directions), E(mu_i) of r's side from `e_grid`.
+void glass_lobe_distance(Engine& engine, const CompensationOptions& o, const ModelConfig& single,
+                         const ModelConfig& walk, const std::vector<AlbedoValue>& e_grid, GlassRow& r) {
+    const int n = o.lobe_directions;
+    const LobeDirections dirs = lobe_directions(engine, single, r.alpha, r.mu, n, std::uint64_t(r.side));
+    WalkEvalRequest req;
+    req.model = walk.id;
+    req.fresnel = resolve_fresnel("none");  // the walk's own exact dielectric F
+    req.samples = std::uint64_t(o.lobe_walks);
+    req.precision = Precision::Double;
+    for (const Vec3& wi : dirs.wi) req.pairs.push_back({dirs.wo, wi, side_params(walk, r.side)});
+    const WalkEvalResult w = walk_eval(engine, req);
+    const auto& all = glass_schemes();
+    std::vector<double> sum(all.size(), 0.0), sum2(all.size(), 0.0);
+    double noise = 0.0;
+    for (size_t k = 0; k < dirs.wi.size(); ++k) {
+        const double z = dirs.wi[k][2], p = dirs.density[k];
+        // The walk's first order is the single-scattering reflection in closed form (random_walk.h).
+        for (size_t s = 0; s < all.size(); ++s) {
+            const double d = std::fabs(all[s].reflection(r.in, w.single[k].value, e_at(e_grid, z)) - w.f[k].value) * z / p;
+            sum[s] += d;
+            sum2[s] += d * d;
+        }
+        noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z / p;
+    }
+    for (size_t s = 0; s < all.size(); ++s) {
+        const double mean = sum[s] / n;
+        r.lobe_l1.push_back(mean);
+        r.l1_error = std::max(r.l1_error, 3.0 * std::sqrt(std::max(0.0, sum2[s] / n - mean * mean) / (n - 1)));
+    }
+    r.l1_noise = noise / n;
+}
+
+/// Eavg of both sides at alpha (2 integrals: outside, inside), R + T's error the sum of theirs.
+tables::MuAverage glass_average(Engine& engine, double alpha, double eta) {
+    return tables::average_over_mu(2, 1e-4, [&](const std::vector<double>& nodes) {
+        const DielectricResult d = single_glass(engine, alpha, eta, nodes, 2.5e-5);
+        tables::MuSamples s;
+        for (size_t c = 0; c < d.reflected.size(); ++c)
+            s.values.push_back({d.reflected[c].value + d.transmitted[c].value,
+                                d.reflected[c].error + d.transmitted[c].error});
+        return s;
+    });
+}
+
+std::vector<GlassRow> compute_glass(Engine& engine, const CompensationOptions& o, const std::vector<double>& alphas,
+                                    const std::vector<double>& mus) {
+    const std::array<double, 2> f_avg{fresnel_average(o.eta), fresnel_average(1.0 / o.eta)};
+    std::vector<GlassRow> rows;
+    for (double a : alphas) {
+        const std::string spec = o.model + ":alpha=" + format_number(a);
+        const ModelConfig single = resolve_model(spec);
+        const ModelConfig walk_model = resolve_model_simulated(spec + ",scattering=multiple,eta=" + format_number(o.eta));
+        const DielectricResult ss = single_glass(engine, a, o.eta, mus, 1e-5);
+        const tables::MuAverage avg = glass_average(engine, a, o.eta);
+        const std::array<double, 2> tau = glass_split(o.eta, {avg.value[0], avg.value[1]}, f_avg);
+        AlbedoRequest req;
+        req.model = walk_model.id;
+        req.fresnel = resolve_fresnel("none");
+        req.samples = std::uint64_t(o.walks);
+        for (int side = 0; side < 2; ++side)
+            for (AlbedoCell c : cells_for(mus, 0.0, walk_model.params)) {
+                c.params = side_params(walk_model, side);
+                req.cells.push_back(c);
+            }
+        const WalkResult walk = walk_albedo(engine, req);
+        DielectricResult grid;
+        if (o.lobe_directions > 0) grid = single_glass(engine, a, o.eta, e_grid_nodes(), 1e-4);
+        for (int side = 0; side < 2; ++side) {
+            std::vector<AlbedoValue> e_grid;
+            for (int k = 0; k < kEGrid && o.lobe_directions > 0; ++k)
+                e_grid.push_back({grid.reflected[side * kEGrid + k].value + grid.transmitted[side * kEGrid + k].value, 0.0});
+            for (size_t k = 0; k < mus.size(); ++k) {
+                const size_t c = side * mus.size() + k;
+                GlassRow r{a, mus[k], side, side == 0 ? o.eta : 1.0 / o.eta, walk.values[c],
+                           {ss.reflected[c].value, ss.transmitted[c].value, avg.value[side], tau[side]}, f_avg[side],
+                           ss.reflected[c].error + ss.transmitted[c].error + avg.error[side], {}, {}};
+                for (const GlassScheme& s : glass_schemes()) r.scheme.push_back(s.albedo(r.in));
+                if (o.lobe_directions > 0) glass_lobe_distance(engine, o, single, walk_model, e_grid, r);
+                rows.push_back(r);
+            }
+        }
+    }
+    return rows;
+}
+
+nlohmann::json glass_json(const CompensationOptions& o, const std::vector<size_t>& picked,
+                          const std::vector<GlassRow>& rows) {
+    const auto& all = glass_schemes();
+    nlohmann::json j;
+    j["command"] = "compensation";
+    j["model"] = o.model;
+    j["eta"] = o.eta;
+    j["walks"] = o.walks;
+    j["results"] = nlohmann::json::array();
+    for (const GlassRow& r : rows) {
+        nlohmann::json e = {{"alpha", r.alpha},
+                            {"side", side_name(r.side)},
+                            {"eta", r.eta},
+                            {"mu", r.mu},
+                            {"walk_R", r.walk.energy.value},
+                            {"walk_R_error", r.walk.energy.error},
+                            {"walk_T", r.walk.transmitted.value},
+                            {"walk_T_error", r.walk.transmitted.error},
+                            {"walk_sum", r.walk.total.value},
+                            {"walk_sum_error", r.walk.total.error},
+                            {"walk_cutoff", r.walk.cutoff.value},
+                            {"single_R", r.in.r},
+                            {"single_T", r.in.t},
+                            {"e_avg", r.in.e_avg},
+                            {"f_avg", r.f_avg},
+                            {"input_error", r.input_error},
+                            {"kulla_conty_transmitted_share", r.in.tau}};
+        for (size_t s : picked) {
+            const std::string n = all[s].name;
+            e[n + "_R"] = r.scheme[s][0];
+            e[n + "_T"] = r.scheme[s][1];
+            e[n + "_R_difference"] = r.scheme[s][0] - r.walk.energy.value;
+            e[n + "_T_difference"] = r.scheme[s][1] - r.walk.transmitted.value;
+            e[n + "_sum_difference"] = r.scheme[s][0] + r.scheme[s][1] - r.walk.total.value;
+            if (!r.lobe_l1.empty()) e[n + "_reflection_l1"] = r.lobe_l1[s];
+        }
+        if (!r.lobe_l1.empty()) {
+            e["lobe_l1_error"] = r.l1_error;
+            e["lobe_l1_noise"] = r.l1_noise;
+        }
+        j["results"].push_back(e);
+    }
+    return j;
+}
+
+std::string glass_header(const CompensationOptions& o, const std::vector<size_t>& picked) {
+    std::ostringstream out;
+    out << "# rough dielectric compensation against the random walk (Heitz et al. 2016), " << o.model << ", eta = "
+        << format_number(o.eta) << " (outside; inside 1/eta), " << o.walks << " walks per direction\n"
+        << "# walk: R and T of the multiple-scattering interface (err: 3 standard errors of each; of R + T: "
+           "sum_err); single: the height-correlated interface's; per scheme its R, T and R + T minus the walk's "
+           "(in_err: the integrals' error)\n";
+    for (size_t s : picked)
+        out << "# " << glass_schemes()[s].name << ": " << glass_schemes()[s].source << "\n";
+    if (o.lobe_directions > 0)
+        out << "# l1 (per scheme): integral of |f_R,scheme - f_R,walk| cos over wi of the reflection lobe, "
+            << o.lobe_directions << " directions x " << o.lobe_walks
+            << " walks; l1_err: 3 standard errors; noise: what the walk's noise alone adds\n";
+    return out.str();
+}
+
+std::string render_glass(const CompensationOptions& o, const std::vector<size_t>& picked,
+                         const std::vector<GlassRow>& rows, Format format) {
+    if (format == Format::Json) return glass_json(o, picked, rows).dump(2) + "\n";
+    const auto& all = glass_schemes();
+    const bool csv = format == Format::Csv, lobe = o.lobe_directions > 0;
+    std::ostringstream out;
+    if (!csv) out << glass_header(o, picked);
+    out << (csv ? "alpha,side,mu,walk_R,walk_T,walk_R_error,walk_T_error,walk_sum_error,single_R,single_T"
+                : "  alpha    side     mu     walk_R     walk_T      R_err      T_err    sum_err   single_R   single_T");
+    for (size_t s : picked)
+        for (const char* q : {"_R", "_T", "_sum"}) out << (csv ? "," : " ") << all[s].name << q;
+    out << (csv ? ",input_error" : "     in_err");
+    if (lobe) {
+        for (size_t s : picked) out << (csv ? "," : " ") << all[s].name << "_l1";
+        out << (csv ? ",l1_error,l1_noise" : "     l1_err      noise");
+    }
+    out << "\n";
+    char cell[160];
+    for (const GlassRow& r : rows) {
+        std::snprintf(cell, sizeof cell,
+                      csv ? "%.17g,%s,%.17g,%.17g,%.17g,%.3e,%.3e,%.3e,%.17g,%.17g"
+                          : "%7.4f %7s %6.4f %10.6f %10.6f %10.2e %10.2e %10.2e %10.6f %10.6f",
+                      r.alpha, side_name(r.side), r.mu, r.walk.energy.value, r.walk.transmitted.value,
+                      r.walk.energy.error, r.walk.transmitted.error, r.walk.total.error, r.in.r, r.in.t);
+        out << cell;
+        for (size_t s : picked) {
+            const double d[3] = {r.scheme[s][0] - r.walk.energy.value, r.scheme[s][1] - r.walk.transmitted.value,
+                                 r.scheme[s][0] + r.scheme[s][1] - r.walk.total.value};
+            const int w[3] = {int(std::strlen(all[s].name)) + 2, int(std::strlen(all[s].name)) + 2,
+                              int(std::strlen(all[s].name)) + 4};
+            for (int q = 0; q < 3; ++q) {
+                if (csv)
+                    std::snprintf(cell, sizeof cell, ",%.17g", d[q]);
+                else
+                    std::snprintf(cell, sizeof cell, " %*.6f", w[q], d[q]);
+                out << cell;
+            }
+        }
+        std::snprintf(cell, sizeof cell, csv ? ",%.3e" : " %10.2e", r.input_error);
+        out << cell;
+        if (lobe) {
+            for (size_t s : picked) {
+                if (csv)
+                    std::snprintf(cell, sizeof cell, ",%.17g", r.lobe_l1[s]);
+                else
+                    std::snprintf(cell, sizeof cell, " %*.5f", int(std::strlen(all[s].name)) + 3, r.lobe_l1[s]);
+                out << cell;
+            }
+            std::snprintf(cell, sizeof cell, csv ? ",%.3e,%.3e" : " %10.2e %10.2e", r.l1_error, r.l1_noise);
+            out << cell;
+        }
+        out << "\n";
+    }
+    return out.str();
+}
+
+std::vector<size_t> picked_glass_schemes(const std::string& scheme) {
+    std::vector<size_t> picked;
+    std::string names;
+    for (size_t s = 0; s < glass_schemes().size(); ++s) {
+        names += std::string(names.empty() ? "" : ", ") + glass_schemes()[s].name;
+        if (scheme == "all" || scheme == glass_schemes()[s].name) picked.push_back(s);
+    }
+    if (picked.empty())
+        throw Error("--scheme '" + scheme + "' with --eta: the rough dielectric's schemes are all, " + names +
+                    (scheme == "fdez-aguera" ? " (the split sum compensates a reflection and defines no transmission)"
+                                             : ""));
+    return picked;
+}
+
+}  // namespace
+
+void check_dielectric_compensation(const CompensationOptions& o, bool f0_given) {
+    if (!(o.eta > 1.0 && o.eta <= 4.0))
+        throw Error("--eta: " + format_number(o.eta) +
+                    " must lie in (1, 4]: the glass's index relative to the outside (the inside is seen as 1/eta)");
+    if (o.model != "ggx")
+        throw Error("--model '" + o.model + "' with --eta: the rough dielectric is compared for ggx only "
+                    "(brdfbake's single-scattering dielectric integrals are GGX's)");
+    if (f0_given) throw Error("--f0 with --eta: the rough dielectric's Fresnel term is the interface's own (eta)");
+    picked_glass_schemes(o.scheme);
+}
+
+void run_dielectric_compensation(Engine& engine, const CompensationOptions& o, const std::vector<double>& alphas,
+                                 const std::vector<double>& mus, Format format) {
+    const std::vector<size_t> picked = picked_glass_schemes(o.scheme);
+    const std::vector<GlassRow> rows = compute_glass(engine, o, alphas, mus);
+    emit(o.output, render_glass(o, picked, rows, format));
+}
+
+}  // namespace brdfbake
