@@ -74,6 +74,24 @@ LobeDirections lobe_directions(Engine& engine, const ModelConfig& single, double
     return d;
 }
 
+PlotSpec mu_panel(const std::string& title, const std::string& y_label, const std::vector<MuPoint>& points,
+                  bool zero_line) {
+    PlotSpec p;
+    p.title = title;
+    p.x.label = "\\mu = cos \\theta_o";
+    p.y.label = y_label;
+    p.x.lo = 0.0;
+    p.x.hi = 1.0;
+    for (const MuPoint& q : points) {
+        if (p.curves.empty() || p.curves.back().label != "\\alpha = " + format_number(q.alpha))
+            p.curves.push_back(Curve{"\\alpha = " + format_number(q.alpha), {}, {}, ""});
+        p.curves.back().x.push_back(q.mu);
+        p.curves.back().y.push_back(q.y);
+    }
+    if (zero_line) p.lines.push_back(RefLine{'y', 0.0, ""});
+    return p;
+}
+
 namespace {
 
 /// What a scheme is built from, at one alpha and mu.
@@ -330,38 +348,16 @@ void plot_rows(const std::string& path, const CompensationOptions& o, const std:
     fig.panel_width = 640;
     fig.panel_height = 480;
     for (size_t s : picked) {
-        PlotSpec p;
-        p.title = std::string(schemes()[s].name) + " - walk";
-        p.x.label = "\\mu = cos \\theta_o";
-        p.y.label = "albedo difference";
-        p.x.lo = 0.0;
-        p.x.hi = 1.0;
-        std::vector<Curve> by_alpha;
-        for (const Row& r : rows) {
-            if (by_alpha.empty() || by_alpha.back().label != "\\alpha = " + format_number(r.alpha))
-                by_alpha.push_back(Curve{"\\alpha = " + format_number(r.alpha), {}, {}, ""});
-            by_alpha.back().x.push_back(r.mu);
-            by_alpha.back().y.push_back(r.scheme[s] - r.walk.value);
-        }
-        p.curves = by_alpha;
-        p.lines.push_back(RefLine{'y', 0.0, ""});
-        fig.panels.push_back(p);
+        std::vector<MuPoint> points;
+        for (const Row& r : rows) points.push_back({r.alpha, r.mu, r.scheme[s] - r.walk.value});
+        fig.panels.push_back(mu_panel(std::string(schemes()[s].name) + " - walk", "albedo difference", points, true));
     }
     if (o.lobe_directions > 0)  // a second row: each scheme's lobe L1 distance from the walk's
         for (size_t s : picked) {
-            PlotSpec p;
-            p.title = std::string(schemes()[s].name) + ": lobe L1 distance from the walk's";
-            p.x.label = "\\mu = cos \\theta_o";
-            p.y.label = "\\int |f - f_{walk}| cos \\theta_i d\\omega_i";
-            p.x.lo = 0.0;
-            p.x.hi = 1.0;
-            for (const Row& r : rows) {
-                if (p.curves.empty() || p.curves.back().label != "\\alpha = " + format_number(r.alpha))
-                    p.curves.push_back(Curve{"\\alpha = " + format_number(r.alpha), {}, {}, ""});
-                p.curves.back().x.push_back(r.mu);
-                p.curves.back().y.push_back(r.lobe_l1[s]);
-            }
-            fig.panels.push_back(p);
+            std::vector<MuPoint> points;
+            for (const Row& r : rows) points.push_back({r.alpha, r.mu, r.lobe_l1[s]});
+            fig.panels.push_back(mu_panel(std::string(schemes()[s].name) + ": lobe L1 distance from the walk's",
+                                          "\\int |f - f_{walk}| cos \\theta_i d\\omega_i", points, false));
         }
     fig.columns = int(picked.size());
     fig.caption = "random walk (Heitz et al. 2016) against each scheme, " + o.model + ", Schlick f_0 = " +

@@ -10,6 +10,7 @@
 #include "brdfbake/evaluate.h"
 #include "brdfbake/output.h"
 #include "brdfbake/spec.h"
+#include "plot/plot.h"
 
 namespace brdfbake {
 
@@ -51,6 +52,14 @@ struct LobeDirections {
 };
 LobeDirections lobe_directions(Engine& engine, const ModelConfig& single, double alpha, double mu, int n,
                                std::uint64_t seed = 0);
+
+/// A panel of y against mu = cos theta_o, one curve per alpha (a new curve where alpha changes
+/// along `points`), x in [0, 1], with a line at y = 0 where `zero_line`.
+struct MuPoint {
+    double alpha, mu, y;
+};
+PlotSpec mu_panel(const std::string& title, const std::string& y_label, const std::vector<MuPoint>& points,
+                  bool zero_line);
 
 /// `compensation --eta E` (compensation_dielectric.cpp): refuses what the dielectric comparison does
 /// not take (one line each), then compares each dielectric scheme with the walk from outside (eta)

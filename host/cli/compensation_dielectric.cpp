@@ -22,6 +22,7 @@
 #include "brdfbake/error.h"
 #include "cli/cli.h"
 #include "cli/compensation.h"
+#include "cli/furnace_sphere.h"
 #include "integrate/random_walk.h"
 #include "models/key_reader.h"
 #include "tables/mu_average.h"
@@ -339,6 +340,63 @@ std::string render_glass(const CompensationOptions& o, const std::vector<size_t>
     return out.str();
 }
 
+/// `--plot`: per scheme and side, its R minus the walk's against mu (its T's is the negative, both
+/// sums being 1), one curve per alpha; a second row with the reflection lobe's L1 distance.
+void plot_glass(const std::string& path, const CompensationOptions& o, const std::vector<size_t>& picked,
+                const std::vector<GlassRow>& rows) {
+    Figure fig;
+    fig.panel_width = 640;
+    fig.panel_height = 480;
+    for (int lobe = 0; lobe < (o.lobe_directions > 0 ? 2 : 1); ++lobe)
+        for (size_t s : picked)
+            for (int side = 0; side < 2; ++side) {
+                std::vector<MuPoint> points;
+                for (const GlassRow& r : rows)
+                    if (r.side == side)
+                        points.push_back({r.alpha, r.mu, lobe ? r.lobe_l1[s] : r.scheme[s][0] - r.walk.energy.value});
+                const std::string title = std::string(glass_schemes()[s].name) + ", from " + side_name(side);
+                fig.panels.push_back(lobe ? mu_panel(title + ": reflection lobe's L1 distance from the walk's",
+                                                     "\\int |f_R - f_{R,walk}| cos \\theta_i d\\omega_i", points,
+                                                     false)
+                                          : mu_panel(title + ": R - R_{walk}", "reflectance difference", points, true));
+            }
+    fig.columns = int(2 * picked.size());
+    fig.caption = "rough dielectric " + o.model + ", \\eta = " + format_number(o.eta) +
+                  ": random walk (Heitz et al. 2016) against each scheme, from outside (\\eta) and inside (1/\\eta)";
+    write_figure(path, fig);
+}
+
+/// `--furnace FILE`: per alpha and side a row of spheres under a white environment, each pixel
+/// R + T at n.v: single scattering, each scheme and the walk; returns the walk's largest error.
+double furnace_glass(Engine& engine, const CompensationOptions& o, const std::vector<size_t>& picked,
+                     const std::vector<double>& alphas) {
+    CompensationOptions albedo_only = o;
+    albedo_only.lobe_directions = 0;
+    const std::vector<double> mus = furnace_nodes(o.furnace_nodes);
+    const std::vector<GlassRow> rows = compute_glass(engine, albedo_only, alphas, mus);
+    Figure fig = furnace_figure(o.furnace_pixels);
+    fig.columns = int(picked.size()) + 2;
+    double worst = 0.0;
+    for (size_t first = 0; first < rows.size(); first += mus.size()) {  // one (alpha, side) a row
+        std::vector<std::vector<double>> e(picked.size() + 2);
+        for (size_t k = first; k < first + mus.size(); ++k) {
+            e.front().push_back(rows[k].in.r + rows[k].in.t);
+            for (size_t s = 0; s < picked.size(); ++s) e[s + 1].push_back(rows[k].scheme[picked[s]][0] + rows[k].scheme[picked[s]][1]);
+            e.back().push_back(rows[k].walk.total.value);
+            worst = std::max(worst, rows[k].walk.total.error);
+        }
+        const std::string row = "\\alpha = " + format_number(rows[first].alpha) + ", " + side_name(rows[first].side) + ": ";
+        fig.panels.push_back(furnace_sphere(row + "single", e.front(), o.furnace_pixels));
+        for (size_t s = 0; s < picked.size(); ++s)
+            fig.panels.push_back(furnace_sphere(row + glass_schemes()[picked[s]].name, e[s + 1], o.furnace_pixels));
+        fig.panels.push_back(furnace_sphere(row + "walk", e.back(), o.furnace_pixels));
+    }
+    fig.caption = "white furnace of the rough dielectric " + o.model + ", \\eta = " + format_number(o.eta) +
+                  ": R + T from outside and inside, single scattering, each scheme, the random walk";
+    write_figure(o.furnace, fig);
+    return worst;
+}
+
 std::vector<size_t> picked_glass_schemes(const std::string& scheme) {
     std::vector<size_t> picked;
     std::string names;
@@ -370,6 +428,12 @@ void run_dielectric_compensation(Engine& engine, const CompensationOptions& o, c
                                  const std::vector<double>& mus, Format format) {
     const std::vector<size_t> picked = picked_glass_schemes(o.scheme);
     const std::vector<GlassRow> rows = compute_glass(engine, o, alphas, mus);
+    if (!o.plot.empty()) plot_glass(o.plot, o, picked, rows);
+    if (!o.furnace.empty()) {
+        const double worst = furnace_glass(engine, o, picked, alphas);
+        std::fprintf(stderr, "brdfbake: wrote %s: %zu rows of %zu spheres (the walk's error at most %.1e)\n",
+                     o.furnace.c_str(), 2 * alphas.size(), picked.size() + 2, worst);
+    }
     emit(o.output, render_glass(o, picked, rows, format));
 }
 
