@@ -294,7 +294,8 @@ std::string render_glass(const CompensationOptions& o, const std::vector<size_t>
     out << (csv ? "alpha,side,mu,walk_R,walk_T,walk_R_error,walk_T_error,walk_sum_error,single_R,single_T"
                 : "  alpha    side     mu     walk_R     walk_T      R_err      T_err    sum_err   single_R   single_T");
     for (size_t s : picked)
-        for (const char* q : {"_R", "_T", "_sum"}) out << (csv ? "," : " ") << all[s].name << q;
+        for (const char* q : {"_R", "_T", "_sum"})
+            out << (csv ? "," : " ") << all[s].name << q << (csv ? "_difference" : "");
     out << (csv ? ",input_error" : "     in_err");
     if (lobe) {
         for (size_t s : picked) out << (csv ? "," : " ") << all[s].name << "_l1";
