@@ -74,6 +74,24 @@ LobeDirections lobe_directions(Engine& engine, const ModelConfig& single, double
     return d;
 }
 
+std::string number_cell(bool csv, double v, int width, int digits) {
+    char cell[64];
+    if (csv)
+        std::snprintf(cell, sizeof cell, ",%.17g", v);
+    else
+        std::snprintf(cell, sizeof cell, " %*.*f", width, digits, v);
+    return cell;
+}
+
+std::string lobe_cells(bool csv, const std::vector<std::string>& names, const std::vector<double>& l1, double error,
+                       double noise) {
+    std::string out;
+    for (size_t k = 0; k < names.size(); ++k) out += number_cell(csv, l1[k], int(names[k].size()) + 3, 5);
+    char cell[64];
+    std::snprintf(cell, sizeof cell, csv ? ",%.3e,%.3e" : " %10.2e %10.2e", error, noise);
+    return out + cell;
+}
+
 PlotSpec mu_panel(const std::string& title, const std::string& y_label, const std::vector<MuPoint>& points,
                   bool zero_line) {
     PlotSpec p;
@@ -316,26 +334,16 @@ std::string render(const CompensationOptions& o, const std::vector<size_t>& pick
         std::snprintf(cell, sizeof cell, csv ? "%.17g,%.17g,%.17g,%.3e,%.17g" : "%8.4f %7.4f %10.6f %10.2e %10.6f",
                       r.alpha, r.mu, r.walk.value, r.walk.error, r.in.e_f);
         out << cell;
+        std::vector<std::string> names;
+        std::vector<double> l1;
         for (size_t s : picked) {
-            if (csv)
-                std::snprintf(cell, sizeof cell, ",%.17g", r.scheme[s] - r.walk.value);
-            else
-                std::snprintf(cell, sizeof cell, " %*.6f", int(std::strlen(all[s].name)), r.scheme[s] - r.walk.value);
-            out << cell;
+            out << number_cell(csv, r.scheme[s] - r.walk.value, int(std::strlen(all[s].name)), 6);
+            names.push_back(all[s].name);
+            if (lobe) l1.push_back(r.lobe_l1[s]);
         }
         std::snprintf(cell, sizeof cell, csv ? ",%.3e" : " %10.2e", r.walk.error + r.input_error);
         out << cell;
-        if (lobe) {
-            for (size_t s : picked) {
-                if (csv)
-                    std::snprintf(cell, sizeof cell, ",%.17g", r.lobe_l1[s]);
-                else
-                    std::snprintf(cell, sizeof cell, " %*.5f", int(std::strlen(all[s].name)) + 3, r.lobe_l1[s]);
-                out << cell;
-            }
-            std::snprintf(cell, sizeof cell, csv ? ",%.3e,%.3e" : " %10.2e %10.2e", r.l1_error, r.l1_noise);
-            out << cell;
-        }
+        if (lobe) out << lobe_cells(csv, names, l1, r.l1_error, r.l1_noise);
         out << "\n";
     }
     return out.str();

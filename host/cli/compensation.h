@@ -53,6 +53,13 @@ struct LobeDirections {
 LobeDirections lobe_directions(Engine& engine, const ModelConfig& single, double alpha, double mu, int n,
                                std::uint64_t seed = 0);
 
+/// One number of a comparison row: ",%.17g" in CSV, else " %*.{digits}f", `width` wide.
+std::string number_cell(bool csv, double v, int width, int digits);
+/// A row's lobe columns: per scheme `names[k]` its L1 distance l1[k] (text: as wide as its name + 3),
+/// then the distances' error and the walk's noise in them.
+std::string lobe_cells(bool csv, const std::vector<std::string>& names, const std::vector<double>& l1, double error,
+                       double noise);
+
 /// A panel of y against mu = cos theta_o, one curve per alpha (a new curve where alpha changes
 /// along `points`), x in [0, 1], with a line at y = 0 where `zero_line`.
 struct MuPoint {

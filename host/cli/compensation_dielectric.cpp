@@ -310,32 +310,19 @@ std::string render_glass(const CompensationOptions& o, const std::vector<size_t>
                       r.alpha, side_name(r.side), r.mu, r.walk.energy.value, r.walk.transmitted.value,
                       r.walk.energy.error, r.walk.transmitted.error, r.walk.total.error, r.in.r, r.in.t);
         out << cell;
+        std::vector<std::string> names;
+        std::vector<double> l1;
         for (size_t s : picked) {
             const double d[3] = {r.scheme[s][0] - r.walk.energy.value, r.scheme[s][1] - r.walk.transmitted.value,
                                  r.scheme[s][0] + r.scheme[s][1] - r.walk.total.value};
-            const int w[3] = {int(std::strlen(all[s].name)) + 2, int(std::strlen(all[s].name)) + 2,
-                              int(std::strlen(all[s].name)) + 4};
-            for (int q = 0; q < 3; ++q) {
-                if (csv)
-                    std::snprintf(cell, sizeof cell, ",%.17g", d[q]);
-                else
-                    std::snprintf(cell, sizeof cell, " %*.6f", w[q], d[q]);
-                out << cell;
-            }
+            const int n = int(std::strlen(all[s].name));
+            for (int q = 0; q < 3; ++q) out << number_cell(csv, d[q], n + (q == 2 ? 4 : 2), 6);
+            names.push_back(all[s].name);
+            if (lobe) l1.push_back(r.lobe_l1[s]);
         }
         std::snprintf(cell, sizeof cell, csv ? ",%.3e" : " %10.2e", r.input_error);
         out << cell;
-        if (lobe) {
-            for (size_t s : picked) {
-                if (csv)
-                    std::snprintf(cell, sizeof cell, ",%.17g", r.lobe_l1[s]);
-                else
-                    std::snprintf(cell, sizeof cell, " %*.5f", int(std::strlen(all[s].name)) + 3, r.lobe_l1[s]);
-                out << cell;
-            }
-            std::snprintf(cell, sizeof cell, csv ? ",%.3e,%.3e" : " %10.2e %10.2e", r.l1_error, r.l1_noise);
-            out << cell;
-        }
+        if (lobe) out << lobe_cells(csv, names, l1, r.l1_error, r.l1_noise);
         out << "\n";
     }
     return out.str();
