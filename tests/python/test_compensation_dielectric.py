@@ -11,7 +11,8 @@ rough glass against the dielectric random walk, held to truths from outside the 
   Fresnel equations and Eavg = 2 int (R1 + T1) mu dmu from the numpy quadrature;
 - both schemes, and the walk, conserve energy: R + T = 1 from both sides (non-absorbing interface);
 - the smooth limit (alpha -> 0): every scheme's and the walk's R is Fresnel's F(mu), total internal
-  reflection (R = 1) from inside beyond the critical angle;
+  reflection (R = 1) from inside beyond the critical angle; the limit eta -> 1 (no interface): the
+  walk's R and Turquin's vanish, Kulla and Conty's symmetric split (x = 1/2) reflects half the loss;
 - the furnace picture: the scheme and walk spheres white, the single sphere 255 (R1 + T1) of numpy;
 - bad input refused in one line (exit 2, nothing written).
 
@@ -108,6 +109,25 @@ def test_smooth_limit_is_fresnel():
         for s in ("kulla-conty", "turquin"):
             assert abs(v[f"{s}_R"] - f) < 2e-3, (s, v, f)
         assert abs(v["walk_R"] - f) <= v["walk_R_error"] + 2e-3, (v, f)
+
+
+def test_no_interface_limit():
+    # eta -> 1: no interface, R = 0 and T = 1 (the walk's; the single-scattering T is small at grazing
+    # because the Smith microsurface stops a straight-through path: later orders carry it). Turquin's
+    # R = R_ss / E keeps R_ss's vanishing share; Kulla and Conty's split is symmetric at eta = 1
+    # (Favg = Favg' = 0, Eavg = Eavg': the balance gives x = 1 - x = 1/2), so half the lost energy is
+    # reflected: R = R_ss + (1 - E) / 2.
+    eta = 1.001
+    out = run("--eta", str(eta), "--alpha", "1", "--mu", "0.1,1", "--walks", "16384", "--lobe-directions", "0",
+              "--format", "json")
+    assert out.returncode == 0, out.stderr
+    for v in json.loads(out.stdout)["results"]:
+        # below 0.005: from inside, total reflection at grazing microfacets (beyond mu_c = 0.045) remains
+        assert v["walk_R"] <= v["walk_R_error"] + 5e-3, v
+        assert v["turquin_R"] < 5e-3 + v["walk_R"], v
+        lost = 1 - v["single_R"] - v["single_T"]
+        # within 0.5% of the loss: Favg' = 0.0023 from inside at eta 1.001 (total reflection at grazing)
+        assert abs(v["kulla-conty_R"] - (v["single_R"] + lost / 2)) < 5e-3 * lost, v
 
 
 def test_furnace_picture(tmp_path):
