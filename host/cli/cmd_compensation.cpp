@@ -420,11 +420,11 @@ std::vector<size_t> check_conductor(const CompensationOptions& o) {
     if (o.model.find(':') != std::string::npos)
         throw Error("--model '" + o.model + "': give the distribution's name, ggx or beckmann (isotropic, height-correlated)" +
                     (o.model.find("eta=") != std::string::npos
-                         ? "; the rough dielectric walk (eta=) is not compared: the schemes compensate a conductor"
+                         ? "; the rough dielectric is compared by --eta E (ggx)"
                          : ""));
     // The random walk's resolver names what it does not take (a model without scattering=multiple).
     if (resolve_model_simulated(o.model + ":alpha=0.5,scattering=multiple").dielectric_walk)
-        throw Error("--model: give the distribution's name (ggx or beckmann): the schemes compensate a conductor");
+        throw Error("--model: give the distribution's name (ggx or beckmann); the rough dielectric is --eta E");
     if (!(o.f0 >= 0.0 && o.f0 <= 1.0)) throw Error("--f0: " + format_number(o.f0) + " must lie in [0, 1]");
     return picked;
 }
