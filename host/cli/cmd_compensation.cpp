@@ -60,7 +60,8 @@ LobeDirections lobe_directions(Engine& engine, const ModelConfig& single, double
     for (const DeviceSample& s : sample_on_device(engine, single, none, Precision::Double,
                                                   std::vector<Vec3>(us.size(), d.wo), us))
         if (s.wi[2] > 0.0 && std::isfinite(s.weight)) d.wi.push_back(s.wi);  // one below the horizon adds 0
-    d.f_single = evaluate_on_device(engine, single, none, Precision::Double, std::vector<Vec3>(d.wi.size(), d.wo), d.wi);
+    d.f_single =
+        evaluate_on_device(engine, single, none, Precision::Double, std::vector<Vec3>(d.wi.size(), d.wo), d.wi);
     const bool beckmann = single.name == "beckmann";
     const auto lambda = [&](const Vec3& w) {
         const bb_vec3 v = bb_v3(w[0], w[1], w[2]);

@@ -23,8 +23,8 @@ struct CompensationOptions {
     double eta = 0.0;  // the rough dielectric's relative index (> 1), compared from outside and inside
     bool f0_given = false, eta_given = false;  // --f0 and --eta on the command line
     std::int64_t walks = std::int64_t(1) << 18;
-    int lobe_directions = 256;          // directions wi of the lobe distance (0: none)
-    std::int64_t lobe_walks = 1024;     // walks per direction
+    int lobe_directions = 256;       // directions wi of the lobe distance (0: none)
+    std::int64_t lobe_walks = 1024;  // walks per direction
     std::string format = "table";
     std::string output;
     std::string plot;

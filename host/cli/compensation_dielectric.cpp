@@ -69,7 +69,9 @@ const std::vector<GlassScheme>& glass_schemes() {
         // the dielectric: the whole single-scattering BSDF (reflection and transmission) scaled by
         // 1 / E(mu_o), E = R + T: R + T = 1 at every mu, exact for a non-absorbing interface.
         {"turquin", "Turquin 2019 (the BSDF times 1/E, E = R + T)",
-         [](const GlassInputs& x) { return std::array<double, 2>{x.r / e_of(x), x.t / e_of(x)}; },
+         [](const GlassInputs& x) {
+             return std::array<double, 2>{x.r / e_of(x), x.t / e_of(x)};
+         },
          [](const GlassInputs& x, double f_ss, double) { return f_ss / e_of(x); }},
     };
     return s;
@@ -105,9 +107,9 @@ struct GlassRow {
     WalkAlbedo walk;
     GlassInputs in;
     double f_avg;
-    double input_error;                      // the integrals' error (R's, T's and Eavg's)
+    double input_error;                         // the integrals' error (R's, T's and Eavg's)
     std::vector<std::array<double, 2>> scheme;  // per scheme: R, T
-    std::vector<double> lobe_l1;             // per scheme: integral of |f_R,scheme - f_R,walk| cos over wi
+    std::vector<double> lobe_l1;                // per scheme: integral of |f_R,scheme - f_R,walk| cos over wi
     double l1_error = 0.0, l1_noise = 0.0;
 };
 
@@ -156,7 +158,8 @@ void glass_lobe_distance(Engine& engine, const CompensationOptions& o, const Mod
         const double z = dirs.wi[k][2], p = dirs.density[k];
         // The walk's first order is the single-scattering reflection in closed form (random_walk.h).
         for (size_t s = 0; s < all.size(); ++s) {
-            const double d = std::fabs(all[s].reflection(r.in, w.single[k].value, e_at(e_grid, z)) - w.f[k].value) * z / p;
+            const double d =
+                std::fabs(all[s].reflection(r.in, w.single[k].value, e_at(e_grid, z)) - w.f[k].value) * z / p;
             sum[s] += d;
             sum2[s] += d * d;
         }
@@ -176,8 +179,8 @@ tables::MuAverage glass_average(Engine& engine, double alpha, double eta) {
         const DielectricResult d = single_glass(engine, alpha, eta, nodes, 2.5e-5);
         tables::MuSamples s;
         for (size_t c = 0; c < d.reflected.size(); ++c)
-            s.values.push_back({d.reflected[c].value + d.transmitted[c].value,
-                                d.reflected[c].error + d.transmitted[c].error});
+            s.values.push_back(
+                {d.reflected[c].value + d.transmitted[c].value, d.reflected[c].error + d.transmitted[c].error});
         return s;
     });
 }
@@ -189,7 +192,8 @@ std::vector<GlassRow> compute_glass(Engine& engine, const CompensationOptions& o
     for (double a : alphas) {
         const std::string spec = o.model + ":alpha=" + format_number(a);
         const ModelConfig single = resolve_model(spec);
-        const ModelConfig walk_model = resolve_model_simulated(spec + ",scattering=multiple,eta=" + format_number(o.eta));
+        const ModelConfig walk_model =
+            resolve_model_simulated(spec + ",scattering=multiple,eta=" + format_number(o.eta));
         const DielectricResult ss = single_glass(engine, a, o.eta, mus, 1e-5);
         const tables::MuAverage avg = glass_average(engine, a, o.eta);
         const std::array<double, 2> tau = glass_split(o.eta, {avg.value[0], avg.value[1]}, f_avg);
@@ -208,12 +212,20 @@ std::vector<GlassRow> compute_glass(Engine& engine, const CompensationOptions& o
         for (int side = 0; side < 2; ++side) {
             std::vector<AlbedoValue> e_grid;
             for (int k = 0; k < kEGrid && o.lobe_directions > 0; ++k)
-                e_grid.push_back({grid.reflected[side * kEGrid + k].value + grid.transmitted[side * kEGrid + k].value, 0.0});
+                e_grid.push_back(
+                    {grid.reflected[side * kEGrid + k].value + grid.transmitted[side * kEGrid + k].value, 0.0});
             for (size_t k = 0; k < mus.size(); ++k) {
                 const size_t c = side * mus.size() + k;
-                GlassRow r{a, mus[k], side, side == 0 ? o.eta : 1.0 / o.eta, walk.values[c],
-                           {ss.reflected[c].value, ss.transmitted[c].value, avg.value[side], tau[side]}, f_avg[side],
-                           ss.reflected[c].error + ss.transmitted[c].error + avg.error[side], {}, {}};
+                GlassRow r{a,
+                           mus[k],
+                           side,
+                           side == 0 ? o.eta : 1.0 / o.eta,
+                           walk.values[c],
+                           {ss.reflected[c].value, ss.transmitted[c].value, avg.value[side], tau[side]},
+                           f_avg[side],
+                           ss.reflected[c].error + ss.transmitted[c].error + avg.error[side],
+                           {},
+                           {}};
                 for (const GlassScheme& s : glass_schemes()) r.scheme.push_back(s.albedo(r.in));
                 if (o.lobe_directions > 0) glass_lobe_distance(engine, o, single, walk_model, e_grid, r);
                 rows.push_back(r);
@@ -270,13 +282,12 @@ nlohmann::json glass_json(const CompensationOptions& o, const std::vector<size_t
 
 std::string glass_header(const CompensationOptions& o, const std::vector<size_t>& picked) {
     std::ostringstream out;
-    out << "# rough dielectric compensation against the random walk (Heitz et al. 2016), " << o.model << ", eta = "
-        << format_number(o.eta) << " (outside; inside 1/eta), " << o.walks << " walks per direction\n"
+    out << "# rough dielectric compensation against the random walk (Heitz et al. 2016), " << o.model
+        << ", eta = " << format_number(o.eta) << " (outside; inside 1/eta), " << o.walks << " walks per direction\n"
         << "# walk: R and T of the multiple-scattering interface (err: 3 standard errors of each; of R + T: "
            "sum_err); single: the height-correlated interface's; per scheme its R, T and R + T minus the walk's "
            "(in_err: the integrals' error)\n";
-    for (size_t s : picked)
-        out << "# " << glass_schemes()[s].name << ": " << glass_schemes()[s].source << "\n";
+    for (size_t s : picked) out << "# " << glass_schemes()[s].name << ": " << glass_schemes()[s].source << "\n";
     if (o.lobe_directions > 0)
         out << "# l1 (per scheme): integral of |f_R,scheme - f_R,walk| cos over wi of the reflection lobe, "
             << o.lobe_directions << " directions x " << o.lobe_walks
@@ -292,7 +303,8 @@ std::string render_glass(const CompensationOptions& o, const std::vector<size_t>
     std::ostringstream out;
     if (!csv) out << glass_header(o, picked);
     out << (csv ? "alpha,side,mu,walk_R,walk_T,walk_R_error,walk_T_error,walk_sum_error,single_R,single_T"
-                : "  alpha    side     mu     walk_R     walk_T      R_err      T_err    sum_err   single_R   single_T");
+                : "  alpha    side     mu     walk_R     walk_T      R_err      T_err    sum_err   single_R   "
+                  "single_T");
     for (size_t s : picked)
         for (const char* q : {"_R", "_T", "_sum"})
             out << (csv ? "," : " ") << all[s].name << q << (csv ? "_difference" : "");
@@ -344,8 +356,7 @@ void plot_glass(const std::string& path, const CompensationOptions& o, const std
                         points.push_back({r.alpha, r.mu, lobe ? r.lobe_l1[s] : r.scheme[s][0] - r.walk.energy.value});
                 const std::string title = std::string(glass_schemes()[s].name) + ", from " + side_name(side);
                 fig.panels.push_back(lobe ? mu_panel(title + ": reflection lobe's L1 distance from the walk's",
-                                                     "\\int |f_R - f_{R,walk}| cos \\theta_i d\\omega_i", points,
-                                                     false)
+                                                     "\\int |f_R - f_{R,walk}| cos \\theta_i d\\omega_i", points, false)
                                           : mu_panel(title + ": R - R_{walk}", "reflectance difference", points, true));
             }
     fig.columns = int(2 * picked.size());
@@ -369,11 +380,13 @@ double furnace_glass(Engine& engine, const CompensationOptions& o, const std::ve
         std::vector<std::vector<double>> e(picked.size() + 2);
         for (size_t k = first; k < first + mus.size(); ++k) {
             e.front().push_back(rows[k].in.r + rows[k].in.t);
-            for (size_t s = 0; s < picked.size(); ++s) e[s + 1].push_back(rows[k].scheme[picked[s]][0] + rows[k].scheme[picked[s]][1]);
+            for (size_t s = 0; s < picked.size(); ++s)
+                e[s + 1].push_back(rows[k].scheme[picked[s]][0] + rows[k].scheme[picked[s]][1]);
             e.back().push_back(rows[k].walk.total.value);
             worst = std::max(worst, rows[k].walk.total.error);
         }
-        const std::string row = "\\alpha = " + format_number(rows[first].alpha) + ", " + side_name(rows[first].side) + ": ";
+        const std::string row =
+            "\\alpha = " + format_number(rows[first].alpha) + ", " + side_name(rows[first].side) + ": ";
         fig.panels.push_back(furnace_sphere(row + "single", e.front(), o.furnace_pixels));
         for (size_t s = 0; s < picked.size(); ++s)
             fig.panels.push_back(furnace_sphere(row + glass_schemes()[picked[s]].name, e[s + 1], o.furnace_pixels));
@@ -393,9 +406,9 @@ std::vector<size_t> picked_glass_schemes(const std::string& scheme) {
         if (scheme == "all" || scheme == glass_schemes()[s].name) picked.push_back(s);
     }
     if (picked.empty())
-        throw Error("--scheme '" + scheme + "' with --eta: the rough dielectric's schemes are all, " + names +
-                    (scheme == "fdez-aguera" ? " (the split sum compensates a reflection and defines no transmission)"
-                                             : ""));
+        throw Error(
+            "--scheme '" + scheme + "' with --eta: the rough dielectric's schemes are all, " + names +
+            (scheme == "fdez-aguera" ? " (the split sum compensates a reflection and defines no transmission)" : ""));
     return picked;
 }
 
@@ -406,7 +419,8 @@ void check_dielectric_compensation(const CompensationOptions& o, bool f0_given) 
         throw Error("--eta: " + format_number(o.eta) +
                     " must lie in (1, 4]: the glass's index relative to the outside (the inside is seen as 1/eta)");
     if (o.model != "ggx")
-        throw Error("--model '" + o.model + "' with --eta: the rough dielectric is compared for ggx only "
+        throw Error("--model '" + o.model +
+                    "' with --eta: the rough dielectric is compared for ggx only "
                     "(brdfbake's single-scattering dielectric integrals are GGX's)");
     if (f0_given) throw Error("--f0 with --eta: the rough dielectric's Fresnel term is the interface's own (eta)");
     picked_glass_schemes(o.scheme);
