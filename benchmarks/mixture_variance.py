@@ -31,9 +31,14 @@ ratios Var_F / Var_E, Var_F / Var_H, Var_F / Var_best; then the share of cells w
 lowers the variance by more than 1.2x. Time: CPU seconds of this process.
 """
 import argparse
+import os
+import sys
 import time
 
 import numpy as np
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests"))
+import ltc_reference as ref  # noqa: E402
 
 
 def ggx_d(cos_h, a):
@@ -125,23 +130,6 @@ def best_chance(cell, kd):
     return 1.0 / (1.0 + np.exp(-t)), min(va, vb)
 
 
-def vndf_sample(wo, a, u1, u2):
-    """Heitz 2018, listing 1: a visible normal of isotropic GGX seen from wo."""
-    vh = np.array([a * wo[0], a * wo[1], wo[2]])
-    vh /= np.linalg.norm(vh)
-    lensq = vh[0] ** 2 + vh[1] ** 2
-    t1 = np.array([-vh[1], vh[0], 0.0]) / np.sqrt(lensq) if lensq > 0 else np.array([1.0, 0.0, 0.0])
-    t2 = np.cross(vh, t1)
-    r = np.sqrt(u1)
-    phi = 2 * np.pi * u2
-    p1, p2 = r * np.cos(phi), r * np.sin(phi)
-    s = 0.5 * (1.0 + vh[2])
-    p2 = (1.0 - s) * np.sqrt(1.0 - p1 * p1) + s * p2
-    nh = p1[:, None] * t1 + p2[:, None] * t2 + np.sqrt(np.clip(1 - p1 * p1 - p2 * p2, 0, None))[:, None] * vh
-    n = np.stack([a * nh[:, 0], a * nh[:, 1], np.clip(nh[:, 2], 0, None)], axis=1)
-    return n / np.linalg.norm(n, axis=1)[:, None]
-
-
 def mc_variance(alpha, mu, f0, kd, c, n, rng):
     """The sample variance of the mixture's weight by n draws (the estimator brdfbake runs)."""
     wo = np.array([np.sqrt(1 - mu * mu), 0.0, mu])
@@ -149,8 +137,7 @@ def mc_variance(alpha, mu, f0, kd, c, n, rng):
     lam = rng.random(n) < c
     r, ph = np.sqrt(1 - u1), 2 * np.pi * u2
     wl = np.stack([r * np.cos(ph), r * np.sin(ph), np.sqrt(u1)], axis=1)
-    h = vndf_sample(wo, alpha, u1, u2)
-    ws = 2 * (h @ wo)[:, None] * h - wo
+    ws, _ = ref.vndf_sample(wo, alpha, u1, u2)  # tests/ltc_reference.py: Heitz 2018, listing 1
     wi = np.where(lam[:, None], wl, ws)
     ci = wi[:, 2]
     hh = wi + wo
