@@ -416,6 +416,9 @@ Table compute_lut(Engine& engine, const LutRequest& r) {
     const TableKind& kind = table_kind(r.kind);
     const ProgressPasses passes(kind.pass_names ? kind.pass_names(r) : std::vector<std::string>{});  // integrate() advances
     Table t = kind.compute(engine, r, swept_model(r), kind.fresnel(r));
+    // The kind's declared channels are what `lut -o` checked the format against before the compute.
+    if (t.channels != kind.value_channels(r))
+        throw Error("internal error: the " + r.kind + " table's channels are not the ones its kind declares");
     arrange_axes(t, r.axes, r.flip);
     if (r.texels == Texels::Edge || !r.axes.empty() || !r.flip.empty()) {
         std::string order;
