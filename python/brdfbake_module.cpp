@@ -245,7 +245,7 @@ Table python_lut(Opt<std::string> kind, Opt<std::string> model, const py::object
                             precision, half,     colour,      thickness_range, thickness_step};
     const LutSetup setup = apply_preset(given);
     validate_lut(setup.request);  // every input checked before the device is touched
-    if (output) check_table_path(*output);
+    if (output) check_table_format(lut_table_shape(setup.request), *output);  // before the compute
     Engine& engine = engine_for(device);
     Table table = interruptible([&] { return compute_lut(engine, setup.request); });
     if (output) write_table(table, *output, setup.half);

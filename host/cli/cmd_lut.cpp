@@ -152,6 +152,9 @@ int run_lut(LutOptions& o, const GlobalOptions& g) {
         throw Error("--preview '" + preview + "' is the table's own file; give another name or --no-preview");
     if (!o.no_preview) check_output_path(preview);
     validate_lut(r);  // every input checked before the device is touched
+    // A format that cannot hold the table (three.js: 1, 2 or 4 channels; EEVEE: its arrays) is
+    // refused now, not after the compute.
+    if (!sharded) check_table_format(lut_table_shape(r), o.output);
 
     Engine engine(g.device, g.verbose);
     if (sharded) {

@@ -104,6 +104,7 @@ void arrange_axes(Table& t, const std::vector<std::string>& order, const std::ve
     const int size[3] = {old[0].size, old[1].size, old[2].size};
     for (int k = n; k < 3; ++k) perm.push_back(k);  // the axes of size 1 stay where they are
     auto moved = [&](const std::vector<double>& v) {
+        if (v.empty()) return v;  // a table's shape without values (lut_table_shape)
         std::vector<double> out(v.size());
         int idx[3];
         for (idx[2] = 0; idx[2] < size[perm[2]]; ++idx[2])
@@ -429,6 +430,9 @@ struct TableFormat {
     const char* extension;
     const char* note;  // "" or "(three.js)"
     void (*write)(const Table& t, const std::string& path, bool half);
+    /// What the format refuses by the table's shape (channels, axes, model; no value read), or
+    /// nullptr: it holds every table. write_table and check_table_format both run it.
+    void (*check)(const Table& shape);
 };
 
 /// A C identifier from the file name's stem: brdfbake_<stem> (a header), table_<stem> (Cycles).
@@ -447,18 +451,20 @@ const std::vector<TableFormat>& table_formats() {
     using T = const Table&;
     using P = const std::string&;
     static const std::vector<TableFormat> formats = {
-        {"exr", "", [](T t, P p, bool half) { write_exr(t, p, half); }},
-        {"csv", "", [](T t, P p, bool) { write_text(p, table_csv(t)); }},
-        {"h", "", write_c_header},
-        {"hpp", "", write_c_header},
-        {"png", "", [](T t, P p, bool) { write_png16(t, p); }},
-        {"npy", "", [](T t, P p, bool) { write_npy(t, p); }},
-        {"js", "(three.js)", [](T t, P p, bool) { write_text(p, table_threejs_module(t)); }},
-        {"inc", "(Filament)", [](T t, P p, bool) { write_text(p, table_filament_include(t)); }},
-        {"tables", "(Cycles)", [](T t, P p, bool) { write_text(p, table_cycles_tables(t, stem_identifier(p))); }},
-        {"cc", "(Blender EEVEE, 4.2 and later)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, false)); }},
-        {"c", "(legacy EEVEE, Blender 2.80 to 4.1)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, true)); }},
-        {"cs", "(Unity HDRP)", [](T t, P p, bool) { write_text(p, table_unity_hdrp_source(t)); }},
+        {"exr", "", [](T t, P p, bool half) { write_exr(t, p, half); }, nullptr},
+        {"csv", "", [](T t, P p, bool) { write_text(p, table_csv(t)); }, nullptr},
+        {"h", "", write_c_header, nullptr},
+        {"hpp", "", write_c_header, nullptr},
+        {"png", "", [](T t, P p, bool) { write_png16(t, p); }, check_png_table},
+        {"npy", "", [](T t, P p, bool) { write_npy(t, p); }, nullptr},
+        {"js", "(three.js)", [](T t, P p, bool) { write_text(p, table_threejs_module(t)); }, check_threejs_table},
+        {"inc", "(Filament)", [](T t, P p, bool) { write_text(p, table_filament_include(t)); }, check_filament_table},
+        {"tables", "(Cycles)", [](T t, P p, bool) { write_text(p, table_cycles_tables(t, stem_identifier(p))); }, nullptr},
+        {"cc", "(Blender EEVEE, 4.2 and later)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, false)); },
+         [](T t) { check_eevee_table(t, false); }},
+        {"c", "(legacy EEVEE, Blender 2.80 to 4.1)", [](T t, P p, bool) { write_text(p, table_eevee_source(t, true)); },
+         [](T t) { check_eevee_table(t, true); }},
+        {"cs", "(Unity HDRP)", [](T t, P p, bool) { write_text(p, table_unity_hdrp_source(t)); }, check_unity_hdrp_table},
     };
     return formats;
 }
@@ -485,8 +491,14 @@ void check_table_path(const std::string& path) {
     if (extension(path) == "npy") check_output_path(path + ".json");
 }
 
-void write_table(const Table& t, const std::string& path, bool half) {
+void check_table_format(const Table& shape, const std::string& path) {
     check_table_path(path);
+    const TableFormat* f = table_format(path);
+    if (f->check) f->check(shape);
+}
+
+void write_table(const Table& t, const std::string& path, bool half) {
+    check_table_format(t, path);
     check_finite(t);
     table_format(path)->write(t, path, half);
 }

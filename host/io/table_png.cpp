@@ -78,11 +78,15 @@ bool encode(std::FILE* file, png_uint_32 w, png_uint_32 h, int depth, int color_
 
 }  // namespace
 
-void write_png16(const Table& t, const std::string& path) {
-    const std::vector<int> view = rgba_view(t);
-    if (view.empty())
+void check_png_table(const Table& t) {
+    if (t.channels.size() > 4)
         throw Error("a PNG holds at most four channels; the " + t.kind + " table has " +
                     std::to_string(t.channels.size()) + ": write .exr or .npy");
+}
+
+void write_png16(const Table& t, const std::string& path) {
+    check_png_table(t);
+    const std::vector<int> view = rgba_view(t);
     const int w = t.width(), h = t.image_height();
     const int samples = view[3] >= 0 ? 4 : 3;
     // Quantise everything first, so that a refused value leaves no file behind.

@@ -396,7 +396,7 @@ void finish_table(Plan& plan, const Figures& figures, PlannedTable t, const std:
         table_seconds(figures.calibration, kind.name, model_name, precision_name(r.precision), double(t.samples_total));
     t.idle_preview_seconds = preview_seconds(figures.calibration, double(texels));
     t.est_seconds = table_estimate(t, figures.parallel);
-    const int channels = kind.value_channels(r) + 1;  // values + error
+    const std::uint64_t channels = kind.value_channels(r).size() + 1;  // values + error
     // Per cell: ~170 B of device buffers (float; 16 replicas) and ~470 B on the host while the
     // kernel runs; the finished table holds doubles.
     t.est_memory = t.cells * 640 + texels * channels * 8;

@@ -109,8 +109,23 @@ Table dielectric_walk_table(Engine& engine, const LutRequest& r, const ModelConf
 }
 
 /// The colours of a request: 3 for a merl spec with channel=rgb (per_colour integrates and
-/// writes each), else 1; the planner's sample and channel counts (planner.cpp, finish_table).
+/// writes each), else 1; the planner's sample count (planner.cpp, finish_table).
 int colours(const LutRequest& r) { return merl_rgb_spec(r.model) ? 3 : 1; }
+
+/// `name`, or NAME_r, NAME_g, NAME_b for a merl spec with channel=rgb (per_colour's names).
+std::vector<std::string> colour_names(const LutRequest& r, const std::string& name) {
+    if (!merl_rgb_spec(r.model)) return {name};
+    return {name + "_r", name + "_g", name + "_b"};
+}
+
+/// The albedo table's channels: the dielectric walk's R, T, R_below, T_below, else E per colour.
+std::vector<std::string> albedo_channels(const LutRequest& r) {
+    try {
+        if (sweep_model(r.model, true).dielectric_walk) return {"R", "T", "R_below", "T_below"};
+    } catch (const Error&) {  // a merl spec (no roughness) or a bad spec, which validate_lut names
+    }
+    return colour_names(r, "E");
+}
 
 Table compute_albedo_table(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     if (without_roughness(m))
@@ -163,7 +178,7 @@ TableKind albedo_kind() {
                 albedo_program, compute_albedo_table);
     k.plan_fresnel = "none (F = 1: each lobe's Fresnel enters at render time)";
     k.tileable = true;
-    k.value_channels = colours;
+    k.value_channels = albedo_channels;
     k.integrations = colours;
     return k;
 }
@@ -172,6 +187,7 @@ TableKind eavg_kind() {
     TableKind k = variant_of(albedo_kind(), TableKindId::Eavg, "eavg",
                              "average albedo Eavg(alpha) = 2 integral of E(mu) mu dmu (1D)", compute_eavg_table);
     k.one_dimensional = true;
+    k.value_channels = [](const LutRequest& r) { return colour_names(r, "Eavg"); };
     k.cells_per_texel = 48;  // 32 + 16 Gauss-Legendre nodes in mu
     // Measured: 1.0e8 samples in 0.18 s against GGX albedo's 2.2e8 samples/s (benchmarks/results/
     // plan-estimates-2c-shared.md): a sample of its short mu nodes costs less than an albedo sample.

@@ -21,6 +21,9 @@ constexpr double kRgbNm[3] = {650.0, 550.0, 450.0};
 bool rgb(const LutRequest& r) { return r.wavelength_nm == 0.0 && fresnel_needs_wavelength(r.fresnel); }
 
 int channels(const LutRequest& r) { return rgb(r) ? 3 : 1; }
+std::vector<std::string> channel_names(const LutRequest& r) {
+    return rgb(r) ? colour_channel_names() : std::vector<std::string>{"E"};
+}
 
 FresnelConfig conductor_fresnel(const LutRequest& r) {
     return resolve_fresnel(r.fresnel, rgb(r) ? kRgbNm[0] : r.wavelength_nm);
@@ -99,7 +102,7 @@ TableKind conductor_kind() {
     k.needs_conductor_fresnel = true;
     k.example_fresnel = "metal:Au";
     k.lobe_requirement = "a conductor table needs a conductor Fresnel (conductor:, metal:, nk:)";
-    k.value_channels = channels;
+    k.value_channels = channel_names;
     k.integrations = channels;  // one per colour channel
     k.fresnel = conductor_fresnel;
     k.validate = validate_conductor;

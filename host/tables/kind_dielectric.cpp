@@ -116,7 +116,7 @@ void validate_dielectric(const LutRequest& r, const ModelConfig& m, const Fresne
         throw Error("dielectric table depth must be 1 to 1024 and the table at most 4M texels");
 }
 
-int four(const LutRequest&) { return 4; }
+std::vector<std::string> four_names(const LutRequest&) { return {"R", "T", "R_inside", "T_inside"}; }
 std::vector<std::string> dielectric_program(const LutRequest& r) { return {"dielectric|" + r.model}; }
 
 }  // namespace
@@ -134,7 +134,7 @@ TableKind dielectric_kind() {
     // albedo samples (idle-core seconds: 56.6 M samples in 0.27-0.30 s against GGX albedo's 2.1e9
     // samples/s on the same 2 cores; benchmarks/results/plan-estimates-2c-shared.md).
     k.sample_cost = 10.0;
-    k.value_channels = four;
+    k.value_channels = four_names;
     k.validate = validate_dielectric;
     return k;
 }

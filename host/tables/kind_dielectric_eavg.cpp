@@ -93,8 +93,6 @@ void validate_dielectric_eavg(const LutRequest& r, const ModelConfig& m, const F
         throw Error("--eta-range must start at eta >= 1 for the dielectric-eavg table (the inside view is Eavg_inside)");
 }
 
-int two(const LutRequest&) { return 2; }
-
 }  // namespace
 
 TableKind dielectric_eavg_kind() {
@@ -107,7 +105,7 @@ TableKind dielectric_eavg_kind() {
     k.one_dimensional = true;
     k.cells_per_texel = 2 * 48;  // both sides, 32 + 16 Gauss-Legendre nodes in mu
     k.lobe_requirement = "a dielectric-eavg table needs an index of refraction (fresnel dielectric:eta=E or 'eta')";
-    k.value_channels = two;
+    k.value_channels = [](const LutRequest&) { return std::vector<std::string>{"Eavg", "Eavg_inside"}; };
     k.validate = validate_dielectric_eavg;
     return k;
 }

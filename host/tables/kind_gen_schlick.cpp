@@ -254,6 +254,7 @@ TableKind make_kind(TableKindId id, const std::string& name, const std::string& 
                          "); the lobe's Fresnel must be generalized Schlick (gen-schlick" + (ior ? "-ior" : "") + ":...)";
     k.integrations = integrations;  // per texel: its slice's E_w, and E (shared by the slices, found twice with a tolerance)
     k.validate = validate_gen_schlick;
+    k.value_channels = [](const LutRequest&) { return std::vector<std::string>{"s"}; };
     k.pass_names = [](const LutRequest& r) { return z_slice_pass_names(cycles_estimator(r) ? "" : "E (F = 1)", "E_w", r.depth); };
     return k;
 }
@@ -281,7 +282,7 @@ TableKind dfg_f82_kind() {
                              compute_dfg_f82);
     k.kernel_programs = dfg_f82_programs;
     k.plan_fresnel = "factored out (split sum with the F82 term)";
-    k.value_channels = three;
+    k.value_channels = [](const LutRequest&) { return std::vector<std::string>{"A", "B", "C"}; };
     k.integrations = three;
     k.pass_names = [](const LutRequest&) { return std::vector<std::string>{"E (F = 1)", "B (F = Schlick, f0 = 0)", "C (F82 edge term)"}; };
     return k;

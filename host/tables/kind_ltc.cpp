@@ -181,6 +181,13 @@ void validate_ltc(const LutRequest& r, const ModelConfig& m, const FresnelConfig
         throw Error("the ltc table fits a lobe; '" + m.name + "' is a delta lobe, which no linearly transformed cosine fits");
     if (m.anisotropic)
         throw Error("the ltc table fits isotropic lobes (M symmetric in y); '" + m.canonical + "' is anisotropic");
+    // A Lambert base kd/pi has an exact LTC of its own (M = I, magnitude kd), which the engines
+    // light beside the lobe's; one LTC of the sum was never closer to it than that pair (8x8 GGX,
+    // diffuse=0.3: worse beyond noise at 42 of 64 texels, up to 70x near normal at alpha 0.06, better at
+    // none; docs/ltc_presets.md).
+    if (m.traits().diffuse_key && m.params[BB_SMITH_SCATTERING] == BB_SCATTERING_SINGLE && m.params[BB_SMITH_DIFFUSE] > 0.0)
+        throw Error("the ltc table fits one lobe; '" + m.canonical + "' adds a Lambert base kd/pi, whose LTC is exact "
+                    "(M = I, magnitude kd): fit the model without diffuse= and light kd with the clamped cosine beside it");
     if (f.kind != BB_FRESNEL_NONE)
         throw Error("the ltc table holds the lobe with F = 1 (its fresnel channel is the Schlick split's term); drop --fresnel");
 }
@@ -213,6 +220,13 @@ std::vector<std::vector<fit::LtcCell>> fit_rows(const MuAlphaGrid& g, const Mode
     return rows;
 }
 
+/// The table's channels: the packing's, then the fit's distance and its error.
+std::vector<std::string> ltc_channels(const LutRequest& r) {
+    std::vector<std::string> c = ltc_packing(r.packing).channels;
+    c.insert(c.end(), {"distance", "distance_error"});
+    return c;
+}
+
 Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
@@ -237,8 +251,7 @@ Table compute_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, con
         fits = fit::fit_ltc_rows(engine, m, rows, options, [&](size_t k) { stage.update(k + 1); });
     }
     const size_t w = t.x.parameter.size(), n = g.cells.size();
-    t.channels = packing.channels;
-    t.channels.insert(t.channels.end(), {"distance", "distance_error"});
+    t.channels = ltc_channels(r);
     t.values.assign(t.channels.size(), std::vector<double>(n));
     t.error.assign(n, 0.0);
     std::vector<double> distance, distance_error;
@@ -302,7 +315,7 @@ TableKind ltc_kind() {
     // branch ltc3's 64^2 lazy polish takes 16.9 s of CPU where that took 31.9: 30; branch ltc4's host
     // nodes 0.68 of that in the same minutes: 21.
     k.sample_cost = 21.0;
-    k.value_channels = [](const LutRequest& r) { return int(ltc_packing(r.packing).channels.size()) + 2; };
+    k.value_channels = ltc_channels;
     k.integrations = [](const LutRequest&) { return 2; };
     return k;
 }

@@ -312,8 +312,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
         }
     }
     describe(t, r, m, f.canonical, walks.method, walks.walks_per_cell, g.clamped);
-    t.attributes["model"] = "sheen-volume: the fiber SGGX layer of Zeltner et al. 2022, sigma = the axis' alpha "
-                            "(roughness^2 with --alpha-map roughness)";
+    t.attributes["model"] = table_kind(TableKindId::SheenLtc).table_model;
     t.attributes["floors"] = "mu and roughness below 0.01 are computed at 0.01 (Zeltner et al. 2022's fit)";
     t.attributes["distance"] = "integral over the upper hemisphere of |lobe / R - D_ltc| at " +
                                std::to_string(kSub) + " x " + std::to_string(kSub) + " points in each of " +
@@ -349,8 +348,10 @@ TableKind sheen_ltc_kind() {
                 sheen_ltc_programs, compute_sheen_ltc);
     k.plan_fresnel = "none (the sheen layer has no Fresnel term)";
     k.validate = validate_sheen_ltc;
-    k.value_channels = [](const LutRequest&) { return 5; };
+    k.value_channels = [](const LutRequest&) { return std::vector<std::string>{"a", "b", "R", "distance", "distance_error"}; };
     k.required_model = "sheen";
+    k.table_model = "sheen-volume: the fiber SGGX layer of Zeltner et al. 2022, sigma = the axis' alpha (roughness^2 "
+                    "with --alpha-map roughness)";
     k.lobe_requirement = "the sheen-ltc table needs a sheen lobe (model sheen, KHR_materials_sheen)";
     k.simulated = true;
     k.cycles_estimator = true;  // --estimator cycles: the paper's 16-scattering walks (sheen_bounces)

@@ -62,7 +62,7 @@ TableKind dfg_kind() {
     k.fresnel_factored_out = true;
     k.plan_fresnel = "factored out (split sum)";
     k.tileable = true;
-    k.value_channels = two;
+    k.value_channels = [](const LutRequest&) { return std::vector<std::string>{"A", "B"}; };
     k.integrations = two;
     k.pass_names = split_sum_passes;
     // Measured: the 1024x1024 lut_ggx's 34.4 G samples in about 11.5 idle-core seconds on 2
@@ -73,10 +73,12 @@ TableKind dfg_kind() {
 }
 
 TableKind dfg_ms_kind() {
-    return variant_of(dfg_kind(), TableKindId::DfgMs, "dfg-ms",
-                      "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
-                      "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)",
-                      compute_dfg_ms);
+    TableKind k = variant_of(dfg_kind(), TableKindId::DfgMs, "dfg-ms",
+                             "multiple-scattering layout of the split-sum terms: B and E = A + B; F_ss = mix(B, E, f0), "
+                             "energy compensation 1 + f0 (1/E - 1) (Fdez-Aguera 2019)",
+                             compute_dfg_ms);
+    k.value_channels = [](const LutRequest&) { return std::vector<std::string>{"B", "E"}; };
+    return k;
 }
 
 }  // namespace tables

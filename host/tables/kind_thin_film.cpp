@@ -149,7 +149,9 @@ TableKind thin_film_kind() {
     k.spectral_colour = true;
     k.example_fresnel = "thin-film:eta=1.3,base_eta=1.5";
     k.lobe_requirement = "a thin-film table needs a thin-film Fresnel (thin-film:)";
-    k.value_channels = film_channels;
+    k.value_channels = [](const LutRequest& r) {
+        return film_channels(r) == 3 ? colour_channel_names() : std::vector<std::string>{"E"};
+    };
     k.integrations = film_integrations;
     k.pass_names = film_passes;
     k.fresnel = film_fresnel;

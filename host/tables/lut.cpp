@@ -260,6 +260,8 @@ TableKind variant_of(TableKind base, TableKindId id, const std::string& name, co
 
 int one_per_request(const LutRequest&) { return 1; }
 
+std::vector<std::string> one_value_channel(const LutRequest&) { return {"E"}; }
+
 FresnelConfig request_fresnel(const LutRequest& r) { return resolve_fresnel(r.fresnel, r.wavelength_nm); }
 
 std::vector<std::string> table_axis_names(const TableKind& kind, const LutRequest& r) {
@@ -380,11 +382,43 @@ void validate_lut(const LutRequest& r) {
     if (kind.validate) kind.validate(r, m, f);
 }
 
+Table lut_table_shape(const LutRequest& r) {
+    const TableKind& kind = table_kind(r.kind);
+    const ModelConfig m = swept_model(r);
+    Table t;
+    t.kind = r.kind;
+    t.channels = kind.value_channels(r);
+    // A merl spec with channel=rgb: its channels' model, named as kind_albedo.cpp's per_colour names it.
+    t.attributes["model"] = !kind.table_model.empty() ? kind.table_model
+                            : merl_rgb_spec(r.model)   ? merl_channel_spec(m.canonical, "rgb")
+                                                       : m.canonical;
+    const Axis none = make_axis("-", "-", 0.0, 1.0, 1);
+    bool clamped = false;
+    if (!sweeps_roughness(r)) {  // a measured model: E(mu) along x, Eavg one texel (kind_albedo.cpp)
+        t.x = kind.one_dimensional ? none : tables::mu_axis(r, r.width);
+        t.y = none;
+    } else if (kind.one_dimensional) {
+        t.x = tables::alpha_axis(r, r.width, clamped);
+        t.y = none;
+    } else {
+        t.x = tables::mu_axis(r, r.width);
+        t.y = tables::alpha_axis(r, r.height, clamped);
+    }
+    if (kind.eta_axis)
+        t.z = kind.own_z_axis.empty() ? tables::eta_axis(r, r.depth)
+                                      : make_axis(kind.own_z_axis, "the kind's own", 0.0, 1.0, r.depth, r.texels);
+    arrange_axes(t, r.axes, r.flip);
+    return t;
+}
+
 Table compute_lut(Engine& engine, const LutRequest& r) {
     validate_lut(r);
     const TableKind& kind = table_kind(r.kind);
     const ProgressPasses passes(kind.pass_names ? kind.pass_names(r) : std::vector<std::string>{});  // integrate() advances
     Table t = kind.compute(engine, r, swept_model(r), kind.fresnel(r));
+    // The kind's declared channels are what `lut -o` checked the format against before the compute.
+    if (t.channels != kind.value_channels(r))
+        throw Error("internal error: the " + r.kind + " table's channels are not the ones its kind declares");
     arrange_axes(t, r.axes, r.flip);
     if (r.texels == Texels::Edge || !r.axes.empty() || !r.flip.empty()) {
         std::string order;

@@ -74,6 +74,14 @@ void validate_lut(const LutRequest& request);
 /// bad input or non-finite results.
 Table compute_lut(Engine& engine, const LutRequest& request);
 
+/// The table compute_lut(request) returns, without values or errors, at no cost (a validated
+/// request): its kind, its channels (the kind's value_channels), its model, and its axes arranged
+/// as compute_lut arranges them: names, sizes, texels, and the ranges of the mu, alpha and eta
+/// axes (a kind's own z axis, gen-schlick's cycles_z and thin-film's thickness_nm: name and size
+/// only, range 0 to 1). What check_table_format reads: `lut -o FILE` refuses a format that cannot
+/// hold the table before the compute.
+Table lut_table_shape(const LutRequest& request);
+
 /// The table kinds of the registry (brdfbake/table_kinds.h).
 enum class TableKindId;
 

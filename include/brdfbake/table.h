@@ -89,6 +89,19 @@ void check_finite(const Table& table);
 /// .png, .npy, .js, .inc, .tables, .cc, .c).
 void check_table_path(const std::string& path);
 
+/// check_table_path, then what the format of `path` refuses by the table's shape: its channels
+/// (three.js: 1, 2 or 4; Filament: 2 or 3; PNG: at most 4; EEVEE and HDRP: their arrays' channels),
+/// its z-slices, axes and model (the engines' grids); no value is read, so `shape` may be a table
+/// without values (lut_table_shape, brdfbake/lut.h): a refusal before the compute. write_table runs
+/// the same checks. Throws Error.
+void check_table_format(const Table& shape, const std::string& path);
+/// The checks of check_table_format per format (each writer runs its own).
+void check_png_table(const Table& shape);
+void check_threejs_table(const Table& shape);
+void check_filament_table(const Table& shape);
+void check_eevee_table(const Table& shape, bool legacy);
+void check_unity_hdrp_table(const Table& shape);
+
 /// Writes by the extension of `path`: .exr (float32, or half when `half`), .csv, .h/.hpp, .png
 /// (16-bit), .npy (with its sidecar PATH.json), .js (table_threejs_module), .inc
 /// (table_filament_include), .tables (table_cycles_tables, arrays named after the file's stem),

@@ -17,8 +17,10 @@ namespace brdfbake {
 
 enum class TableKindId { Albedo, Eavg, Dfg, Dielectric, Conductor, DfgMs, SheenAlbedo, DielectricEavg, GenSchlick, GenSchlickIor, DfgF82, SheenViewer, Ltc, SheenLtc, ThinFilm };
 
-/// 1 whatever the request: the value channels and integrations per cell of most kinds.
+/// 1 whatever the request: the integrations per cell of most kinds.
 int one_per_request(const LutRequest&);
+/// {"E"} whatever the request: the value channel of most kinds.
+std::vector<std::string> one_value_channel(const LutRequest&);
 /// The request's Fresnel term at its wavelength: the Fresnel term of most kinds.
 FresnelConfig request_fresnel(const LutRequest& r);
 
@@ -79,8 +81,13 @@ struct TableKind {
     /// times it at a fixed walk count and reports its error without holding it to a tolerance.
     bool simulated = false;
 
-    /// Value channels (the error channel comes on top).
-    int (*value_channels)(const LutRequest&) = one_per_request;
+    /// The value channels' names as the kind's compute names them (the error channel comes on
+    /// top): the planner counts them, and lut_table_shape gives them to the writers' checks before
+    /// the compute (a three.js file refuses 3 channels, a PNG more than 4).
+    std::vector<std::string> (*value_channels)(const LutRequest&) = one_value_channel;
+    /// The table's "model" attribute where it is not the request's swept model (sheen-ltc: the
+    /// layer its walks simulate); empty: the model's canonical spec.
+    std::string table_model;
     /// Integrations per cell (the split-sum kinds integrate twice, a measured conductor per RGB wavelength).
     int (*integrations)(const LutRequest&) = one_per_request;
     /// The names of the passes of a table that integrates its cells several times, one per

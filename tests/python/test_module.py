@@ -264,6 +264,21 @@ def test_errors_name_the_python_arguments_not_the_flags():
     assert "mu_map" in str(e.value) and "--" not in str(e.value)
 
 
+def test_lut_refuses_an_output_format_that_cannot_hold_the_table_before_the_compute():
+    # three.js's DataTexture holds 1, 2 or 4 channels; the ltc table in three's packing has 10.
+    # The whole 64 x 64 fit took 11 s of CPU before this refusal came (lut_table_shape).
+    import time
+    with tempfile.TemporaryDirectory() as d:
+        path = os.path.join(d, "ltc.js")
+        t0 = time.monotonic()
+        with pytest.raises(ValueError) as e:
+            brdfbake.lut("ltc", preset="three", output=path)
+        assert time.monotonic() - t0 < 1.0
+        assert str(e.value).startswith("a three.js half-float DataTexture has 1, 2 or 4 channels")
+        assert "\n" not in str(e.value)
+        assert os.listdir(d) == []
+
+
 def test_a_mistyped_keyword_gets_one_line_with_the_nearest_argument():
     with pytest.raises(TypeError) as e:
         brdfbake.albedo("lambert", 0.5, tolerence=1e-3)
