@@ -101,6 +101,7 @@ PlotSpec mu_panel(const std::string& title, const std::string& y_label, const st
     p.y.label = y_label;
     p.x.lo = 0.0;
     p.x.hi = 1.0;
+    p.legend = LegendPlace::Outside;  // the curves reach every corner at some alpha: a legend inside covers one
     for (const MuPoint& q : points) {
         if (p.curves.empty() || p.curves.back().label != "\\alpha = " + format_number(q.alpha))
             p.curves.push_back(Curve{"\\alpha = " + format_number(q.alpha), {}, {}, ""});
