@@ -393,13 +393,13 @@ BB_FN bb_real bb_walk_entry_pdf(int dist, bb_vec3 a, bb_vec3 w, bb_vec3 t, bb_wa
  * side into the glass is also drawn by the entry strategy at the intersection before this one
  * (bb_walk_dielectric_entry, with the direction the walk arrived by): there the balance heuristic
  * has three terms, the walk having drawn that direction with density pin (0 at the first
- * intersection: no entry strategy). The walk's density of wa in *pout. u: four uniforms (the
- * target's normal, its Fresnel choice, the intersection height below the surface; BB_WALK_NEE_TAG). */
+ * intersection: no entry strategy). The walk's density of wa in *pout. mb: the target's visible
+ * normal (drawn with u.v[0], u.v[1]); u.v[2] its Fresnel choice, u.v[3] the intersection height
+ * below the surface (BB_WALK_NEE_TAG). */
 BB_FN bb_real bb_walk_dielectric_mis(int dist, bb_vec3 v, bb_real lc, int up, bb_vec3 wa, int cross_a, bb_vec3 t,
-                                     bb_real lt, bb_walk_etas et, bb_real ax, bb_real ay, philox4x32_ctr_t u,
-                                     bb_real pin, bb_real* pout) {
+                                     bb_real lt, bb_walk_etas et, bb_real ax, bb_real ay, bb_vec3 mb,
+                                     philox4x32_ctr_t u, bb_real pin, bb_real* pout) {
     const bb_real s = up ? BB_R(1.0) : BB_R(-1.0); /* this side's frame from the world's */
-    bb_vec3 mb = bb_walk_sample_vndf(dist, t, ax, ay, bb_unit_from_bits(u.v[0]), bb_unit_from_bits(u.v[1]));
     bb_real cb = bb_clamp_cos(bb_dot(t, mb));
     int refract_b = bb_unit_from_bits(u.v[2]) >= bb_walk_fresnel_dielectric(cb, et.e[1], et.em1[1]);
     bb_vec3 d = refract_b ? bb_refract(t, mb, cb, et.e[1]) : bb_reflect(t, mb); /* from t, world */
@@ -430,7 +430,7 @@ BB_FN bb_real bb_walk_dielectric_mis(int dist, bb_vec3 v, bb_real lc, int up, bb
  * came from, in that side's frame), the next event two intersections on, through the glass: the
  * ray from x0 goes through the upper side to x1, refracts into the glass there towards x2, and from
  * x2 refracts out towards t. Both segments are drawn from the target's side (bb_walk_entry_pdf):
- * t's visible normal (un[0], un[1], the same as bb_walk_dielectric_mis's) refracted into the glass
+ * t's visible normal mt (the one bb_walk_dielectric_mis draws) refracted into the glass
  * and reversed (x1 -> x2), then at x1 a visible normal of that direction seen from below (ue[0],
  * ue[1]) refracted out, reversed (x0 -> x1). x1 lies where the ray from x0 meets the microsurface
  * (drawn given that it does, ue[2], times that probability, as the walk's forced intersections), x2
@@ -445,15 +445,13 @@ BB_FN bb_real bb_walk_dielectric_mis(int dist, bb_vec3 v, bb_real lc, int up, bb
  * 3077 walks in 1e6 carried 54% of the orders >= 2. From the grazing end the same paths are the
  * walk's own (its first intersection near the top, refracted in). */
 BB_FN bb_real bb_walk_dielectric_entry(int dist, bb_vec3 v, bb_real lc, int up, bb_vec3 t, bb_real lt,
-                                       bb_walk_etas et, bb_real ax, bb_real ay, philox4x32_ctr_t un,
-                                       philox4x32_ctr_t ue) {
-    bb_vec3 mt = bb_walk_sample_vndf(dist, t, ax, ay, bb_unit_from_bits(un.v[0]), bb_unit_from_bits(un.v[1]));
+                                       bb_walk_etas et, bb_real ax, bb_real ay, bb_vec3 mt, philox4x32_ctr_t ue) {
     bb_vec3 d = bb_refract(t, mt, bb_clamp_cos(bb_dot(t, mt)), et.e[1]); /* world: x2 -> x1, into the glass */
+    if (!(bb_dot(d, d) > BB_R(0.5)) || !bb_walk_vndf_exact(dist, d, ax, ay)) return BB_R(0.0); /* no sample */
     bb_vec3 m1 = bb_walk_sample_vndf(dist, d, ax, ay, bb_unit_from_bits(ue.v[0]), bb_unit_from_bits(ue.v[1]));
     bb_real c1 = bb_dot(d, m1);
     bb_vec3 a = bb_refract(d, m1, bb_clamp_cos(c1), et.e[0]); /* x0 -> x1 in the world (d's frame is the lower) */
-    int ok = bb_dot(d, d) > BB_R(0.5) && c1 > BB_R(0.0) && bb_dot(a, a) > BB_R(0.5) &&
-             bb_walk_vndf_exact(dist, d, ax, ay);
+    int ok = c1 > BB_R(0.0) && bb_dot(a, a) > BB_R(0.5);
     bb_vec3 w = bb_scale(d, BB_R(-1.0)); /* x1 -> x2, upper frame */
     bb_real vh;
     bb_real pt = bb_walk_refract_phase(dist, t, d, et.e[1], ax, ay, &vh);
@@ -561,11 +559,13 @@ BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, bb_ve
         if (eval && k + 1 < bounces) { /* the next intersection's next event, two directions (above) */
             philox4x32_ctr_t ctr2 = {{walk, rep, stream, BB_WALK_NEE_TAG | (unsigned int)k}};
             philox4x32_ctr_t un = philox4x32(ctr2, key);
-            r.f_cos += weight * bb_walk_dielectric_mis(dist, v, lc, outside, wa, cross, target, lt, et, ax, ay, un,
+            bb_vec3 mt = bb_walk_sample_vndf(dist, target, ax, ay, bb_unit_from_bits(un.v[0]),
+                                             bb_unit_from_bits(un.v[1])); /* the target's visible normal */
+            r.f_cos += weight * bb_walk_dielectric_mis(dist, v, lc, outside, wa, cross, target, lt, et, ax, ay, mt, un,
                                                        pin, &pin);
             if (k + 2 < bounces) { /* two intersections on through the glass, drawn from the target */
                 philox4x32_ctr_t ctr4 = {{walk, rep, stream, BB_WALK_ENTRY_TAG | (unsigned int)k}};
-                r.f_cos += weight * bb_walk_dielectric_entry(dist, v, lc, outside, target, lt, et, ax, ay, un,
+                r.f_cos += weight * bb_walk_dielectric_entry(dist, v, lc, outside, target, lt, et, ax, ay, mt,
                                                              philox4x32(ctr4, key));
             }
         }
