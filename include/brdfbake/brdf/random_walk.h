@@ -367,6 +367,14 @@ BB_FN int bb_walk_vndf_exact(int dist, bb_vec3 v, bb_real ax, bb_real ay) {
     return dist != BB_SMITH_BECKMANN || s11.z >= BB_WALK_BECKMANN_MIN_COS;
 }
 
+/* The density of the direction an evaluation walk draws at its first intersection (a defensive
+ * mixture [Hesterberg 1995]): with probability mix uniform over the upper hemisphere (a reflection,
+ * reflect_up), else by the phase function (density p); mix = 0 at every later intersection. */
+BB_FN bb_real bb_walk_mix_pdf(bb_real p, bb_real mix, bb_vec3 w, int reflect_up) {
+    bb_real g = bb_select(BB_R(0.0), BB_R(0.5) / BB_PI, reflect_up && w.z > BB_R(0.0));
+    return (BB_R(1.0) - mix) * p + mix * g;
+}
+
 /* The density with which the entry strategy (bb_walk_dielectric_entry) draws a path's two segments
  * around an intersection x1 on the upper side: the ray arrives from x0 along a (upper frame) and
  * refracts into the glass along w (upper frame) towards x2, from which the next event leaves
@@ -398,7 +406,7 @@ BB_FN bb_real bb_walk_entry_pdf(int dist, bb_vec3 a, bb_vec3 w, bb_vec3 t, bb_wa
  * below the surface (BB_WALK_NEE_TAG). */
 BB_FN bb_real bb_walk_dielectric_mis(int dist, bb_vec3 v, bb_real lc, int up, bb_vec3 wa, int cross_a, bb_vec3 t,
                                      bb_real lt, bb_walk_etas et, bb_real ax, bb_real ay, bb_vec3 mb,
-                                     philox4x32_ctr_t u, bb_real pin, bb_real* pout) {
+                                     philox4x32_ctr_t u, bb_real pin, bb_real mix, bb_real* pout) {
     const bb_real s = up ? BB_R(1.0) : BB_R(-1.0); /* this side's frame from the world's */
     bb_real cb = bb_clamp_cos(bb_dot(t, mb));
     int refract_b = bb_unit_from_bits(u.v[2]) >= bb_walk_fresnel_dielectric(cb, et.e[1], et.em1[1]);
@@ -412,19 +420,22 @@ BB_FN bb_real bb_walk_dielectric_mis(int dist, bb_vec3 v, bb_real lc, int up, bb
         int up_next = cross ? !up : up;
         bb_real pa = bb_walk_dielectric_pdf(dist, v, w, up, cross, et, ax, ay);
         bb_real pb = bb_walk_dielectric_pdf(dist, t, bb_scale(w, -s), 1, !up_next, et, ax, ay);
-        if (j == 0) *pout = pa;
+        bb_real pw = bb_walk_mix_pdf(pa, mix, w, up && !cross);
+        if (j == 0) *pout = pw;
         if (up && cross && pin > BB_R(0.0)) /* the entry strategy's term, over the walk's density of v */
             pb += bb_walk_entry_pdf(dist, bb_scale(v, BB_R(-1.0)), w, t, et, ax, ay) / pin;
         bb_vec3 wn = cross ? bb_scale(w, BB_R(-1.0)) : w; /* in the next side's frame */
         bb_real lcn = cross ? bb_walk_flip_height(lc) : lc;
         bb_real nee = bb_walk_dielectric_next_nee(dist, wn, lcn, up_next, t, lt, et, ax, ay, bb_unit_from_bits(u.v[3]));
-        sum += bb_select(BB_R(0.0), pa * nee / (pa + pb), pa + pb > BB_R(0.0) && bb_dot(w, w) > BB_R(0.5));
+        sum += bb_select(BB_R(0.0), pa * nee / (pw + pb), pw + pb > BB_R(0.0) && bb_dot(w, w) > BB_R(0.5));
     }
     return sum;
 }
 
 /* The fourth counter word of the entry strategy's Philox call (bb_walk_dielectric_entry). */
 #define BB_WALK_ENTRY_TAG 0x69000000u
+/* The first intersection's share of uniform directions in an evaluation walk (bb_walk_mix_pdf). */
+#define BB_WALK_MIX BB_R(0.2)
 
 /* The entry strategy (walk8): at an intersection x0 (side `up`, height lc, v towards where the ray
  * came from, in that side's frame), the next event two intersections on, through the glass: the
@@ -445,7 +456,8 @@ BB_FN bb_real bb_walk_dielectric_mis(int dist, bb_vec3 v, bb_real lc, int up, bb
  * 3077 walks in 1e6 carried 54% of the orders >= 2. From the grazing end the same paths are the
  * walk's own (its first intersection near the top, refracted in). */
 BB_FN bb_real bb_walk_dielectric_entry(int dist, bb_vec3 v, bb_real lc, int up, bb_vec3 t, bb_real lt,
-                                       bb_walk_etas et, bb_real ax, bb_real ay, bb_vec3 mt, philox4x32_ctr_t ue) {
+                                       bb_walk_etas et, bb_real ax, bb_real ay, bb_vec3 mt, philox4x32_ctr_t ue,
+                                       bb_real mix) {
     bb_vec3 d = bb_refract(t, mt, bb_clamp_cos(bb_dot(t, mt)), et.e[1]); /* world: x2 -> x1, into the glass */
     if (!(bb_dot(d, d) > BB_R(0.5)) || !bb_walk_vndf_exact(dist, d, ax, ay)) return BB_R(0.0); /* no sample */
     bb_vec3 m1 = bb_walk_sample_vndf(dist, d, ax, ay, bb_unit_from_bits(ue.v[0]), bb_unit_from_bits(ue.v[1]));
@@ -465,7 +477,8 @@ BB_FN bb_real bb_walk_dielectric_entry(int dist, bb_vec3 v, bb_real lc, int up, 
     bb_real lc1 = lca - bb_log1p(-p_hit * bb_unit_from_bits(ue.v[2])) / l;
     bb_real nee = bb_walk_dielectric_next_nee(dist, d, bb_walk_flip_height(lc1), 0, t, lt, et, ax, ay,
                                               bb_unit_from_bits(ue.v[3]));
-    bb_real den = f0 * f1 + f0 * pb + pt * q;
+    bb_real fw = bb_walk_mix_pdf(f0, mix, a, up);
+    bb_real den = fw * f1 + fw * pb + pt * q;
     return bb_select(BB_R(0.0), p_hit * f0 * f1 * nee / den, ok && den > BB_R(0.0) && f0 * f1 * nee > BB_R(0.0));
 }
 
@@ -489,7 +502,14 @@ BB_FN bb_real bb_walk_dielectric_entry(int dist, bb_vec3 v, bb_real lc, int up, 
  * side the reflection phase function times F, from the lower side the refraction phase function out
  * towards the target times 1 - F, masked at the height seen from above) and over the direction
  * towards it by MIS of the walk's own and one from the target's side (bb_walk_dielectric_mis; a
- * second Philox call per scattering). An evaluation walk (target.z > 0) also forces its
+ * second Philox call per scattering), and two intersections on through the glass by the entry
+ * strategy (bb_walk_dielectric_entry; a third). At its first intersection an evaluation walk
+ * draws its direction from a defensive mixture (bb_walk_mix_pdf: 20% uniform over the upper
+ * hemisphere, its weight times phase / mixture <= 1.25), the mixture's density in that
+ * intersection's MIS weights and the next one's: above alpha 1 the rare walks that carried the
+ * tail from a near-normal wo reflected there into a grazing upward direction (walk8: density
+ * 7e-4 per sr at alpha 3) and crossed the glass near the top of the microsurface several times
+ * before leaving towards a grazing target. An evaluation walk (target.z > 0) also forces its
  * intersections: an upward ray always meets the microsurface, at a height drawn given that it does,
  * and the walk's weight is multiplied by the probability 1 - C1(h)^Lambda(w) that it does; below a
  * weight of BB_WALK_ROULETTE_WEIGHT it survives with probability weight / that (Russian roulette,
@@ -556,18 +576,34 @@ BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, bb_ve
         bb_fresnel_sp f = bb_fresnel_dielectric_sp_m1(c, e, em1);
         int cross = !(bb_unit_from_bits(u.v[3]) < BB_R(0.5) * (f.rs + f.rp));
         bb_vec3 wa = cross ? bb_refract(v, m, c, e) : bb_reflect(v, m); /* in this side's frame */
+        bb_real mix = eval && k == 0 ? BB_WALK_MIX : BB_R(0.0); /* the first direction's mixture (above) */
+        if (mix > BB_R(0.0)) { /* at k = 0 the roulette's counter word is free (a downward ray) */
+            philox4x32_ctr_t ctr5 = {{walk, rep, stream, BB_WALK_ROULETTE_TAG | (unsigned int)k}};
+            philox4x32_ctr_t um = philox4x32(ctr5, key);
+            if (bb_unit_from_bits(um.v[0]) < mix) {
+                bb_real z = bb_unit_from_bits(um.v[1]), ph = BB_R(2.0) * BB_PI * bb_unit_from_bits(um.v[2]);
+                bb_real sr = bb_safe_sqrt(BB_R(1.0) - z * z);
+                wa = bb_v3(sr * bb_cos(ph), sr * bb_sin(ph), z);
+                cross = 0;
+            }
+        }
         if (eval && k + 1 < bounces) { /* the next intersection's next event, two directions (above) */
             philox4x32_ctr_t ctr2 = {{walk, rep, stream, BB_WALK_NEE_TAG | (unsigned int)k}};
             philox4x32_ctr_t un = philox4x32(ctr2, key);
             bb_vec3 mt = bb_walk_sample_vndf(dist, target, ax, ay, bb_unit_from_bits(un.v[0]),
                                              bb_unit_from_bits(un.v[1])); /* the target's visible normal */
             r.f_cos += weight * bb_walk_dielectric_mis(dist, v, lc, outside, wa, cross, target, lt, et, ax, ay, mt, un,
-                                                       pin, &pin);
+                                                       pin, mix, &pin);
             if (k + 2 < bounces) { /* two intersections on through the glass, drawn from the target */
                 philox4x32_ctr_t ctr4 = {{walk, rep, stream, BB_WALK_ENTRY_TAG | (unsigned int)k}};
                 r.f_cos += weight * bb_walk_dielectric_entry(dist, v, lc, outside, target, lt, et, ax, ay, mt,
-                                                             philox4x32(ctr4, key));
+                                                             philox4x32(ctr4, key), mix);
             }
+        }
+        if (mix > BB_R(0.0)) { /* the mixture's weight f0 / p_mix (bounded by 1 / (1 - mix)) */
+            bb_real f0 = bb_walk_dielectric_pdf(dist, v, wa, outside, cross, et, ax, ay);
+            bb_real pm = bb_walk_mix_pdf(f0, mix, wa, !cross);
+            weight = weight * bb_select(BB_R(0.0), f0 / pm, pm > BB_R(0.0));
         }
         if (cross) {
             w = bb_scale(wa, BB_R(-1.0));
