@@ -48,7 +48,7 @@ cl_uint cell_stream(const SheenVolumeCell& c) {
 }
 
 // Per cell and bin, the replicas' mean density and 3 standard errors.
-void summarize_lobe(const std::vector<cl_uint>& hist, size_t n_cells, unsigned replicas, std::uint64_t walks,
+void summarize_lobe(const std::vector<double>& hist, size_t n_cells, unsigned replicas, std::uint64_t walks,
                     std::vector<SheenVolumeValue>& values) {
     const int nb = SheenLobeBins::theta() * SheenLobeBins::phi();
     for (size_t c = 0; c < n_cells; ++c) {
@@ -103,11 +103,11 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
     cl::Buffer b_stream(engine.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, streams.size() * sizeof(cl_uint),
                         streams.data());
     cl::Buffer b_sums = bufs.output(n_items * BB_SHEEN_SUMS);
-    cl::Buffer b_hist(engine.context(), CL_MEM_WRITE_ONLY, std::max<size_t>(1, n_items * n_bins) * sizeof(cl_uint));
+    cl::Buffer b_hist = bufs.output(std::max<size_t>(1, n_items * n_bins));
     const NonFiniteCounts bad_counts(engine, n_items);
     cl::Kernel kernel(program, BB_ENTRY_NAME(BB_ENTRY_SHEEN_VOLUME));
     set_args(kernel, 0, b_mu, b_alpha, b_bounces, cl_uint(walks), cl_uint(req.replicas), cl_uint(n_cells),
-             cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream, cl_uint(n_bins), b_sums, b_hist, bad_counts.buffer);
+             cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream, cl_uint(n_bins), cl_uint(req.next_flight), b_sums, b_hist, bad_counts.buffer);
 
     SheenVolumeResult result;
     result.kernel_seconds = run_items(engine, kernel, n_items, double(walks),
@@ -119,6 +119,8 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
     std::ostringstream m;
     m << "random walks through the fiber SGGX layer (Zeltner et al. 2022), Philox4x32-10, " << req.replicas
       << " replicas x " << walks << " walks";
+    if (n_bins > 0)
+        m << "; the higher orders' lobe by " << (req.next_flight ? "next-flight tallies" : "counts of the exits");
     result.method = m.str();
 
     const auto where = [&](size_t c) {
@@ -134,9 +136,7 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
         result.values.push_back(v);
     }
     if (n_bins > 0) {
-        std::vector<cl_uint> hist(n_items * n_bins);
-        engine.queue().enqueueReadBuffer(b_hist, CL_TRUE, 0, hist.size() * sizeof(cl_uint), hist.data());
-        summarize_lobe(hist, n_cells, req.replicas, walks, result.values);
+        summarize_lobe(bufs.read(b_hist, n_items * n_bins), n_cells, req.replicas, walks, result.values);
     }
     return result;
 }

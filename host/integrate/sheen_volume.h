@@ -27,6 +27,10 @@ struct SheenVolumeRequest {
     std::uint64_t seed = 1;
     Precision precision = Precision::Float;
     bool lobe = false;  // also the reflected directions' histogram
+    /// The histogram's estimator: true, the next-flight tallies (every scattering after the first
+    /// that turns up adds its probability of leaving the top unscattered, brdf/sheen_volume.h
+    /// bb_sheen_next_flight); false, the analog counts of the actual exits (the same expectation).
+    bool next_flight = true;
 };
 
 /// The bins of the lobe: theta_o uniform over [0, pi/2] (rows), |phi_o| uniform over [0, pi]
