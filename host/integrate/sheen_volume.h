@@ -50,7 +50,8 @@ struct SheenVolumeValue {
     AlbedoValue cutoff;         // still inside after `bounces` scatterings (R + T + cutoff = 1)
     /// With SheenVolumeRequest::lobe: per bin (row-major, SheenLobeBins), the mean over the bin
     /// of the reflected density f cos(theta_o) per solid angle (over both sides of phi = 0) of the
-    /// walks that scattered two or more times, and its error (3 standard errors of the replicas).
+    /// walks that scattered two or more times (by SheenVolumeRequest::next_flight's estimator), and
+    /// its error (3 standard errors of the replicas).
     /// The first order's density is sheen_single_density (closed form, no noise).
     std::vector<double> lobe, lobe_error;
 };

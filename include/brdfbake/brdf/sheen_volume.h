@@ -34,6 +34,14 @@
  * low roughness it is most of the lobe's shape: rows r = 0.13-0.23 of Cycles' table are fits to it
  * (benchmarks/results/sheen-ltc-amd-epyc-2c.md, session 5).
  *
+ * The reflected lobe's higher orders (what the LTC is fitted to beside the closed-form first order)
+ * are tallied by next flights, not by the walks' actual exits (bb_sheen_next_flight below): after
+ * each scattering n >= 2 a walk heading up adds its probability of leaving the top before it
+ * scatters again to the bin of its direction; the same expectation as the analog count of the exits
+ * (which the kernel still offers), but every walk that turns up contributes, not only the few that
+ * get out (tests/test_sheen_next_flight.cpp compares the two). R, T and their orders stay the
+ * walks' counts (R + T + cut-off = 1 per replica).
+ *
  * Closed forms the walk must meet (tests): transmission without scattering T0 = exp(-sigma(wo)/mu_o)
  * (Beer-Lambert along the view), and the first order
  *   R1(wo) = integral over the upper hemisphere of p(wo -> w) k_o (1 - exp(-(k_o + k))) / (k_o + k) dw,
