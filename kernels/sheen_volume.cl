@@ -21,12 +21,37 @@
 #include "brdfbake/brdf/kernel_abi.h"
 #include "brdfbake/brdf/sheen_volume.h"
 
-/* The histogram bin of a direction w pointing up. */
+/* The bins' edges: cos((k + 1) pi / 32) in theta over [0, pi/2], cos((k + 1) pi / 16) in |phi| over [0, pi]
+ * (BB_SHEEN_LOBE_THETA = BB_SHEEN_LOBE_PHI = 16), k = 0..14, descending. */
+__constant bb_real kSheenCosTheta[15] = {
+    BB_R(0.9951847266721969), BB_R(0.9807852804032304), BB_R(0.9569403357322088), BB_R(0.9238795325112867),
+    BB_R(0.881921264348355), BB_R(0.8314696123025452), BB_R(0.773010453362737), BB_R(0.7071067811865476),
+    BB_R(0.6343932841636455), BB_R(0.5555702330196023), BB_R(0.4713967368259978), BB_R(0.38268343236508984),
+    BB_R(0.29028467725446233), BB_R(0.19509032201612833), BB_R(0.09801714032956077)};
+__constant bb_real kSheenCosPhi[15] = {
+    BB_R(0.9807852804032304), BB_R(0.9238795325112867), BB_R(0.8314696123025452), BB_R(0.7071067811865476),
+    BB_R(0.5555702330196023), BB_R(0.38268343236508984), BB_R(0.19509032201612833), BB_R(6.123233995736766e-17),
+    BB_R(-0.1950903220161282), BB_R(-0.3826834323650897), BB_R(-0.555570233019602), BB_R(-0.7071067811865475),
+    BB_R(-0.8314696123025453), BB_R(-0.9238795325112867), BB_R(-0.9807852804032304)};
+
+/* The number of edges c[0..14] (descending) above v: the bin of the angle whose cosine (times the
+ * scale) is v, by bisection (no inverse trigonometry: the next-flight tallies bin every upward turn). */
+static int sheen_edges_above(bb_real v, bb_real scale, __constant const bb_real* c) {
+    int lo = 0, hi = 15;
+    while (lo < hi) {
+        const int mid = (lo + hi) / 2;
+        if (v < c[mid] * scale)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    return lo;
+}
+
+/* The histogram bin of a unit direction w pointing up: theta = acos(w.z), |phi| = atan2(|w.y|, w.x). */
 static int sheen_lobe_bin(bb_vec3 w) {
-    const bb_real theta = acos(bb_clamp(w.z, BB_R(0.0), BB_R(1.0)));
-    const bb_real phi = bb_atan2(bb_fabs(w.y), w.x);
-    const int it = min((int)(theta * (BB_R(2.0) / BB_PI) * BB_SHEEN_LOBE_THETA), BB_SHEEN_LOBE_THETA - 1);
-    const int ip = min((int)(phi / BB_PI * BB_SHEEN_LOBE_PHI), BB_SHEEN_LOBE_PHI - 1);
+    const int it = sheen_edges_above(w.z, BB_R(1.0), kSheenCosTheta);
+    const int ip = sheen_edges_above(w.x, bb_sqrt(w.x * w.x + w.y * w.y), kSheenCosPhi);
     return it * BB_SHEEN_LOBE_PHI + ip;
 }
 

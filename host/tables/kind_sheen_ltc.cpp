@@ -33,12 +33,26 @@ namespace {
 constexpr double kSheenFloor = 0.01;
 /// The layer's roughness r of a texel is sqrt of the sheen axis' alpha: sigma = r^2 = alpha, so
 /// that --alpha-map roughness puts r (Cycles' roughness) on the axis.
-/// The higher orders' top exits a texel's histogram should hold: a texel with fewer, whose higher
-/// orders are at least kMinShare of its R, is walked again with kRewalk times the walks when that
-/// reaches kMinExits (the first order is in closed form: a texel is fitted whatever it reflects).
+/// The higher orders' top exits a texel's histogram should be worth: a texel worth fewer, whose
+/// higher orders are at least kMinShare of its R, is walked again with kRewalk times the walks when
+/// that reaches kMinExits (the first order is in closed form: a texel is fitted whatever it reflects).
+/// A histogram's worth in exits is (its integral / its standard error)^2 (higher_order_exits): the
+/// count of the exits for analog counts, more for the next-flight tallies.
 constexpr double kMinExits = 1000;
 constexpr double kMinShare = 0.05;
 constexpr std::uint64_t kRewalk = 16;
+/// What the higher orders' histogram of a texel is worth in exits: (its integral / its standard
+/// error)^2, the bins' errors (3 standard errors of the replicas) summed in quadrature.
+double higher_order_exits(const SheenVolumeValue& v) {
+    double total = 0.0, var = 0.0;
+    for (size_t b = 0; b < v.lobe.size(); ++b) {
+        const double mass = 2.0 * SheenLobeBins::solid_angle(int(b) / SheenLobeBins::phi());
+        total += mass * v.lobe[b];
+        var += std::pow(mass * v.lobe_error[b] / 3.0, 2);
+    }
+    return var > 0.0 ? total * total / var : 0.0;
+}
+
 /// Sub-points per bin side for the LTC's bin averages.
 constexpr int kSub = 3;
 
@@ -267,7 +281,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
                              sheen_bounces(r)});
     progress_next_pass();
     SheenVolumeResult walks = sheen_volume_walks(engine, req);
-    // Texels whose higher orders left few walks through the top (smooth layers seen from above) are
+    // Texels whose higher orders' histogram is worth few exits (smooth layers seen from above) are
     // walked again, kRewalk times as many, when that gives them kMinExits and those orders matter
     // (kMinShare of R). (Rewalking those that reflect almost nothing, the smoothest row at grazing
     // views, where a walk scatters ~1/mu times before it crosses, took hours.)
@@ -277,7 +291,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     std::vector<size_t> rewalked;
     for (size_t c = 0; c < req.cells.size(); ++c) {
         const SheenVolumeValue& v = walks.values[c];
-        const double higher = v.reflectance.value - v.single.value, exits = higher * double(walks.walks_per_cell);
+        const double higher = v.reflectance.value - v.single.value, exits = higher_order_exits(v);
         if (exits < kMinExits && exits * double(kRewalk) >= kMinExits && higher >= kMinShare * v.reflectance.value) {
             again.cells.push_back(req.cells[c]);
             rewalked.push_back(c);
@@ -321,10 +335,9 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
                                " bins (theta, |phi|); the first order in closed form, the higher orders the walks' "
                                "histogram: " + min_median_max_text(distance);
     t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
-                                    std::to_string(rewalked.size()) + " texels with " +
-                                    std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
-                                    std::to_string(int(kMinExits)) +
-                                    " walks reflected after two or more scatterings walked again with " +
+                                    std::to_string(rewalked.size()) + " texels whose higher orders' histogram was "
+                                    "worth " + std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
+                                    std::to_string(int(kMinExits)) + " exits walked again with " +
                                     std::to_string(kRewalk) + " times as many)";
     t.attributes["distance_error"] = "the higher orders' histogram's noise floor in the distance: sqrt(2/pi) "
                                      "standard errors per bin, summed: " + min_median_max_text(distance_error);
