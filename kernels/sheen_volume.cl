@@ -15,7 +15,8 @@
  * with next_flight = 0 each actual exit adds 1 (analog counts; the same expectation). The first
  * order has a closed form (integrate/sheen_volume.h sheen_single_density). The host
  * (host/integrate/sheen_volume.cpp) turns the replicas into means and error estimates. A walk that
- * meets a non-finite number is counted in bad_count.
+ * meets a non-finite number is counted in bad_count; `flights` gets the mean free flights a walk (its
+ * cost: a grazing view of a smooth layer takes ~1/mu of them).
  *
  * Build options: [-D BB_REAL_DOUBLE] -D BB_PHILOX -I <Random123's include directory>. */
 #include "brdfbake/brdf/kernel_abi.h"
@@ -66,6 +67,7 @@ __kernel void BB_ENTRY_SHEEN_VOLUME(__global const bb_scalar* cell_mu, __global 
                                     const unsigned int next_flight,           /* the lobe's estimator */
                                     __global bb_scalar* sums,                 /* BB_SHEEN_SUMS per item */
                                     __global bb_scalar* hist,                 /* n_bins per item */
+                                    __global bb_scalar* flights,              /* per item: flights a walk */
                                     __global unsigned int* bad_count) {
     const unsigned int gid = (unsigned int)get_global_id(0);
     if (gid >= n_cells * n_replicas) return;
@@ -78,6 +80,7 @@ __kernel void BB_ENTRY_SHEEN_VOLUME(__global const bb_scalar* cell_mu, __global 
     for (unsigned int b = 0; b < n_bins; ++b) h[b] = (bb_scalar)0;
     unsigned int count[BB_SHEEN_SUMS] = {0u, 0u, 0u, 0u, 0u};
     unsigned int bad = 0;
+    bb_real flown = BB_R(0.0);
     for (unsigned int i = 0; i < n_walks; ++i) {
         bb_sheen_walk r = bb_sheen_walk_start(wo, bounces);
         while (!r.done)
@@ -86,6 +89,7 @@ __kernel void BB_ENTRY_SHEEN_VOLUME(__global const bb_scalar* cell_mu, __global 
                 const bb_real p = bb_sheen_next_flight(r, s);
                 if (p > BB_R(0.0)) h[sheen_lobe_bin(r.w)] += (bb_scalar)p;
             }
+        flown += (bb_real)r.flights;
         bad += (unsigned int)(r.exit == BB_SHEEN_EXIT_BAD);
         count[0] += (unsigned int)(r.exit == BB_SHEEN_EXIT_TOP);
         count[1] += (unsigned int)(r.exit == BB_SHEEN_EXIT_TOP && r.scatterings == 1);
@@ -97,5 +101,6 @@ __kernel void BB_ENTRY_SHEEN_VOLUME(__global const bb_scalar* cell_mu, __global 
     }
     const bb_real n = (bb_real)n_walks;
     for (int k = 0; k < BB_SHEEN_SUMS; ++k) sums[BB_SHEEN_SUMS * gid + k] = (bb_real)count[k] / n;
+    flights[gid] = flown / n;
     bad_count[gid] = bad;
 }

@@ -54,6 +54,7 @@ struct SheenVolumeValue {
     /// its error (3 standard errors of the replicas).
     /// The first order's density is sheen_single_density (closed form, no noise).
     std::vector<double> lobe, lobe_error;
+    double flights = 0.0;  // the mean free flights a walk (its cost)
 };
 
 /// The first scattering order's reflected density per solid angle, f1 cos(theta_i), at the unit

@@ -41,6 +41,10 @@ constexpr double kSheenFloor = 0.01;
 constexpr double kMinExits = 1000;
 constexpr double kMinShare = 0.05;
 constexpr std::uint64_t kRewalk = 16;
+/// ... and when its walks are cheap: at most kMaxFlights free flights a walk. The grazing views of the
+/// smoothest rows take ~1/mu flights a walk (102 at mu = roughness = 0.01): walking such a texel again
+/// cost more than the whole first pass (measured, benchmarks/results/sheen-ltc-amd-epyc-2c.md).
+constexpr double kMaxFlights = 10.0;
 /// What the higher orders' histogram of a texel is worth in exits: (its integral / its standard
 /// error)^2, the bins' errors (3 standard errors of the replicas) summed in quadrature.
 double higher_order_exits(const SheenVolumeValue& v) {
@@ -283,8 +287,9 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     SheenVolumeResult walks = sheen_volume_walks(engine, req);
     // Texels whose higher orders' histogram is worth few exits (smooth layers seen from above) are
     // walked again, kRewalk times as many, when that gives them kMinExits and those orders matter
-    // (kMinShare of R). (Rewalking those that reflect almost nothing, the smoothest row at grazing
-    // views, where a walk scatters ~1/mu times before it crosses, took hours.)
+    // (kMinShare of R) and its walks are cheap (kMaxFlights). (Rewalking those that reflect almost
+    // nothing, the smoothest row at grazing views, where a walk scatters ~1/mu times before it
+    // crosses, took hours.)
     SheenVolumeRequest again = req;
     again.cells.clear();
     again.walks = req.walks * kRewalk;
@@ -292,7 +297,8 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     for (size_t c = 0; c < req.cells.size(); ++c) {
         const SheenVolumeValue& v = walks.values[c];
         const double higher = v.reflectance.value - v.single.value, exits = higher_order_exits(v);
-        if (exits < kMinExits && exits * double(kRewalk) >= kMinExits && higher >= kMinShare * v.reflectance.value) {
+        if (exits < kMinExits && exits * double(kRewalk) >= kMinExits && higher >= kMinShare * v.reflectance.value &&
+            v.flights <= kMaxFlights) {
             again.cells.push_back(req.cells[c]);
             rewalked.push_back(c);
         }
@@ -337,7 +343,8 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
     t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
                                     std::to_string(rewalked.size()) + " texels whose higher orders' histogram was "
                                     "worth " + std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
-                                    std::to_string(int(kMinExits)) + " exits walked again with " +
+                                    std::to_string(int(kMinExits)) + " exits, at most " +
+                                    std::to_string(int(kMaxFlights)) + " flights a walk, walked again with " +
                                     std::to_string(kRewalk) + " times as many)";
     t.attributes["distance_error"] = "the higher orders' histogram's noise floor in the distance: sqrt(2/pi) "
                                      "standard errors per bin, summed: " + min_median_max_text(distance_error);
