@@ -44,8 +44,9 @@ constexpr double kMinExits = 1000;
 constexpr double kMinShare = 0.05;
 constexpr std::uint64_t kRewalk = 16;
 /// ... and when its walks are cheap: at most kMaxFlights free flights a walk. The grazing views of the
-/// smoothest rows take ~1/mu flights a walk (102 at mu = roughness = 0.01): walking such a texel again
-/// cost more than the whole first pass (measured, benchmarks/results/sheen-ltc-amd-epyc-2c.md).
+/// smoothest rows take ~1/mu flights a walk (102 at mu = roughness = 0.01, 4.3e8 flights for 16 times
+/// 2^18 walks): the table that walked it again took 166 s of CPU, 135 s without it
+/// (benchmarks/results/sheen-ltc-amd-epyc-2c.md, session 6).
 constexpr double kMaxFlights = 10.0;
 /// What the higher orders' histogram of a texel is worth in exits: (its integral / its standard
 /// error)^2, the bins' errors (3 standard errors of the replicas) summed in quadrature.
