@@ -187,11 +187,13 @@ TEST_CASE("lut sheen-ltc: R at roughness 1 is the isotropic slab's, the LTC's lo
 
 TEST_CASE("sheen volume: the histogram holds the higher orders, the first order's density is its quadrature's",
           "[sheen-volume]") {
-    // One cell whose higher orders leave the top often (roughness 0.6, mu 0.5): the histogram of
-    // the exits after two or more scatterings integrates to R - R1, the walks' own counts.
+    // One cell whose higher orders leave the top often (roughness 0.6, mu 0.5): the analog histogram
+    // of the exits after two or more scatterings integrates to R - R1, the walks' own counts (the
+    // next-flight estimator's expectation is that histogram's: tests/test_sheen_next_flight.cpp).
     const double mu = 0.5, alpha = 0.6;
     SheenVolumeRequest req = request({{mu, alpha}}, 1 << 18);
     req.lobe = true;
+    req.next_flight = false;
     const SheenVolumeValue v = sheen_volume_walks(testing::engine(), req).values[0];
     REQUIRE(v.lobe.size() == size_t(SheenLobeBins::theta() * SheenLobeBins::phi()));
     double integral = 0;

@@ -48,7 +48,7 @@ cl_uint cell_stream(const SheenVolumeCell& c) {
 }
 
 // Per cell and bin, the replicas' mean density and 3 standard errors.
-void summarize_lobe(const std::vector<cl_uint>& hist, size_t n_cells, unsigned replicas, std::uint64_t walks,
+void summarize_lobe(const std::vector<double>& hist, size_t n_cells, unsigned replicas, std::uint64_t walks,
                     std::vector<SheenVolumeValue>& values) {
     const int nb = SheenLobeBins::theta() * SheenLobeBins::phi();
     for (size_t c = 0; c < n_cells; ++c) {
@@ -78,7 +78,7 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
     const std::uint64_t walks = req.walks / req.replicas;
     const size_t n_cells = req.cells.size(), n_items = n_cells * req.replicas;
     const unsigned n_bins = req.lobe ? unsigned(BB_SHEEN_LOBE_THETA * BB_SHEEN_LOBE_PHI) : 0u;
-    check_memory(launch_bytes(n_cells, n_items * (BB_SHEEN_SUMS + n_bins), 0.0, 1, req.precision),
+    check_memory(launch_bytes(n_cells, n_items * (BB_SHEEN_SUMS + n_bins + 1), 0.0, 1, req.precision),
                  "sheen layer walks of " + std::to_string(n_cells) + " directions");
 
     BuildRequest build;
@@ -103,11 +103,12 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
     cl::Buffer b_stream(engine.context(), CL_MEM_READ_ONLY | CL_MEM_COPY_HOST_PTR, streams.size() * sizeof(cl_uint),
                         streams.data());
     cl::Buffer b_sums = bufs.output(n_items * BB_SHEEN_SUMS);
-    cl::Buffer b_hist(engine.context(), CL_MEM_WRITE_ONLY, std::max<size_t>(1, n_items * n_bins) * sizeof(cl_uint));
+    cl::Buffer b_hist = bufs.output(std::max<size_t>(1, n_items * n_bins));
+    cl::Buffer b_flights = bufs.output(n_items);
     const NonFiniteCounts bad_counts(engine, n_items);
     cl::Kernel kernel(program, BB_ENTRY_NAME(BB_ENTRY_SHEEN_VOLUME));
     set_args(kernel, 0, b_mu, b_alpha, b_bounces, cl_uint(walks), cl_uint(req.replicas), cl_uint(n_cells),
-             cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream, cl_uint(n_bins), b_sums, b_hist, bad_counts.buffer);
+             cl_uint(req.seed), cl_uint(req.seed >> 32), b_stream, cl_uint(n_bins), cl_uint(req.next_flight), b_sums, b_hist, b_flights, bad_counts.buffer);
 
     SheenVolumeResult result;
     result.kernel_seconds = run_items(engine, kernel, n_items, double(walks),
@@ -115,10 +116,13 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
                                           std::to_string(req.walks) + " walks each");
     const std::vector<double> sums = bufs.read(b_sums, n_items * BB_SHEEN_SUMS);
     const std::vector<cl_uint> bad = bad_counts.read(engine);
+    const std::vector<double> flights = bufs.read(b_flights, n_items);
     result.walks_per_cell = walks * req.replicas;
     std::ostringstream m;
     m << "random walks through the fiber SGGX layer (Zeltner et al. 2022), Philox4x32-10, " << req.replicas
       << " replicas x " << walks << " walks";
+    if (n_bins > 0)
+        m << "; the higher orders' lobe by " << (req.next_flight ? "next-flight tallies" : "counts of the exits");
     result.method = m.str();
 
     const auto where = [&](size_t c) {
@@ -131,12 +135,11 @@ SheenVolumeResult sheen_volume_walks(Engine& engine, const SheenVolumeRequest& r
         SheenVolumeValue v;
         AlbedoValue* slots[BB_SHEEN_SUMS] = {&v.reflectance, &v.single, &v.transmittance, &v.direct, &v.cutoff};
         for (int k = 0; k < BB_SHEEN_SUMS; ++k) *slots[k] = summary[k][c];
+        for (unsigned r = 0; r < req.replicas; ++r) v.flights += flights[c * req.replicas + r] / req.replicas;
         result.values.push_back(v);
     }
     if (n_bins > 0) {
-        std::vector<cl_uint> hist(n_items * n_bins);
-        engine.queue().enqueueReadBuffer(b_hist, CL_TRUE, 0, hist.size() * sizeof(cl_uint), hist.data());
-        summarize_lobe(hist, n_cells, req.replicas, walks, result.values);
+        summarize_lobe(bufs.read(b_hist, n_items * n_bins), n_cells, req.replicas, walks, result.values);
     }
     return result;
 }

@@ -27,6 +27,10 @@ struct SheenVolumeRequest {
     std::uint64_t seed = 1;
     Precision precision = Precision::Float;
     bool lobe = false;  // also the reflected directions' histogram
+    /// The histogram's estimator: true, the next-flight tallies (every scattering after the first
+    /// that turns up adds its probability of leaving the top unscattered, brdf/sheen_volume.h
+    /// bb_sheen_next_flight); false, the analog counts of the actual exits (the same expectation).
+    bool next_flight = true;
 };
 
 /// The bins of the lobe: theta_o uniform over [0, pi/2] (rows), |phi_o| uniform over [0, pi]
@@ -46,9 +50,11 @@ struct SheenVolumeValue {
     AlbedoValue cutoff;         // still inside after `bounces` scatterings (R + T + cutoff = 1)
     /// With SheenVolumeRequest::lobe: per bin (row-major, SheenLobeBins), the mean over the bin
     /// of the reflected density f cos(theta_o) per solid angle (over both sides of phi = 0) of the
-    /// walks that scattered two or more times, and its error (3 standard errors of the replicas).
+    /// walks that scattered two or more times (by SheenVolumeRequest::next_flight's estimator), and
+    /// its error (3 standard errors of the replicas).
     /// The first order's density is sheen_single_density (closed form, no noise).
     std::vector<double> lobe, lobe_error;
+    double flights = 0.0;  // the mean free flights a walk (its cost)
 };
 
 /// The first scattering order's reflected density per solid angle, f1 cos(theta_i), at the unit

@@ -14,6 +14,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <map>
 #include <sstream>
 
 #include "brdfbake/brdf/models.h"
@@ -33,12 +34,32 @@ namespace {
 constexpr double kSheenFloor = 0.01;
 /// The layer's roughness r of a texel is sqrt of the sheen axis' alpha: sigma = r^2 = alpha, so
 /// that --alpha-map roughness puts r (Cycles' roughness) on the axis.
-/// The higher orders' top exits a texel's histogram should hold: a texel with fewer, whose higher
-/// orders are at least kMinShare of its R, is walked again with kRewalk times the walks when that
-/// reaches kMinExits (the first order is in closed form: a texel is fitted whatever it reflects).
+/// The higher orders' top exits a texel's histogram should be worth: a texel worth fewer, whose
+/// higher orders are at least kMinShare of its R, is walked again with up to kRewalk times the walks
+/// when that reaches kMinExits (walk_again; the first order is in closed form: a texel is fitted
+/// whatever it reflects).
+/// A histogram's worth in exits is (its integral / its standard error)^2 (higher_order_exits): the
+/// count of the exits for analog counts, more for the next-flight tallies.
 constexpr double kMinExits = 1000;
 constexpr double kMinShare = 0.05;
 constexpr std::uint64_t kRewalk = 16;
+/// ... and when its walks are cheap: at most kMaxFlights free flights a walk. The grazing views of the
+/// smoothest rows take ~1/mu flights a walk (102 at mu = roughness = 0.01, 4.3e8 flights for 16 times
+/// 2^18 walks): the table that walked it again took 166 s of CPU, 135 s without it
+/// (benchmarks/results/sheen-ltc-amd-epyc-2c.md, session 6).
+constexpr double kMaxFlights = 10.0;
+/// What the higher orders' histogram of a texel is worth in exits: (its integral / its standard
+/// error)^2, the bins' errors (3 standard errors of the replicas) summed in quadrature.
+double higher_order_exits(const SheenVolumeValue& v) {
+    double total = 0.0, var = 0.0;
+    for (size_t b = 0; b < v.lobe.size(); ++b) {
+        const double mass = 2.0 * SheenLobeBins::solid_angle(int(b) / SheenLobeBins::phi());
+        total += mass * v.lobe[b];
+        var += std::pow(mass * v.lobe_error[b] / 3.0, 2);
+    }
+    return var > 0.0 ? total * total / var : 0.0;
+}
+
 /// Sub-points per bin side for the LTC's bin averages.
 constexpr int kSub = 3;
 
@@ -251,6 +272,40 @@ std::vector<TexelFit> fit_texels(const MuAlphaGrid& g, const std::vector<SheenVo
     return fits;
 }
 
+/// Walks again the texels whose higher orders' histogram is worth fewer than kMinExits exits
+/// (smooth layers seen from above), when kRewalk times the walks gives them kMinExits, those orders
+/// matter (kMinShare of R) and their walks are cheap (kMaxFlights), each with the least power of two
+/// times the walks (2 to kRewalk) that does; the new walks replace the first. Returns how many.
+/// (Walking again those that reflect almost nothing, the smoothest row at grazing views, where a
+/// walk scatters ~1/mu times before it crosses, took hours.)
+size_t walk_again(Engine& engine, const SheenVolumeRequest& req, SheenVolumeResult& walks) {
+    std::map<std::uint64_t, std::pair<SheenVolumeRequest, std::vector<size_t>>> groups;  // by the walks' factor
+    size_t count = 0;
+    for (size_t c = 0; c < req.cells.size(); ++c) {
+        const SheenVolumeValue& v = walks.values[c];
+        const double higher = v.reflectance.value - v.single.value, exits = higher_order_exits(v);
+        if (!(exits < kMinExits && exits * double(kRewalk) >= kMinExits && higher >= kMinShare * v.reflectance.value &&
+              v.flights <= kMaxFlights))
+            continue;
+        std::uint64_t k = 2;
+        while (exits * double(k) < kMinExits) k *= 2;
+        auto& group = groups[k];
+        if (group.second.empty()) {
+            group.first = req;
+            group.first.cells.clear();
+            group.first.walks = req.walks * k;
+        }
+        group.first.cells.push_back(req.cells[c]);
+        group.second.push_back(c);
+        ++count;
+    }
+    for (const auto& [k, group] : groups) {
+        const SheenVolumeResult more = sheen_volume_walks(engine, group.first);
+        for (size_t i = 0; i < group.second.size(); ++i) walks.values[group.second[i]] = more.values[i];
+    }
+    return count;
+}
+
 Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& m, const FresnelConfig& f) {
     MuAlphaGrid g = mu_alpha_grid(r, m);
     Table& t = g.table;
@@ -267,26 +322,7 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
                              sheen_bounces(r)});
     progress_next_pass();
     SheenVolumeResult walks = sheen_volume_walks(engine, req);
-    // Texels whose higher orders left few walks through the top (smooth layers seen from above) are
-    // walked again, kRewalk times as many, when that gives them kMinExits and those orders matter
-    // (kMinShare of R). (Rewalking those that reflect almost nothing, the smoothest row at grazing
-    // views, where a walk scatters ~1/mu times before it crosses, took hours.)
-    SheenVolumeRequest again = req;
-    again.cells.clear();
-    again.walks = req.walks * kRewalk;
-    std::vector<size_t> rewalked;
-    for (size_t c = 0; c < req.cells.size(); ++c) {
-        const SheenVolumeValue& v = walks.values[c];
-        const double higher = v.reflectance.value - v.single.value, exits = higher * double(walks.walks_per_cell);
-        if (exits < kMinExits && exits * double(kRewalk) >= kMinExits && higher >= kMinShare * v.reflectance.value) {
-            again.cells.push_back(req.cells[c]);
-            rewalked.push_back(c);
-        }
-    }
-    if (!again.cells.empty()) {
-        const SheenVolumeResult more = sheen_volume_walks(engine, again);
-        for (size_t k = 0; k < rewalked.size(); ++k) walks.values[rewalked[k]] = more.values[k];
-    }
+    const size_t rewalked = walk_again(engine, req, walks);
     const std::vector<TexelFit> fits = fit_texels(g, req.cells, walks, r.estimator == "cycles");
     const size_t n = g.cells.size();
     t.channels = {"a", "b", "R", "distance", "distance_error"};
@@ -320,11 +356,12 @@ Table compute_sheen_ltc(Engine& engine, const LutRequest& r, const ModelConfig& 
                                " bins (theta, |phi|); the first order in closed form, the higher orders the walks' "
                                "histogram: " + min_median_max_text(distance);
     t.attributes["error_channel"] = "R's error: 3 standard errors of the replicas (--samples walks a texel; " +
-                                    std::to_string(rewalked.size()) + " texels with " +
-                                    std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
-                                    std::to_string(int(kMinExits)) +
-                                    " walks reflected after two or more scatterings walked again with " +
-                                    std::to_string(kRewalk) + " times as many)";
+                                    std::to_string(rewalked) + " texels whose higher orders' histogram was "
+                                    "worth " + std::to_string(int(kMinExits) / int(kRewalk)) + " to " +
+                                    std::to_string(int(kMinExits)) + " exits, at most " +
+                                    std::to_string(int(kMaxFlights)) + " flights a walk, walked again with 2 to " +
+                                    std::to_string(kRewalk) + " times as many, the least power of two worth " +
+                                    std::to_string(int(kMinExits)) + ")";
     t.attributes["distance_error"] = "the higher orders' histogram's noise floor in the distance: sqrt(2/pi) "
                                      "standard errors per bin, summed: " + min_median_max_text(distance_error);
     t.attributes["unfitted"] = std::to_string(unfitted) + " texels that reflect nothing hold the cosine (a = 1, b = 0)";

@@ -34,6 +34,14 @@
  * low roughness it is most of the lobe's shape: rows r = 0.13-0.23 of Cycles' table are fits to it
  * (benchmarks/results/sheen-ltc-amd-epyc-2c.md, session 5).
  *
+ * The reflected lobe's higher orders (what the LTC is fitted to beside the closed-form first order)
+ * are tallied by next flights, not by the walks' actual exits (bb_sheen_next_flight below): after
+ * each scattering n >= 2 a walk heading up adds its probability of leaving the top before it
+ * scatters again to the bin of its direction; the same expectation as the analog count of the exits
+ * (which the kernel still offers), but every walk that turns up contributes, not only the few that
+ * get out (tests/test_sheen_next_flight.cpp compares the two). R, T and their orders stay the
+ * walks' counts (R + T + cut-off = 1 per replica).
+ *
  * Closed forms the walk must meet (tests): transmission without scattering T0 = exp(-sigma(wo)/mu_o)
  * (Beer-Lambert along the view), and the first order
  *   R1(wo) = integral over the upper hemisphere of p(wo -> w) k_o (1 - exp(-(k_o + k))) / (k_o + k) dw,
@@ -96,53 +104,94 @@ BB_FN bb_vec3 bb_sggx_fiber_sample_vndf(bb_vec3 wi, bb_real s, bb_real u1, bb_re
 #define BB_SHEEN_EXIT_BAD 3
 
 typedef struct {
-    int exit;        /* BB_SHEEN_EXIT_* */
-    int scatterings; /* the scatterings before the exit */
+    int exit;        /* BB_SHEEN_EXIT_*, valid once `done` */
+    int scatterings; /* the scatterings so far */
     int truncated;   /* 1: stopped by the paper's rule (bounces < 0), its exit read from its direction */
-    bb_vec3 w;       /* the direction it left in */
+    int done;        /* 1: the walk has ended */
+    int flights;     /* the free flights so far (the Philox counter) */
+    int bounces;     /* the scattering limit (positive) */
+    int paper_limit; /* L of bounces = -L, else 0 */
+    bb_real t;       /* the depth, 0 at the top, 1 at the bottom */
+    bb_vec3 w;       /* the direction of flight (after `done`: the one it left in) */
 } bb_sheen_walk;
 
-#ifdef BB_PHILOX
-/* One walk through the layer of fiber cross-section s from the view wo (wo.z > 0), at most
- * `bounces` scatterings; bounces = -L: the paper's rule, stopped right after the L-th scattering. */
-BB_FN bb_sheen_walk bb_sheen_volume_walk(bb_real s, bb_vec3 wo, int bounces, philox4x32_key_t key, unsigned int walk,
-                                         unsigned int rep, unsigned int stream) {
+/* A walk about to enter the layer from the view wo (wo.z > 0): at most `bounces` scatterings;
+ * bounces = -L: the paper's rule, stopped right after the L-th scattering. */
+BB_FN bb_sheen_walk bb_sheen_walk_start(bb_vec3 wo, int bounces) {
     bb_sheen_walk r;
+    r.exit = BB_SHEEN_EXIT_BAD;
     r.w = bb_scale(wo, BB_R(-1.0));
     r.scatterings = 0;
     r.truncated = 0;
-    const int paper_limit = bounces < 0 ? -bounces : 0;
-    bounces = bounces < 0 ? BB_SHEEN_VOLUME_MAX_BOUNCES : bounces;
-    bb_real t = BB_R(0.0);
-    for (int k = 0;; ++k) {
-        philox4x32_ctr_t ctr = {{walk, rep, stream, BB_SHEEN_TAG | (unsigned int)k}};
-        philox4x32_ctr_t u = philox4x32(ctr, key);
-        /* free flight: l = -log(1 - U) / sigma_t(w) */
-        const bb_real l = -bb_log1p(-bb_unit_from_bits(u.v[0])) / bb_sggx_fiber_area(r.w, s);
-        t = t - l * r.w.z;
-        if (t < BB_R(0.0) || t > BB_R(1.0)) {
-            r.exit = t < BB_R(0.0) ? BB_SHEEN_EXIT_TOP : BB_SHEEN_EXIT_BOTTOM;
-            return r;
-        }
-        if (k == bounces) {
-            r.exit = BB_SHEEN_EXIT_CUTOFF;
-            return r;
-        }
-        /* scattering: a visible normal of -w, specular reflection */
-        const bb_vec3 v = bb_scale(r.w, BB_R(-1.0));
-        const bb_vec3 m = bb_sggx_fiber_sample_vndf(v, s, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
-        r.w = bb_normalize(bb_reflect(v, m));
-        r.scatterings = k + 1;
-        if (!bb_isfinite(r.w.z) || !bb_isfinite(t)) {
-            r.exit = BB_SHEEN_EXIT_BAD;
-            return r;
-        }
-        if (r.scatterings == paper_limit) {
-            r.truncated = 1;
-            r.exit = r.w.z > BB_R(0.0) ? BB_SHEEN_EXIT_TOP : BB_SHEEN_EXIT_BOTTOM;
-            return r;
-        }
+    r.done = 0;
+    r.flights = 0;
+    r.paper_limit = bounces < 0 ? -bounces : 0;
+    r.bounces = bounces < 0 ? BB_SHEEN_VOLUME_MAX_BOUNCES : bounces;
+    r.t = BB_R(0.0);
+    return r;
+}
+
+/* The next-flight tally of a walk that has just scattered (r->scatterings = n >= 1) into r->w at
+ * depth r->t: the probability that its next free flight leaves through the top, so that the walk
+ * exits after exactly n scatterings in the direction r->w. Given the walk up to its n-th scattering
+ * the flight l ~ Exp(sigma_t(w)) leaves through the top iff w.z > 0 and l > t / w.z, probability
+ *   exp(-sigma(w) t / w.z)                                    (Beer-Lambert, density 1),
+ * the expectation of the analog tally 1{exit through the top after n scatterings, in w} given that
+ * history: summed over n, the same mean as the analog count of the exits, per exit direction (the
+ * expected-value, or next-flight, estimator of neutron transport: Spanier and Gelbard, "Monte Carlo
+ * Principles and Neutron Transport Problems", 1969, sec. 5.3; Lux and Koblinger, "Monte Carlo
+ * Particle Transport Methods", 1991, ch. 6), and every walk that scatters up adds to it, not only
+ * the few that get out. The walk then flies on as before (its actual exit is no longer tallied:
+ * nothing counts twice). Under the paper's rule (bounces = -L) a walk just stopped after its L-th
+ * scattering counts as reflected by its direction [ZBC22's precomputation]: its tally is 1 for
+ * w.z > 0 (the expectation of that rule's exit given the history is the rule itself). Under the
+ * bounce limit a walk's tally after its last allowed scattering is still the transmittance: its
+ * actual next flight decides between an exit and the cut-off, whose share is reported as before. */
+BB_FN bb_real bb_sheen_next_flight(bb_sheen_walk r, bb_real s) {
+    if (!(r.w.z > BB_R(0.0))) return BB_R(0.0);
+    if (r.truncated) return BB_R(1.0);
+    return bb_exp(-bb_sggx_fiber_area(r.w, s) * r.t / r.w.z);
+}
+
+#ifdef BB_PHILOX
+/* One free flight of the walk r through the layer of fiber cross-section s and, when it stays
+ * inside, one scattering. Returns 1 when the walk scattered (r->w its new direction; r->done when the
+ * paper's rule stopped it there), 0 when it ended without scattering (an exit, the cut-off, or a
+ * non-finite number). One Philox call per flight: counter (walk, replica, stream, BB_SHEEN_TAG | flight). */
+BB_FN int bb_sheen_walk_step(bb_sheen_walk* r, bb_real s, philox4x32_key_t key, unsigned int walk,
+                             unsigned int rep, unsigned int stream) {
+    const int k = r->flights++;
+    philox4x32_ctr_t ctr = {{walk, rep, stream, BB_SHEEN_TAG | (unsigned int)k}};
+    philox4x32_ctr_t u = philox4x32(ctr, key);
+    /* free flight: l = -log(1 - U) / sigma_t(w) */
+    const bb_real l = -bb_log1p(-bb_unit_from_bits(u.v[0])) / bb_sggx_fiber_area(r->w, s);
+    r->t = r->t - l * r->w.z;
+    if (r->t < BB_R(0.0) || r->t > BB_R(1.0)) {
+        r->exit = r->t < BB_R(0.0) ? BB_SHEEN_EXIT_TOP : BB_SHEEN_EXIT_BOTTOM;
+        r->done = 1;
+        return 0;
     }
+    if (k == r->bounces) {
+        r->exit = BB_SHEEN_EXIT_CUTOFF;
+        r->done = 1;
+        return 0;
+    }
+    /* scattering: a visible normal of -w, specular reflection */
+    const bb_vec3 v = bb_scale(r->w, BB_R(-1.0));
+    const bb_vec3 m = bb_sggx_fiber_sample_vndf(v, s, bb_unit_from_bits(u.v[1]), bb_unit_from_bits(u.v[2]));
+    r->w = bb_normalize(bb_reflect(v, m));
+    r->scatterings = k + 1;
+    if (!bb_isfinite(r->w.z) || !bb_isfinite(r->t)) {
+        r->exit = BB_SHEEN_EXIT_BAD;
+        r->done = 1;
+        return 0;
+    }
+    if (r->scatterings == r->paper_limit) {
+        r->truncated = 1;
+        r->exit = r->w.z > BB_R(0.0) ? BB_SHEEN_EXIT_TOP : BB_SHEEN_EXIT_BOTTOM;
+        r->done = 1;
+    }
+    return 1;
 }
 #endif
 
