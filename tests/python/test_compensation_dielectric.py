@@ -83,10 +83,8 @@ def test_schemes_against_quadrature_both_sides():
         assert abs(v["single_T"] - t1) <= v["input_error"] + 2e-4, msg
         assert abs(v["e_avg"] - e_avg[side]) < 1e-3, (msg, e_avg[side])
         assert abs(v["f_avg"] - f_avg[side]) < 1e-9, (msg, f_avg[side])
-        # Energy: each scheme's R + T and the walk's are 1 (a non-absorbing interface).
-        for s in ("kulla-conty", "turquin"):
-            assert abs(v[f"{s}_R"] + v[f"{s}_T"] - 1) < 1e-12, (s, msg)
-        assert abs(v["walk_R"] + v["walk_T"] - 1) <= v["walk_sum_error"] + 1e-9, msg
+        # (Each scheme's R + T and the walk's are 1 by construction: E plus the 1 - E put back, R_ss/E + T_ss/E,
+        # every walk ending above or below. Not asserted: such a check cannot fail. What can is below.)
         # Turquin 2019: the single-scattering BSDF over E.
         assert abs(v["turquin_R"] - r1 / (r1 + t1)) < 1e-3, msg
         # Kulla and Conty 2017: the lost energy split by tau.
