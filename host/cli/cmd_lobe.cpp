@@ -186,9 +186,12 @@ void write_lobe_3d(Engine& engine, const LobeOptions& o, const std::vector<Model
 /// error column when a walk drew any of the curves.
 void write_lobe_csv(const std::string& path, const std::vector<LobeCurve>& curves, const FresnelConfig& fresnel,
                     double phi_i) {
+    bool below = false;  // --transmission's rows
+    for (const LobeCurve& c : curves)
+        for (double t : c.theta_o) below = below || t > 90.0;
     std::ostringstream csv;
     csv << "# lobe: f(wi, wo) cos(theta_i) in the plane of incidence at phi = " << format_number(phi_i)
-        << " deg; theta_o > 0 on the mirror side, 90 to 270 below the surface (--transmission); a delta lobe is one row at theta_o = theta_i with no f (a "
+        << " deg; theta_o > 0 on the mirror side" << (below ? ", 90 to 270 below the surface (f_t)" : "") << "; a delta lobe is one row at theta_o = theta_i with no f (a "
            "delta function) and its reflectance as f_cos_theta_i\n";
     bool simulated = false;  // a walk's estimate: one more column, f's error (3 standard errors)
     for (const LobeCurve& c : curves) simulated = simulated || !c.f_error.empty();
@@ -332,7 +335,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         const double left = 1.05 * std::max({-x_lo, 0.3 * x_hi, 1e-3 * r_max});
         const double right = 1.05 * std::max({x_hi, 0.3 * -x_lo, 1e-3 * r_max});
         const double legend_rows = double(curves.size());
-        const double top = std::max(y_hi, 1e-3 * r_max) * (1.1 + 0.08 * legend_rows + 0.08);
+        const double top = std::max({y_hi, 1e-3 * r_max, 0.3 * -y_lo}) * (1.1 + 0.08 * legend_rows + 0.08);
         auto ray = [&](double t_deg, const std::string& style) {  // from the origin to the box's edge
             const double t = t_deg * kRad, s = std::sin(t), c = std::cos(t);
             double len = top / std::max(c, 1e-9);
