@@ -11,12 +11,14 @@
 
 #include <cmath>
 #include <random>
+#include <sstream>
 
 #include "brdfbake/brdf/random_walk.h"
 #include "integrate/random_walk.h"
 #include "model_refs.h"
 #include "reference/reference.h"
 #include "support.h"
+#include "test_random_walk_pairs.h"
 
 using namespace brdfbake;
 
@@ -113,31 +115,22 @@ TEST_CASE("transmitting walk: f_t |cos| integrated over the lower hemisphere is 
             req.pairs.push_back({unit(mu, 0.0), {d[0], d[1], -d[2]}, m.params});
         }
         const WalkEvalResult r = walk_eval(testing::engine(), req);
-        AlbedoRequest areq;
-        areq.model = m.id;
-        areq.fresnel = resolve_fresnel("none");
-        areq.cells = cells_for({mu}, 0.0, m.params);
-        areq.samples = 1 << 18;
-        const WalkResult a = walk_albedo(testing::engine(), areq);
+        const WalkAlbedo a = testing::walk_albedo_at_mu(m, "none", mu);
         for (bool single : {false, true}) {
             const std::vector<AlbedoValue>& f = single ? r.single : r.f;
-            double s = 0, s2 = 0;
-            for (const AlbedoValue& v : f) {
-                s += M_PI * v.value;
-                s2 += M_PI * M_PI * v.value * v.value;
-            }
-            const double n = double(f.size()), mean = s / n, se = std::sqrt((s2 / n - mean * mean) / (n - 1));
-            const AlbedoValue& e = single ? a.values[0].single_t : a.values[0].transmitted;
+            double se = 0;
+            const double mean = testing::pi_mean(f, &se);
+            const AlbedoValue& e = single ? a.single_t : a.transmitted;
             INFO(spec << (single ? " first order" : " every order") << ": integral " << mean << " +- " << se
                       << ", walk T " << e.value << " +- " << e.error / 3);
             CHECK(std::fabs(mean - e.value) <= 4 * std::hypot(se, e.error / 3));
             CHECK(se < 0.03 * e.value);  // the test can see a 12% error
-            CHECK(a.values[0].transmitted.value > 0.05);
+            CHECK(a.transmitted.value > 0.05);
         }
     }
 }
 
-TEST_CASE("transmitting walk: generalized reciprocity f_t(a -> b; eta) = eta^2 f_t(b -> a; 1/eta)", "[random-walk]") {
+TEST_CASE("transmitting walk: generalized reciprocity f_t(a -> b, eta) = eta^2 f_t(b -> a, 1/eta)", "[random-walk]") {
     // Veach 1997 eq. 5.14: f_t(wo -> wi) / eta_i^2 = f_t(wi -> wo) / eta_o^2. The walk from inside the
     // glass (wo below) is the walk of the mirrored microsurface: the spec with 1/eta, directions
     // negated (the microsurface seen upside down is the same Smith surface, bb_walk_dielectric).
@@ -171,4 +164,38 @@ TEST_CASE("transmitting walk: generalized reciprocity f_t(a -> b; eta) = eta^2 f
             }
         }
     }
+}
+
+TEST_CASE("transmitting walk: lobe --transmission writes f_t below the surface, peaked by Snell's law", "[random-walk]") {
+    // theta_i 30 deg, eta 1.5: the refracted ray leaves at asin(sin 30 / 1.5) = 19.47 deg from -z on
+    // the far side, theta_o = 180 - 19.47 in lobe's convention; at GGX alpha 0.2 f_t peaks within a
+    // grid step (5 deg) of it, every transmitted row finite and >= 0 with its error; a model
+    // without a dielectric walk is refused in one line (exit 2, nothing written).
+    const auto r = testing::run_cli("lobe --model ggx:alpha=0.2,scattering=multiple,eta=1.5 --theta-i 30 "
+                                    "--resolution 37 --walks 4096 --transmission --data -");
+    REQUIRE(r.status == 0);
+    std::istringstream in(r.out);
+    double peak_t = 0, peak_f = -1;
+    int below = 0;
+    for (std::string line; std::getline(in, line);) {
+        if (line.empty() || line[0] == '#' || line.rfind("model,", 0) == 0) continue;
+        std::vector<double> v;
+        std::stringstream cells(line.substr(line.rfind('"') + 2));
+        for (std::string c; std::getline(cells, c, ',');) v.push_back(std::stod(c));
+        REQUIRE(v.size() == 5);
+        if (v[1] <= 90) continue;
+        ++below;
+        INFO(line);
+        CHECK((std::isfinite(v[2]) && v[2] >= 0 && v[4] >= 0));
+        if (v[2] > peak_f) peak_f = v[2], peak_t = v[1];
+    }
+    CHECK(below == 37);
+    const double snell = 180 - std::asin(std::sin(30 * M_PI / 180) / 1.5) * 180 / M_PI;
+    INFO("peak " << peak_f << " at " << peak_t << " deg, Snell " << snell);
+    CHECK(std::fabs(peak_t - snell) <= 5.0);
+    const auto bad = testing::run_cli("lobe --model ggx:alpha=0.2,scattering=multiple --theta-i 30 --transmission --data -");
+    CHECK(bad.status == 2);
+    CHECK(bad.out.empty());
+    CHECK(bad.err.rfind("brdfbake: error: --transmission", 0) == 0);
+    CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
 }

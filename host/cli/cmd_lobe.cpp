@@ -267,12 +267,12 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
                     wo.push_back(in_plane(std::fabs(t) >= 90.0 ? std::copysign(89.999, t) : t, o.phi_i));
                     wis.push_back(wi);
                 }
-                // the transmitted f_t below the surface: theta_o = 180 - s, s the angle from -z (walk9)
+                // the transmitted f_t below the surface: theta_o = 180 - s, s the angle from -z (walk9),
+                // labelled where evaluated (90.001 and 269.999 at the horizon: no row twice at 90)
                 for (int k = 0; o.transmission && k < o.resolution; ++k) {
-                    const double t = 90.0 + 180.0 * k / (o.resolution - 1);
-                    c.theta_o.push_back(t);
-                    wo.push_back(in_plane(std::fabs(t - 180.0) >= 90.0 ? 180.0 + std::copysign(89.999, t - 180.0) : t,
-                                          o.phi_i));
+                    const double s = 90.0 - 180.0 * k / (o.resolution - 1);
+                    c.theta_o.push_back(std::fabs(s) >= 90.0 ? (s > 0.0 ? 90.001 : 269.999) : 180.0 - s);
+                    wo.push_back(in_plane(c.theta_o.back(), o.phi_i));
                     wis.push_back(wi);
                 }
                 // f(wo, wi) in brdfbake's convention: light arriving from wi leaves towards wo.
