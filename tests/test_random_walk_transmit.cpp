@@ -9,7 +9,9 @@
 // inside the glass being the walk of the spec with 1/eta in the mirrored frame.
 #include <catch2/catch.hpp>
 
+#include <algorithm>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
 #include <sstream>
 
@@ -198,4 +200,31 @@ TEST_CASE("transmitting walk: lobe --transmission writes f_t below the surface, 
     CHECK(bad.out.empty());
     CHECK(bad.err.rfind("brdfbake: error: --transmission", 0) == 0);
     CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+}
+
+TEST_CASE("transmitting walk: compensation --eta's transmission-lobe distance bounds the T difference", "[random-walk]") {
+    // The triangle inequality: integral |f_T,scheme - f_T,walk| |cos| >= |T_scheme - T_walk|, the
+    // scheme's T being its transmission lobe's integral (Kulla-Conty's lost energy times tau spread
+    // by (1 - E'(mu_i)) / (pi (1 - Eavg')), Turquin's f_t / E) and the walk's T an independent
+    // estimator (escaping weight). Within the L1's and T's errors; the L1 finite, >= 0, and smaller than
+    // the sum of both lobes' T (a scheme cannot be further than both lobes' mass).
+    const auto r = testing::run_cli("compensation --eta 1.5 --alpha 0.5 --mu 0.5,1 --walks 65536 --lobe-directions 128 "
+                                    "--lobe-walks 256 --format json");
+    REQUIRE(r.status == 0);
+    const nlohmann::json j = nlohmann::json::parse(r.out);
+    int rows = 0;
+    for (const auto& e : j["results"]) {
+        for (const char* s : {"kulla-conty", "turquin"}) {
+            const std::string n = s;
+            const double l1 = e[n + "_transmission_l1"].get<double>(), dt = e[n + "_T_difference"].get<double>();
+            const double err = e["transmission_l1_error"].get<double>() + e["walk_T_error"].get<double>();
+            INFO(n << " side " << e["side"] << " mu " << e["mu"] << ": t_l1 " << l1 << " +- " << err << ", T difference "
+                   << dt);
+            CHECK((std::isfinite(l1) && l1 >= 0));
+            CHECK(l1 + err >= std::fabs(dt));
+            CHECK(l1 <= 2 * e["walk_T"].get<double>() + std::fabs(dt) + err);
+        }
+        ++rows;
+    }
+    CHECK(rows == 4);
 }
