@@ -184,8 +184,10 @@ void glass_lobe_distance(Engine& engine, const CompensationOptions& o, const Mod
 }
 
 /// The transmission lobe's L1 distance from the walk's f_t (walk_eval with wi below) of each scheme
-/// at row r: n cosine-distributed directions below (density |mu_i| / pi, a fixed seed per row),
-/// E(|mu_i|) of the other side from `e_far`.
+/// at row r: n directions below (a fixed seed per row) from a one-sample mixture [Veach 1997 ch. 9]:
+/// half cosine-distributed (|mu_i| / pi), half a visible normal of wo refracted (density the
+/// refraction phase function, bb_walk_refract_phase: single scattering's lobe; a draw past the
+/// critical angle counts 0); E(|mu_i|) of the other side from `e_far`.
 void glass_transmission_distance(Engine& engine, const CompensationOptions& o, const ModelConfig& walk,
                                  const std::vector<AlbedoValue>& e_far, GlassRow& r) {
     const int n = o.lobe_directions;
@@ -197,23 +199,42 @@ void glass_transmission_distance(Engine& engine, const CompensationOptions& o, c
     req.samples = std::uint64_t(o.lobe_walks);
     req.precision = Precision::Double;
     const Vec3 wo{std::sqrt(1.0 - r.mu * r.mu), 0.0, r.mu};
+    const ParamBlock params = side_params(walk, r.side);
+    const int dist = o.model == "beckmann" ? BB_SMITH_BECKMANN : BB_SMITH_GGX;
+    const bb_vec3 v = bb_v3(wo[0], wo[1], wo[2]);
+    std::vector<double> density;  // the mixture's density of each direction (0: a failed draw)
     for (int k = 0; k < n; ++k) {
-        const double z = std::sqrt(u(rng)), p = 2.0 * M_PI * u(rng), sz = std::sqrt(1.0 - z * z);
-        req.pairs.push_back({wo, {sz * std::cos(p), sz * std::sin(p), -z}, side_params(walk, r.side)});
+        const double u0 = u(rng), u1 = u(rng), u2 = u(rng);
+        bb_vec3 d;
+        if (u0 < 0.5) {
+            const double z = std::sqrt(u1), p = 2.0 * M_PI * u2, sz = std::sqrt(1.0 - z * z);
+            d = bb_v3(sz * std::cos(p), sz * std::sin(p), -z);
+        } else {
+            const bb_vec3 m = bb_walk_sample_vndf(dist, v, r.alpha, r.alpha, u1, u2);
+            d = bb_refract(v, m, bb_clamp_cos(bb_dot(v, m)), params[BB_SMITH_WALK_ETA]);
+        }
+        double vh = 0.0;
+        const bool ok = bb_dot(d, d) > 0.5 && d.z < 0.0;
+        const double pr = ok ? bb_walk_refract_phase(dist, v, d, params[BB_SMITH_WALK_ETA], r.alpha, r.alpha, &vh) : 0.0;
+        density.push_back(ok ? 0.5 * -d.z / M_PI + 0.5 * pr : 0.0);
+        if (!ok) d = bb_v3(0.0, 0.0, -1.0);  // walked, not counted
+        req.pairs.push_back({wo, {d.x, d.y, d.z}, params});
     }
     const WalkEvalResult w = walk_eval(engine, req);
     const auto& all = glass_schemes();
     std::vector<double> sum(all.size(), 0.0), sum2(all.size(), 0.0);
     double noise = 0.0;
     for (int k = 0; k < n; ++k) {
-        const double z = -req.pairs[size_t(k)].wi[2];
+        const double z = -req.pairs[size_t(k)].wi[2], p = density[size_t(k)];
+        if (!(p > 0.0)) continue;  // a refraction draw past the critical angle: 0
         // the walk's first order is the single-scattering f_t in closed form (random_walk.h)
         for (size_t s = 0; s < all.size(); ++s) {
-            const double d = std::fabs(all[s].transmission(r.in, w.single[k].value, e_at(e_far, z)) - w.f[k].value) * M_PI;
+            const double d =
+                std::fabs(all[s].transmission(r.in, w.single[k].value, e_at(e_far, z)) - w.f[k].value) * z / p;
             sum[s] += d;
             sum2[s] += d * d;
         }
-        noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * M_PI;
+        noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z / p;
     }
     for (size_t s = 0; s < all.size(); ++s) {
         const double mean = sum[s] / n;
@@ -351,7 +372,8 @@ std::string glass_header(const CompensationOptions& o, const std::vector<size_t>
             << o.lobe_directions << " directions x " << o.lobe_walks
             << " walks; l1_err: 3 standard errors; noise: what the walk's noise alone adds\n"
             << "# t_l1 (per scheme): the same of the transmission lobe, |f_T,scheme - f_T,walk| |cos| over wi below "
-               "(cosine-distributed directions); t_l1_err, t_noise as above\n";
+               "(half cosine-distributed directions, half refracted by single scattering); t_l1_err, t_noise as "
+               "above\n";
     return out.str();
 }
 
