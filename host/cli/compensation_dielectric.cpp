@@ -148,6 +148,36 @@ DielectricResult single_glass(Engine& engine, double alpha, double eta, const st
     return compute_dielectric_to_tolerance(engine, req, tol);
 }
 
+/// Each scheme's L1 distance of its reflection (or `transmission`) lobe from the walk's (w) over n
+/// draws, those that gave a direction of |cos| z[k] with density p[k] (0: one that counts 0), E(|mu_i|) of wi's side
+/// from e_grid: the mean of |f_scheme - f_walk| z / p into l1, the largest of its 3 standard errors
+/// into error, what the walk's noise alone adds into noise.
+void lobe_l1(const WalkEvalResult& w, int n, const std::vector<double>& z, const std::vector<double>& p,
+             const GlassInputs& in, const std::vector<AlbedoValue>& e_grid, bool transmission, std::vector<double>& l1,
+             double& error, double& noise) {
+    const auto& all = glass_schemes();
+    std::vector<double> sum(all.size(), 0.0), sum2(all.size(), 0.0);
+    double walk_noise = 0.0;
+    for (size_t k = 0; k < z.size(); ++k) {
+        if (!(p[k] > 0.0)) continue;  // a refraction draw past the critical angle: 0
+        // The walk's first order is the single-scattering lobe in closed form (random_walk.h).
+        for (size_t s = 0; s < all.size(); ++s) {
+            const double f = transmission ? all[s].transmission(in, w.single[k].value, e_at(e_grid, z[k]))
+                                          : all[s].reflection(in, w.single[k].value, e_at(e_grid, z[k]));
+            const double d = std::fabs(f - w.f[k].value) * z[k] / p[k];
+            sum[s] += d;
+            sum2[s] += d * d;
+        }
+        walk_noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z[k] / p[k];
+    }
+    for (size_t s = 0; s < all.size(); ++s) {
+        const double mean = sum[s] / n;
+        l1.push_back(mean);
+        error = std::max(error, 3.0 * std::sqrt(std::max(0.0, sum2[s] / n - mean * mean) / (n - 1)));
+    }
+    noise = walk_noise / n;
+}
+
 /// The reflection lobe's L1 distance from the walk's of each scheme at row r (directions as the
 /// conductor's: lobe_directions), E(mu_i) of r's side from `e_grid`.
 void glass_lobe_distance(Engine& engine, const CompensationOptions& o, const ModelConfig& single,
@@ -161,26 +191,9 @@ void glass_lobe_distance(Engine& engine, const CompensationOptions& o, const Mod
     req.precision = Precision::Double;
     for (const Vec3& wi : dirs.wi) req.pairs.push_back({dirs.wo, wi, side_params(walk, r.side)});
     const WalkEvalResult w = walk_eval(engine, req);
-    const auto& all = glass_schemes();
-    std::vector<double> sum(all.size(), 0.0), sum2(all.size(), 0.0);
-    double noise = 0.0;
-    for (size_t k = 0; k < dirs.wi.size(); ++k) {
-        const double z = dirs.wi[k][2], p = dirs.density[k];
-        // The walk's first order is the single-scattering reflection in closed form (random_walk.h).
-        for (size_t s = 0; s < all.size(); ++s) {
-            const double d =
-                std::fabs(all[s].reflection(r.in, w.single[k].value, e_at(e_grid, z)) - w.f[k].value) * z / p;
-            sum[s] += d;
-            sum2[s] += d * d;
-        }
-        noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z / p;
-    }
-    for (size_t s = 0; s < all.size(); ++s) {
-        const double mean = sum[s] / n;
-        r.lobe_l1.push_back(mean);
-        r.l1_error = std::max(r.l1_error, 3.0 * std::sqrt(std::max(0.0, sum2[s] / n - mean * mean) / (n - 1)));
-    }
-    r.l1_noise = noise / n;
+    std::vector<double> z;
+    for (const Vec3& wi : dirs.wi) z.push_back(wi[2]);
+    lobe_l1(w, n, z, dirs.density, r.in, e_grid, false, r.lobe_l1, r.l1_error, r.l1_noise);
 }
 
 /// The transmission lobe's L1 distance from the walk's f_t (walk_eval with wi below) of each scheme
@@ -221,27 +234,9 @@ void glass_transmission_distance(Engine& engine, const CompensationOptions& o, c
         req.pairs.push_back({wo, {d.x, d.y, d.z}, params});
     }
     const WalkEvalResult w = walk_eval(engine, req);
-    const auto& all = glass_schemes();
-    std::vector<double> sum(all.size(), 0.0), sum2(all.size(), 0.0);
-    double noise = 0.0;
-    for (int k = 0; k < n; ++k) {
-        const double z = -req.pairs[size_t(k)].wi[2], p = density[size_t(k)];
-        if (!(p > 0.0)) continue;  // a refraction draw past the critical angle: 0
-        // the walk's first order is the single-scattering f_t in closed form (random_walk.h)
-        for (size_t s = 0; s < all.size(); ++s) {
-            const double d =
-                std::fabs(all[s].transmission(r.in, w.single[k].value, e_at(e_far, z)) - w.f[k].value) * z / p;
-            sum[s] += d;
-            sum2[s] += d * d;
-        }
-        noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z / p;
-    }
-    for (size_t s = 0; s < all.size(); ++s) {
-        const double mean = sum[s] / n;
-        r.lobe_l1_t.push_back(mean);
-        r.l1_t_error = std::max(r.l1_t_error, 3.0 * std::sqrt(std::max(0.0, sum2[s] / n - mean * mean) / (n - 1)));
-    }
-    r.l1_t_noise = noise / n;
+    std::vector<double> z;
+    for (const WalkEvalPair& q : req.pairs) z.push_back(-q.wi[2]);
+    lobe_l1(w, n, z, density, r.in, e_far, true, r.lobe_l1_t, r.l1_t_error, r.l1_t_noise);
 }
 
 /// Eavg of both sides at alpha (2 integrals: outside, inside), R + T's error the sum of theirs.
