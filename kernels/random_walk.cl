@@ -88,8 +88,8 @@ __kernel void BB_ENTRY_WALK_ALBEDO(__global const bb_scalar* cell_mu, __global c
 /* f(wo, wi) wi.z by the walks' next-event estimation (brdf/random_walk.h): each work-item runs one
  * replica of one pair, `n_walks` walks from the pair's wo towards its wi (both unit vectors above
  * the surface, xyz in `dirs`, six per pair), and writes BB_WALK_EVAL_SUMS replica means: the
- * estimate of every order up to the bounce limit and its first order. Reflection only (the
- * dielectric's too). */
+ * estimate of every order up to the bounce limit and its first order. A dielectric's wi may lie
+ * below the surface: the transmitted f_t(wo, wi) |wi.z| (a conductor's is 0). */
 __kernel void BB_ENTRY_WALK_EVAL(__global const bb_scalar* dirs, __global const bb_scalar* model_p,
                                  __global const bb_scalar* fresnel_p, const unsigned int n_walks,
                                  const unsigned int n_replicas, const unsigned int n_pairs, const unsigned int seed_lo,
@@ -106,7 +106,8 @@ __kernel void BB_ENTRY_WALK_EVAL(__global const bb_scalar* dirs, __global const 
     bb_real sum[BB_WALK_EVAL_SUMS], comp[BB_WALK_EVAL_SUMS];
     for (int k = 0; k < BB_WALK_EVAL_SUMS; ++k) sum[k] = comp[k] = BB_R(0.0);
     unsigned int bad = 0;
-    for (unsigned int i = 0; i < n_walks && ok && wo.z > BB_R(0.0) && wi.z > BB_R(0.0); ++i) {
+    const int lit = wo.z > BB_R(0.0) && (wi.z > BB_R(0.0) || (it.dielectric && wi.z < BB_R(0.0)));
+    for (unsigned int i = 0; i < n_walks && ok && lit; ++i) {
         const bb_walk_result r =
             it.dielectric ? bb_walk_dielectric(BB_WALK_DIST, it.p, wo, wi, it.bounces, key, i, rep, pair_stream[pair])
                           : bb_walk_conductor(BB_WALK_DIST, it.p, BB_FRESNEL, it.fp, wo, wi, it.bounces, key, i, rep,

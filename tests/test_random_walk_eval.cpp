@@ -89,21 +89,12 @@ TEST_CASE("walk eval: f cos integrated over wi is the walk's albedo (two estimat
         for (int k = 0; k < 4096; ++k)
             req.pairs.push_back({unit(mu, 0.0), unit(std::sqrt(u(rng)), 2 * M_PI * u(rng)), m.params});
         const WalkEvalResult r = walk_eval(testing::engine(), req);
-        AlbedoRequest areq;
-        areq.model = m.id;
-        areq.fresnel = resolve_fresnel(c.fresnel);
-        areq.cells = cells_for({mu}, 0.0, m.params);
-        areq.samples = 1 << 18;
-        const WalkResult a = walk_albedo(testing::engine(), areq);
+        const WalkAlbedo a = testing::walk_albedo_at_mu(m, c.fresnel, mu);
         for (bool single : {false, true}) {
             const std::vector<AlbedoValue>& f = single ? r.single : r.f;
-            double s = 0, s2 = 0;
-            for (const AlbedoValue& v : f) {
-                s += M_PI * v.value;
-                s2 += M_PI * M_PI * v.value * v.value;
-            }
-            const double n = double(f.size()), mean = s / n, se = std::sqrt((s2 / n - mean * mean) / (n - 1));
-            const AlbedoValue& e = single ? a.values[0].single : a.values[0].energy;
+            double se = 0;
+            const double mean = testing::pi_mean(f, &se);
+            const AlbedoValue& e = single ? a.single : a.energy;
             INFO(c.spec << (single ? " first order" : " every order") << ": integral " << mean << " +- " << se
                         << ", walk albedo " << e.value << " +- " << e.error / 3);
             CHECK(std::fabs(mean - e.value) <= 4 * std::hypot(se, e.error / 3));

@@ -5,6 +5,7 @@
 
 #include <cmath>
 #include <string>
+#include <vector>
 
 #include "integrate/random_walk.h"
 #include "support.h"
@@ -28,6 +29,31 @@ inline void check_both_ends(brdfbake::WalkEvalRequest req, const brdfbake::Vec3&
         CHECK(std::fabs(r.f[0].value - r.f[1].value) <= kReciprocitySigmas * noise);
         CHECK(noise < max_noise * r.f[0].value);
     }
+}
+
+/// The walk's albedo (walk_albedo, 2^18 walks) of model m at mu (phi = 0) with the Fresnel term
+/// `fresnel`: E (R for a dielectric), T, their first orders.
+inline brdfbake::WalkAlbedo walk_albedo_at_mu(const brdfbake::ModelConfig& m, const std::string& fresnel, double mu) {
+    using namespace brdfbake;
+    AlbedoRequest areq;
+    areq.model = m.id;
+    areq.fresnel = resolve_fresnel(fresnel);
+    areq.cells = cells_for({mu}, 0.0, m.params);
+    areq.samples = 1 << 18;
+    return walk_albedo(engine(), areq).values[0];
+}
+
+/// pi times the mean of the values of `f` (an integral of f |cos| over a hemisphere by
+/// cosine-distributed directions), its standard error over the directions in *se.
+inline double pi_mean(const std::vector<brdfbake::AlbedoValue>& f, double* se) {
+    double s = 0, s2 = 0;
+    for (const brdfbake::AlbedoValue& v : f) {
+        s += M_PI * v.value;
+        s2 += M_PI * M_PI * v.value * v.value;
+    }
+    const double n = double(f.size()), mean = s / n;
+    *se = std::sqrt((s2 / n - mean * mean) / (n - 1));
+    return mean;
 }
 
 }  // namespace testing

@@ -38,6 +38,7 @@ struct LobeOptions {
     std::string data;    // CSV of the numbers
     std::string view = "plane";  // plane: the polar plot in the plane of incidence; 3d: the lobe in 3D
     std::int64_t walks = 1 << 14;  // a simulated model (scattering=multiple): walks per direction pair
+    bool transmission = false;     // a dielectric walk's transmitted f_t too (theta_o 90 to 270 degrees)
 };
 
 /// f(wo[k], wis[k]) of a model: the eval kernel, or for a simulated model (scattering=multiple) the
@@ -73,7 +74,7 @@ Vec3 in_plane(double t_deg, double phi_deg) {
 struct LobeCurve {
     std::string model;
     double theta_i = 0.0;
-    std::vector<double> theta_o, f, f_cos;  // signed outgoing angle (+: the mirror side)
+    std::vector<double> theta_o, f, f_cos;  // signed outgoing angle (+: the mirror side; > 90: below)
     std::vector<double> f_error;            // a simulated model's error estimate of f (else empty)
     double delta_weight = -1.0;             // a delta lobe: its reflectance (else -1)
 };
@@ -185,9 +186,12 @@ void write_lobe_3d(Engine& engine, const LobeOptions& o, const std::vector<Model
 /// error column when a walk drew any of the curves.
 void write_lobe_csv(const std::string& path, const std::vector<LobeCurve>& curves, const FresnelConfig& fresnel,
                     double phi_i) {
+    bool below = false;  // --transmission's rows
+    for (const LobeCurve& c : curves)
+        for (double t : c.theta_o) below = below || t > 90.0;
     std::ostringstream csv;
     csv << "# lobe: f(wi, wo) cos(theta_i) in the plane of incidence at phi = " << format_number(phi_i)
-        << " deg; theta_o > 0 on the mirror side; a delta lobe is one row at theta_o = theta_i with no f (a "
+        << " deg; theta_o > 0 on the mirror side" << (below ? ", 90 to 270 below the surface (f_t)" : "") << "; a delta lobe is one row at theta_o = theta_i with no f (a "
            "delta function) and its reflectance as f_cos_theta_i\n";
     bool simulated = false;  // a walk's estimate: one more column, f's error (3 standard errors)
     for (const LobeCurve& c : curves) simulated = simulated || !c.f_error.empty();
@@ -225,6 +229,9 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
     std::vector<ModelConfig> models;
     for (const auto& spec : o.models) {
         models.push_back(resolve_model_simulated(spec));
+        if (o.transmission && !models.back().dielectric_walk)
+            throw Error("--transmission: model '" + spec + "' transmits nothing here (it takes a dielectric walk, "
+                        "scattering=multiple,eta=N)");
         if (fresnel.kind != 0 && !models.back().uses_fresnel)
             throw Error("model '" + models.back().name + "' has no Fresnel term; drop --fresnel");
     }
@@ -233,6 +240,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
     // The incident direction lies at azimuth phi_i + 180 degrees, so that its mirror direction is
     // at +theta_i in the plane of azimuth phi_i.
     if (o.view != "plane" && o.view != "3d") throw Error("--view must be plane or 3d");
+    if (o.view == "3d" && o.transmission) throw Error("--transmission draws the plane of incidence (--view plane)");
     if (o.view == "3d" && (o.output.empty() || !o.data.empty()))
         throw Error("--view 3d draws a picture (-o FILE.png or FILE.svg); --data writes the plane of incidence, without it");
     Engine engine(g.device, g.verbose);
@@ -257,6 +265,14 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
                     const double t = -90.0 + 180.0 * k / (o.resolution - 1);
                     c.theta_o.push_back(t);
                     wo.push_back(in_plane(std::fabs(t) >= 90.0 ? std::copysign(89.999, t) : t, o.phi_i));
+                    wis.push_back(wi);
+                }
+                // the transmitted f_t below the surface: theta_o = 180 - s, s the angle from -z (walk9),
+                // labelled where evaluated (90.001 and 269.999 at the horizon: no row twice at 90)
+                for (int k = 0; o.transmission && k < o.resolution; ++k) {
+                    const double s = 90.0 - 180.0 * k / (o.resolution - 1);
+                    c.theta_o.push_back(std::fabs(s) >= 90.0 ? (s > 0.0 ? 90.001 : 269.999) : 180.0 - s);
+                    wo.push_back(in_plane(c.theta_o.back(), o.phi_i));
                     wis.push_back(wi);
                 }
                 // f(wo, wi) in brdfbake's convention: light arriving from wi leaves towards wo.
@@ -287,7 +303,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         const double floor = radius * 1e-6;
         auto r_of = [&](double v) { return o.log_scale ? std::max(0.0, std::log10(std::max(v, floor) / floor)) : v; };
         const double r_max = r_of(radius);
-        double x_lo = 0.0, x_hi = 0.0, y_hi = 0.0;  // the lobes' extent: the ranges fit the data
+        double x_lo = 0.0, x_hi = 0.0, y_lo = 0.0, y_hi = 0.0;  // the lobes' extent: the ranges fit the data
         for (const LobeCurve& c : curves) {
             Curve curve;
             char angle[32];
@@ -308,6 +324,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
             for (size_t k = 0; k < curve.x.size(); ++k) {
                 x_lo = std::min(x_lo, curve.x[k]);
                 x_hi = std::max(x_hi, curve.x[k]);
+                y_lo = std::min(y_lo, curve.y[k]);
                 y_hi = std::max(y_hi, curve.y[k]);
             }
             p.curves.push_back(curve);
@@ -318,7 +335,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         const double left = 1.05 * std::max({-x_lo, 0.3 * x_hi, 1e-3 * r_max});
         const double right = 1.05 * std::max({x_hi, 0.3 * -x_lo, 1e-3 * r_max});
         const double legend_rows = double(curves.size());
-        const double top = std::max(y_hi, 1e-3 * r_max) * (1.1 + 0.08 * legend_rows + 0.08);
+        const double top = std::max({y_hi, 1e-3 * r_max, 0.3 * -y_lo}) * (1.1 + 0.08 * legend_rows + 0.08);
         auto ray = [&](double t_deg, const std::string& style) {  // from the origin to the box's edge
             const double t = t_deg * kRad, s = std::sin(t), c = std::cos(t);
             double len = top / std::max(c, 1e-9);
@@ -333,7 +350,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         for (double ti : thetas) p.curves.push_back(ray(-ti, "k:1"));  // where light comes from
         p.x.lo = -left;
         p.x.hi = right;
-        p.y.lo = 0.0;
+        p.y.lo = 1.05 * y_lo;  // below 0 only with --transmission
         p.y.hi = top;
         p.legend = LegendPlace::TopLeft;
         write_plot(o.output, p, 1000, 600);
@@ -362,6 +379,8 @@ void add_lobe_command(CLI::App& app, const GlobalOptions& global, Action& action
     cmd->add_option("--walks", o->walks, "simulated models: walks per direction pair (scattering=multiple); per incident direction, "
                     "at least 2^20, for sheen-volume's histogram of exits")
         ->capture_default_str();
+    cmd->add_flag("--transmission", o->transmission,
+                  "a dielectric walk (scattering=multiple,eta=N): the transmitted f_t below the surface too");
     cmd->add_option("-o,--output", o->output, "the picture: .png or .svg");
     cmd->add_option("--data", o->data, "the numbers behind it as CSV (- for standard output)");
 }

@@ -6,8 +6,8 @@
 // 100; E = R + T and Eavg = 2 int E mu dmu from both sides, tables/mu_average.h, as the
 // dielectric-eavg table integrates them) and the average Fresnel reflectance Favg = 2 int F mu dmu
 // of the exact unpolarised interface from both sides. Compared: R, T and R + T with the walk's
-// errors, and the reflection lobe's L1 distance from the walk's (the walk estimates f of the
-// reflection only: walk_eval).
+// errors, and the reflection and transmission lobes' L1 distances from the walk's (walk_eval; f_t
+// with wi below since walk9).
 #include <algorithm>
 #include <array>
 #include <boost/math/quadrature/gauss_kronrod.hpp>
@@ -15,6 +15,7 @@
 #include <cstdio>
 #include <cstring>
 #include <nlohmann/json.hpp>
+#include <random>
 #include <sstream>
 
 #include "brdfbake/brdf/fresnel.h"
@@ -35,6 +36,7 @@ struct GlassInputs {
     double r, t;   // single scattering: R(mu) and T(mu) of the height-correlated interface on this side
     double e_avg;  // Eavg of this side: 2 int (R + T) mu dmu
     double tau;    // [KC17]'s share of the lost energy this side transmits (glass_split)
+    double e_avg_far;  // Eavg of the other side (where the transmitted lobe leaves)
 };
 
 /// A dielectric compensation scheme: its name and source, the compensated R and T it predicts at mu
@@ -44,6 +46,8 @@ struct GlassScheme {
     const char* source;
     std::array<double, 2> (*albedo)(const GlassInputs&);
     double (*reflection)(const GlassInputs&, double f_ss, double e_i);
+    /// its transmission lobe at (wo, wi below) from the single-scattering f_t and E(|mu_i|) of wi's side
+    double (*transmission)(const GlassInputs&, double ft_ss, double e_far_i);
 };
 
 double e_of(const GlassInputs& x) { return x.r + x.t; }
@@ -64,6 +68,9 @@ const std::vector<GlassScheme>& glass_schemes() {
          },
          [](const GlassInputs& x, double f_ss, double e_i) {
              return f_ss + (1.0 - e_of(x)) * (1.0 - e_i) / (M_PI * (1.0 - x.e_avg)) * (1.0 - x.tau);
+         },
+         [](const GlassInputs& x, double ft_ss, double e_i) {
+             return ft_ss + (1.0 - e_of(x)) * (1.0 - e_i) / (M_PI * (1.0 - x.e_avg_far)) * x.tau;
          }},
         // [T19] Turquin 2019, "Practical multiple scattering compensation for microfacet models",
         // the dielectric: the whole single-scattering BSDF (reflection and transmission) scaled by
@@ -72,7 +79,8 @@ const std::vector<GlassScheme>& glass_schemes() {
          [](const GlassInputs& x) {
              return std::array<double, 2>{x.r / e_of(x), x.t / e_of(x)};
          },
-         [](const GlassInputs& x, double f_ss, double) { return f_ss / e_of(x); }},
+         [](const GlassInputs& x, double f_ss, double) { return f_ss / e_of(x); },
+         [](const GlassInputs& x, double ft_ss, double) { return ft_ss / e_of(x); }},
     };
     return s;
 }
@@ -111,6 +119,8 @@ struct GlassRow {
     std::vector<std::array<double, 2>> scheme;  // per scheme: R, T
     std::vector<double> lobe_l1;                // per scheme: integral of |f_R,scheme - f_R,walk| cos over wi
     double l1_error = 0.0, l1_noise = 0.0;
+    std::vector<double> lobe_l1_t{};  // per scheme: integral of |f_T,scheme - f_T,walk| |cos| over wi below (walk9)
+    double l1_t_error = 0.0, l1_t_noise = 0.0;
 };
 
 const char* side_name(int side) { return side == 0 ? "outside" : "inside"; }
@@ -138,6 +148,36 @@ DielectricResult single_glass(Engine& engine, double alpha, double eta, const st
     return compute_dielectric_to_tolerance(engine, req, tol);
 }
 
+/// Each scheme's L1 distance of its reflection (or `transmission`) lobe from the walk's (w) over n
+/// draws, those that gave a direction of |cos| z[k] with density p[k] (0: one that counts 0), E(|mu_i|) of wi's side
+/// from e_grid: the mean of |f_scheme - f_walk| z / p into l1, the largest of its 3 standard errors
+/// into error, what the walk's noise alone adds into noise.
+void lobe_l1(const WalkEvalResult& w, int n, const std::vector<double>& z, const std::vector<double>& p,
+             const GlassInputs& in, const std::vector<AlbedoValue>& e_grid, bool transmission, std::vector<double>& l1,
+             double& error, double& noise) {
+    const auto& all = glass_schemes();
+    std::vector<double> sum(all.size(), 0.0), sum2(all.size(), 0.0);
+    double walk_noise = 0.0;
+    for (size_t k = 0; k < z.size(); ++k) {
+        if (!(p[k] > 0.0)) continue;  // a refraction draw past the critical angle: 0
+        // The walk's first order is the single-scattering lobe in closed form (random_walk.h).
+        for (size_t s = 0; s < all.size(); ++s) {
+            const double f = transmission ? all[s].transmission(in, w.single[k].value, e_at(e_grid, z[k]))
+                                          : all[s].reflection(in, w.single[k].value, e_at(e_grid, z[k]));
+            const double d = std::fabs(f - w.f[k].value) * z[k] / p[k];
+            sum[s] += d;
+            sum2[s] += d * d;
+        }
+        walk_noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z[k] / p[k];
+    }
+    for (size_t s = 0; s < all.size(); ++s) {
+        const double mean = sum[s] / n;
+        l1.push_back(mean);
+        error = std::max(error, 3.0 * std::sqrt(std::max(0.0, sum2[s] / n - mean * mean) / (n - 1)));
+    }
+    noise = walk_noise / n;
+}
+
 /// The reflection lobe's L1 distance from the walk's of each scheme at row r (directions as the
 /// conductor's: lobe_directions), E(mu_i) of r's side from `e_grid`.
 void glass_lobe_distance(Engine& engine, const CompensationOptions& o, const ModelConfig& single,
@@ -151,26 +191,52 @@ void glass_lobe_distance(Engine& engine, const CompensationOptions& o, const Mod
     req.precision = Precision::Double;
     for (const Vec3& wi : dirs.wi) req.pairs.push_back({dirs.wo, wi, side_params(walk, r.side)});
     const WalkEvalResult w = walk_eval(engine, req);
-    const auto& all = glass_schemes();
-    std::vector<double> sum(all.size(), 0.0), sum2(all.size(), 0.0);
-    double noise = 0.0;
-    for (size_t k = 0; k < dirs.wi.size(); ++k) {
-        const double z = dirs.wi[k][2], p = dirs.density[k];
-        // The walk's first order is the single-scattering reflection in closed form (random_walk.h).
-        for (size_t s = 0; s < all.size(); ++s) {
-            const double d =
-                std::fabs(all[s].reflection(r.in, w.single[k].value, e_at(e_grid, z)) - w.f[k].value) * z / p;
-            sum[s] += d;
-            sum2[s] += d * d;
+    std::vector<double> z;
+    for (const Vec3& wi : dirs.wi) z.push_back(wi[2]);
+    lobe_l1(w, n, z, dirs.density, r.in, e_grid, false, r.lobe_l1, r.l1_error, r.l1_noise);
+}
+
+/// The transmission lobe's L1 distance from the walk's f_t (walk_eval with wi below) of each scheme
+/// at row r: n directions below (a fixed seed per row) from a one-sample mixture [Veach 1997 ch. 9]:
+/// half cosine-distributed (|mu_i| / pi), half a visible normal of wo refracted (density the
+/// refraction phase function, bb_walk_refract_phase: single scattering's lobe; a draw past the
+/// critical angle counts 0); E(|mu_i|) of the other side from `e_far`.
+void glass_transmission_distance(Engine& engine, const CompensationOptions& o, const ModelConfig& walk,
+                                 const std::vector<AlbedoValue>& e_far, GlassRow& r) {
+    const int n = o.lobe_directions;
+    std::mt19937_64 rng(0x74726e73u + std::uint64_t(r.side) + 2 * std::uint64_t(std::llround(r.mu * 1e6)));
+    std::uniform_real_distribution<double> u(0.0, 1.0);
+    WalkEvalRequest req;
+    req.model = walk.id;
+    req.fresnel = resolve_fresnel("none");
+    req.samples = std::uint64_t(o.lobe_walks);
+    req.precision = Precision::Double;
+    const Vec3 wo{std::sqrt(1.0 - r.mu * r.mu), 0.0, r.mu};
+    const ParamBlock params = side_params(walk, r.side);
+    const int dist = o.model == "beckmann" ? BB_SMITH_BECKMANN : BB_SMITH_GGX;
+    const bb_vec3 v = bb_v3(wo[0], wo[1], wo[2]);
+    std::vector<double> density;  // the mixture's density of each direction (0: a failed draw)
+    for (int k = 0; k < n; ++k) {
+        const double u0 = u(rng), u1 = u(rng), u2 = u(rng);
+        bb_vec3 d;
+        if (u0 < 0.5) {
+            const double z = std::sqrt(u1), p = 2.0 * M_PI * u2, sz = std::sqrt(1.0 - z * z);
+            d = bb_v3(sz * std::cos(p), sz * std::sin(p), -z);
+        } else {
+            const bb_vec3 m = bb_walk_sample_vndf(dist, v, r.alpha, r.alpha, u1, u2);
+            d = bb_refract(v, m, bb_clamp_cos(bb_dot(v, m)), params[BB_SMITH_WALK_ETA]);
         }
-        noise += w.f[k].error / 3.0 * std::sqrt(2.0 / M_PI) * z / p;
+        double vh = 0.0;
+        const bool ok = bb_dot(d, d) > 0.5 && d.z < 0.0;
+        const double pr = ok ? bb_walk_refract_phase(dist, v, d, params[BB_SMITH_WALK_ETA], r.alpha, r.alpha, &vh) : 0.0;
+        density.push_back(ok ? 0.5 * -d.z / M_PI + 0.5 * pr : 0.0);
+        if (!ok) d = bb_v3(0.0, 0.0, -1.0);  // walked, not counted
+        req.pairs.push_back({wo, {d.x, d.y, d.z}, params});
     }
-    for (size_t s = 0; s < all.size(); ++s) {
-        const double mean = sum[s] / n;
-        r.lobe_l1.push_back(mean);
-        r.l1_error = std::max(r.l1_error, 3.0 * std::sqrt(std::max(0.0, sum2[s] / n - mean * mean) / (n - 1)));
-    }
-    r.l1_noise = noise / n;
+    const WalkEvalResult w = walk_eval(engine, req);
+    std::vector<double> z;
+    for (const WalkEvalPair& q : req.pairs) z.push_back(-q.wi[2]);
+    lobe_l1(w, n, z, density, r.in, e_far, true, r.lobe_l1_t, r.l1_t_error, r.l1_t_noise);
 }
 
 /// Eavg of both sides at alpha (2 integrals: outside, inside), R + T's error the sum of theirs.
@@ -209,11 +275,13 @@ std::vector<GlassRow> compute_glass(Engine& engine, const CompensationOptions& o
         const WalkResult walk = walk_albedo(engine, req);
         DielectricResult grid;
         if (o.lobe_directions > 0) grid = single_glass(engine, a, o.eta, e_grid_nodes(), 1e-4);
-        for (int side = 0; side < 2; ++side) {
-            std::vector<AlbedoValue> e_grid;
+        std::array<std::vector<AlbedoValue>, 2> e_grids;
+        for (int side = 0; side < 2; ++side)
             for (int k = 0; k < kEGrid && o.lobe_directions > 0; ++k)
-                e_grid.push_back(
+                e_grids[size_t(side)].push_back(
                     {grid.reflected[side * kEGrid + k].value + grid.transmitted[side * kEGrid + k].value, 0.0});
+        for (int side = 0; side < 2; ++side) {
+            const std::vector<AlbedoValue>& e_grid = e_grids[size_t(side)];
             for (size_t k = 0; k < mus.size(); ++k) {
                 const size_t c = side * mus.size() + k;
                 GlassRow r{a,
@@ -221,13 +289,16 @@ std::vector<GlassRow> compute_glass(Engine& engine, const CompensationOptions& o
                            side,
                            side == 0 ? o.eta : 1.0 / o.eta,
                            walk.values[c],
-                           {ss.reflected[c].value, ss.transmitted[c].value, avg.value[side], tau[side]},
+                           {ss.reflected[c].value, ss.transmitted[c].value, avg.value[side], tau[side],
+                            avg.value[1 - side]},
                            f_avg[side],
                            ss.reflected[c].error + ss.transmitted[c].error + avg.error[side],
                            {},
                            {}};
                 for (const GlassScheme& s : glass_schemes()) r.scheme.push_back(s.albedo(r.in));
                 if (o.lobe_directions > 0) glass_lobe_distance(engine, o, single, walk_model, e_grid, r);
+                if (o.lobe_directions > 0)
+                    glass_transmission_distance(engine, o, walk_model, e_grids[size_t(1 - side)], r);
                 rows.push_back(r);
             }
         }
@@ -270,10 +341,13 @@ nlohmann::json glass_json(const CompensationOptions& o, const std::vector<size_t
             e[n + "_T_difference"] = r.scheme[s][1] - r.walk.transmitted.value;
             e[n + "_sum_difference"] = r.scheme[s][0] + r.scheme[s][1] - r.walk.total.value;
             if (!r.lobe_l1.empty()) e[n + "_reflection_l1"] = r.lobe_l1[s];
+            if (!r.lobe_l1_t.empty()) e[n + "_transmission_l1"] = r.lobe_l1_t[s];
         }
         if (!r.lobe_l1.empty()) {
             e["lobe_l1_error"] = r.l1_error;
             e["lobe_l1_noise"] = r.l1_noise;
+            e["transmission_l1_error"] = r.l1_t_error;
+            e["transmission_l1_noise"] = r.l1_t_noise;
         }
         j["results"].push_back(e);
     }
@@ -291,7 +365,10 @@ std::string glass_header(const CompensationOptions& o, const std::vector<size_t>
     if (o.lobe_directions > 0)
         out << "# l1 (per scheme): integral of |f_R,scheme - f_R,walk| cos over wi of the reflection lobe, "
             << o.lobe_directions << " directions x " << o.lobe_walks
-            << " walks; l1_err: 3 standard errors; noise: what the walk's noise alone adds\n";
+            << " walks; l1_err: 3 standard errors; noise: what the walk's noise alone adds\n"
+            << "# t_l1 (per scheme): the same of the transmission lobe, |f_T,scheme - f_T,walk| |cos| over wi below "
+               "(half cosine-distributed directions, half refracted by single scattering); t_l1_err, t_noise as "
+               "above\n";
     return out.str();
 }
 
@@ -312,6 +389,8 @@ std::string render_glass(const CompensationOptions& o, const std::vector<size_t>
     if (lobe) {
         for (size_t s : picked) out << (csv ? "," : " ") << all[s].name << "_l1";
         out << (csv ? ",l1_error,l1_noise" : "     l1_err      noise");
+        for (size_t s : picked) out << (csv ? "," : " ") << all[s].name << "_t_l1";
+        out << (csv ? ",t_l1_error,t_l1_noise" : "   t_l1_err    t_noise");
     }
     out << "\n";
     char cell[160];
@@ -322,19 +401,22 @@ std::string render_glass(const CompensationOptions& o, const std::vector<size_t>
                       r.alpha, side_name(r.side), r.mu, r.walk.energy.value, r.walk.transmitted.value,
                       r.walk.energy.error, r.walk.transmitted.error, r.walk.total.error, r.in.r, r.in.t);
         out << cell;
-        std::vector<std::string> names;
-        std::vector<double> l1;
+        std::vector<std::string> names, names_t;
+        std::vector<double> l1, l1_t;
         for (size_t s : picked) {
             const double d[3] = {r.scheme[s][0] - r.walk.energy.value, r.scheme[s][1] - r.walk.transmitted.value,
                                  r.scheme[s][0] + r.scheme[s][1] - r.walk.total.value};
             const int n = int(std::strlen(all[s].name));
             for (int q = 0; q < 3; ++q) out << number_cell(csv, d[q], n + (q == 2 ? 4 : 2), 6);
             names.push_back(all[s].name);
+            names_t.push_back(std::string(all[s].name) + "_t");
             if (lobe) l1.push_back(r.lobe_l1[s]);
+            if (lobe) l1_t.push_back(r.lobe_l1_t[s]);
         }
         std::snprintf(cell, sizeof cell, csv ? ",%.3e" : " %10.2e", r.input_error);
         out << cell;
         if (lobe) out << lobe_cells(csv, names, l1, r.l1_error, r.l1_noise);
+        if (lobe) out << lobe_cells(csv, names_t, l1_t, r.l1_t_error, r.l1_t_noise);
         out << "\n";
     }
     return out.str();

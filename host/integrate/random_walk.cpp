@@ -157,9 +157,10 @@ WalkEvalResult walk_eval(Engine& engine, const WalkEvalRequest& req) {
     };
     const auto s = summarize_columns(l.sums, BB_WALK_EVAL_SUMS, l.bad, req.replicas, result.walks_per_pair,
                                      req.precision, where);
-    // The walks estimate f(wo, wi) wi.z: f is that over wi.z (0 below the horizon).
+    // The walks estimate f(wo, wi) |wi.z| (the dielectric's transmitted f_t for wi below): f is that
+    // over |wi.z| (0 at the horizon).
     for (size_t c = 0; c < n_pairs; ++c) {
-        const double z = req.pairs[c].wi[2];
+        const double z = std::fabs(req.pairs[c].wi[2]);
         AlbedoValue f = s[0][c], single = s[1][c];
         for (AlbedoValue* v : {&f, &single}) {
             v->value = z > 0.0 ? v->value / z : 0.0;

@@ -44,8 +44,8 @@ WalkResult walk_albedo(Engine& engine, const AlbedoRequest& req);
 WalkResult walk_albedo_to_tolerance(Engine& engine, const AlbedoRequest& req, const ToleranceRequest& tolerance);
 
 /// One value of f to estimate by the walks: f(wo, wi) with the parameters `params` (a ggx or beckmann
-/// block asking for multiple scattering; a dielectric walk's gives its reflection), wo and wi unit
-/// vectors (f is 0 where either lies at or below the horizon).
+/// block asking for multiple scattering), wo and wi unit vectors: f is 0 where wo lies at or below
+/// the horizon, or wi does for a conductor; a dielectric walk's wi below gives its transmitted f_t.
 struct WalkEvalPair {
     Vec3 wo{0.0, 0.0, 1.0}, wi{0.0, 0.0, 1.0};
     ParamBlock params{};

@@ -305,9 +305,14 @@ BB_FN bb_real bb_walk_flip_height(bb_real lc) {
 }
 
 /* The rough dielectric's relative indices: the upper (outside) side's eta, the lower's 1/eta, each
- * with its e - 1 exact (1/eta - 1 = -(eta - 1)/eta). */
+ * with its e - 1 exact (1/eta - 1 = -(eta - 1)/eta). The next-event functions below take [1] as the
+ * target's side: for a target below the surface (the transmitted f_t) the two are swapped and
+ * flip = 1 (bb_walk_dielectric), their `up` then meaning "on the target's side"; flip tells them
+ * the physical upper side, where an evaluation walk's first direction has its mixture
+ * (bb_walk_mix_pdf). */
 typedef struct {
-    bb_real e[2], em1[2]; /* [1]: the upper side, [0]: the lower */
+    bb_real e[2], em1[2]; /* [1]: the upper side (the target's), [0]: the lower */
+    int flip;             /* 1: [1] is the physical lower side (the target below) */
 } bb_walk_etas;
 
 /* The unpolarised dielectric Fresnel term at cos c for relative index e (em1 = e - 1). */
@@ -420,7 +425,7 @@ BB_FN bb_real bb_walk_dielectric_mis(int dist, bb_vec3 v, bb_real lc, int up, bb
         int up_next = cross ? !up : up;
         bb_real pa = bb_walk_dielectric_pdf(dist, v, w, up, cross, et, ax, ay);
         bb_real pb = bb_walk_dielectric_pdf(dist, t, bb_scale(w, -s), 1, !up_next, et, ax, ay);
-        bb_real pw = bb_walk_mix_pdf(pa, mix, w, up && !cross);
+        bb_real pw = bb_walk_mix_pdf(pa, mix, w, up != et.flip && !cross);
         if (j == 0) *pout = pw;
         if (up && cross && pin > BB_R(0.0)) /* the entry strategy's term, over the walk's density of v */
             pb += bb_walk_entry_pdf(dist, bb_scale(v, BB_R(-1.0)), w, t, et, ax, ay) / pin;
@@ -477,9 +482,26 @@ BB_FN bb_real bb_walk_dielectric_entry(int dist, bb_vec3 v, bb_real lc, int up, 
     bb_real lc1 = lca - bb_log1p(-p_hit * bb_unit_from_bits(ue.v[2])) / l;
     bb_real nee = bb_walk_dielectric_next_nee(dist, d, bb_walk_flip_height(lc1), 0, t, lt, et, ax, ay,
                                               bb_unit_from_bits(ue.v[3]));
-    bb_real fw = bb_walk_mix_pdf(f0, mix, a, up);
+    bb_real fw = bb_walk_mix_pdf(f0, mix, a, up && !et.flip);
     bb_real den = fw * f1 + fw * pb + pt * q;
     return bb_select(BB_R(0.0), p_hit * f0 * f1 * nee / den, ok && den > BB_R(0.0) && f0 * f1 * nee > BB_R(0.0));
+}
+
+/* The first intersection's next event towards a target t below the surface (t.z < 0), averaged over
+ * its height in closed form: the ray from above along -wo meets the microsurface at C1 = c with
+ * density (1 + Lambda(wo)) c^Lambda(wo) (the height sampling above), refracts towards t with the
+ * refraction phase function from wo times 1 - F(eta), and t, seen from below (-t, Lambda lt), leaves
+ * unoccluded with probability (1 - c)^lt: E = (1 + Lambda(wo)) B(1 + Lambda(wo), 1 + lt). With the
+ * phase function's 1/sigma(wo) this is the height-correlated rough dielectric's transmission f_t |t.z|
+ * [WMLT07 eq. 21, with G2 = B(1 + Lambda(wo), 1 + Lambda(t)), H14 eq. 100]. */
+BB_FN bb_real bb_walk_first_transmit(int dist, bb_vec3 wo, bb_vec3 t, bb_real lt, bb_walk_etas et, bb_real ax,
+                                     bb_real ay) {
+    bb_real vh;
+    bb_real ph = bb_walk_refract_phase(dist, wo, t, et.e[1], ax, ay, &vh);
+    bb_real a = BB_R(1.0) + bb_walk_lambda(dist, wo, ax, ay);
+    bb_real nee = ph * (BB_R(1.0) - bb_walk_fresnel_dielectric(vh, et.e[1], et.em1[1])) * a *
+                  bb_beta(a, BB_R(1.0) + lt);
+    return bb_select(BB_R(0.0), nee, ph > BB_R(0.0));
 }
 
 /* One random walk on the rough dielectric microsurface [HHdD16 sec. 5 (dielectric), the
@@ -516,7 +538,14 @@ BB_FN bb_real bb_walk_dielectric_entry(int dist, bb_vec3 v, bb_real lc, int up, 
  * a third Philox call) at that weight. Rare walks whose steep ray meets the microsurface again
  * (from a near-normal wo, the paths through the glass towards a grazing target) carried f's glass
  * part and the replicas' error hid them (walk5: check failed GGX alpha 0.4 on 7 of 16 seeds; 0 with
- * this). Without a target the walk, and so R and T, draws the same numbers as before. */
+ * this). Without a target the walk, and so R and T, draws the same numbers as before.
+ * With target.z < 0 (walk9) the same fields estimate the transmitted f_t(wo, target) |target.z| by the
+ * same scheme mirrored: the next-event functions see the lower side as the target's (bb_walk_etas'
+ * swap: at an upper-side intersection the refraction phase function into the glass towards the
+ * target times 1 - F and its masking from that height seen from below; at a lower-side one the
+ * reflection phase function times F(1/eta) in the lower frame, in closed form over the height), the
+ * MIS directions drawn from -target in the lower frame, the entry strategy's mirror (two segments
+ * through the air above); the first order in closed form (bb_walk_first_transmit). */
 BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, bb_vec3 target, int bounces,
                                         philox4x32_key_t key, unsigned int walk, unsigned int rep, unsigned int stream) {
     bb_real ax = p.v[BB_SMITH_ALPHA_X], ay = p.v[BB_SMITH_ALPHA_Y];
@@ -525,14 +554,23 @@ BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, bb_ve
     et.em1[1] = p.v[BB_SMITH_WALK_ETA_M1];
     et.e[0] = BB_R(1.0) / et.e[1];
     et.em1[0] = -et.em1[1] / et.e[1]; /* 1/eta - 1 = -(eta - 1)/eta */
+    et.flip = 0;
+    const int eval = target.z != BB_R(0.0);
+    const int below = target.z < BB_R(0.0); /* f_t: the next events see the lower side as the target's */
+    bb_walk_etas ev = et;                    /* the next events' indices, [1] the target's side */
+    if (below) {
+        ev.e[0] = et.e[1], ev.e[1] = et.e[0], ev.em1[0] = et.em1[1], ev.em1[1] = et.em1[0];
+        ev.flip = 1;
+    }
+    const bb_vec3 tt = below ? bb_scale(target, BB_R(-1.0)) : target; /* the target in its side's frame */
     bb_walk_result r = bb_walk_result_zero();
     bb_vec3 w = bb_scale(wo, BB_R(-1.0)); /* the ray's direction, in the frame of its side */
     bb_real lc = BB_R(0.0);               /* log C1(h), h in the frame of its side */
     int outside = 1;
-    const int eval = target.z > BB_R(0.0);
-    bb_real lt = bb_walk_lambda(dist, target, ax, ay);
+    bb_real lt = bb_walk_lambda(dist, tt, ax, ay);
     if (eval && bounces > 0) { /* the first intersection's next event, in closed form */
-        r.f_cos_single = bb_walk_dielectric_next_nee(dist, w, lc, 1, target, lt, et, ax, ay, BB_R(0.0));
+        r.f_cos_single = below ? bb_walk_first_transmit(dist, wo, target, lt, et, ax, ay)
+                               : bb_walk_dielectric_next_nee(dist, w, lc, 1, target, lt, et, ax, ay, BB_R(0.0));
         r.f_cos = r.f_cos_single;
     }
     bb_real weight = BB_R(1.0); /* an evaluation walk's weight (forced intersections, above) */
@@ -590,13 +628,14 @@ BB_FN bb_walk_result bb_walk_dielectric(int dist, bb_params p, bb_vec3 wo, bb_ve
         if (eval && k + 1 < bounces) { /* the next intersection's next event, two directions (above) */
             philox4x32_ctr_t ctr2 = {{walk, rep, stream, BB_WALK_NEE_TAG | (unsigned int)k}};
             philox4x32_ctr_t un = philox4x32(ctr2, key);
-            bb_vec3 mt = bb_walk_sample_vndf(dist, target, ax, ay, bb_unit_from_bits(un.v[0]),
+            bb_vec3 mt = bb_walk_sample_vndf(dist, tt, ax, ay, bb_unit_from_bits(un.v[0]),
                                              bb_unit_from_bits(un.v[1])); /* the target's visible normal */
-            r.f_cos += weight * bb_walk_dielectric_mis(dist, v, lc, outside, wa, cross, target, lt, et, ax, ay, mt, un,
-                                                       pin, mix, &pin);
+            const int side = outside != below; /* on the target's side */
+            r.f_cos += weight * bb_walk_dielectric_mis(dist, v, lc, side, wa, cross, tt, lt, ev, ax, ay, mt, un, pin,
+                                                       mix, &pin);
             if (k + 2 < bounces) { /* two intersections on through the glass, drawn from the target */
                 philox4x32_ctr_t ctr4 = {{walk, rep, stream, BB_WALK_ENTRY_TAG | (unsigned int)k}};
-                r.f_cos += weight * bb_walk_dielectric_entry(dist, v, lc, outside, target, lt, et, ax, ay, mt,
+                r.f_cos += weight * bb_walk_dielectric_entry(dist, v, lc, side, tt, lt, ev, ax, ay, mt,
                                                              philox4x32(ctr4, key), mix);
             }
         }
