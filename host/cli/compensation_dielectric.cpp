@@ -423,23 +423,31 @@ std::string render_glass(const CompensationOptions& o, const std::vector<size_t>
 }
 
 /// `--plot`: per scheme and side, its R minus the walk's against mu (its T's is the negative, both
-/// sums being 1), one curve per alpha; a second row with the reflection lobe's L1 distance.
+/// sums being 1), one curve per alpha; with lobes, rows of the reflection's and the transmission's
+/// lobe L1 distances.
 void plot_glass(const std::string& path, const CompensationOptions& o, const std::vector<size_t>& picked,
                 const std::vector<GlassRow>& rows) {
     Figure fig;
     fig.panel_width = 640;
     fig.panel_height = 480;
-    for (int lobe = 0; lobe < (o.lobe_directions > 0 ? 2 : 1); ++lobe)
+    // Rows: R's difference; with lobes, the reflection's and the transmission's L1 distances.
+    for (int row = 0; row < (o.lobe_directions > 0 ? 3 : 1); ++row)
         for (size_t s : picked)
             for (int side = 0; side < 2; ++side) {
                 std::vector<MuPoint> points;
                 for (const GlassRow& r : rows)
                     if (r.side == side)
-                        points.push_back({r.alpha, r.mu, lobe ? r.lobe_l1[s] : r.scheme[s][0] - r.walk.energy.value});
+                        points.push_back({r.alpha, r.mu,
+                                          row == 0   ? r.scheme[s][0] - r.walk.energy.value
+                                          : row == 1 ? r.lobe_l1[s]
+                                                     : r.lobe_l1_t[s]});
                 const std::string title = std::string(glass_schemes()[s].name) + ", from " + side_name(side);
-                fig.panels.push_back(lobe ? mu_panel(title + ": reflection lobe's L1 distance from the walk's",
-                                                     "\\int |f_R - f_{R,walk}| cos \\theta_i d\\omega_i", points, false)
-                                          : mu_panel(title + ": R - R_{walk}", "reflectance difference", points, true));
+                fig.panels.push_back(
+                    row == 0   ? mu_panel(title + ": R - R_{walk}", "reflectance difference", points, true)
+                    : row == 1 ? mu_panel(title + ": reflection lobe's L1 distance from the walk's",
+                                          "\\int |f_R - f_{R,walk}| cos \\theta_i d\\omega_i", points, false)
+                               : mu_panel(title + ": transmission lobe's L1 distance from the walk's",
+                                          "\\int |f_T - f_{T,walk}| |cos \\theta_i| d\\omega_i", points, false));
             }
     fig.columns = int(2 * picked.size());
     fig.caption = "rough dielectric " + o.model + ", \\eta = " + format_number(o.eta) +
