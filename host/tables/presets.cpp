@@ -388,7 +388,10 @@ LutSetup apply_preset(const LutSettings& given) {
     }
     if (given.size) {
         try {
-            set_lut_size(r, *given.size);
+            // With --thickness-step the depth is the step's: WIDTHxHEIGHT is the whole size then.
+            std::vector<int> dims = *given.size;
+            if (given.thickness_step && dims.size() == 2) dims.push_back(dims[1]);
+            set_lut_size(r, dims);
         } catch (const Error& e) {
             throw Error(std::string(e.what()) + " (--size " + size_text(*given.size) + ")");
         }

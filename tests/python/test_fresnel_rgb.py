@@ -340,17 +340,20 @@ def test_iridescence_map_rows_follow_the_thickness_step(tmp_path):
 
 def test_thin_film_table_slices_follow_the_thickness_step(tmp_path):
     """`lut thin-film --thickness-step NM`: ceil((HI - LO) / NM) + 1 slices over the range, at most
-    NM apart (counted in the CSV's thickness column)."""
-    for step, lo, hi in ((50, 100, 400), (70, 0, 1000)):
+    NM apart (counted in the CSV's thickness column), with --size N or WIDTHxHEIGHT (the error
+    message's two forms) beside it."""
+    for step, lo, hi, size in ((50, 100, 400, "2"), (70, 0, 1000, "2"), (100, 100, 400, "3x2")):
         path = str(tmp_path / "film.csv")
         out = subprocess.run([EXE, "lut", "thin-film", "--model", "ggx", "--fresnel", "thin-film:eta=1.3,base_eta=1.5",
-                              "--wavelength", "550", "--samples", "64", "--size", "2", "--thickness-range",
+                              "--wavelength", "550", "--samples", "64", "--size", size, "--thickness-range",
                               f"{lo},{hi}", "--thickness-step", str(step), "--no-preview", "-o", path],
                              capture_output=True, text=True)
         assert out.returncode == 0, out.stderr
         d = np.unique(np.loadtxt(path, delimiter=",", comments="#", skiprows=0, usecols=2, dtype=str)[1:].astype(float))
         assert len(d) == int(np.ceil((hi - lo) / step)) + 1, (step, d)
         assert lo <= d[0] and d[-1] <= hi and np.all(np.diff(d) <= step + 1e-9), (step, d)
+        mus = np.unique(np.loadtxt(path, delimiter=",", comments="#", usecols=0, dtype=str)[1:].astype(float))
+        assert len(mus) == int(size.split("x")[0]), (size, mus)
 
 
 def test_several_fresnel_terms_in_json_and_csv():
