@@ -24,6 +24,9 @@
 
 /* The bins' edges: cos((k + 1) pi / 32) in theta over [0, pi/2], cos((k + 1) pi / 16) in |phi| over [0, pi]
  * (BB_SHEEN_LOBE_THETA = BB_SHEEN_LOBE_PHI = 16), k = 0..14, descending. */
+#if BB_SHEEN_LOBE_THETA != 16 || BB_SHEEN_LOBE_PHI != 16
+#error "kSheenCosTheta and kSheenCosPhi hold the edges of 16 x 16 bins: recompute them for the new bin counts"
+#endif
 __constant bb_real kSheenCosTheta[15] = {
     BB_R(0.9951847266721969), BB_R(0.9807852804032304), BB_R(0.9569403357322088), BB_R(0.9238795325112867),
     BB_R(0.881921264348355), BB_R(0.8314696123025452), BB_R(0.773010453362737), BB_R(0.7071067811865476),

@@ -72,7 +72,9 @@ Vec3 in_plane(double t_deg, double phi_deg) {
 }
 
 struct LobeCurve {
-    std::string model;
+    std::string model;  // its canonical spec (the CSV's column)
+    std::string label;  // the spec as the user gave it (the picture's legend: the canonical one, with
+                        // every default spelled out, overflowed the panel for a walk)
     double theta_i = 0.0;
     std::vector<double> theta_o, f, f_cos;  // signed outgoing angle (+: the mirror side; > 90: below)
     std::vector<double> f_error;            // a simulated model's error estimate of f (else empty)
@@ -250,10 +252,12 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
         return kExitOk;
     }
     std::vector<LobeCurve> curves;
-    for (const ModelConfig& model : models)
+    for (size_t m = 0; m < models.size(); ++m)
         for (double ti : thetas) {
+            const ModelConfig& model = models[m];
             LobeCurve c;
             c.model = model.canonical;
+            c.label = o.models[m];
             c.theta_i = ti;
             const Vec3 wi = in_plane(-ti, o.phi_i);
             double analytic = 0.0;
@@ -308,7 +312,7 @@ int run_lobe(const LobeOptions& o, const GlobalOptions& g) {
             Curve curve;
             char angle[32];
             std::snprintf(angle, sizeof angle, "%g", c.theta_i);
-            curve.label = c.model + ", \\theta_i = " + angle + "\\deg";
+            curve.label = c.label + ", \\theta_i = " + angle + "\\deg";
             if (c.delta_weight >= 0.0) {  // an arrow from the origin along the mirror direction
                 const double r = r_of(c.delta_weight), t = c.theta_i * kRad;
                 curve.x = {0.0, r * std::sin(t)};
